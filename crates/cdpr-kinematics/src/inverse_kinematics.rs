@@ -1,0 +1,178 @@
+//! # Inverse kinematics
+//!
+//! For a platform pose (**u**, **T**), each cable's vector from platform attachment to frame anchor
+//! ℓ^i = **c**^i − **T ā**^i − **u** (eq. (6.2)), its length l_i = ‖ℓ^i‖ (eq. (6.4)), its unit
+//! vector ℓ^i / l_i (seed 002: ᵇu_i, pointing from B_i to A_i) and the attachment **a**^i = **T ā**^i
+//! (eq. (6.3); seed 002: ᵇb_i).
+//!
+//! ## References
+//! - Seed 000, eqs. (6.2)–(6.4). Seed 002, §2.
+
+use crate::{KinematicsError, MotionPattern, Pose, Robot};
+use nalgebra::Vector3;
+
+/// Relative length below which a cable counts as degenerate (zero length).
+const DEGENERATE_LENGTH: f64 = 1e-12;
+
+/// The state of one cable at one pose, all in base coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CableState {
+    /// ℓ^i: from the platform attachment to the frame anchor, eq. (6.2).
+    pub vector: Vector3<f64>,
+    /// l_i = ‖ℓ^i‖, eq. (6.4).
+    pub length: f64,
+    /// ℓ^i / l_i: the direction in which the cable pulls the platform.
+    pub unit: Vector3<f64>,
+    /// **a**^i = **T**(φ) **ā**^i: attachment relative to the platform origin, eq. (6.3).
+    pub attachment: Vector3<f64>,
+    /// **u** + **a**^i: the attachment point in base coordinates.
+    pub attachment_point: Vector3<f64>,
+}
+
+/// The inverse kinematics of a robot at one pose: one [`CableState`] per cable.
+///
+/// Reuse one value across poses with [`Robot::update_kinematics`] to avoid allocation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PoseKinematics {
+    motion: MotionPattern,
+    cables: Vec<CableState>,
+}
+
+impl PoseKinematics {
+    /// An empty buffer for `robot`, to be filled by [`Robot::update_kinematics`].
+    pub fn for_robot(robot: &Robot) -> Self {
+        Self {
+            motion: robot.motion(),
+            cables: vec![CableState::default(); robot.cable_count()],
+        }
+    }
+
+    /// The motion pattern of the robot these states belong to.
+    pub fn motion(&self) -> MotionPattern {
+        self.motion
+    }
+
+    /// Per-cable states.
+    pub fn cables(&self) -> &[CableState] {
+        &self.cables
+    }
+
+    /// Number of cables n.
+    pub fn cable_count(&self) -> usize {
+        self.cables.len()
+    }
+
+    /// Cable lengths l_i.
+    pub fn lengths(&self) -> impl ExactSizeIterator<Item = f64> + '_ {
+        self.cables.iter().map(|c| c.length)
+    }
+
+    /// Shortest cable length, for the l_min criterion of eq. (6.22).
+    pub fn min_length(&self) -> f64 {
+        self.lengths().fold(f64::INFINITY, f64::min)
+    }
+}
+
+impl Robot {
+    /// Inverse kinematics at `pose`, eqs. (6.2)–(6.4).
+    ///
+    /// Errors with [`KinematicsError::DegenerateCable`] if a cable has zero length at this pose
+    /// (its direction is undefined), or [`KinematicsError::NotFinite`] for a non-finite pose.
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+    /// use nalgebra::Vector3;
+    /// let robot = Robot::new(MotionPattern::Planar, vec![
+    ///     Cable { frame: Vector3::new(1.0, 0.5, 0.0), platform: Vector3::new(0.1, 0.1, 0.0) },
+    /// ]).unwrap();
+    /// let kin = robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
+    /// assert!((kin.cables()[0].length - (0.81f64 + 0.16).sqrt()).abs() < 1e-15);
+    /// ```
+    pub fn inverse_kinematics(&self, pose: &Pose) -> Result<PoseKinematics, KinematicsError> {
+        let mut kin = PoseKinematics::for_robot(self);
+        self.update_kinematics(pose, &mut kin)?;
+        Ok(kin)
+    }
+
+    /// Inverse kinematics into an existing buffer (no allocation when `kin` has the right size).
+    pub fn update_kinematics(
+        &self,
+        pose: &Pose,
+        kin: &mut PoseKinematics,
+    ) -> Result<(), KinematicsError> {
+        if let Some(&v) = pose.position.iter().find(|v| !v.is_finite()) {
+            return Err(KinematicsError::NotFinite {
+                what: "pose position".into(),
+                value: v,
+            });
+        }
+        kin.motion = self.motion();
+        kin.cables.resize(self.cable_count(), CableState::default());
+        let r = pose.rotation.matrix();
+        for (i, (cable, state)) in self.cables().iter().zip(kin.cables.iter_mut()).enumerate() {
+            let attachment = r * cable.platform;
+            let attachment_point = pose.position + attachment;
+            let vector = cable.frame - attachment_point;
+            let length = vector.norm();
+            let scale = cable.frame.norm().max(attachment_point.norm()).max(1.0);
+            if !(length > DEGENERATE_LENGTH * scale) {
+                return Err(KinematicsError::DegenerateCable { cable: i, length });
+            }
+            *state = CableState {
+                vector,
+                length,
+                unit: vector / length,
+                attachment,
+                attachment_point,
+            };
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Cable;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn zero_length_cable_is_an_error_for_that_pose() {
+        let robot = Robot::new(
+            MotionPattern::Point2,
+            vec![Cable {
+                frame: Vector3::new(0.5, 0.5, 0.0),
+                platform: Vector3::zeros(),
+            }],
+        )
+        .unwrap();
+        assert!(matches!(
+            robot.inverse_kinematics(&Pose::point(0.5, 0.5, 0.0)),
+            Err(KinematicsError::DegenerateCable { cable: 0, .. })
+        ));
+        assert!(
+            robot
+                .inverse_kinematics(&Pose::point(0.4, 0.5, 0.0))
+                .is_ok()
+        );
+    }
+
+    #[test]
+    fn rotated_attachment_follows_eq_6_3() {
+        let robot = Robot::new(
+            MotionPattern::Planar,
+            vec![Cable {
+                frame: Vector3::new(1.0, 1.0, 0.0),
+                platform: Vector3::new(0.1, 0.0, 0.0),
+            }],
+        )
+        .unwrap();
+        let kin = robot
+            .inverse_kinematics(&Pose::planar(0.2, 0.0, std::f64::consts::FRAC_PI_2))
+            .unwrap();
+        let c = kin.cables()[0];
+        assert_relative_eq!(c.attachment, Vector3::new(0.0, 0.1, 0.0), epsilon = 1e-15);
+        assert_relative_eq!(c.vector, Vector3::new(0.8, 0.9, 0.0), epsilon = 1e-15);
+        assert_relative_eq!(c.unit.norm(), 1.0, epsilon = 1e-15);
+    }
+}

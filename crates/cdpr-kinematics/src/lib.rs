@@ -1,0 +1,48 @@
+//! # cdpr-kinematics
+//!
+//! Geometry of cable-driven parallel robots: the bottom layer of the `cdpr` stack.
+//!
+//! A [`Robot`] is a [`MotionPattern`] and a list of [`Cable`]s (frame anchor **c**^i, platform
+//! attachment **ā**^i). At a [`Pose`], [`Robot::inverse_kinematics`] gives every cable's vector,
+//! length and unit vector ([`PoseKinematics`], seed 000 eqs. (6.2)–(6.4)), from which the
+//! DOF × n wrench matrix W (the thesis' structure matrix S = Jᵀ, eq. (6.11)) follows, with the
+//! sign convention **W t + w_ext = 0**.
+//!
+//! ```
+//! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+//! use nalgebra::Vector3;
+//!
+//! // The thesis' 3-cable planar manipulator (Tables 6.1, 6.2).
+//! let s = 0.1 / 2f64.sqrt();
+//! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
+//!     frame: Vector3::new(c[0], c[1], 0.0),
+//!     platform: Vector3::new(a[0], a[1], 0.0),
+//! };
+//! let robot = Robot::new(MotionPattern::Planar, vec![
+//!     cable([1.0, 1.0], [s, s]),
+//!     cable([-1.0, 1.0], [-s, s]),
+//!     cable([0.0, -1.0], [0.0, -0.1]),
+//! ]).unwrap();
+//!
+//! let kin = robot.inverse_kinematics(&Pose::planar(0.1, 0.0, 0.05)).unwrap();
+//! let w = kin.wrench_matrix();              // 3 × 3
+//! assert_eq!(w.shape(), (3, 3));
+//! assert!(kin.min_length() > 0.1);          // l_min of eq. (6.22)
+//! ```
+//!
+//! Enable the `proptest` feature for the [`strategies`] every crate of the stack tests with.
+
+mod error;
+mod inverse_kinematics;
+mod motion;
+mod pose;
+mod robot;
+#[cfg(feature = "proptest")]
+pub mod strategies;
+mod structure_matrix;
+
+pub use error::KinematicsError;
+pub use inverse_kinematics::{CableState, PoseKinematics};
+pub use motion::MotionPattern;
+pub use pose::Pose;
+pub use robot::{Cable, Robot};

@@ -1,0 +1,228 @@
+//! # Robot geometry
+//!
+//! A cable-driven parallel robot, as far as kinematics is concerned: a motion pattern and, per
+//! cable i, the frame anchor **c**^i (base coordinates) and the platform attachment **ā**^i
+//! (platform coordinates). Seed 000 Fig. 6.1 and Tables 6.1–6.2; seed 002 §2 calls them A_i, B_i.
+
+use crate::{KinematicsError, MotionPattern};
+use nalgebra::Vector3;
+
+/// One cable: where it leaves the frame and where it is attached to the platform.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cable {
+    /// Frame anchor **c**^i in base coordinates (z = 0 for 2-D motion patterns).
+    pub frame: Vector3<f64>,
+    /// Platform attachment **ā**^i in platform coordinates (zero for point motion patterns).
+    pub platform: Vector3<f64>,
+}
+
+impl Cable {
+    /// A cable from slices whose length must match the motion pattern's space dimension
+    /// (`platform` may be empty for point patterns).
+    pub fn from_slices(
+        motion: MotionPattern,
+        index: usize,
+        frame: &[f64],
+        platform: &[f64],
+    ) -> Result<Self, KinematicsError> {
+        let frame = to_vector(motion, &format!("cable {} frame anchor", index + 1), frame)?;
+        let platform = if platform.is_empty() && !motion.has_orientation() {
+            Vector3::zeros()
+        } else {
+            to_vector(
+                motion,
+                &format!("cable {} platform attachment", index + 1),
+                platform,
+            )?
+        };
+        Ok(Self { frame, platform })
+    }
+}
+
+fn to_vector(
+    motion: MotionPattern,
+    what: &str,
+    v: &[f64],
+) -> Result<Vector3<f64>, KinematicsError> {
+    let d = motion.space_dim();
+    if v.len() != d {
+        return Err(KinematicsError::WrongDimension {
+            what: what.into(),
+            motion: motion.name(),
+            expected: d,
+            found: v.len(),
+        });
+    }
+    if let Some(&x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(KinematicsError::NotFinite {
+            what: what.into(),
+            value: x,
+        });
+    }
+    Ok(Vector3::new(v[0], v[1], if d == 3 { v[2] } else { 0.0 }))
+}
+
+/// The geometry of a cable robot: motion pattern and cables.
+///
+/// ```
+/// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+/// use nalgebra::Vector3;
+/// let cable = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let robot = Robot::new(MotionPattern::Point2, vec![cable(1.0, 0.0), cable(-0.5, 0.8), cable(-0.5, -0.8)]).unwrap();
+/// assert_eq!(robot.cable_count(), 3);
+/// assert_eq!(robot.redundancy(), 1);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct Robot {
+    motion: MotionPattern,
+    cables: Vec<Cable>,
+}
+
+impl Robot {
+    /// A robot from its cables. Errors on no cables or non-finite coordinates; 2-D patterns
+    /// must have zero z components and point patterns zero platform attachments.
+    pub fn new(motion: MotionPattern, cables: Vec<Cable>) -> Result<Self, KinematicsError> {
+        if cables.is_empty() {
+            return Err(KinematicsError::NoCables);
+        }
+        for (i, c) in cables.iter().enumerate() {
+            for (what, v) in [
+                ("frame anchor", &c.frame),
+                ("platform attachment", &c.platform),
+            ] {
+                if let Some(&x) = v.iter().find(|x| !x.is_finite()) {
+                    return Err(KinematicsError::NotFinite {
+                        what: format!("cable {} {what}", i + 1),
+                        value: x,
+                    });
+                }
+            }
+            if motion.space_dim() == 2 && (c.frame.z != 0.0 || c.platform.z != 0.0) {
+                return Err(KinematicsError::WrongDimension {
+                    what: format!("cable {} (non-zero z)", i + 1),
+                    motion: motion.name(),
+                    expected: 2,
+                    found: 3,
+                });
+            }
+            if !motion.has_orientation() && c.platform != Vector3::zeros() {
+                return Err(KinematicsError::WrongDimension {
+                    what: format!(
+                        "cable {} platform attachment (a point platform has none)",
+                        i + 1
+                    ),
+                    motion: motion.name(),
+                    expected: 0,
+                    found: motion.space_dim(),
+                });
+            }
+        }
+        Ok(Self { motion, cables })
+    }
+
+    /// The motion pattern.
+    pub fn motion(&self) -> MotionPattern {
+        self.motion
+    }
+
+    /// Degrees of freedom (rows of W).
+    pub fn dof(&self) -> usize {
+        self.motion.dof()
+    }
+
+    /// The cables, in order.
+    pub fn cables(&self) -> &[Cable] {
+        &self.cables
+    }
+
+    /// Number of cables n (columns of W).
+    pub fn cable_count(&self) -> usize {
+        self.cables.len()
+    }
+
+    /// Redundancy r = n − DOF (negative for under-constrained robots).
+    pub fn redundancy(&self) -> isize {
+        self.cables.len() as isize - self.dof() as isize
+    }
+
+    /// Pairs of cables that are exact duplicates (same anchor and attachment): legal, but the
+    /// wrench matrix then has equal columns. Shared anchors alone are normal (IPAnema 1).
+    pub fn duplicate_cables(&self) -> Vec<(usize, usize)> {
+        let mut out = Vec::new();
+        for i in 0..self.cables.len() {
+            for j in i + 1..self.cables.len() {
+                if self.cables[i] == self.cables[j] {
+                    out.push((i, j));
+                }
+            }
+        }
+        out
+    }
+
+    /// Bounding box of the frame anchors: `(min, max)` corners (Algorithm 6.2 step 2).
+    pub fn frame_bounding_box(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let mut lo = self.cables[0].frame;
+        let mut hi = lo;
+        for c in &self.cables[1..] {
+            lo = lo.inf(&c.frame);
+            hi = hi.sup(&c.frame);
+        }
+        (lo, hi)
+    }
+
+    /// The same robot with its cables reordered: `order[k]` is the old index of new cable k.
+    pub fn permuted(&self, order: &[usize]) -> Self {
+        Self {
+            motion: self.motion,
+            cables: order.iter().map(|&i| self.cables[i]).collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rejects_bad_geometry() {
+        assert_eq!(
+            Robot::new(MotionPattern::Planar, vec![]),
+            Err(KinematicsError::NoCables)
+        );
+        let bad = Cable {
+            frame: Vector3::new(f64::NAN, 0.0, 0.0),
+            platform: Vector3::zeros(),
+        };
+        assert!(matches!(
+            Robot::new(MotionPattern::Planar, vec![bad]),
+            Err(KinematicsError::NotFinite { .. })
+        ));
+        let z = Cable {
+            frame: Vector3::new(1.0, 0.0, 1.0),
+            platform: Vector3::zeros(),
+        };
+        assert!(matches!(
+            Robot::new(MotionPattern::Planar, vec![z]),
+            Err(KinematicsError::WrongDimension { .. })
+        ));
+        let att = Cable {
+            frame: Vector3::new(1.0, 0.0, 0.0),
+            platform: Vector3::new(0.1, 0.0, 0.0),
+        };
+        assert!(matches!(
+            Robot::new(MotionPattern::Point2, vec![att]),
+            Err(KinematicsError::WrongDimension { .. })
+        ));
+        assert!(Cable::from_slices(MotionPattern::Spatial, 0, &[1.0, 2.0], &[0.0; 3]).is_err());
+    }
+
+    #[test]
+    fn duplicates_are_reported_not_rejected() {
+        let c = Cable {
+            frame: Vector3::new(1.0, 0.0, 0.0),
+            platform: Vector3::zeros(),
+        };
+        let r = Robot::new(MotionPattern::Point2, vec![c, c]).unwrap();
+        assert_eq!(r.duplicate_cables(), vec![(0, 1)]);
+    }
+}

@@ -1,0 +1,144 @@
+//! # Structure (wrench) matrix and Jacobian
+//!
+//! Static equilibrium of the platform under cable tensions **t** and an external wrench
+//! **w**_ext (seed 000: **f**^P) is
+//!
+//! ```text
+//!     W t + w_ext = 0                      (seed 000 eq. (6.11): f^P = −S t; seed 002 eq. (1))
+//! ```
+//!
+//! with the DOF × n wrench matrix W (the thesis' *structure matrix* S), whose column i is
+//! `[u_i ; a_i × u_i]` restricted to the motion pattern's wrench components (seed 002 eq. (2)).
+//! The Jacobian of eq. (6.7) is J = Wᵀ (n × DOF) and relates cable and platform velocities by
+//! l̇ = −J q̇ for a twist q̇ = [u̇; ω] (ω: angular velocity in base coordinates).
+//!
+//! ## References
+//! - Seed 000, eqs. (6.6), (6.7), (6.11). Seed 002, eqs. (1)–(2).
+
+use crate::MotionPattern;
+use crate::PoseKinematics;
+use nalgebra::{DMatrix, Vector3};
+
+impl PoseKinematics {
+    /// Writes column i of W for the cable with unit vector `u` and attachment `a`.
+    #[inline]
+    fn wrench_column(motion: MotionPattern, u: &Vector3<f64>, a: &Vector3<f64>, col: &mut [f64]) {
+        match motion {
+            MotionPattern::Point2 => {
+                col[0] = u.x;
+                col[1] = u.y;
+            }
+            MotionPattern::Planar => {
+                col[0] = u.x;
+                col[1] = u.y;
+                col[2] = a.x * u.y - a.y * u.x;
+            }
+            MotionPattern::Point3 => col.copy_from_slice(u.as_slice()),
+            MotionPattern::Spatial => {
+                let m = a.cross(u);
+                col[..3].copy_from_slice(u.as_slice());
+                col[3..].copy_from_slice(m.as_slice());
+            }
+        }
+    }
+
+    /// The DOF × n wrench (structure) matrix W, eq. (6.11) / seed 002 eq. (2).
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+    /// use nalgebra::Vector3;
+    /// let robot = Robot::new(MotionPattern::Point2, vec![
+    ///     Cable { frame: Vector3::new(2.0, 0.0, 0.0), platform: Vector3::zeros() },
+    ///     Cable { frame: Vector3::new(0.0, 3.0, 0.0), platform: Vector3::zeros() },
+    /// ]).unwrap();
+    /// let w = robot.inverse_kinematics(&Pose::point(0.0, 0.0, 0.0)).unwrap().wrench_matrix();
+    /// assert_eq!(w[(0, 0)], 1.0);
+    /// assert_eq!(w[(1, 1)], 1.0);
+    /// ```
+    pub fn wrench_matrix(&self) -> DMatrix<f64> {
+        let mut w = DMatrix::zeros(self.motion().dof(), self.cable_count());
+        self.write_wrench_matrix(&mut w);
+        w
+    }
+
+    /// W into an existing matrix (resized only if its shape differs: no allocation in loops).
+    pub fn write_wrench_matrix(&self, w: &mut DMatrix<f64>) {
+        let (dof, n) = (self.motion().dof(), self.cable_count());
+        if w.shape() != (dof, n) {
+            *w = DMatrix::zeros(dof, n);
+        }
+        let motion = self.motion();
+        for (c, mut col) in self.cables().iter().zip(w.column_iter_mut()) {
+            Self::wrench_column(motion, &c.unit, &c.attachment, col.as_mut_slice());
+        }
+    }
+
+    /// The Jacobian J = Wᵀ (n × DOF) of eq. (6.7): l̇ = −J q̇.
+    pub fn jacobian(&self) -> DMatrix<f64> {
+        self.wrench_matrix().transpose()
+    }
+
+    /// det J for a fully determined robot (n = DOF), else `None`; criterion (6.24).
+    pub fn jacobian_determinant(&self) -> Option<f64> {
+        (self.cable_count() == self.motion().dof()).then(|| self.wrench_matrix().determinant())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::{Cable, MotionPattern, Pose, Robot};
+    use approx::assert_relative_eq;
+    use nalgebra::Vector3;
+
+    /// The thesis 4-cable manipulator, Tables 6.1 and 6.2.
+    fn thesis_four_cable() -> Robot {
+        let s = 0.1 / 2f64.sqrt();
+        let cable = |c: [f64; 2], a: [f64; 2]| Cable {
+            frame: Vector3::new(c[0], c[1], 0.0),
+            platform: Vector3::new(a[0], a[1], 0.0),
+        };
+        Robot::new(
+            MotionPattern::Planar,
+            vec![
+                cable([1.0, 0.5], [s, s]),
+                cable([-1.0, 0.5], [-s, s]),
+                cable([-1.0, -0.5], [-0.1, -0.1]),
+                cable([1.0, -0.5], [0.1, -0.1]),
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn thesis_four_cable_at_origin_by_hand() {
+        let w = thesis_four_cable()
+            .inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0))
+            .unwrap()
+            .wrench_matrix();
+        let s = 0.1 / 2f64.sqrt();
+        // Cable 1: ℓ = (1 − s, 0.5 − s); moment = s·ℓ_y − s·ℓ_x = s(0.5 − 1) = −0.5 s, divided by l.
+        let l1 = ((1.0 - s).powi(2) + (0.5 - s).powi(2)).sqrt();
+        assert_relative_eq!(w[(0, 0)], (1.0 - s) / l1, epsilon = 1e-15);
+        assert_relative_eq!(w[(1, 0)], (0.5 - s) / l1, epsilon = 1e-15);
+        assert_relative_eq!(w[(2, 0)], -0.5 * s / l1, epsilon = 1e-15);
+        // Cable 3: ℓ = (−0.9, −0.4), a = (−0.1, −0.1): moment = (−0.1)(−0.4) − (−0.1)(−0.9) = −0.05.
+        let l3 = (0.81f64 + 0.16).sqrt();
+        assert_relative_eq!(w[(0, 2)], -0.9 / l3, epsilon = 1e-15);
+        assert_relative_eq!(w[(1, 2)], -0.4 / l3, epsilon = 1e-15);
+        assert_relative_eq!(w[(2, 2)], -0.05 / l3, epsilon = 1e-15);
+        // Cable 4: ℓ = (0.9, −0.4), a = (0.1, −0.1): moment = 0.1(−0.4) − (−0.1)(0.9) = 0.05.
+        assert_relative_eq!(w[(2, 3)], 0.05 / l3, epsilon = 1e-15);
+    }
+
+    #[test]
+    fn determinant_only_when_square() {
+        let r = thesis_four_cable();
+        let kin = r.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
+        assert!(kin.jacobian_determinant().is_none());
+        let three = r.permuted(&[0, 1, 2]);
+        let kin = three
+            .inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0))
+            .unwrap();
+        assert!(kin.jacobian_determinant().unwrap().abs() > 1e-3);
+    }
+}
