@@ -1,14 +1,35 @@
-pub fn add(left: u64, right: u64) -> u64 {
-    left + right
-}
+//! # cdpr-wrench
+//!
+//! Wrenches and stiffness of cable-driven parallel robots, on top of `cdpr-kinematics`:
+//! the gravity wrench of a [`Platform`] and the stiffness matrix K = Kp + Ka of seed 002
+//! (Picard et al. 2020, eqs. (3)–(4)) with k_i = E S / l_i.
+//!
+//! ```
+//! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+//! use cdpr_wrench::{stiffness_matrix, Platform};
+//! use nalgebra::Vector3;
+//!
+//! let robot = Robot::new(MotionPattern::Point3, vec![
+//!     Cable { frame: Vector3::new(1.0, 0.0, 1.0), platform: Vector3::zeros() },
+//!     Cable { frame: Vector3::new(-1.0, 0.0, 1.0), platform: Vector3::zeros() },
+//!     Cable { frame: Vector3::new(0.0, 1.0, 1.0), platform: Vector3::zeros() },
+//!     Cable { frame: Vector3::new(0.0, -1.0, 1.0), platform: Vector3::zeros() },
+//! ]).unwrap();
+//! let pose = Pose::point(0.0, 0.0, 0.0);
+//! let gravity = Platform { mass: 1.0, ..Platform::default() }.gravity_wrench(MotionPattern::Point3, &pose);
+//! assert!((gravity[2] + 9.80665).abs() < 1e-12);
+//! let kin = robot.inverse_kinematics(&pose).unwrap();
+//! let k = stiffness_matrix(&kin, &[5.0; 4], &[6.0e4; 4]).unwrap();   // 3 × 3, N/m
+//! assert!(k[(2, 2)] > 0.0);
+//! ```
 
-#[cfg(test)]
-mod tests {
-    use super::*;
+mod error;
+mod external_wrench;
+mod stiffness;
 
-    #[test]
-    fn it_works() {
-        let result = add(2, 2);
-        assert_eq!(result, 4);
-    }
-}
+pub use error::WrenchError;
+pub use external_wrench::{Platform, STANDARD_GRAVITY, wrench_from_slice};
+pub use stiffness::{
+    active_stiffness, passive_stiffness, stiffness_matrix, wrench_components,
+    write_stiffness_matrix,
+};
