@@ -115,7 +115,8 @@ impl Robot {
             let vector = cable.frame - attachment_point;
             let length = vector.norm();
             let scale = cable.frame.norm().max(attachment_point.norm()).max(1.0);
-            if !(length > DEGENERATE_LENGTH * scale) {
+            // Written so that a NaN length also counts as degenerate.
+            if length.is_nan() || length <= DEGENERATE_LENGTH * scale {
                 return Err(KinematicsError::DegenerateCable { cable: i, length });
             }
             *state = CableState {

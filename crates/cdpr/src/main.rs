@@ -1,3 +1,46 @@
-fn main() {
-    println!("Hello, world!");
+//! The `cdpr` command: analysis and design of cable-driven parallel robots from robot files.
+//! Run `cdpr --help`, or `cdpr COMMAND --help` for each command.
+
+mod cli;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Analysis and design of cable-driven parallel robots (CDPRs).
+///
+/// Every command reads a robot file (TOML: see examples/robots/ and the `cdpr::RobotDescription`
+/// docs), prints a readable table, or one JSON object on stdout with --json, and writes a plot with
+/// --plot FILE.svg|FILE.png where it has one. Poses and wrenches are comma-separated numbers in the
+/// order of the robot's motion pattern: point2 (x,y), planar (x,y,phi), point3 (x,y,z),
+/// spatial (x,y,z,rx,ry,rz: XYZ Euler angles in radians). Negative numbers work: --pose -0.5,0.2,0.
+///
+/// Exit codes: 0 on success (an infeasible result is a success), 2 on bad input.
+#[derive(Parser)]
+#[command(name = "cdpr", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Inverse kinematics at a pose: cable lengths, unit vectors and the wrench matrix W.
+    Kinematics(cli::kinematics::Args),
+    /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (seed 002 eq. (4)).
+    Stiffness(cli::stiffness::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Kinematics(a) => cli::kinematics::run(a),
+        Command::Stiffness(a) => cli::stiffness::run(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
 }

@@ -1,0 +1,65 @@
+//! `cdpr kinematics`: inverse kinematics and the wrench matrix at one pose.
+
+use super::{CliError, Numbers, load_robot, matrix_rows, pose, print_json, print_matrix};
+use serde_json::json;
+use std::path::PathBuf;
+
+/// Inverse kinematics at a pose (seed 000 eqs. (6.2)–(6.4), (6.11)).
+///
+/// Prints each cable's length l_i and unit vector (from the platform attachment towards the frame
+/// anchor), and the DOF × n wrench matrix W with W t + w_ext = 0.
+/// JSON fields: `lengths`, `unit_vectors` (one array per cable), `wrench_matrix` (one array per
+/// row of W), `attachment_points`, `jacobian_determinant` (n = DOF only).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Robot file (TOML).
+    robot: PathBuf,
+    /// Platform pose, e.g. `--pose -0.5,0.2,0` for a planar robot (x, y, φ).
+    #[arg(long, allow_hyphen_values = true)]
+    pose: Numbers,
+    /// Write one JSON object on stdout instead of tables.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let robot = load_robot(&args.robot)?;
+    let pose = pose(&robot, &args.pose)?;
+    let kin = robot.robot.inverse_kinematics(&pose)?;
+    let w = kin.wrench_matrix();
+    let dim = robot.robot.motion().space_dim();
+    let vec_of = |v: &nalgebra::Vector3<f64>| v.iter().take(dim).copied().collect::<Vec<f64>>();
+    if args.json {
+        print_json(&json!({
+            "robot": robot.name,
+            "motion": robot.robot.motion().name(),
+            "pose": args.pose.0,
+            "lengths": kin.lengths().collect::<Vec<_>>(),
+            "unit_vectors": kin.cables().iter().map(|c| vec_of(&c.unit)).collect::<Vec<_>>(),
+            "attachment_points": kin.cables().iter().map(|c| vec_of(&c.attachment_point)).collect::<Vec<_>>(),
+            "wrench_matrix": matrix_rows(&w),
+            "jacobian_determinant": kin.jacobian_determinant(),
+        }))
+    } else {
+        println!(
+            "robot {} ({}), pose {:?}",
+            robot.name,
+            robot.robot.motion(),
+            args.pose.0
+        );
+        println!("{:>6} {:>12}  unit vector", "cable", "length");
+        for (i, c) in kin.cables().iter().enumerate() {
+            let u: Vec<String> = vec_of(&c.unit)
+                .iter()
+                .map(|x| format!("{x:>10.6}"))
+                .collect();
+            println!("{:>6} {:>12.6}  {}", i + 1, c.length, u.join(" "));
+        }
+        print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
+        if let Some(d) = kin.jacobian_determinant() {
+            println!("det J = {d:.6e}");
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,84 @@
+//! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
+
+pub mod kinematics;
+pub mod stiffness;
+
+use cdpr::RobotDescription;
+use cdpr::kinematics::Pose;
+use nalgebra::{DMatrix, DVector};
+use std::path::Path;
+
+/// Any error a command reports (printed on stderr, exit code 2).
+pub type CliError = Box<dyn std::error::Error>;
+
+/// Comma-separated numbers on the command line (`-0.5,0.2,0`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Numbers(pub Vec<f64>);
+
+impl std::str::FromStr for Numbers {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        s.split(',')
+            .map(|p| {
+                let p = p.trim();
+                p.parse::<f64>().map_err(|_| {
+                    format!(
+                        "`{p}` is not a number (expected comma-separated numbers like -0.5,0.2,0)"
+                    )
+                })
+            })
+            .collect::<Result<_, _>>()
+            .map(Numbers)
+    }
+}
+
+impl std::ops::Deref for Numbers {
+    type Target = [f64];
+    fn deref(&self) -> &[f64] {
+        &self.0
+    }
+}
+
+/// Loads a robot file and prints its warnings on stderr.
+pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {
+    let robot = RobotDescription::load(path)?;
+    for w in &robot.warnings {
+        eprintln!("warning: {}: {w}", path.display());
+    }
+    Ok(robot)
+}
+
+/// A pose for the robot's motion pattern from command-line numbers.
+pub fn pose(robot: &RobotDescription, q: &[f64]) -> Result<Pose, CliError> {
+    Ok(Pose::from_coordinates(robot.robot.motion(), q)?)
+}
+
+/// A wrench for the robot's motion pattern from command-line numbers (zero if absent).
+#[allow(dead_code)] // used by the tension, workspace and trajectory commands
+pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64>, CliError> {
+    let m = robot.robot.motion();
+    match w {
+        Some(w) => Ok(cdpr::wrench::wrench_from_slice(m, w)?),
+        None => Ok(DVector::zeros(m.dof())),
+    }
+}
+
+/// Rows of a matrix as JSON arrays.
+pub fn matrix_rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
+    m.row_iter().map(|r| r.iter().copied().collect()).collect()
+}
+
+/// Prints a matrix as an aligned table with a heading.
+pub fn print_matrix(title: &str, m: &DMatrix<f64>) {
+    println!("{title}");
+    for r in m.row_iter() {
+        let cells: Vec<String> = r.iter().map(|v| format!("{v:>12.6}")).collect();
+        println!("  {}", cells.join(" "));
+    }
+}
+
+/// Prints a JSON value on stdout.
+pub fn print_json(v: &serde_json::Value) -> Result<(), CliError> {
+    println!("{}", serde_json::to_string_pretty(v)?);
+    Ok(())
+}

@@ -1,0 +1,33 @@
+//! # cdpr
+//!
+//! Analysis and design of cable-driven parallel robots (CDPRs): the facade of the `cdpr` crate
+//! stack. It re-exports the layers, reads robot files, draws plots, and provides the `cdpr`
+//! command-line program.
+//!
+//! | layer | crate | owns |
+//! |---|---|---|
+//! | [`kinematics`] | `cdpr-kinematics` | robots, poses, inverse kinematics, wrench matrix W |
+//! | [`wrench`] | `cdpr-wrench` | external wrenches, stiffness K = Kp + Ka |
+//! | [`tension`] | `cdpr-tension` | tension distribution (closed form, ℓ1, ℓ2, barycentre, SOTDA, …) |
+//! | [`polytope`] | `cdpr-polytope` | available wrench set, isotropic force, capacity margin |
+//! | [`workspace`] | `cdpr-workspace` | grid and chord workspaces, dextrous workspace, synthesis |
+//!
+//! ```
+//! use cdpr::RobotDescription;
+//! use cdpr::kinematics::Pose;
+//!
+//! let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/robots/tdpm-4.toml");
+//! let robot = RobotDescription::load(file).unwrap();
+//! let kin = robot.robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
+//! assert_eq!(kin.wrench_matrix().shape(), (3, 4));
+//! ```
+
+pub mod plot;
+mod robot_file;
+
+pub use cdpr_kinematics as kinematics;
+pub use cdpr_polytope as polytope;
+pub use cdpr_tension as tension;
+pub use cdpr_workspace as workspace;
+pub use cdpr_wrench as wrench;
+pub use robot_file::{Limits, RobotDescription, RobotFileError};

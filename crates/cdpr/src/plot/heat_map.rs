@@ -1,0 +1,160 @@
+//! A scalar field on a regular grid, coloured, with a colour bar (seed 001 Figs. 9–10 style).
+
+use super::{DrawResult, Figure, colour_map};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// Values on a regular (nx × ny) grid over `x_range × y_range`; cells whose value is NaN or
+/// below `blank_below` are left white (seed 001: white where the index is negative).
+#[derive(Debug, Clone)]
+pub struct HeatMap {
+    /// Title above the plot.
+    pub title: String,
+    /// Axis labels (x, y).
+    pub labels: (String, String),
+    /// Colour-bar label (quantity and unit).
+    pub value_label: String,
+    /// x extent of the grid (first and last sample).
+    pub x_range: (f64, f64),
+    /// y extent of the grid.
+    pub y_range: (f64, f64),
+    /// Number of samples along x and y.
+    pub shape: (usize, usize),
+    /// Row-major values, x fastest: `values[j * nx + i]`.
+    pub values: Vec<f64>,
+    /// Values below this are drawn white.
+    pub blank_below: f64,
+    /// Points to mark (e.g. frame anchors), drawn as black squares.
+    pub markers: Vec<(f64, f64)>,
+    /// Closed outlines to draw (e.g. a feasible polygon).
+    pub outlines: Vec<Vec<(f64, f64)>>,
+    /// One highlighted point with its label (e.g. the optimum).
+    pub highlight: Vec<((f64, f64), String)>,
+}
+
+impl HeatMap {
+    fn value_range(&self) -> (f64, f64) {
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for &v in &self.values {
+            if v.is_finite() && v >= self.blank_below {
+                lo = lo.min(v);
+                hi = hi.max(v);
+            }
+        }
+        if !lo.is_finite() {
+            return (0.0, 1.0);
+        }
+        if hi - lo < 1e-12 * hi.abs().max(1.0) {
+            (lo - 0.5, hi + 0.5)
+        } else {
+            (lo, hi)
+        }
+    }
+}
+
+impl Figure for HeatMap {
+    fn size(&self) -> (u32, u32) {
+        (1000, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let (main, bar) = root.split_horizontally(840);
+        let (nx, ny) = self.shape;
+        let dx = if nx > 1 {
+            (self.x_range.1 - self.x_range.0) / (nx - 1) as f64
+        } else {
+            1.0
+        };
+        let dy = if ny > 1 {
+            (self.y_range.1 - self.y_range.0) / (ny - 1) as f64
+        } else {
+            1.0
+        };
+        let mut xs = (self.x_range.0 - dx / 2.0, self.x_range.1 + dx / 2.0);
+        let mut ys = (self.y_range.0 - dy / 2.0, self.y_range.1 + dy / 2.0);
+        for &(x, y) in self.markers.iter().chain(self.outlines.iter().flatten()) {
+            xs = (xs.0.min(x), xs.1.max(x));
+            ys = (ys.0.min(y), ys.1.max(y));
+        }
+        let pad = 0.04 * (xs.1 - xs.0).max(ys.1 - ys.0);
+        let mut chart = ChartBuilder::on(&main)
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(xs.0 - pad..xs.1 + pad, ys.0 - pad..ys.1 + pad)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(self.labels.0.as_str())
+            .y_desc(self.labels.1.as_str())
+            .label_style(("sans-serif", 15))
+            .draw()?;
+        let (lo, hi) = self.value_range();
+        chart.draw_series(self.values.iter().enumerate().filter_map(|(k, &v)| {
+            if !(v.is_finite() && v >= self.blank_below) {
+                return None;
+            }
+            let (i, j) = (k % nx, k / nx);
+            let (x, y) = (
+                self.x_range.0 + i as f64 * dx,
+                self.y_range.0 + j as f64 * dy,
+            );
+            let c = colour_map((v - lo) / (hi - lo));
+            Some(Rectangle::new(
+                [(x - dx / 2.0, y - dy / 2.0), (x + dx / 2.0, y + dy / 2.0)],
+                c.filled(),
+            ))
+        }))?;
+        for outline in &self.outlines {
+            let mut pts = outline.clone();
+            if let Some(&first) = outline.first() {
+                pts.push(first);
+            }
+            chart.draw_series(std::iter::once(PathElement::new(
+                pts,
+                BLACK.stroke_width(2),
+            )))?;
+        }
+        chart.draw_series(self.markers.iter().map(|&(x, y)| {
+            EmptyElement::at((x, y)) + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
+        }))?;
+        for ((x, y), label) in &self.highlight {
+            chart.draw_series(std::iter::once(
+                EmptyElement::at((*x, *y))
+                    + Circle::new((0, 0), 6, RED.filled())
+                    + Text::new(label.clone(), (8, -16), ("sans-serif", 15).into_font()),
+            ))?;
+        }
+        // Colour bar.
+        let mut bar_chart = ChartBuilder::on(&bar)
+            .margin_top(50)
+            .margin_bottom(57)
+            .margin_right(10)
+            .y_label_area_size(0)
+            .right_y_label_area_size(90)
+            .build_cartesian_2d(0.0..1.0, lo..hi)?;
+        bar_chart
+            .configure_mesh()
+            .disable_mesh()
+            .disable_x_axis()
+            .y_desc(self.value_label.as_str())
+            .label_style(("sans-serif", 14))
+            .draw()?;
+        let steps = 100;
+        bar_chart.draw_series((0..steps).map(|s| {
+            let a = lo + (hi - lo) * s as f64 / steps as f64;
+            let b = lo + (hi - lo) * (s + 1) as f64 / steps as f64;
+            Rectangle::new(
+                [(0.0, a), (1.0, b)],
+                colour_map(s as f64 / (steps - 1) as f64).filled(),
+            )
+        }))?;
+        Ok(())
+    }
+}

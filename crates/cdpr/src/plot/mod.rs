@@ -1,0 +1,119 @@
+//! # Plots
+//!
+//! SVG or PNG figures (chosen by the file extension) drawn with `plotters` and a bundled font
+//! (DejaVu Sans), so no system library is needed. Each figure type implements [`Figure`].
+
+mod heat_map;
+mod lines;
+
+pub use heat_map::HeatMap;
+pub use lines::{LinePlot, Series};
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+use thiserror::Error;
+
+/// A plot that could not be written.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum PlotError {
+    /// The extension is neither `.svg` nor `.png`.
+    #[error("{0}: plot files must end in .svg or .png")]
+    UnknownFormat(String),
+    /// Drawing or writing failed.
+    #[error("cannot draw {file}: {message}")]
+    Draw {
+        /// The file.
+        file: String,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// Result of drawing onto a backend; errors are rendered to text by [`save`].
+pub type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+/// Something that can be drawn on any plotters backend.
+pub trait Figure {
+    /// Size in pixels.
+    fn size(&self) -> (u32, u32) {
+        (900, 800)
+    }
+    /// Draws the figure.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static;
+}
+
+static FONT: Once = Once::new();
+
+/// Registers the bundled font as `sans-serif` (idempotent).
+pub fn register_font() {
+    FONT.call_once(|| {
+        let bytes: &'static [u8] = include_bytes!("../../../../assets/DejaVuSans.ttf");
+        for style in [
+            FontStyle::Normal,
+            FontStyle::Bold,
+            FontStyle::Italic,
+            FontStyle::Oblique,
+        ] {
+            // Registration only fails on a corrupt font file, which is bundled and tested.
+            let _ = plotters::style::register_font("sans-serif", style, bytes);
+        }
+    });
+}
+
+/// Writes `figure` to `path` as SVG or PNG according to its extension.
+pub fn save(figure: &impl Figure, path: impl AsRef<Path>) -> Result<(), PlotError> {
+    register_font();
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let err = |e: Box<dyn std::error::Error>| PlotError::Draw {
+        file: name.clone(),
+        message: e.to_string(),
+    };
+    match ext.as_deref() {
+        Some("svg") => {
+            let root = SVGBackend::new(path, figure.size()).into_drawing_area();
+            figure.draw(&root).map_err(err)?;
+            root.present().map_err(|e| err(Box::new(e)))
+        }
+        Some("png") => {
+            let root = BitMapBackend::new(path, figure.size()).into_drawing_area();
+            figure.draw(&root).map_err(err)?;
+            root.present().map_err(|e| err(Box::new(e)))
+        }
+        _ => Err(PlotError::UnknownFormat(name)),
+    }
+}
+
+/// A colour map from 0 to 1 (viridis-like, perceptually ordered).
+pub fn colour_map(v: f64) -> RGBColor {
+    const STOPS: [(f64, [u8; 3]); 5] = [
+        (0.0, [68, 1, 84]),
+        (0.25, [59, 82, 139]),
+        (0.5, [33, 145, 140]),
+        (0.75, [94, 201, 98]),
+        (1.0, [253, 231, 37]),
+    ];
+    let v = if v.is_finite() {
+        v.clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    for w in STOPS.windows(2) {
+        let ((a, ca), (b, cb)) = (w[0], w[1]);
+        if v <= b {
+            let s = (v - a) / (b - a);
+            let mix = |i: usize| (ca[i] as f64 + s * (cb[i] as f64 - ca[i] as f64)).round() as u8;
+            return RGBColor(mix(0), mix(1), mix(2));
+        }
+    }
+    RGBColor(253, 231, 37)
+}

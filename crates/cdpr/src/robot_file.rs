@@ -1,0 +1,415 @@
+//! # Robot files
+//!
+//! A robot is described in TOML. These keys are a public contract (more may be added):
+//!
+//! ```toml
+//! name = "tdpm-4"                       # free text
+//! motion = "planar"                     # point2 | planar | point3 | spatial
+//! [tension]
+//! min = 5.0                             # t_min, all cables (a cable may override with min/max keys)
+//! max = 100.0
+//! [limits]                              # optional
+//! min_cable_length = 0.1                # l_min, eq. (6.22)
+//! min_jacobian_det = 1e-3               # D_min, eq. (6.24): |det J| >= D_min, only when n = DOF
+//! [platform]                            # optional: mass (kg), centre of mass (platform frame), gravity
+//! mass = 0.0
+//! centre_of_mass = [0.0, 0.0]
+//! gravity = [0.0, -9.80665]             # default: -z in space, -y in the plane
+//! [[cables]]
+//! frame = [1.0, 0.5]                    # anchor on the fixed frame, base coordinates (2 or 3 numbers)
+//! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
+//! axial_stiffness = 60000.0             # optional E*S in N, for stiffness
+//! ```
+//!
+//! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
+
+use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Robot};
+use cdpr_tension::TensionBounds;
+use cdpr_wrench::Platform;
+use nalgebra::Vector3;
+use serde::Deserialize;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use thiserror::Error;
+use toml::Spanned;
+
+/// A robot file that could not be read or is not valid.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum RobotFileError {
+    /// The file could not be read.
+    #[error("{file}: cannot read: {source}")]
+    Io {
+        /// The file.
+        file: PathBuf,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML, or a key has the wrong type.
+    #[error("{file}:{line}: {message}")]
+    Syntax {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line (0 if unknown).
+        line: usize,
+        /// What the TOML reader said.
+        message: String,
+    },
+    /// A key has an invalid value.
+    #[error("{file}:{line}: `{key}`: {message}")]
+    Invalid {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line.
+        line: usize,
+        /// The key, e.g. `cables[2].frame`.
+        key: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// Optional limits of the workspace definition (Table 6.4).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Limits {
+    /// l_min of eq. (6.22).
+    pub min_cable_length: Option<f64>,
+    /// D_min of eq. (6.24) (applies when n = DOF).
+    pub min_jacobian_det: Option<f64>,
+}
+
+/// Everything a robot file describes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotDescription {
+    /// Free-text name.
+    pub name: String,
+    /// Geometry.
+    pub robot: Robot,
+    /// Per-cable tension bounds.
+    pub bounds: TensionBounds,
+    /// Workspace limits.
+    pub limits: Limits,
+    /// Platform mass properties (gravity wrench).
+    pub platform: Platform,
+    /// Per-cable E·S (N), if every cable gives `axial_stiffness`.
+    pub axial_stiffness: Option<Vec<f64>>,
+    /// Non-fatal remarks (e.g. duplicate cables).
+    pub warnings: Vec<String>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    name: Option<String>,
+    motion: Spanned<String>,
+    tension: Spanned<RawTension>,
+    limits: Option<RawLimits>,
+    platform: Option<RawPlatform>,
+    cables: Spanned<Vec<Spanned<RawCable>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawTension {
+    min: Spanned<f64>,
+    max: Spanned<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLimits {
+    min_cable_length: Option<Spanned<f64>>,
+    min_jacobian_det: Option<Spanned<f64>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPlatform {
+    mass: Option<Spanned<f64>>,
+    #[serde(alias = "center_of_mass")]
+    centre_of_mass: Option<Spanned<Vec<f64>>>,
+    gravity: Option<Spanned<Vec<f64>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCable {
+    name: Option<String>,
+    frame: Spanned<Vec<f64>>,
+    platform: Option<Spanned<Vec<f64>>>,
+    axial_stiffness: Option<Spanned<f64>>,
+    min: Option<Spanned<f64>>,
+    max: Option<Spanned<f64>>,
+}
+
+struct Ctx<'a> {
+    file: &'a Path,
+    text: &'a str,
+}
+
+impl Ctx<'_> {
+    fn line(&self, span: Range<usize>) -> usize {
+        self.text[..span.start.min(self.text.len())]
+            .matches('\n')
+            .count()
+            + 1
+    }
+    fn invalid(
+        &self,
+        span: Range<usize>,
+        key: impl Into<String>,
+        message: impl Into<String>,
+    ) -> RobotFileError {
+        RobotFileError::Invalid {
+            file: self.file.to_path_buf(),
+            line: self.line(span),
+            key: key.into(),
+            message: message.into(),
+        }
+    }
+    fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, RobotFileError> {
+        let x = *v.get_ref();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.invalid(v.span(), key, format!("{x} is not a finite number")))
+        }
+    }
+    fn non_negative(&self, v: &Spanned<f64>, key: &str) -> Result<f64, RobotFileError> {
+        let x = self.finite(v, key)?;
+        if x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.invalid(v.span(), key, format!("{x} is negative")))
+        }
+    }
+    fn vector(
+        &self,
+        v: &Spanned<Vec<f64>>,
+        key: &str,
+        dim: usize,
+        motion: MotionPattern,
+    ) -> Result<Vector3<f64>, RobotFileError> {
+        let x = v.get_ref();
+        if x.len() != dim {
+            return Err(self.invalid(
+                v.span(),
+                key,
+                format!("has {} numbers, motion `{motion}` needs {dim}", x.len()),
+            ));
+        }
+        if let Some(bad) = x.iter().find(|a| !a.is_finite()) {
+            return Err(self.invalid(v.span(), key, format!("{bad} is not a finite number")));
+        }
+        Ok(Vector3::new(x[0], x[1], if dim == 3 { x[2] } else { 0.0 }))
+    }
+}
+
+impl RobotDescription {
+    /// Reads and validates a robot file.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, RobotFileError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path).map_err(|source| RobotFileError::Io {
+            file: path.to_path_buf(),
+            source,
+        })?;
+        Self::parse(&text, path)
+    }
+
+    /// Parses and validates robot-file text; `file` names it in error messages.
+    ///
+    /// ```
+    /// use cdpr::RobotDescription;
+    /// let text = r#"
+    /// motion = "point2"
+    /// [tension]
+    /// min = 50.0
+    /// max = 500.0
+    /// [[cables]]
+    /// frame = [1.0, 0.0]
+    /// [[cables]]
+    /// frame = [-0.5, 0.866]
+    /// [[cables]]
+    /// frame = [-0.5, -0.866]
+    /// "#;
+    /// let robot = RobotDescription::parse(text, "inline.toml").unwrap();
+    /// assert_eq!(robot.robot.cable_count(), 3);
+    /// let err = RobotDescription::parse(&text.replace("500.0", "5.0"), "inline.toml").unwrap_err();
+    /// assert!(err.to_string().starts_with("inline.toml:"));
+    /// ```
+    pub fn parse(text: &str, file: impl AsRef<Path>) -> Result<Self, RobotFileError> {
+        let ctx = Ctx {
+            file: file.as_ref(),
+            text,
+        };
+        let raw: RawFile = toml::from_str(text).map_err(|e| RobotFileError::Syntax {
+            file: ctx.file.to_path_buf(),
+            line: e.span().map(|s| ctx.line(s)).unwrap_or(0),
+            message: e.message().trim().to_string(),
+        })?;
+        let motion: MotionPattern =
+            raw.motion.get_ref().parse().map_err(|e: KinematicsError| {
+                ctx.invalid(raw.motion.span(), "motion", e.to_string())
+            })?;
+        let dim = motion.space_dim();
+        let t_min = ctx.finite(&raw.tension.get_ref().min, "tension.min")?;
+        let t_max = ctx.finite(&raw.tension.get_ref().max, "tension.max")?;
+        if t_min > t_max {
+            return Err(ctx.invalid(
+                raw.tension.get_ref().min.span(),
+                "tension.min",
+                format!("t_min = {t_min} exceeds t_max = {t_max}"),
+            ));
+        }
+        let mut warnings = Vec::new();
+        let cables_raw = raw.cables.get_ref();
+        if cables_raw.len() < motion.dof() {
+            return Err(ctx.invalid(
+                raw.cables.span(),
+                "cables",
+                format!(
+                    "{} cables, a `{motion}` robot needs at least {} (one per degree of freedom)",
+                    cables_raw.len(),
+                    motion.dof()
+                ),
+            ));
+        }
+        let (mut cables, mut mins, mut maxs, mut stiff) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (i, c) in cables_raw.iter().enumerate() {
+            let key = |k: &str| format!("cables[{}].{k}", i + 1);
+            let c = c.get_ref();
+            let frame = ctx.vector(&c.frame, &key("frame"), dim, motion)?;
+            let platform = match (&c.platform, motion.has_orientation()) {
+                (Some(p), true) => ctx.vector(p, &key("platform"), dim, motion)?,
+                (None, true) => return Err(ctx.invalid(
+                    c.frame.span(),
+                    key("platform"),
+                    format!(
+                        "missing: a `{motion}` robot needs the platform attachment of every cable"
+                    ),
+                )),
+                (Some(p), false) => {
+                    let v = ctx.vector(p, &key("platform"), dim, motion)?;
+                    if v != Vector3::zeros() {
+                        return Err(ctx.invalid(p.span(), key("platform"), format!("a `{motion}` platform is a point: attachments must be absent or zero")));
+                    }
+                    v
+                }
+                (None, false) => Vector3::zeros(),
+            };
+            cables.push(Cable { frame, platform });
+            let lo = c
+                .min
+                .as_ref()
+                .map(|v| ctx.finite(v, &key("min")))
+                .transpose()?
+                .unwrap_or(t_min);
+            let hi = c
+                .max
+                .as_ref()
+                .map(|v| ctx.finite(v, &key("max")))
+                .transpose()?
+                .unwrap_or(t_max);
+            if lo > hi {
+                let span = c
+                    .min
+                    .as_ref()
+                    .or(c.max.as_ref())
+                    .map(|s| s.span())
+                    .unwrap_or(c.frame.span());
+                return Err(ctx.invalid(
+                    span,
+                    key("min"),
+                    format!("t_min = {lo} exceeds t_max = {hi}"),
+                ));
+            }
+            mins.push(lo);
+            maxs.push(hi);
+            if let Some(es) = &c.axial_stiffness {
+                let v = ctx.finite(es, &key("axial_stiffness"))?;
+                if v <= 0.0 {
+                    return Err(ctx.invalid(
+                        es.span(),
+                        key("axial_stiffness"),
+                        format!("{v} must be positive"),
+                    ));
+                }
+                stiff.push(v);
+            }
+            let _ = &c.name;
+        }
+        if mins.iter().any(|&t| t < 0.0) {
+            warnings.push(
+                "negative t_min: cables cannot push; this describes a general redundant mechanism"
+                    .into(),
+            );
+        }
+        let axial_stiffness = match stiff.len() {
+            0 => None,
+            n if n == cables.len() => Some(stiff),
+            _ => {
+                return Err(ctx.invalid(
+                    raw.cables.span(),
+                    "cables.axial_stiffness",
+                    "given for some cables but not all",
+                ));
+            }
+        };
+        let robot = Robot::new(motion, cables)
+            .map_err(|e| ctx.invalid(raw.cables.span(), "cables", e.to_string()))?;
+        for (i, j) in robot.duplicate_cables() {
+            warnings.push(format!(
+                "cables {} and {} are exact duplicates (same anchor and attachment)",
+                i + 1,
+                j + 1
+            ));
+        }
+        let limits = match &raw.limits {
+            None => Limits::default(),
+            Some(l) => Limits {
+                min_cable_length: l
+                    .min_cable_length
+                    .as_ref()
+                    .map(|v| ctx.non_negative(v, "limits.min_cable_length"))
+                    .transpose()?,
+                min_jacobian_det: l
+                    .min_jacobian_det
+                    .as_ref()
+                    .map(|v| ctx.non_negative(v, "limits.min_jacobian_det"))
+                    .transpose()?,
+            },
+        };
+        let mut platform = Platform::default();
+        if dim == 2 {
+            platform.gravity = Vector3::new(0.0, -cdpr_wrench::STANDARD_GRAVITY.z.abs(), 0.0);
+        }
+        if let Some(p) = &raw.platform {
+            if let Some(m) = &p.mass {
+                platform.mass = ctx.non_negative(m, "platform.mass")?;
+            }
+            if let Some(c) = &p.centre_of_mass {
+                platform.centre_of_mass = ctx.vector(c, "platform.centre_of_mass", dim, motion)?;
+            }
+            if let Some(g) = &p.gravity {
+                platform.gravity = ctx.vector(g, "platform.gravity", dim, motion)?;
+            }
+        }
+        let bounds = TensionBounds::new(mins, maxs)
+            .map_err(|e| ctx.invalid(raw.tension.span(), "tension", e.to_string()))?;
+        Ok(Self {
+            name: raw.name.unwrap_or_else(|| {
+                ctx.file
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_default()
+            }),
+            robot,
+            bounds,
+            limits,
+            platform,
+            axial_stiffness,
+            warnings,
+        })
+    }
+}

@@ -1,0 +1,129 @@
+//! The `cdpr` binary: output formats, exit codes, error messages.
+
+use assert_cmd::Command;
+use std::path::PathBuf;
+
+fn robot(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/robots")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn cdpr() -> Command {
+    Command::cargo_bin("cdpr").unwrap()
+}
+
+#[test]
+fn kinematics_json_has_the_contract_fields() {
+    let out = cdpr()
+        .args([
+            "kinematics",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "-0.5,0.2,0",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["lengths"].as_array().unwrap().len(), 4);
+    assert_eq!(v["unit_vectors"].as_array().unwrap().len(), 4);
+    assert_eq!(v["unit_vectors"][0].as_array().unwrap().len(), 2);
+    let w = v["wrench_matrix"].as_array().unwrap();
+    assert_eq!(w.len(), 3);
+    assert_eq!(w[0].as_array().unwrap().len(), 4);
+    // Cable 1 at (−0.5, 0.2, 0): ℓ = (1 − 0.5 − s... ) checked against the unit vector.
+    let (ux, uy) = (
+        v["unit_vectors"][0][0].as_f64().unwrap(),
+        v["unit_vectors"][0][1].as_f64().unwrap(),
+    );
+    assert!((ux * ux + uy * uy - 1.0).abs() < 1e-12);
+    assert_eq!(w[0][0].as_f64().unwrap(), ux);
+}
+
+#[test]
+fn kinematics_table_output() {
+    let out = cdpr()
+        .args([
+            "kinematics",
+            &robot("ipanema-like-8.toml"),
+            "--pose",
+            "0,0,1,0,0,0.1",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("wrench matrix W"), "{text}");
+}
+
+#[test]
+fn bad_input_exits_2_with_a_message() {
+    let out = cdpr()
+        .args(["kinematics", &robot("tdpm-4.toml"), "--pose", "0,0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("needs 3"));
+    let out = cdpr()
+        .args(["kinematics", &robot("tdpm-4.toml"), "--pose", "0,x,0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let out = cdpr()
+        .args(["kinematics", "/nonexistent.toml", "--pose", "0,0,0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    // A pose that puts the platform attachment of cable 1 on its anchor: degenerate cable.
+    let s = 0.0707106781; // ā¹ as written in the file
+    let pose = format!("{},{},0", 1.0 - s, 0.5 - s);
+    let out = cdpr()
+        .args(["kinematics", &robot("tdpm-4.toml"), "--pose", &pose])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("zero length"));
+}
+
+#[test]
+fn stiffness_json() {
+    let out = cdpr()
+        .args([
+            "stiffness",
+            &robot("ipanema-like-8.toml"),
+            "--pose",
+            "0,0,1,0,0,0",
+            "--tensions",
+            "100,100,100,100,100,100,100,100",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["stiffness"].as_array().unwrap().len(), 6);
+    let out = cdpr()
+        .args([
+            "stiffness",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "0,0,0",
+            "--tensions",
+            "1,1,1,1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "no axial stiffness in the file");
+}

@@ -1,0 +1,152 @@
+//! Robot files: every shipped example loads; every kind of bad file gets an error naming the file,
+//! the line and the key, never a panic.
+
+use cdpr::{RobotDescription, RobotFileError};
+use std::path::PathBuf;
+
+fn examples() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../examples/robots")
+}
+
+const GOOD: &str = r#"name = "test"
+motion = "planar"
+[tension]
+min = 5.0
+max = 100.0
+[limits]
+min_cable_length = 0.1
+[[cables]]
+frame = [1.0, 0.5]
+platform = [0.1, 0.1]
+[[cables]]
+frame = [-1.0, 0.5]
+platform = [-0.1, 0.1]
+[[cables]]
+frame = [-1.0, -0.5]
+platform = [-0.1, -0.1]
+"#;
+
+/// Parses `text` and returns (line, key, message) of the error.
+fn error_of(text: &str) -> (usize, String, String) {
+    match RobotDescription::parse(text, "robot.toml").unwrap_err() {
+        RobotFileError::Invalid {
+            line, key, message, ..
+        } => (line, key, message),
+        RobotFileError::Syntax { line, message, .. } => (line, String::new(), message),
+        e => panic!("unexpected error {e}"),
+    }
+}
+
+#[test]
+fn every_example_robot_loads() {
+    let mut count = 0;
+    for entry in std::fs::read_dir(examples()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let r = RobotDescription::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            assert!(r.robot.cable_count() >= r.robot.dof(), "{}", path.display());
+            assert!(
+                r.warnings.is_empty(),
+                "{}: {:?}",
+                path.display(),
+                r.warnings
+            );
+            count += 1;
+        }
+    }
+    assert!(count >= 9, "only {count} example robots");
+}
+
+#[test]
+fn thesis_robot_values() {
+    let r = RobotDescription::load(examples().join("tdpm-3.toml")).unwrap();
+    assert_eq!(r.limits.min_jacobian_det, Some(1e-3));
+    assert_eq!(r.limits.min_cable_length, Some(0.1));
+    assert_eq!(r.bounds.min()[2], 5.0);
+    assert_eq!(r.bounds.max()[0], 100.0);
+    let ip = RobotDescription::load(examples().join("ipanema-like-8.toml")).unwrap();
+    assert_eq!(ip.axial_stiffness.as_deref(), Some(&[60000.0; 8][..]));
+}
+
+#[test]
+fn unknown_motion() {
+    let (line, key, msg) = error_of(&GOOD.replace("\"planar\"", "\"cartesian\""));
+    assert_eq!((line, key.as_str()), (2, "motion"));
+    assert!(msg.contains("cartesian"), "{msg}");
+}
+
+#[test]
+fn wrong_vector_length() {
+    let (line, key, _) = error_of(&GOOD.replace("frame = [-1.0, 0.5]", "frame = [-1.0, 0.5, 2.0]"));
+    assert_eq!((line, key.as_str()), (12, "cables[2].frame"));
+}
+
+#[test]
+fn nan_and_inf() {
+    let (line, key, _) =
+        error_of(&GOOD.replace("platform = [-0.1, -0.1]", "platform = [nan, -0.1]"));
+    assert_eq!((line, key.as_str()), (16, "cables[3].platform"));
+    let (line, key, _) = error_of(&GOOD.replace("max = 100.0", "max = inf"));
+    assert_eq!((line, key.as_str()), (5, "tension.max"));
+}
+
+#[test]
+fn inverted_tension_bounds() {
+    let (line, key, msg) = error_of(&GOOD.replace("max = 100.0", "max = 1.0"));
+    assert_eq!((line, key.as_str()), (4, "tension.min"));
+    assert!(msg.contains("exceeds"), "{msg}");
+}
+
+#[test]
+fn negative_limits() {
+    let (line, key, _) =
+        error_of(&GOOD.replace("min_cable_length = 0.1", "min_cable_length = -0.1"));
+    assert_eq!((line, key.as_str()), (7, "limits.min_cable_length"));
+}
+
+#[test]
+fn fewer_cables_than_dof() {
+    let two = GOOD
+        .split("[[cables]]")
+        .take(3)
+        .collect::<Vec<_>>()
+        .join("[[cables]]");
+    let (_, key, msg) = error_of(&two);
+    assert_eq!(key, "cables");
+    assert!(msg.contains("at least 3"), "{msg}");
+}
+
+#[test]
+fn missing_platform_attachment_of_a_planar_cable() {
+    let (line, key, _) = error_of(&GOOD.replace("platform = [-0.1, 0.1]\n", ""));
+    assert_eq!((line, key.as_str()), (12, "cables[2].platform"));
+}
+
+#[test]
+fn unknown_key_and_bad_toml_name_a_line() {
+    let (line, _, msg) = error_of(&GOOD.replace("min = 5.0", "mn = 5.0"));
+    assert_eq!(line, 4, "{msg}");
+    let (line, _, _) = error_of(&GOOD.replace("max = 100.0", "max = [100.0"));
+    assert!(line >= 5);
+}
+
+#[test]
+fn duplicate_cables_warn_and_shared_anchors_are_fine() {
+    let dup = format!("{GOOD}[[cables]]\nframe = [-1.0, -0.5]\nplatform = [-0.1, -0.1]\n");
+    let r = RobotDescription::parse(&dup, "robot.toml").unwrap();
+    assert_eq!(r.warnings.len(), 1, "{:?}", r.warnings);
+    let shared = format!("{GOOD}[[cables]]\nframe = [-1.0, -0.5]\nplatform = [0.1, -0.1]\n");
+    assert!(
+        RobotDescription::parse(&shared, "robot.toml")
+            .unwrap()
+            .warnings
+            .is_empty()
+    );
+}
+
+#[test]
+fn missing_file_is_an_io_error() {
+    let e = RobotDescription::load("/nonexistent/robot.toml").unwrap_err();
+    assert!(matches!(e, RobotFileError::Io { .. }));
+    assert!(e.to_string().contains("/nonexistent/robot.toml"));
+}
