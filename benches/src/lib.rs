@@ -1,1 +1,43 @@
-//! Shared fixtures for the criterion benchmarks (see `benches/`).
+//! Shared fixtures for the criterion benchmarks in `benches/`: every benchmark draws its robots and
+//! poses from here, so that the numbers in the notes refer to the same problems.
+
+use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+use nalgebra::Vector3;
+
+/// The 8-cable spatial robot of `examples/robots/ipanema-like-8.toml`: frame anchors at the corners
+/// of a 4 m × 3 m × 2 m box, attachments at the corners of a 0.2 × 0.2 × 0.1 m platform.
+pub fn ipanema_like_8() -> Robot {
+    let mut cables = Vec::new();
+    for (z, pz) in [(2.0, 0.05), (0.0, -0.05)] {
+        for (x, y) in [(2.0, 1.5), (-2.0, 1.5), (-2.0, -1.5), (2.0, -1.5)] {
+            cables.push(Cable {
+                frame: Vector3::new(x, y, z),
+                platform: Vector3::new(0.1f64.copysign(x), 0.1f64.copysign(y), pz),
+            });
+        }
+    }
+    Robot::new(MotionPattern::Spatial, cables).expect("valid robot")
+}
+
+/// `count` deterministic poses spread over the central part of the 8-cable robot's frame
+/// (|x| ≤ 1, |y| ≤ 0.75, z ∈ [0.5, 1.5], angles within ±0.1 rad), from a fixed LCG.
+pub fn spatial_poses(count: usize) -> Vec<Pose> {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut next = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..count)
+        .map(|_| {
+            let p = Vector3::new(2.0 * next() - 1.0, 1.5 * next() - 0.75, 0.5 + next());
+            Pose::spatial(
+                p,
+                0.2 * next() - 0.1,
+                0.2 * next() - 0.1,
+                0.2 * next() - 0.1,
+            )
+        })
+        .collect()
+}

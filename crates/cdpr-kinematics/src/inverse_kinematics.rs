@@ -109,14 +109,15 @@ impl Robot {
         kin.motion = self.motion();
         kin.cables.resize(self.cable_count(), CableState::default());
         let r = pose.rotation.matrix();
+        // One threshold per pose: lengths are compared with the size of the robot and the pose.
+        let threshold = DEGENERATE_LENGTH * self.length_scale().max(pose.position.norm());
         for (i, (cable, state)) in self.cables().iter().zip(kin.cables.iter_mut()).enumerate() {
             let attachment = r * cable.platform;
             let attachment_point = pose.position + attachment;
             let vector = cable.frame - attachment_point;
             let length = vector.norm();
-            let scale = cable.frame.norm().max(attachment_point.norm()).max(1.0);
             // Written so that a NaN length also counts as degenerate.
-            if length.is_nan() || length <= DEGENERATE_LENGTH * scale {
+            if length.is_nan() || length <= threshold {
                 return Err(KinematicsError::DegenerateCable { cable: i, length });
             }
             *state = CableState {

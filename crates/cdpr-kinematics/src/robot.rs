@@ -76,6 +76,8 @@ fn to_vector(
 pub struct Robot {
     motion: MotionPattern,
     cables: Vec<Cable>,
+    /// max(1, ‖c^i‖, ‖ā^i‖): the length scale for degeneracy tests.
+    length_scale: f64,
 }
 
 impl Robot {
@@ -117,7 +119,20 @@ impl Robot {
                 });
             }
         }
-        Ok(Self { motion, cables })
+        let length_scale = cables
+            .iter()
+            .flat_map(|c| [c.frame.norm(), c.platform.norm()])
+            .fold(1.0, f64::max);
+        Ok(Self {
+            motion,
+            cables,
+            length_scale,
+        })
+    }
+
+    /// max(1, ‖c^i‖, ‖ā^i‖): the robot's length scale (relative tolerances use it).
+    pub fn length_scale(&self) -> f64 {
+        self.length_scale
     }
 
     /// The motion pattern.
@@ -175,6 +190,7 @@ impl Robot {
         Self {
             motion: self.motion,
             cables: order.iter().map(|&i| self.cables[i]).collect(),
+            length_scale: self.length_scale,
         }
     }
 }

@@ -93,6 +93,8 @@ impl Figure for HeatMap {
             .disable_mesh()
             .x_desc(self.labels.0.as_str())
             .y_desc(self.labels.1.as_str())
+            .x_label_formatter(&|v| super::tick(*v))
+            .y_label_formatter(&|v| super::tick(*v))
             .label_style(("sans-serif", 15))
             .draw()?;
         let (lo, hi) = self.value_range();
@@ -144,6 +146,7 @@ impl Figure for HeatMap {
             .disable_mesh()
             .disable_x_axis()
             .y_desc(self.value_label.as_str())
+            .y_label_formatter(&|v| super::tick(*v))
             .label_style(("sans-serif", 14))
             .draw()?;
         let steps = 100;

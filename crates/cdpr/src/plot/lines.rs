@@ -87,6 +87,8 @@ impl Figure for LinePlot {
             .configure_mesh()
             .x_desc(self.labels.0.as_str())
             .y_desc(self.labels.1.as_str())
+            .x_label_formatter(&|v| super::tick(*v))
+            .y_label_formatter(&|v| super::tick(*v))
             .label_style(("sans-serif", 15))
             .light_line_style(WHITE.mix(0.0))
             .draw()?;

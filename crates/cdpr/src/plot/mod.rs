@@ -117,3 +117,11 @@ pub fn colour_map(v: f64) -> RGBColor {
     }
     RGBColor(253, 231, 37)
 }
+
+/// An axis tick label: up to 4 significant decimals, no "-0".
+pub fn tick(v: f64) -> String {
+    let v = if v.abs() < 1e-12 { 0.0 } else { v };
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".into() } else { s.to_string() }
+}
