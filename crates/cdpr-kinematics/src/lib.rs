@@ -35,6 +35,7 @@
 mod error;
 mod inverse_kinematics;
 mod motion;
+mod path;
 mod pose;
 mod robot;
 #[cfg(feature = "proptest")]
@@ -44,5 +45,6 @@ mod structure_matrix;
 pub use error::KinematicsError;
 pub use inverse_kinematics::{CableState, PoseKinematics};
 pub use motion::MotionPattern;
+pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
 pub use robot::{Cable, Robot};
