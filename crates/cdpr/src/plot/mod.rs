@@ -5,9 +5,11 @@
 
 mod heat_map;
 mod lines;
+mod workspace;
 
 pub use heat_map::HeatMap;
 pub use lines::{LinePlot, Series};
+pub use workspace::WorkspacePlot;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

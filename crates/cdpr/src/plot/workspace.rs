@@ -1,0 +1,176 @@
+//! Workspace figures in the style of the thesis (seed 000 Figs. 6.4, 6.5, 6.8, 6.9): frame anchors,
+//! the cables drawn to the platform at one pose, the feasible region filled, boundaries outlined.
+
+use super::{DrawResult, Figure};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// A planar workspace drawing.
+#[derive(Debug, Clone, Default)]
+pub struct WorkspacePlot {
+    /// Title.
+    pub title: String,
+    /// Frame anchors c^i.
+    pub anchors: Vec<(f64, f64)>,
+    /// Cables drawn at one pose: (frame anchor, platform attachment point).
+    pub cables: Vec<((f64, f64), (f64, f64))>,
+    /// Platform outline at that pose (closed polygon through the attachment points).
+    pub platform: Vec<(f64, f64)>,
+    /// Feasible grid points, each drawn as a filled cell of size `cell`.
+    pub feasible_points: Vec<(f64, f64)>,
+    /// Grid spacing (Δx, Δy).
+    pub cell: (f64, f64),
+    /// Boundary polygons (chord method), outlined.
+    pub boundaries: Vec<Vec<(f64, f64)>>,
+    /// Extra annotation lines printed under the title (area, settings).
+    pub notes: Vec<String>,
+    /// The frame outline (e.g. the 2 × 2 square), drawn thin.
+    pub frame: Vec<(f64, f64)>,
+}
+
+const FILL: RGBColor = RGBColor(158, 202, 225);
+const BOUNDARY: RGBColor = RGBColor(8, 69, 148);
+const CABLE: RGBColor = RGBColor(120, 120, 120);
+
+impl Figure for WorkspacePlot {
+    fn size(&self) -> (u32, u32) {
+        (800, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let pts = self
+            .anchors
+            .iter()
+            .chain(self.frame.iter())
+            .chain(self.boundaries.iter().flatten())
+            .chain(self.feasible_points.iter());
+        let (mut x0, mut x1, mut y0, mut y1) = (-1.0f64, 1.0f64, -1.0f64, 1.0f64);
+        for &(x, y) in pts {
+            x0 = x0.min(x);
+            x1 = x1.max(x);
+            y0 = y0.min(y);
+            y1 = y1.max(y);
+        }
+        // Equal scales on both axes: a square view around the content.
+        let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.08;
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        let mut chart = ChartBuilder::on(root)
+            .caption(&self.title, ("sans-serif", 20))
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(55)
+            .build_cartesian_2d(cx - half..cx + half, cy - half..cy + half)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("x")
+            .y_desc("y")
+            .x_label_formatter(&|v| super::tick(*v))
+            .y_label_formatter(&|v| super::tick(*v))
+            .label_style(("sans-serif", 14))
+            .draw()?;
+        if self.frame.len() > 1 {
+            let mut f = self.frame.clone();
+            f.push(self.frame[0]);
+            chart.draw_series(std::iter::once(PathElement::new(
+                f,
+                BLACK.mix(0.4).stroke_width(1),
+            )))?;
+        }
+        let (dx, dy) = (self.cell.0 / 2.0, self.cell.1 / 2.0);
+        chart.draw_series(
+            self.feasible_points
+                .iter()
+                .map(|&(x, y)| Rectangle::new([(x - dx, y - dy), (x + dx, y + dy)], FILL.filled())),
+        )?;
+        for b in &self.boundaries {
+            let mut p = b.clone();
+            if let Some(&first) = b.first() {
+                p.push(first);
+            }
+            chart.draw_series(std::iter::once(PathElement::new(
+                p,
+                BOUNDARY.stroke_width(2),
+            )))?;
+        }
+        for &(a, b) in &self.cables {
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![a, b],
+                CABLE.stroke_width(1),
+            )))?;
+        }
+        if self.platform.len() > 1 {
+            let mut p = self.platform.clone();
+            p.push(self.platform[0]);
+            chart.draw_series(std::iter::once(Polygon::new(
+                p.clone(),
+                RGBColor(250, 160, 60).filled(),
+            )))?;
+            chart.draw_series(std::iter::once(PathElement::new(p, BLACK.stroke_width(1))))?;
+        }
+        chart.draw_series(self.anchors.iter().enumerate().map(|(i, &(x, y))| {
+            EmptyElement::at((x, y))
+                + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
+                + Text::new(
+                    format!("c{}", i + 1),
+                    (7, -18),
+                    ("sans-serif", 14).into_font(),
+                )
+        }))?;
+        for (k, note) in self.notes.iter().enumerate() {
+            root.draw(&Text::new(
+                note.clone(),
+                (70, 40 + 18 * k as i32),
+                ("sans-serif", 14).into_font(),
+            ))?;
+        }
+        Ok(())
+    }
+}
+
+impl WorkspacePlot {
+    /// Frame anchors, and the cables and platform drawn at `pose` (if no cable is degenerate there).
+    pub fn with_robot(
+        mut self,
+        robot: &cdpr_kinematics::Robot,
+        pose: &cdpr_kinematics::Pose,
+    ) -> Self {
+        self.anchors = robot
+            .cables()
+            .iter()
+            .map(|c| (c.frame.x, c.frame.y))
+            .collect();
+        if let Ok(kin) = robot.inverse_kinematics(pose) {
+            self.cables = robot
+                .cables()
+                .iter()
+                .zip(kin.cables())
+                .map(|(c, s)| {
+                    (
+                        (c.frame.x, c.frame.y),
+                        (s.attachment_point.x, s.attachment_point.y),
+                    )
+                })
+                .collect();
+            // Platform outline: attachment points ordered by angle around the platform origin.
+            let mut pts: Vec<(f64, f64)> = kin
+                .cables()
+                .iter()
+                .map(|s| (s.attachment_point.x, s.attachment_point.y))
+                .collect();
+            let (px, py) = (pose.position.x, pose.position.y);
+            pts.sort_by(|a, b| {
+                (a.1 - py)
+                    .atan2(a.0 - px)
+                    .total_cmp(&(b.1 - py).atan2(b.0 - px))
+            });
+            pts.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-12 && (a.1 - b.1).abs() < 1e-12);
+            self.platform = pts;
+        }
+        self
+    }
+}
