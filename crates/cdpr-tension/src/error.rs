@@ -36,4 +36,18 @@ pub enum TensionError {
         /// t_max.
         max: f64,
     },
+    /// A method name that is not one of [`crate::Method::ALL`].
+    #[error(
+        "unknown tension distribution method {0:?} (expected one of: exact, pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda)"
+    )]
+    UnknownMethod(String),
+    /// [`crate::Method::Sotda`] needs [`crate::StiffnessData`] in the problem.
+    #[error("the sotda method needs stiffness data (pose kinematics and axial stiffness E·S)")]
+    MissingStiffness,
+    /// Invalid SOTDA settings (ν outside [0, 1], zero or non-finite direction).
+    #[error("invalid sotda settings: {0}")]
+    InvalidSettings(&'static str),
+    /// The stiffness computation of `cdpr-wrench` rejected its input.
+    #[error(transparent)]
+    Wrench(#[from] cdpr_wrench::WrenchError),
 }

@@ -1,10 +1,86 @@
 //! # cdpr-tension
 //!
 //! Cable tension distribution: given the wrench matrix W (DOF × n), an external wrench w_ext and
-//! bounds t_min ≤ t ≤ t_max, find tensions with W t + w_ext = 0.
+//! bounds t_min ≤ t ≤ t_max, find tensions with **W t + w_ext = 0** (seed 000 eq. (6.11),
+//! seed 002 eq. (1)).
+//!
+//! Vocabulary: a [`TensionProblem`] (borrowing W, w_ext, [`TensionBounds`] and, for SOTDA,
+//! [`StiffnessData`]) is solved by a [`TensionSolver`] for one [`Method`], giving a
+//! [`TensionOutcome`]: `Feasible` tensions that passed the [`certify`] check (equilibrium
+//! residual ≤ 10⁻⁹·scale, bounds within 10⁻⁹ relative), or `Infeasible` with an
+//! [`Infeasibility`] reason. Bad input (NaN, wrong shapes) is a [`TensionError`].
+//!
+//! | method (CLI name) | what | module |
+//! |---|---|---|
+//! | `exact` | n = DOF: t = −W⁻¹ w_ext (6.12) | [`minimum_norm`] |
+//! | `pinv` | t = −W⁺ w_ext (6.14), bounds checked | [`minimum_norm`] |
+//! | `closed-form` | Algorithm 6.1, r = 1, min ‖t‖₁ | [`closed_form`] |
+//! | `l1`, `l1-max` | min / max Σ t (6.19) | [`linear_program`] |
+//! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] |
+//! | `linf` | min max t | [`linear_program`] |
+//! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
+//! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
+//! | `sotda` | stiffness-oriented, r = 2 (seed 002) | [`sotda`] |
+//!
+//! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
+//! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible
+//! λ-sets. r = n − DOF is the redundancy.
+//!
+//! ```
+//! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+//! use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
+//! use nalgebra::{DVector, Vector3};
+//!
+//! // The thesis' 4-cable planar robot (Tables 6.1, 6.2), load L1 (Table 6.3).
+//! let s = 0.1 / 2f64.sqrt();
+//! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
+//!     frame: Vector3::new(c[0], c[1], 0.0),
+//!     platform: Vector3::new(a[0], a[1], 0.0),
+//! };
+//! let robot = Robot::new(MotionPattern::Planar, vec![
+//!     cable([1.0, 0.5], [s, s]),
+//!     cable([-1.0, 0.5], [-s, s]),
+//!     cable([-1.0, -0.5], [-0.1, -0.1]),
+//!     cable([1.0, -0.5], [0.1, -0.1]),
+//! ]).unwrap();
+//! let w = robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap().wrench_matrix();
+//! let load = DVector::from_vec(vec![0.0, -10.0, 0.0]);
+//! let bounds = TensionBounds::uniform(4, 5.0, 100.0).unwrap();
+//! let problem = TensionProblem::new(&w, &load, &bounds);
+//!
+//! let l1 = TensionSolver::new(Method::L1).solve(&problem).unwrap();
+//! let cf = TensionSolver::new(Method::ClosedForm).solve(&problem).unwrap();
+//! let (t1, tc) = (l1.tensions().unwrap(), cf.tensions().unwrap());
+//! assert!((t1.sum() - tc.sum()).abs() < 1e-9);       // Alg. 6.1 = the LP optimum
+//! assert!((&w * t1 + &load).amax() < 1e-12);          // equilibrium
+//! assert!(t1.iter().all(|&t| (5.0..=100.0).contains(&t)));
+//! ```
 
+pub mod barycenter;
 mod bounds;
+pub mod certificate;
+pub mod closed_form;
 mod error;
+pub mod feasible_polygon;
+pub mod improved_closed_form;
+pub mod interior_point;
+pub mod linear_program;
+mod method;
+pub mod minimum_norm;
+pub mod null_space;
+mod outcome;
+pub mod profile;
+pub mod quadratic_program;
+pub mod solver;
+pub mod sotda;
 
 pub use bounds::TensionBounds;
+pub use certificate::{Certificate, certify};
+pub use closed_form::{FeasibleInterval, feasible_interval};
 pub use error::TensionError;
+pub use feasible_polygon::FeasiblePolygon;
+pub use interior_point::{Objective, interior_point};
+pub use method::Method;
+pub use outcome::{Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution};
+pub use solver::TensionSolver;
+pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};

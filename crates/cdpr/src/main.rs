@@ -28,6 +28,8 @@ enum Command {
     Kinematics(cli::kinematics::Args),
     /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (seed 002 eq. (4)).
     Stiffness(cli::stiffness::Args),
+    /// Cable tensions at a pose by any tension distribution method (closed form, l1, l2, SOTDA, ...).
+    Tension(cli::tension::Args),
 }
 
 fn main() -> ExitCode {
@@ -35,6 +37,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Kinematics(a) => cli::kinematics::run(a),
         Command::Stiffness(a) => cli::stiffness::run(a),
+        Command::Tension(a) => cli::tension::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -127,3 +127,97 @@ fn stiffness_json() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2), "no axial stiffness in the file");
 }
+
+#[test]
+fn tension_json_contract_and_infeasible_is_success() {
+    let run = |args: &[&str]| {
+        let out = cdpr().args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice::<serde_json::Value>(&out.stdout).unwrap()
+    };
+    let v = run(&[
+        "tension",
+        &robot("tdpm-4.toml"),
+        "--pose",
+        "0.1,-0.2,0",
+        "--wrench",
+        "0,-10,0",
+        "--method",
+        "closed-form",
+        "--json",
+    ]);
+    assert_eq!(v["feasible"], true);
+    assert_eq!(v["method"], "closed-form");
+    assert!(v["reason"].is_null());
+    let t: Vec<f64> = v["tensions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(t.len(), 4);
+    assert!(t.iter().all(|&x| (5.0 - 1e-9..=100.0 + 1e-9).contains(&x)));
+    assert!(v["residual"].as_f64().unwrap() < 1e-9);
+    // Pinv at the same pose needs a negative tension: infeasible, with a reason, exit code 0.
+    let v = run(&[
+        "tension",
+        &robot("tdpm-4.toml"),
+        "--pose",
+        "0.1,-0.2,0",
+        "--wrench",
+        "0,-10,0",
+        "--method",
+        "pinv",
+        "--json",
+    ]);
+    assert_eq!(v["feasible"], false);
+    assert!(v["tensions"].is_null());
+    assert!(v["reason"].as_str().unwrap().contains("cable"));
+    // Barycentre on the 8-cable robot also reports the feasible polygon.
+    let v = run(&[
+        "tension",
+        &robot("ipanema-like-8.toml"),
+        "--pose",
+        "0,0,1,0,0,0",
+        "--method",
+        "barycenter",
+        "--json",
+    ]);
+    assert_eq!(v["feasible"], true);
+    assert!(v["polygon"]["vertices_lambda"].as_array().unwrap().len() >= 3);
+    let v = run(&[
+        "tension",
+        &robot("ipanema-like-8.toml"),
+        "--pose",
+        "0,0,1,0,0,0",
+        "--wrench",
+        "0,50,0,0,0,0",
+        "--method",
+        "sotda",
+        "--nu",
+        "0.5",
+        "--json",
+    ]);
+    assert_eq!(v["feasible"], true);
+    assert!(v["displacement"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn tension_bad_method_exits_2() {
+    let out = cdpr()
+        .args([
+            "tension",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "0,0,0",
+            "--method",
+            "simplex",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}

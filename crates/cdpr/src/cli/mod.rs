@@ -2,6 +2,7 @@
 
 pub mod kinematics;
 pub mod stiffness;
+pub mod tension;
 
 use cdpr::RobotDescription;
 use cdpr::kinematics::Pose;
@@ -54,13 +55,21 @@ pub fn pose(robot: &RobotDescription, q: &[f64]) -> Result<Pose, CliError> {
 }
 
 /// A wrench for the robot's motion pattern from command-line numbers (zero if absent).
-#[allow(dead_code)] // used by the tension, workspace and trajectory commands
 pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64>, CliError> {
     let m = robot.robot.motion();
     match w {
         Some(w) => Ok(cdpr::wrench::wrench_from_slice(m, w)?),
         None => Ok(DVector::zeros(m.dof())),
     }
+}
+
+/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (seed 002 eq. (1)).
+pub fn external_wrench(
+    robot: &RobotDescription,
+    pose: &Pose,
+    w: Option<&[f64]>,
+) -> Result<DVector<f64>, CliError> {
+    Ok(wrench(robot, w)? + robot.platform.gravity_wrench(robot.robot.motion(), pose))
 }
 
 /// Rows of a matrix as JSON arrays.

@@ -1,0 +1,137 @@
+//! Tension distribution: per-pose cost of each method on 1000 feasible poses of the 8-cable
+//! spatial robot (`ipanema_like_8`, t ∈ [1, 1000] N, 10 kg platform under gravity), and of the
+//! closed form (Algorithm 6.1) on the thesis' planar 4-cable robot. Each iteration solves all
+//! poses; divide the reported time by the pose count.
+
+use cdpr_benches::{ipanema_like_8, spatial_poses};
+use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
+use cdpr_tension::{
+    Method, SotdaSettings, SotdaVariant, StiffnessData, TensionBounds, TensionProblem,
+    TensionSolver,
+};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use nalgebra::{DMatrix, DVector, Vector3};
+use std::hint::black_box;
+
+struct Pose8 {
+    kin: PoseKinematics,
+    w: DMatrix<f64>,
+}
+
+fn feasible_spatial(count: usize) -> (Vec<Pose8>, DVector<f64>, TensionBounds, Vec<f64>) {
+    let robot = ipanema_like_8();
+    let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
+    let b = TensionBounds::uniform(8, 1.0, 1000.0).unwrap();
+    let mut l2 = TensionSolver::new(Method::L2);
+    let mut out = Vec::new();
+    for pose in spatial_poses(20 * count) {
+        let Ok(kin) = robot.inverse_kinematics(&pose) else {
+            continue;
+        };
+        let w = kin.wrench_matrix();
+        if l2.is_feasible(&TensionProblem::new(&w, &we, &b)).unwrap() {
+            out.push(Pose8 { kin, w });
+            if out.len() == count {
+                break;
+            }
+        }
+    }
+    assert_eq!(out.len(), count, "not enough feasible poses");
+    (out, we, b, vec![80e9 * 0.75e-6; 8])
+}
+
+fn thesis_four_cable() -> Robot {
+    let s = 0.1 / 2f64.sqrt();
+    let cable = |c: [f64; 2], a: [f64; 2]| Cable {
+        frame: Vector3::new(c[0], c[1], 0.0),
+        platform: Vector3::new(a[0], a[1], 0.0),
+    };
+    Robot::new(
+        MotionPattern::Planar,
+        vec![
+            cable([1.0, 0.5], [s, s]),
+            cable([-1.0, 0.5], [-s, s]),
+            cable([-1.0, -0.5], [-0.1, -0.1]),
+            cable([1.0, -0.5], [0.1, -0.1]),
+        ],
+    )
+    .unwrap()
+}
+
+fn bench_spatial(c: &mut Criterion) {
+    const N: usize = 1000;
+    let (poses, we, b, es) = feasible_spatial(N);
+    let mut g = c.benchmark_group("tension_8_cable");
+    g.throughput(Throughput::Elements(N as u64));
+    let mut run = |name: &str, mut solver: TensionSolver, stiff: bool| {
+        let mut t = DVector::zeros(8);
+        g.bench_function(name, |bch| {
+            bch.iter(|| {
+                let mut ok = 0;
+                for p in &poses {
+                    let problem = TensionProblem {
+                        stiffness: stiff.then_some(StiffnessData {
+                            kinematics: &p.kin,
+                            axial_stiffness: &es,
+                        }),
+                        ..TensionProblem::new(&p.w, &we, &b)
+                    };
+                    ok += solver.solve_into(&problem, &mut t).unwrap().is_ok() as usize;
+                }
+                black_box(ok)
+            })
+        });
+    };
+    run("l2", TensionSolver::new(Method::L2), false);
+    run("l1", TensionSolver::new(Method::L1), false);
+    run("linf", TensionSolver::new(Method::Linf), false);
+    run("barycenter", TensionSolver::new(Method::Barycenter), false);
+    run(
+        "improved_closed_form",
+        TensionSolver::new(Method::ImprovedClosedForm),
+        false,
+    );
+    run("pinv", TensionSolver::new(Method::Pinv), false);
+    run(
+        "sotda_corners",
+        TensionSolver::sotda(SotdaSettings {
+            variant: SotdaVariant::Corners,
+            ..SotdaSettings::default()
+        }),
+        true,
+    );
+    g.finish();
+}
+
+fn bench_planar(c: &mut Criterion) {
+    let robot = thesis_four_cable();
+    let we = DVector::from_vec(vec![0.0, -10.0, 0.0]);
+    let b = TensionBounds::uniform(4, 5.0, 100.0).unwrap();
+    let mut ws = Vec::new();
+    for i in 0..=20 {
+        for j in 0..=20 {
+            let pose = Pose::planar(-0.5 + 0.05 * i as f64, -0.25 + 0.025 * j as f64, 0.0);
+            ws.push(robot.inverse_kinematics(&pose).unwrap().wrench_matrix());
+        }
+    }
+    let mut g = c.benchmark_group("tension_planar_4_cable");
+    g.throughput(Throughput::Elements(ws.len() as u64));
+    for (name, method) in [("closed_form", Method::ClosedForm), ("l1", Method::L1)] {
+        let mut solver = TensionSolver::new(method);
+        let mut t = DVector::zeros(4);
+        g.bench_function(name, |bch| {
+            bch.iter(|| {
+                let mut ok = 0;
+                for w in &ws {
+                    let p = TensionProblem::new(w, &we, &b);
+                    ok += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+                }
+                black_box(ok)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench_spatial, bench_planar);
+criterion_main!(benches);

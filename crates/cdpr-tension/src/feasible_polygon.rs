@@ -1,0 +1,438 @@
+//! # Feasible polygon
+//!
+//! With t = t0 + N λ (seed 002 eq. (5), see the null-space parametrisation below), the bounds
+//! t_min ≤ t0 + N λ ≤ t_max cut the λ-space into a convex set, the *feasible polygon*
+//! 𝒜⁻¹(Λ) of seed 002 eq. (6) for redundancy r = 2, an interval for r = 1 and the single point
+//! λ = 0 for r = 0. We build it by clipping a box that surely contains it with the 2n half-planes
+//! (Sutherland–Hodgman, one half-plane at a time, buffers of capacity 2n + 4 reused across
+//! calls). The box has half-width R = ‖(max(|t_min,i − t0,i|, |t_max,i − t0,i|))_i‖₂, because
+//! N is orthonormal so ‖λ‖ = ‖t − t0‖. With an infinite t_max the box is artificial (10⁶ times the
+//! data scale); answers that touch it are reported as unbounded.
+//!
+//! On the exact polygon, linear objectives (l1, l1-max) are optimal at a vertex, l2 is the
+//! projection of −Nᵀt0 (≈ 0) onto the polygon, l2-max is the farthest vertex and the barycentre
+//! is the area centroid (see the method modules).
+//!
+//! Null space basis: N = the last r columns of Q in the pivoted QR factorisation of Wᵀ
+//! (orthonormal); any other basis gives the same polygon in tension space and the same answers
+//! (an invertible linear map of λ-space maps vertices to vertices and area centroids to area
+//! centroids).
+//!
+//! ## References
+//! - Seed 002 (Picard et al. 2020), eqs. (5)–(6), Fig. 2.
+//! - Lamaury & Gouttefarde (2013), *A tension distribution method with improved computational
+//!   efficiency*, Cable-Driven Parallel Robots, pp. 71–85.
+//! - Sutherland & Hodgman (1974), *Reentrant polygon clipping*, CACM 17(1).
+
+use crate::null_space::NullSpace;
+use crate::outcome::validate;
+use crate::{Infeasibility, TensionBounds, TensionError, TensionProblem};
+use nalgebra::{DMatrix, DVector, Vector2};
+
+/// A point of λ-space (λ₂ = 0 when r = 1; λ = 0 when r = 0).
+pub(crate) type P2 = [f64; 2];
+
+/// The feasible region in λ-space for r ≤ 2, as a convex polygon (counter-clockwise), possibly
+/// degenerate (segment or point). Reusable buffers.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Region {
+    pub verts: Vec<P2>,
+    tmp: Vec<P2>,
+    saved: Vec<P2>,
+    /// Half-width of the initial box.
+    pub radius: f64,
+    /// Whether the initial box is artificial (some t_max is infinite).
+    pub artificial: bool,
+}
+
+#[inline]
+fn dot(a: P2, b: P2) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+impl Region {
+    /// Builds the feasible set of `ns` under `bounds`; false if it is empty.
+    pub fn build(&mut self, ns: &NullSpace, bounds: &TensionBounds) -> bool {
+        let (n, r) = (ns.n, ns.r());
+        debug_assert!(r <= 2);
+        let cap = 2 * n + 8;
+        if self.verts.capacity() < cap {
+            self.verts.reserve(cap);
+            self.tmp.reserve(cap);
+            self.saved.reserve(cap);
+        }
+        let (lo, hi) = (bounds.min(), bounds.max());
+        let mut rad2 = 0.0;
+        let mut data_scale: f64 = 1.0;
+        self.artificial = false;
+        for i in 0..n {
+            let t0 = ns.t0[i];
+            data_scale = data_scale.max(t0.abs()).max(lo[i].abs());
+            if hi[i].is_finite() {
+                data_scale = data_scale.max(hi[i].abs());
+                let d = (lo[i] - t0).abs().max((hi[i] - t0).abs());
+                rad2 += d * d;
+            } else {
+                self.artificial = true;
+            }
+        }
+        let radius = if self.artificial {
+            1e6 * data_scale * (n as f64).sqrt()
+        } else {
+            rad2.sqrt() * (1.0 + 1e-6) + 1e-9 * data_scale
+        };
+        self.radius = radius;
+        self.verts.clear();
+        match r {
+            0 => self.verts.push([0.0, 0.0]),
+            1 => {
+                self.verts.push([-radius, 0.0]);
+                self.verts.push([radius, 0.0]);
+            }
+            _ => {
+                self.verts.push([-radius, -radius]);
+                self.verts.push([radius, -radius]);
+                self.verts.push([radius, radius]);
+                self.verts.push([-radius, radius]);
+            }
+        }
+        for i in 0..n {
+            let a = ns.row2(i);
+            let t0 = ns.t0[i];
+            // t0 + a·λ ≥ t_min  ⇔  a·λ ≥ t_min − t0
+            let tol = 1e-12 * lo[i].abs().max(1.0);
+            if !self.clip(a, lo[i] - t0, tol) {
+                return false;
+            }
+            if hi[i].is_finite() {
+                let tol = 1e-12 * hi[i].abs().max(1.0);
+                if !self.clip([-a[0], -a[1]], t0 - hi[i], tol) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Keeps the part of the region where a·λ ≥ b − tol; false if nothing is left.
+    pub fn clip(&mut self, a: P2, b: f64, tol: f64) -> bool {
+        if self.verts.is_empty() {
+            return false;
+        }
+        if a[0].abs() + a[1].abs() < 1e-14 {
+            // Constant constraint (cable i has no null-space freedom).
+            if 0.0 >= b - tol {
+                return true;
+            }
+            self.verts.clear();
+            return false;
+        }
+        self.tmp.clear();
+        let k = self.verts.len();
+        for j in 0..k {
+            let p = self.verts[j];
+            let q = self.verts[(j + 1) % k];
+            let dp = dot(a, p) - b;
+            let dq = dot(a, q) - b;
+            let (ip, iq) = (dp >= -tol, dq >= -tol);
+            if ip {
+                self.tmp.push(p);
+            }
+            if ip != iq {
+                let s = (dp / (dp - dq)).clamp(0.0, 1.0);
+                self.tmp
+                    .push([p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]);
+            }
+        }
+        // Drop consecutive duplicates.
+        let eps = 1e-13 * self.radius.max(1e-300);
+        self.verts.clear();
+        for &p in &self.tmp {
+            if let Some(&last) = self.verts.last()
+                && (p[0] - last[0]).abs() <= eps
+                && (p[1] - last[1]).abs() <= eps
+            {
+                continue;
+            }
+            self.verts.push(p);
+        }
+        while self.verts.len() > 1 {
+            let (f, l) = (self.verts[0], self.verts[self.verts.len() - 1]);
+            if (f[0] - l[0]).abs() <= eps && (f[1] - l[1]).abs() <= eps {
+                self.verts.pop();
+            } else {
+                break;
+            }
+        }
+        !self.verts.is_empty()
+    }
+
+    /// Saves the current vertices (for bisection).
+    pub fn save(&mut self) {
+        self.saved.clear();
+        self.saved.extend_from_slice(&self.verts);
+    }
+
+    /// Restores the saved vertices.
+    pub fn restore(&mut self) {
+        self.verts.clear();
+        self.verts.extend_from_slice(&self.saved);
+    }
+
+    /// The vertex minimising (or, with `maximize`, maximising) `f`; first one on ties.
+    pub fn best_vertex(&self, f: impl Fn(P2) -> f64, maximize: bool) -> P2 {
+        let mut best = self.verts[0];
+        let mut fb = f(best);
+        for &v in &self.verts[1..] {
+            let fv = f(v);
+            if (maximize && fv > fb) || (!maximize && fv < fb) {
+                best = v;
+                fb = fv;
+            }
+        }
+        best
+    }
+
+    /// Twice the signed area (shoelace).
+    pub fn double_area(&self) -> f64 {
+        let k = self.verts.len();
+        if k < 3 {
+            return 0.0;
+        }
+        let mut s = 0.0;
+        for j in 0..k {
+            let p = self.verts[j];
+            let q = self.verts[(j + 1) % k];
+            s += p[0] * q[1] - q[0] * p[1];
+        }
+        s
+    }
+
+    /// Area centroid; for a (numerically) degenerate polygon, the mean of its vertices.
+    pub fn centroid(&self) -> P2 {
+        let k = self.verts.len();
+        let a2 = self.double_area();
+        let (mut xmin, mut xmax, mut ymin, mut ymax) = (
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        );
+        for v in &self.verts {
+            xmin = xmin.min(v[0]);
+            xmax = xmax.max(v[0]);
+            ymin = ymin.min(v[1]);
+            ymax = ymax.max(v[1]);
+        }
+        let extent = (xmax - xmin).max(ymax - ymin);
+        if k >= 3 && a2.abs() > 1e-12 * extent * extent {
+            // Shift to the first vertex for accuracy.
+            let o = self.verts[0];
+            let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
+            for j in 0..k {
+                let p = [self.verts[j][0] - o[0], self.verts[j][1] - o[1]];
+                let qv = self.verts[(j + 1) % k];
+                let q = [qv[0] - o[0], qv[1] - o[1]];
+                let c = p[0] * q[1] - q[0] * p[1];
+                s2 += c;
+                cx += (p[0] + q[0]) * c;
+                cy += (p[1] + q[1]) * c;
+            }
+            [o[0] + cx / (3.0 * s2), o[1] + cy / (3.0 * s2)]
+        } else {
+            let (sx, sy) = self
+                .verts
+                .iter()
+                .fold((0.0, 0.0), |(a, b), v| (a + v[0], b + v[1]));
+            [sx / k as f64, sy / k as f64]
+        }
+    }
+
+    /// Whether `c` lies in a polygon with positive area (counter-clockwise).
+    pub fn contains(&self, c: P2) -> bool {
+        let k = self.verts.len();
+        if k < 3 || self.double_area() <= 0.0 {
+            return false;
+        }
+        (0..k).all(|j| {
+            let p = self.verts[j];
+            let q = self.verts[(j + 1) % k];
+            (q[0] - p[0]) * (c[1] - p[1]) - (q[1] - p[1]) * (c[0] - p[0]) >= 0.0
+        })
+    }
+
+    /// Euclidean projection of `c` onto the region (exact: c itself if inside, else the closest
+    /// point of the boundary edges).
+    pub fn project(&self, c: P2) -> P2 {
+        if self.contains(c) {
+            return c;
+        }
+        let k = self.verts.len();
+        if k == 1 {
+            return self.verts[0];
+        }
+        let mut best = self.verts[0];
+        let mut bd = f64::INFINITY;
+        for j in 0..k {
+            let p = self.verts[j];
+            let q = self.verts[(j + 1) % k];
+            let d = [q[0] - p[0], q[1] - p[1]];
+            let dd = dot(d, d);
+            let s = if dd > 0.0 {
+                (dot([c[0] - p[0], c[1] - p[1]], d) / dd).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let x = [p[0] + s * d[0], p[1] + s * d[1]];
+            let dist = (x[0] - c[0]).powi(2) + (x[1] - c[1]).powi(2);
+            if dist < bd {
+                bd = dist;
+                best = x;
+            }
+        }
+        best
+    }
+
+    /// Whether λ lies on the artificial box (so the true feasible set is unbounded there).
+    pub fn on_artificial_box(&self, l: P2) -> bool {
+        self.artificial && l[0].abs().max(l[1].abs()) >= self.radius * (1.0 - 1e-9)
+    }
+
+    /// Whether any vertex lies on the artificial box.
+    pub fn is_unbounded(&self) -> bool {
+        self.verts.iter().any(|&v| self.on_artificial_box(v))
+    }
+}
+
+/// The feasible polygon of a redundancy-2 problem (seed 002 eq. (6)), in λ-space and in
+/// tension space.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FeasiblePolygon {
+    /// N (n × 2): orthonormal null-space basis of W (last columns of Q in Wᵀ P = Q R).
+    pub null_space: DMatrix<f64>,
+    /// t0 = −W⁺ w_ext, the particular (minimum-norm) solution of eq. (5).
+    pub particular: DVector<f64>,
+    /// Vertices λ_k, counter-clockwise (a degenerate polygon may have 1 or 2 vertices).
+    pub vertices: Vec<Vector2<f64>>,
+    /// The same vertices in tension space, t_k = t0 + N λ_k.
+    pub tension_vertices: Vec<DVector<f64>>,
+}
+
+impl FeasiblePolygon {
+    /// The feasible polygon of `problem`, or why there is none (empty, singular W, r ≠ 2, or
+    /// unbounded because of an infinite t_max). Errors on bad input.
+    ///
+    /// ```
+    /// use cdpr_tension::{FeasiblePolygon, TensionBounds, TensionProblem};
+    /// use nalgebra::{DMatrix, DVector};
+    /// // One force balanced by three collinear cables: t1 + t2 + t3 = 3, 0 ≤ t ≤ 3: a triangle.
+    /// let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+    /// let we = DVector::from_vec(vec![-3.0]);
+    /// let b = TensionBounds::uniform(3, 0.0, 3.0).unwrap();
+    /// let poly = FeasiblePolygon::compute(&TensionProblem::new(&w, &we, &b)).unwrap().unwrap();
+    /// assert_eq!(poly.vertices.len(), 3);
+    /// assert!((poly.barycenter() - DVector::from_vec(vec![1.0; 3])).norm() < 1e-12);
+    /// ```
+    pub fn compute(problem: &TensionProblem) -> Result<Result<Self, Infeasibility>, TensionError> {
+        validate(problem)?;
+        let r = problem.redundancy();
+        if r != 2 {
+            return Ok(Err(Infeasibility::NotApplicable {
+                method: "feasible polygon",
+                redundancy: r,
+            }));
+        }
+        let mut ns = NullSpace::default();
+        if let Err(condition) = ns.compute(problem.wrench_matrix, problem.external_wrench) {
+            return Ok(Err(Infeasibility::SingularPose { condition }));
+        }
+        let mut region = Region::default();
+        if !region.build(&ns, problem.bounds) {
+            return Ok(Err(Infeasibility::NoFeasibleTension));
+        }
+        if region.is_unbounded() {
+            return Ok(Err(Infeasibility::Unbounded {
+                method: "feasible polygon",
+            }));
+        }
+        let n = ns.n;
+        let null_space = DMatrix::from_column_slice(n, 2, &ns.basis);
+        let particular = DVector::from_column_slice(&ns.t0);
+        let vertices: Vec<_> = region
+            .verts
+            .iter()
+            .map(|v| Vector2::new(v[0], v[1]))
+            .collect();
+        let tension_vertices = vertices
+            .iter()
+            .map(|l| &particular + &null_space * l)
+            .collect();
+        Ok(Ok(Self {
+            null_space,
+            particular,
+            vertices,
+            tension_vertices,
+        }))
+    }
+
+    /// Tensions t = t0 + N λ (eq. (5)).
+    pub fn tensions_at(&self, lambda: &Vector2<f64>) -> DVector<f64> {
+        &self.particular + &self.null_space * lambda
+    }
+
+    /// Area of the polygon in λ-space (equal to its area in tension space: N is orthonormal).
+    pub fn area(&self) -> f64 {
+        self.region().double_area() / 2.0
+    }
+
+    /// Area centroid in λ-space (vertex mean for a degenerate polygon).
+    pub fn barycenter_lambda(&self) -> Vector2<f64> {
+        let c = self.region().centroid();
+        Vector2::new(c[0], c[1])
+    }
+
+    /// The barycentre tensions t0 + N λ_c (Lamaury & Gouttefarde 2013).
+    pub fn barycenter(&self) -> DVector<f64> {
+        self.tensions_at(&self.barycenter_lambda())
+    }
+
+    /// Whether λ lies in the polygon (within 10⁻⁹ relative on every bound).
+    pub fn contains(&self, lambda: &Vector2<f64>, bounds: &TensionBounds) -> bool {
+        let t = self.tensions_at(lambda);
+        (0..t.len()).all(|i| {
+            crate::certificate::bound_violation(bounds.min()[i], bounds.max()[i], t[i]) <= 1e-9
+        })
+    }
+
+    fn region(&self) -> Region {
+        Region {
+            verts: self.vertices.iter().map(|v| [v.x, v.y]).collect(),
+            ..Region::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_clipped_to_triangle() {
+        let mut r = Region {
+            verts: vec![[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]],
+            radius: 1.0,
+            ..Region::default()
+        };
+        // x + y ≤ 0  ⇔  −x − y ≥ 0
+        assert!(r.clip([-1.0, -1.0], 0.0, 0.0));
+        assert_eq!(r.verts.len(), 3);
+        assert!((r.double_area() - 4.0).abs() < 1e-15); // area 2
+        let c = r.centroid();
+        assert!((c[0] + 1.0 / 3.0).abs() < 1e-15 && (c[1] + 1.0 / 3.0).abs() < 1e-15);
+        // Projection of (1, 1) onto the triangle is (0, 0).
+        let p = r.project([1.0, 1.0]);
+        assert!(p[0].abs() < 1e-15 && p[1].abs() < 1e-15);
+        // Clipping away everything.
+        assert!(!r.clip([1.0, 0.0], 2.0, 0.0));
+    }
+}

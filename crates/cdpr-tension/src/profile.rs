@@ -1,0 +1,128 @@
+//! # Tension profiles along a path
+//!
+//! The tensions a robot needs along a motion: one certified tension distribution per path sample
+//! (any [`Method`](crate::Method)), infeasible samples kept with their path parameter and reason,
+//! and the continuity of the result: the largest jump per cable between consecutive samples.
+//! Seed 000 Fig. 6.6 shows that minimum-norm tensions can jump; seed 002 §4 reports SOTDA
+//! tensions staying continuous.
+
+use crate::{
+    StiffnessData, TensionBounds, TensionError, TensionOutcome, TensionProblem, TensionSolver,
+};
+use cdpr_kinematics::{PathSample, PoseKinematics, Robot};
+use nalgebra::{DMatrix, DVector};
+
+/// Tensions along a sampled path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TensionProfile {
+    /// Path parameter s ∈ [0, 1] of each sample.
+    pub s: Vec<f64>,
+    /// Tensions per sample, `None` where infeasible.
+    pub tensions: Vec<Option<DVector<f64>>>,
+    /// Why a sample is infeasible (`None` where feasible).
+    pub reasons: Vec<Option<String>>,
+    /// Per cable, the largest |t_i(k+1) − t_i(k)| over consecutive feasible samples.
+    pub max_jump: Vec<f64>,
+}
+
+impl TensionProfile {
+    /// Number of feasible samples.
+    pub fn feasible_count(&self) -> usize {
+        self.tensions.iter().filter(|t| t.is_some()).count()
+    }
+
+    /// Largest change of any cable tension between samples k and k+1 (both feasible), per k.
+    pub fn jumps(&self) -> Vec<Option<f64>> {
+        self.tensions
+            .windows(2)
+            .map(|w| match (&w[0], &w[1]) {
+                (Some(a), Some(b)) => Some((b - a).amax()),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Indices k where the step k → k+1 looks like a discontinuity: its jump exceeds `ratio`
+    /// times the median jump of the profile (and 10⁻⁹ of the largest tension). With samples
+    /// refined, continuous profiles have jumps that shrink with the step; a discontinuity does not.
+    pub fn discontinuities(&self, ratio: f64) -> Vec<usize> {
+        let jumps = self.jumps();
+        let mut finite: Vec<f64> = jumps.iter().flatten().copied().collect();
+        if finite.is_empty() {
+            return Vec::new();
+        }
+        finite.sort_by(f64::total_cmp);
+        let median = finite[finite.len() / 2];
+        let scale = self
+            .tensions
+            .iter()
+            .flatten()
+            .map(|t| t.amax())
+            .fold(0.0, f64::max);
+        let threshold = (ratio * median).max(1e-9 * scale);
+        jumps
+            .iter()
+            .enumerate()
+            .filter_map(|(k, j)| j.filter(|&j| j > threshold).map(|_| k))
+            .collect()
+    }
+}
+
+/// Tensions along `samples` with `solver` (its method and settings), bounds `bounds`, and the
+/// external wrench `wrench_at(sample)` (e.g. constant, or with the gravity of the platform).
+/// `axial_stiffness` (E·S per cable) is needed by SOTDA only.
+///
+/// A sample where a cable has zero length is reported infeasible with that reason.
+pub fn tension_profile(
+    robot: &Robot,
+    samples: &[PathSample],
+    bounds: &TensionBounds,
+    solver: &mut TensionSolver,
+    axial_stiffness: Option<&[f64]>,
+    mut wrench_at: impl FnMut(&PathSample) -> DVector<f64>,
+) -> Result<TensionProfile, TensionError> {
+    let n = robot.cable_count();
+    let mut kin = PoseKinematics::for_robot(robot);
+    let mut w = DMatrix::zeros(robot.dof(), n);
+    let mut profile = TensionProfile {
+        s: Vec::with_capacity(samples.len()),
+        tensions: Vec::with_capacity(samples.len()),
+        reasons: Vec::with_capacity(samples.len()),
+        max_jump: vec![0.0; n],
+    };
+    for sample in samples {
+        profile.s.push(sample.s);
+        if let Err(e) = robot.update_kinematics(&sample.pose, &mut kin) {
+            profile.tensions.push(None);
+            profile.reasons.push(Some(e.to_string()));
+            continue;
+        }
+        kin.write_wrench_matrix(&mut w);
+        let w_ext = wrench_at(sample);
+        let mut problem = TensionProblem::new(&w, &w_ext, bounds);
+        if let Some(es) = axial_stiffness {
+            problem.stiffness = Some(StiffnessData {
+                kinematics: &kin,
+                axial_stiffness: es,
+            });
+        }
+        match solver.solve(&problem)? {
+            TensionOutcome::Feasible(s) => {
+                profile.tensions.push(Some(s.tensions));
+                profile.reasons.push(None);
+            }
+            TensionOutcome::Infeasible(r) => {
+                profile.tensions.push(None);
+                profile.reasons.push(Some(r.to_string()));
+            }
+        }
+    }
+    for pair in profile.tensions.windows(2) {
+        if let (Some(a), Some(b)) = (&pair[0], &pair[1]) {
+            for (m, (x, y)) in profile.max_jump.iter_mut().zip(a.iter().zip(b.iter())) {
+                *m = m.max((y - x).abs());
+            }
+        }
+    }
+    Ok(profile)
+}

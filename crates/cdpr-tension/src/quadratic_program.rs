@@ -1,0 +1,125 @@
+//! # Constrained ℓ₂ approach (quadratic programs)
+//!
+//! - **l2** (seed 000 eq. (6.17)): minimise ‖t‖₂² subject to W t + w_ext = 0 and the bounds.
+//!   Without bounds this is the minimum-norm solution (6.14) (thesis Appendix E).
+//! - **l2-max**: maximise ‖t‖₂² ("maximal stiffness", §6.3.2). This is a concave maximisation:
+//!   its maximum is attained at a vertex of the feasible polytope, so we enumerate vertices.
+//!
+//! With the orthonormal null-space basis, ‖t0 + N λ‖² = ‖t0‖² + 2 gᵀλ + ‖λ‖² (g = Nᵀ t0 = 0 up to
+//! rounding, since t0 is the minimum-norm solution), so for r ≤ 2 the l2 optimum is the exact
+//! Euclidean projection of −g onto the feasible interval / polygon, and l2-max is the vertex
+//! farthest from −g. For r ≥ 3, l2 uses Clarabel and l2-max enumerates the vertices
+//! {λ : r independent bounds active} (at most C(n, r)·2^r candidates, capped at 2·10⁵).
+//!
+//! ## References
+//! - Seed 000 (thesis ch. 6), §6.3.2, eq. (6.17) and Appendix E.
+
+use crate::certificate::bound_violation;
+use crate::feasible_polygon::Region;
+use crate::linear_program::write_tensions;
+use crate::null_space::NullSpace;
+use crate::{Infeasibility, TensionBounds};
+use nalgebra::{DMatrix, DVector};
+
+/// l2 (`maximize = false`) or l2-max on a built, non-empty region (r ≤ 2).
+pub(crate) fn solve_on_region(
+    maximize: bool,
+    ns: &NullSpace,
+    region: &Region,
+    method: &'static str,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    let g = [
+        ns.g.first().copied().unwrap_or(0.0),
+        ns.g.get(1).copied().unwrap_or(0.0),
+    ];
+    let lambda = if maximize {
+        if region.is_unbounded() {
+            return Err(Infeasibility::Unbounded { method });
+        }
+        region.best_vertex(
+            |l| 2.0 * (g[0] * l[0] + g[1] * l[1]) + l[0] * l[0] + l[1] * l[1],
+            true,
+        )
+    } else {
+        region.project([-g[0], -g[1]])
+    };
+    if region.on_artificial_box(lambda) {
+        return Err(Infeasibility::Unbounded { method });
+    }
+    write_tensions(ns, lambda, t);
+    Ok(())
+}
+
+/// Maximum cap on the number of vertex candidates for r ≥ 3.
+const MAX_CANDIDATES: f64 = 2e5;
+
+/// l2-max for any redundancy r ≥ 1 by vertex enumeration in λ-space (allocates).
+pub(crate) fn l2_max_by_vertices(
+    ns: &NullSpace,
+    bounds: &TensionBounds,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    let (n, r) = (ns.n, ns.r());
+    if bounds.max().iter().any(|v| !v.is_finite()) {
+        return Err(Infeasibility::Unbounded { method: "l2-max" });
+    }
+    let mut count = 2f64.powi(r as i32);
+    for k in 0..r {
+        count *= (n - k) as f64 / (k + 1) as f64;
+    }
+    if count > MAX_CANDIDATES {
+        return Err(Infeasibility::SolverFailure {
+            detail: format!("l2-max: {count:.0} vertex candidates exceed the cap"),
+        });
+    }
+    let nmat = DMatrix::from_column_slice(n, r, &ns.basis);
+    let t0 = DVector::from_column_slice(&ns.t0);
+    let mut subset: Vec<usize> = (0..r).collect();
+    let mut best: Option<(f64, DVector<f64>)> = None;
+    loop {
+        let a = DMatrix::from_fn(r, r, |i, j| nmat[(subset[i], j)]);
+        if let Some(lu) = Some(a.lu()).filter(|lu| lu.is_invertible()) {
+            for mask in 0..(1usize << r) {
+                let rhs = DVector::from_fn(r, |i, _| {
+                    let c = subset[i];
+                    let b = if mask >> i & 1 == 1 {
+                        bounds.max()[c]
+                    } else {
+                        bounds.min()[c]
+                    };
+                    b - t0[c]
+                });
+                let Some(l) = lu.solve(&rhs) else { continue };
+                let tv = &t0 + &nmat * l;
+                let ok = (0..n)
+                    .all(|i| bound_violation(bounds.min()[i], bounds.max()[i], tv[i]) <= 1e-10);
+                if ok {
+                    let f = tv.norm_squared();
+                    if best.as_ref().is_none_or(|(fb, _)| f > *fb) {
+                        best = Some((f, tv));
+                    }
+                }
+            }
+        }
+        // Next r-subset of 0..n in lexicographic order.
+        let mut k = r;
+        while k > 0 && subset[k - 1] == n - r + k - 1 {
+            k -= 1;
+        }
+        if k == 0 {
+            break;
+        }
+        subset[k - 1] += 1;
+        for j in k..r {
+            subset[j] = subset[j - 1] + 1;
+        }
+    }
+    match best {
+        Some((_, tv)) => {
+            t.copy_from_slice(tv.as_slice());
+            Ok(())
+        }
+        None => Err(Infeasibility::NoFeasibleTension),
+    }
+}

@@ -1,0 +1,250 @@
+//! Property tests on random robots, poses, wrenches and bounds (cdpr_kinematics::strategies).
+//!
+//! Verdict tolerance: our own methods share one feasibility test up to 10⁻¹² (relative, on the
+//! tension bounds) and certify answers to 10⁻⁹; Clarabel decides to ~10⁻¹⁰. Random data lands
+//! within those margins of the feasible-set boundary with negligible probability, so verdicts
+//! are compared exactly.
+
+use cdpr_kinematics::strategies::arb_robot_and_pose;
+use cdpr_kinematics::{Pose, Robot};
+use cdpr_tension::{
+    FeasiblePolygon, Method, Objective, TensionBounds, TensionOutcome, TensionProblem,
+    TensionSolver, feasible_interval, interior_point,
+};
+use nalgebra::{DMatrix, DVector};
+use proptest::prelude::*;
+
+/// A random problem: W from a robot and pose, bounds lo ∈ [0, 5], hi = lo + [1, 100],
+/// w_ext = −W t_r + δ for t_r inside the bounds and a perturbation δ that makes some problems
+/// infeasible.
+#[derive(Debug, Clone)]
+struct Case {
+    w: DMatrix<f64>,
+    we: DVector<f64>,
+    b: TensionBounds,
+}
+
+fn arb_case(extra: std::ops::RangeInclusive<usize>) -> impl Strategy<Value = Case> {
+    (
+        arb_robot_and_pose(extra),
+        prop::collection::vec(0.0f64..5.0, 12),
+        prop::collection::vec(1.0f64..100.0, 12),
+        prop::collection::vec(0.0f64..1.0, 12),
+        prop::collection::vec(-1.0f64..1.0, 6),
+        prop_oneof![Just(0.0), 0.0f64..60.0],
+    )
+        .prop_map(|((robot, pose), lo, span, frac, dir, mag)| {
+            build(&robot, &pose, &lo, &span, &frac, &dir, mag)
+        })
+}
+
+fn build(
+    robot: &Robot,
+    pose: &Pose,
+    lo: &[f64],
+    span: &[f64],
+    frac: &[f64],
+    dir: &[f64],
+    mag: f64,
+) -> Case {
+    let w = robot.inverse_kinematics(pose).unwrap().wrench_matrix();
+    let (m, n) = w.shape();
+    let lo: Vec<f64> = lo[..n].to_vec();
+    let hi: Vec<f64> = (0..n).map(|i| lo[i] + span[i]).collect();
+    let tr = DVector::from_fn(n, |i, _| lo[i] + frac[i] * span[i]);
+    let we = -(&w * tr) + DVector::from_fn(m, |k, _| mag * dir[k]);
+    Case {
+        w,
+        we,
+        b: TensionBounds::new(lo, hi).unwrap(),
+    }
+}
+
+fn solve(m: Method, p: &TensionProblem) -> TensionOutcome {
+    TensionSolver::new(m).solve(p).unwrap()
+}
+
+/// Independent check of equilibrium and bounds.
+fn check(p: &TensionProblem, t: &DVector<f64>) {
+    let scale = 1f64
+        .max(p.external_wrench.amax())
+        .max(p.wrench_matrix.abs().row_sum().amax() * t.amax());
+    assert!((p.wrench_matrix * t + p.external_wrench).amax() <= 1e-9 * scale);
+    for i in 0..t.len() {
+        assert!(t[i] >= p.bounds.min()[i] - 1e-9 * p.bounds.min()[i].abs().max(1.0));
+        assert!(t[i] <= p.bounds.max()[i] + 1e-9 * p.bounds.max()[i].abs().max(1.0));
+    }
+}
+
+fn rel_eq(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol * a.abs().max(b.abs()).max(1.0)
+}
+
+fn linf(t: &DVector<f64>) -> f64 {
+    t.max()
+}
+
+/// Random feasible points t0 + N λ of the feasible set (r = 1, 2): random λ in the bounding box
+/// of the vertices, kept when they satisfy the bounds, plus random convex combinations of
+/// vertices.
+fn random_feasible(p: &TensionProblem, seed: &[f64]) -> Vec<DVector<f64>> {
+    let mut out = Vec::new();
+    let ok = |t: &DVector<f64>| {
+        (0..t.len()).all(|i| t[i] >= p.bounds.min()[i] && t[i] <= p.bounds.max()[i])
+    };
+    match p.redundancy() {
+        1 => {
+            if let Ok(iv) = feasible_interval(p).unwrap() {
+                let (a, b) = iv.lambda;
+                for s in seed {
+                    let t = iv.tensions_at(a - 0.1 * (b - a) + 1.2 * s * (b - a));
+                    if ok(&t) {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        2 => {
+            if let Ok(poly) = FeasiblePolygon::compute(p).unwrap() {
+                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+                for v in &poly.vertices {
+                    for d in 0..2 {
+                        lo[d] = lo[d].min(v[d]);
+                        hi[d] = hi[d].max(v[d]);
+                    }
+                }
+                for pair in seed.chunks(2) {
+                    let l = nalgebra::Vector2::new(
+                        lo[0] + pair[0] * (hi[0] - lo[0]),
+                        lo[1] + pair[pair.len() - 1] * (hi[1] - lo[1]),
+                    );
+                    let t = poly.tensions_at(&l);
+                    if ok(&t) {
+                        out.push(t);
+                    }
+                }
+                let k = poly.vertices.len();
+                for (j, s) in seed.iter().enumerate() {
+                    let (a, b) = (
+                        &poly.tension_vertices[j % k],
+                        &poly.tension_vertices[(j + 1) % k],
+                    );
+                    let c = poly.barycenter();
+                    out.push((a * *s + b * (1.0 - *s)) * 0.5 + c * 0.5);
+                }
+            }
+        }
+        _ => {}
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { failure_persistence: None, ..ProptestConfig::default() })]
+
+    /// r = 1, 2: every answer is certified; verdicts of all complete methods (and Clarabel)
+    /// agree; optima match Clarabel; no random feasible point beats an optimum.
+    #[test]
+    fn optima_verdicts_and_certificates(case in arb_case(1..=2), seed in prop::collection::vec(0.0f64..1.0, 40)) {
+        let p = TensionProblem::new(&case.w, &case.we, &case.b);
+        let r = p.redundancy();
+        let mut complete = vec![Method::L1, Method::L1Max, Method::L2, Method::L2Max, Method::Linf];
+        complete.push(if r == 1 { Method::ClosedForm } else { Method::Barycenter });
+        let outs: Vec<_> = complete.iter().map(|&m| solve(m, &p)).collect();
+        let oracle = interior_point(&p, Objective::L2).unwrap();
+        for (m, o) in complete.iter().zip(&outs) {
+            prop_assert_eq!(o.is_feasible(), oracle.is_ok(), "{} vs clarabel: {:?}", m, o);
+            if let Some(t) = o.tensions() { check(&p, t); }
+        }
+        for m in [Method::Pinv, Method::ImprovedClosedForm] {
+            let o = solve(m, &p);
+            if let Some(t) = o.tensions() {
+                check(&p, t);
+                prop_assert!(oracle.is_ok(), "{} feasible where the set is empty", m);
+            }
+        }
+        let Ok(t_ip) = oracle else { return Ok(()) };
+        let t = |k: usize| outs[k].tensions().unwrap().clone();
+        let (l1, l1max, l2, l2max, li) = (t(0), t(1), t(2), t(3), t(4));
+        // Clarabel oracle.
+        prop_assert!((&l2 - &t_ip).amax() <= 1e-7 * t_ip.amax().max(1.0), "l2 {} vs {}", l2, t_ip);
+        let ip = |o| interior_point(&p, o).unwrap().unwrap();
+        prop_assert!(rel_eq(l1.sum(), ip(Objective::L1).sum(), 1e-7));
+        prop_assert!(rel_eq(l1max.sum(), ip(Objective::L1Max).sum(), 1e-7));
+        prop_assert!(rel_eq(linf(&li), linf(&ip(Objective::Linf)), 1e-7));
+        // Closed form = l1 (min), and its interval's best end = l1-max.
+        if r == 1 {
+            prop_assert!(rel_eq(t(5).sum(), l1.sum(), 1e-9));
+            let iv = feasible_interval(&p).unwrap().unwrap();
+            let best = iv.tensions_low.sum().max(iv.tensions_high.sum());
+            prop_assert!(rel_eq(best, l1max.sum(), 1e-9));
+        }
+        // No random feasible point beats an optimum.
+        for q in random_feasible(&p, &seed) {
+            let tol = 1e-9 * q.amax().max(1.0);
+            prop_assert!(l1.sum() <= q.sum() + tol * q.len() as f64);
+            prop_assert!(l1max.sum() >= q.sum() - tol * q.len() as f64);
+            prop_assert!(l2.norm_squared() <= q.norm_squared() * (1.0 + 1e-9) + tol);
+            prop_assert!(l2max.norm_squared() >= q.norm_squared() * (1.0 - 1e-9) - tol);
+            prop_assert!(linf(&li) <= linf(&q) + tol);
+        }
+    }
+
+    /// The choice of null-space basis does not matter: premultiplying the equilibrium by an
+    /// invertible M (M W t + M w_ext = 0 has the same solutions) changes the QR and so N, but
+    /// not the optimal tensions (l2, barycentre) or optimal values (l1, linf).
+    #[test]
+    fn results_do_not_depend_on_the_basis(case in arb_case(2..=2), mix in prop::collection::vec(-0.5f64..0.5, 36)) {
+        let m = case.w.nrows();
+        let mm = DMatrix::from_fn(m, m, |i, j| if i == j { 2.0 } else { 0.0 } + mix[i * 6 + j]);
+        prop_assume!(mm.clone().try_inverse().is_some() && mm.determinant().abs() > 0.1);
+        let (w2, we2) = (&mm * &case.w, &mm * &case.we);
+        let p1 = TensionProblem::new(&case.w, &case.we, &case.b);
+        let p2 = TensionProblem::new(&w2, &we2, &case.b);
+        for method in [Method::L2, Method::Barycenter, Method::L1, Method::Linf] {
+            let (a, b) = (solve(method, &p1), solve(method, &p2));
+            prop_assert_eq!(a.is_feasible(), b.is_feasible());
+            if let (Some(x), Some(y)) = (a.tensions(), b.tensions()) {
+                let s = x.amax().max(1.0);
+                match method {
+                    Method::L1 => prop_assert!(rel_eq(x.sum(), y.sum(), 1e-9)),
+                    Method::Linf => prop_assert!(rel_eq(x.max(), y.max(), 1e-9)),
+                    _ => prop_assert!((x - y).amax() <= 1e-8 * s, "{}: {} vs {}", method, x, y),
+                }
+            }
+        }
+    }
+
+    /// r = 3 (interior-point path): answers are certified and ordered l2 ≤ l2-max, l1 ≤ l1-max.
+    #[test]
+    fn high_redundancy(case in arb_case(3..=3)) {
+        let p = TensionProblem::new(&case.w, &case.we, &case.b);
+        let outs: Vec<_> = [Method::L1, Method::L1Max, Method::L2, Method::L2Max, Method::Linf]
+            .iter().map(|&m| solve(m, &p)).collect();
+        let feasible = outs[0].is_feasible();
+        for o in &outs {
+            prop_assert_eq!(o.is_feasible(), feasible, "{:?}", o);
+            if let Some(t) = o.tensions() { check(&p, t); }
+        }
+        if feasible {
+            let t = |k: usize| outs[k].tensions().unwrap().clone();
+            prop_assert!(t(0).sum() <= t(1).sum() * (1.0 + 1e-9));
+            prop_assert!(t(2).norm() <= t(3).norm() * (1.0 + 1e-9));
+            prop_assert!(t(2).norm() <= t(0).norm() * (1.0 + 1e-7));
+        }
+    }
+
+    /// `is_feasible` gives the same verdict as `solve`, with one solver reused across problems.
+    #[test]
+    fn is_feasible_matches_solve(cases in prop::collection::vec(arb_case(1..=2), 4)) {
+        for method in Method::ALL.iter().filter(|m| **m != Method::Sotda) {
+            let mut s = TensionSolver::new(*method);
+            for c in &cases {
+                let p = TensionProblem::new(&c.w, &c.we, &c.b);
+                let v = s.is_feasible(&p).unwrap();
+                prop_assert_eq!(v, s.solve(&p).unwrap().is_feasible());
+                prop_assert_eq!(v, TensionSolver::new(*method).solve(&p).unwrap().is_feasible());
+            }
+        }
+    }
+}

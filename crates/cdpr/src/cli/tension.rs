@@ -1,0 +1,185 @@
+//! `cdpr tension`: a tension distribution at one pose.
+
+use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json};
+use cdpr::tension::{
+    FeasiblePolygon, Method, SotdaSettings, SotdaVariant, StiffnessData, TensionOutcome,
+    TensionProblem, TensionSolver,
+};
+use nalgebra::Vector3;
+use serde_json::json;
+use std::path::PathBuf;
+
+/// Cable tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max at one pose.
+///
+/// Methods (--method): exact (n = DOF, eq. 6.12), pinv (minimum norm, eq. 6.14), closed-form
+/// (Algorithm 6.1, redundancy 1, minimum ‖t‖₁), l1 / l1-max (eq. 6.19), l2 / l2-max (eq. 6.17),
+/// linf (minimum largest tension), improved-closed-form (Pott 2014), barycenter (centroid of the
+/// feasible polygon, redundancy 2), sotda (stiffness-oriented, seed 002: --direction, --nu).
+///
+/// The external wrench is --wrench plus the platform's gravity from the robot file.
+/// Every "feasible" answer is certified (equilibrium residual and bounds to 1e-9 relative);
+/// "infeasible" comes with its reason and exit code 0.
+///
+/// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
+/// `polygon` for barycenter and sotda; `displacement` for sotda.
+#[derive(clap::Args)]
+pub struct Args {
+    /// Robot file (TOML).
+    robot: PathBuf,
+    /// Platform pose (motion-pattern coordinates), e.g. --pose 0.1,-0.2,0.
+    #[arg(long, allow_hyphen_values = true)]
+    pose: Numbers,
+    /// External wrench w_e applied to the platform (DOF numbers; default zero), e.g. --wrench 0,-10,0.
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
+    /// Tension distribution method.
+    #[arg(long, default_value = "l2")]
+    method: Method,
+    /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    #[arg(long, allow_hyphen_values = true)]
+    direction: Option<Numbers>,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
+    #[arg(long, default_value_t = 1.0)]
+    nu: f64,
+    /// SOTDA: search the whole polygon instead of its corners (the paper's real-time variant).
+    #[arg(long)]
+    full: bool,
+    /// Write one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// SOTDA settings from the command line (shared with the trajectory command).
+pub fn sotda_settings(
+    direction: Option<&[f64]>,
+    nu: f64,
+    full: bool,
+) -> Result<SotdaSettings, CliError> {
+    let mut s = SotdaSettings {
+        nu,
+        ..SotdaSettings::default()
+    };
+    if let Some(d) = direction {
+        s.direction = match d.len() {
+            2 => Vector3::new(d[0], d[1], 0.0),
+            3 => Vector3::new(d[0], d[1], d[2]),
+            k => return Err(format!("--direction needs 2 or 3 numbers, got {k}").into()),
+        };
+    }
+    s.variant = if full {
+        SotdaVariant::Full
+    } else {
+        SotdaVariant::Corners
+    };
+    s.validate()?;
+    Ok(s)
+}
+
+/// Vertices and barycentre of the feasible polygon as JSON (null when there is none).
+pub fn polygon_json(problem: &TensionProblem) -> Result<serde_json::Value, CliError> {
+    Ok(match FeasiblePolygon::compute(problem)? {
+        Ok(p) => json!({
+            "vertices_lambda": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+            "vertices_tension": p.tension_vertices.iter().map(|t| t.as_slice().to_vec()).collect::<Vec<_>>(),
+            "barycenter_lambda": [p.barycenter_lambda().x, p.barycenter_lambda().y],
+            "barycenter": p.barycenter().as_slice().to_vec(),
+            "area": p.area(),
+        }),
+        Err(reason) => json!({ "none": reason.to_string() }),
+    })
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let robot = load_robot(&args.robot)?;
+    let pose = pose(&robot, &args.pose)?;
+    let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
+    let kin = robot.robot.inverse_kinematics(&pose)?;
+    let w = kin.wrench_matrix();
+    let es = robot.axial_stiffness.clone();
+    if args.method == Method::Sotda && es.is_none() {
+        return Err(
+            "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file".into(),
+        );
+    }
+    let mut problem = TensionProblem::new(&w, &w_ext, &robot.bounds);
+    if let Some(es) = &es {
+        problem.stiffness = Some(StiffnessData {
+            kinematics: &kin,
+            axial_stiffness: es,
+        });
+    }
+    let mut solver = if args.method == Method::Sotda {
+        TensionSolver::sotda(sotda_settings(
+            args.direction.as_deref(),
+            args.nu,
+            args.full,
+        )?)
+    } else {
+        TensionSolver::new(args.method)
+    };
+    let outcome = solver.solve(&problem)?;
+    let displacement = match (&outcome, args.method, &problem.stiffness) {
+        (TensionOutcome::Feasible(s), Method::Sotda, Some(st)) => {
+            cdpr::tension::sotda_displacement(
+                st,
+                solver.sotda_settings(),
+                &w_ext,
+                s.tensions.as_slice(),
+            )?
+        }
+        _ => None,
+    };
+    let with_polygon = matches!(args.method, Method::Barycenter | Method::Sotda);
+    if args.json {
+        let mut v = json!({
+            "robot": robot.name,
+            "pose": args.pose.0,
+            "external_wrench": w_ext.as_slice(),
+            "method": args.method.name(),
+            "feasible": outcome.is_feasible(),
+            "tensions": outcome.tensions().map(|t| t.as_slice().to_vec()),
+            "residual": match &outcome { TensionOutcome::Feasible(s) => Some(s.residual), _ => None },
+            "reason": outcome.infeasibility().map(|r| r.to_string()),
+        });
+        if with_polygon {
+            v["polygon"] = polygon_json(&problem)?;
+        }
+        if args.method == Method::Sotda {
+            v["displacement"] = json!(displacement);
+            v["nu"] = json!(args.nu);
+        }
+        print_json(&v)
+    } else {
+        println!(
+            "robot {}, pose {:?}, w_ext {:?}, method {}",
+            robot.name,
+            args.pose.0,
+            w_ext.as_slice(),
+            args.method.name()
+        );
+        match &outcome {
+            TensionOutcome::Feasible(s) => {
+                println!("feasible (residual {:.3e})", s.residual);
+                println!(
+                    "{:>6} {:>14} {:>10} {:>10}",
+                    "cable", "tension", "t_min", "t_max"
+                );
+                for (i, t) in s.tensions.iter().enumerate() {
+                    println!(
+                        "{:>6} {:>14.6} {:>10} {:>10}",
+                        i + 1,
+                        t,
+                        robot.bounds.min()[i],
+                        robot.bounds.max()[i]
+                    );
+                }
+                if let Some(d) = displacement {
+                    println!("displacement along the direction: {d:.6e}");
+                }
+            }
+            TensionOutcome::Infeasible(r) => println!("infeasible: {r}"),
+        }
+        Ok(())
+    }
+}
