@@ -42,3 +42,30 @@ pub fn spatial_poses(count: usize) -> Vec<Pose> {
         })
         .collect()
 }
+
+/// Seed 001's 3-motor point robot (§IV-B): motors at 1000 mm, angles 30°, 150°, 270°.
+pub fn krut_three_motor() -> Robot {
+    let motor = |deg: f64| {
+        let a = deg.to_radians();
+        Cable {
+            frame: Vector3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 0.0),
+            platform: Vector3::zeros(),
+        }
+    };
+    Robot::new(
+        MotionPattern::Point2,
+        vec![motor(30.0), motor(150.0), motor(270.0)],
+    )
+    .expect("valid robot")
+}
+
+/// `count` deterministic point poses inside seed 001's triangle (|x|, |y| ≤ 300 mm).
+pub fn krut_poses(count: usize) -> Vec<Pose> {
+    (0..count)
+        .map(|i| {
+            let a = i as f64 * 2.399_963; // golden angle: a sunflower spiral
+            let r = 300.0 * ((i as f64 + 0.5) / count as f64).sqrt();
+            Pose::point(r * a.cos(), r * a.sin(), 0.0)
+        })
+        .collect()
+}

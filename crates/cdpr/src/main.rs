@@ -30,6 +30,20 @@ enum Command {
     Stiffness(cli::stiffness::Args),
     /// Cable tensions at a pose by any tension distribution method (closed form, l1, l2, SOTDA, ...).
     Tension(cli::tension::Args),
+    /// Maximum isotropic force (seed 001) at a pose, or its heat map over a grid.
+    Isotropic(cli::isotropic::Args),
+    /// Capacity margin of a required wrench set (box or ball) at a pose.
+    Capacity(cli::capacity::Args),
+    /// Constant-orientation workspace by discretisation (Algorithm 6.2) or the chord method.
+    Workspace(cli::workspace::Args),
+    /// Dextrous workspace over a range of orientations (eq. 6.28).
+    Dextrous(cli::dextrous::Args),
+    /// Dimensional synthesis: frame anchor angles maximising the dextrous workspace (eq. 6.29).
+    Synthesize(cli::synthesize::Args),
+    /// Tensions along a path: profiles, infeasible samples, largest jumps.
+    Trajectory(cli::trajectory::Args),
+    /// Platform displacement over the feasible polygon (seed 002 Fig. 4).
+    StiffnessMap(cli::stiffness_map::Args),
 }
 
 fn main() -> ExitCode {
@@ -38,6 +52,13 @@ fn main() -> ExitCode {
         Command::Kinematics(a) => cli::kinematics::run(a),
         Command::Stiffness(a) => cli::stiffness::run(a),
         Command::Tension(a) => cli::tension::run(a),
+        Command::Isotropic(a) => cli::isotropic::run(a),
+        Command::Capacity(a) => cli::capacity::run(a),
+        Command::Workspace(a) => cli::workspace::run(a),
+        Command::Dextrous(a) => cli::dextrous::run(a),
+        Command::Synthesize(a) => cli::synthesize::run(a),
+        Command::Trajectory(a) => cli::trajectory::run(a),
+        Command::StiffnessMap(a) => cli::stiffness_map::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

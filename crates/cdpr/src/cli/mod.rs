@@ -1,8 +1,15 @@
 //! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
 
+pub mod capacity;
+pub mod dextrous;
+pub mod isotropic;
 pub mod kinematics;
 pub mod stiffness;
+pub mod stiffness_map;
+pub mod synthesize;
 pub mod tension;
+pub mod trajectory;
+pub mod workspace;
 
 use cdpr::RobotDescription;
 use cdpr::kinematics::Pose;

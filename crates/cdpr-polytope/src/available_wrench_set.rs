@@ -1,0 +1,256 @@
+//! # Available wrench set (operational force polytope)
+//!
+//! The set of wrenches the cables can apply to the platform with admissible tensions,
+//!
+//! ```text
+//!     AWS = { W t : t_min ≤ t ≤ t_max }            (seed 001 §III: image of the box (3) by Jₘᵀ = W)
+//! ```
+//!
+//! stored as its H-representation `n_k · w ≤ d_k` with **unit** normals n_k, so that d_k is the
+//! signed distance from the origin to facet k (positive when the origin is on the inner side).
+//!
+//! **Sign convention.** Equilibrium is W t + w_ext = 0, so an *external* wrench w_ext can be
+//! balanced iff −w_ext ∈ AWS: the set of balanceable external wrenches is the mirror −AWS.
+//! [`AvailableWrenchSet::contains`] tests the AWS itself, [`AvailableWrenchSet::can_balance`]
+//! the mirror.
+//!
+//! Build one with [`crate::hyperplane_shifting::available_wrench_set`] (any size) or
+//! [`crate::krut_vertex_projection::available_wrench_set`] (seed 001's method, small n).
+//!
+//! ## References
+//! - S. Krut, O. Company, F. Pierrot, *Force performance indexes for parallel mechanisms with
+//!   actuation redundancy, especially for parallel wire-driven manipulators*, IROS 2004 (seed 001),
+//!   eqs. (3), (16)–(18).
+
+use nalgebra::{DMatrix, DVector};
+
+/// Relative tolerance used to merge duplicate facets and vertices.
+const MERGE_TOL: f64 = 1e-7;
+
+/// One facet (or supporting half-space) `normal · w ≤ offset` with ‖normal‖ = 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Facet {
+    /// Unit outward normal n_k (length DOF).
+    pub normal: DVector<f64>,
+    /// Offset d_k: the signed distance from the origin to the facet's hyperplane (N, or N·m
+    /// mixed for wrench spaces; +∞ never occurs, such half-spaces are dropped).
+    pub offset: f64,
+}
+
+/// The available wrench set {W t : t_min ≤ t ≤ t_max} in H-representation, plus its vertices for
+/// DOF 2 and 3 when it is bounded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AvailableWrenchSet {
+    dof: usize,
+    facets: Vec<Facet>,
+    vertices: Option<Vec<DVector<f64>>>,
+    scale: f64,
+}
+
+impl AvailableWrenchSet {
+    /// Builds the set from raw half-spaces (unit normals), merging duplicates and computing the
+    /// vertices for DOF 2 and 3 when `bounded`. `scale` is a typical wrench magnitude (for
+    /// tolerances).
+    pub(crate) fn from_halfspaces(
+        dof: usize,
+        mut raw: Vec<Facet>,
+        bounded: bool,
+        scale: f64,
+    ) -> Self {
+        let scale = scale.max(f64::MIN_POSITIVE);
+        // Deterministic order: lexicographic on the normal, then the offset.
+        raw.retain(|f| f.offset.is_finite());
+        raw.sort_by(|a, b| {
+            a.normal
+                .iter()
+                .zip(b.normal.iter())
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+                .then(a.offset.total_cmp(&b.offset))
+        });
+        let mut facets: Vec<Facet> = Vec::with_capacity(raw.len());
+        for f in raw {
+            // Same normal: keep the tighter offset (both are valid supporting half-spaces).
+            if let Some(g) = facets
+                .iter_mut()
+                .find(|g| (&g.normal - &f.normal).amax() < MERGE_TOL)
+            {
+                g.offset = g.offset.min(f.offset);
+            } else {
+                facets.push(f);
+            }
+        }
+        let mut set = Self {
+            dof,
+            facets,
+            vertices: None,
+            scale,
+        };
+        if bounded && (dof == 2 || dof == 3) {
+            set.vertices = Some(set.compute_vertices());
+        }
+        set
+    }
+
+    /// Dimension of the wrench space (rows of W).
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// The facets `n_k · w ≤ d_k`, unit normals, duplicates merged, in lexicographic order of
+    /// the normals.
+    pub fn facets(&self) -> &[Facet] {
+        &self.facets
+    }
+
+    /// The vertices of the AWS for DOF 2 (ordered counter-clockwise) and DOF 3 (unordered),
+    /// `None` for other DOF or when a t_max is infinite (unbounded set).
+    pub fn vertices(&self) -> Option<&[DVector<f64>]> {
+        self.vertices.as_deref()
+    }
+
+    /// The largest violation `max_k (n_k · w − d_k)` (≤ 0 inside; panics-free, −∞ if no facet).
+    pub fn violation(&self, w: &DVector<f64>) -> f64 {
+        self.facets
+            .iter()
+            .map(|f| f.normal.dot(w) - f.offset)
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Whether the cables can *apply* the wrench `w` to the platform: w ∈ AWS (with a relative
+    /// tolerance of 1e-9 of the set's scale).
+    pub fn contains(&self, w: &DVector<f64>) -> bool {
+        w.len() == self.dof && self.violation(w) <= 1e-9 * self.scale
+    }
+
+    /// Whether the platform can *resist* the external wrench `w_ext` (W t + w_ext = 0 with
+    /// admissible t): −w_ext ∈ AWS.
+    pub fn can_balance(&self, w_ext: &DVector<f64>) -> bool {
+        self.contains(&-w_ext)
+    }
+
+    /// Vertices as the feasible intersections of DOF facets, merged; for DOF 2 sorted by angle
+    /// around their centroid.
+    fn compute_vertices(&self) -> Vec<DVector<f64>> {
+        let d = self.dof;
+        let m = self.facets.len();
+        let tol = 1e-9 * self.scale;
+        let mut out: Vec<DVector<f64>> = Vec::new();
+        let mut idx: Vec<usize> = (0..d).collect();
+        if m < d {
+            return out;
+        }
+        loop {
+            let a = DMatrix::from_fn(d, d, |r, c| self.facets[idx[r]].normal[c]);
+            let b = DVector::from_fn(d, |r, _| self.facets[idx[r]].offset);
+            let lu = a.lu();
+            let det = lu.determinant();
+            if det.abs() > 1e-10 {
+                if let Some(x) = lu.solve(&b) {
+                    if self.violation(&x) <= tol
+                        && !out
+                            .iter()
+                            .any(|v| (v - &x).amax() <= MERGE_TOL * self.scale)
+                    {
+                        out.push(x);
+                    }
+                }
+            }
+            if !next_combination(&mut idx, m) {
+                break;
+            }
+        }
+        if d == 2 && !out.is_empty() {
+            let c = out.iter().fold(DVector::zeros(2), |s, v| s + v) / out.len() as f64;
+            out.sort_by(|p, q| {
+                let ap = (p[1] - c[1]).atan2(p[0] - c[0]);
+                let aq = (q[1] - c[1]).atan2(q[0] - c[0]);
+                ap.total_cmp(&aq)
+            });
+        }
+        out
+    }
+}
+
+/// Advances `idx` (strictly increasing, values < n) to the next k-combination in lexicographic
+/// order; returns false after the last one. Returns the first changed position via the caller's
+/// comparison if needed.
+pub(crate) fn next_combination(idx: &mut [usize], n: usize) -> bool {
+    let k = idx.len();
+    let mut i = k;
+    while i > 0 {
+        i -= 1;
+        if idx[i] < n - k + i {
+            idx[i] += 1;
+            for j in i + 1..k {
+                idx[j] = idx[j - 1] + 1;
+            }
+            return true;
+        }
+    }
+    false
+}
+
+/// Binomial coefficient as f64 (exact for the sizes used here).
+pub(crate) fn binomial(n: f64, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i as f64) / (i as f64 + 1.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn combinations_are_enumerated_in_order() {
+        let mut idx = vec![0, 1];
+        let mut all = vec![idx.clone()];
+        while next_combination(&mut idx, 4) {
+            all.push(idx.clone());
+        }
+        assert_eq!(
+            all,
+            vec![
+                vec![0, 1],
+                vec![0, 2],
+                vec![0, 3],
+                vec![1, 2],
+                vec![1, 3],
+                vec![2, 3]
+            ]
+        );
+        assert_eq!(binomial(64.0, 3), 41664.0);
+        let mut empty: Vec<usize> = vec![];
+        assert!(!next_combination(&mut empty, 3));
+    }
+
+    #[test]
+    fn unit_square_vertices_and_membership() {
+        let f = |x: f64, y: f64| Facet {
+            normal: DVector::from_vec(vec![x, y]),
+            offset: 1.0,
+        };
+        let set = AvailableWrenchSet::from_halfspaces(
+            2,
+            vec![
+                f(1.0, 0.0),
+                f(0.0, 1.0),
+                f(-1.0, 0.0),
+                f(0.0, -1.0),
+                f(1.0, 0.0),
+            ],
+            true,
+            1.0,
+        );
+        assert_eq!(set.facets().len(), 4);
+        let v = set.vertices().unwrap();
+        assert_eq!(v.len(), 4);
+        // Counter-clockwise from angle −π: (−1,−1), (1,−1), (1,1), (−1,1).
+        assert_eq!(v[0].as_slice(), &[-1.0, -1.0]);
+        assert_eq!(v[1].as_slice(), &[1.0, -1.0]);
+        assert_eq!(v[2].as_slice(), &[1.0, 1.0]);
+        assert!(set.contains(&DVector::from_vec(vec![0.5, -0.9])));
+        assert!(!set.contains(&DVector::from_vec(vec![1.1, 0.0])));
+        assert!(set.can_balance(&DVector::from_vec(vec![-0.5, 0.9])));
+    }
+}

@@ -1,0 +1,275 @@
+//! # Capacity margin
+//!
+//! How far a *required external wrench set* R is from leaving the set of wrenches the robot can
+//! balance. With W t + w_ext = 0, w_ext is balanced iff −w_ext ∈ AWS; so R is balanced iff
+//! −R ⊂ AWS. For each facet n_k · w ≤ d_k of the AWS (unit n_k),
+//!
+//! ```text
+//!     s_k = d_k − max_{w ∈ R} n_k · (−w) = d_k − h_R(−n_k),      margin = min_k s_k,
+//! ```
+//!
+//! where h_R is the support function of R: for a box with centre c and half-widths h,
+//! h_R(−n) = −n·c + Σ_i |n_i| h_i; for a ball with centre c and radius ρ, h_R(−n) = −n·c + ρ.
+//! The margin is positive iff every wrench of R can be balanced with tensions in bounds (zero:
+//! some wrench of R is on the boundary); when positive it is the largest ρ such that R grown by
+//! a ball of radius ρ is still balanced, i.e. the distance from −R to the AWS boundary. A ball of
+//! radius 0 at the origin gives back the isotropic wrench radius min_k d_k.
+//!
+//! Units mix N and N·m for planar/spatial robots, as in Guay et al.
+//!
+//! ## References
+//! - F. Guay, P. Cardou, A. L. Cruz-Ruiz, S. Caro, *Measuring how well a structure supports
+//!   varying external wrenches*, New Advances in Mechanisms, Transmissions and Applications
+//!   (MeTrApp 2013), Springer 2014: the capacity margin.
+//! - S. Bouchard, C. Gosselin, B. Moore, J. Mech. Robot. 2(1), 2010 (hyperplane shifting).
+
+use crate::PolytopeError;
+use crate::available_wrench_set::AvailableWrenchSet;
+use crate::hyperplane_shifting::for_each_halfspace;
+use crate::input::check_vector;
+use cdpr_tension::TensionBounds;
+use nalgebra::{DMatrix, DVector};
+
+#[derive(Debug, Clone, PartialEq)]
+enum Shape {
+    Box(DVector<f64>),
+    Ball(f64),
+}
+
+/// A set of *external* wrenches w_ext (acting on the platform) the robot is required to
+/// balance: a box or a ball around a centre wrench (e.g. gravity).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RequiredWrenchSet {
+    centre: DVector<f64>,
+    shape: Shape,
+}
+
+impl RequiredWrenchSet {
+    /// The single external wrench `w_ext` (a ball of radius 0).
+    pub fn point(w_ext: DVector<f64>) -> Result<Self, PolytopeError> {
+        Self::ball(w_ext, 0.0)
+    }
+
+    /// All external wrenches within `radius` of `centre` (Euclidean, in wrench units).
+    pub fn ball(centre: DVector<f64>, radius: f64) -> Result<Self, PolytopeError> {
+        check_vector("required wrench centre", centre.as_slice(), centre.len())?;
+        if !(radius.is_finite() && radius >= 0.0) {
+            return Err(PolytopeError::InvalidParameter {
+                what: "required ball radius",
+                must: "finite and ≥ 0",
+                value: radius,
+            });
+        }
+        Ok(Self {
+            centre,
+            shape: Shape::Ball(radius),
+        })
+    }
+
+    /// The box `centre_i − h_i ≤ w_ext,i ≤ centre_i + h_i` (half-widths h_i ≥ 0).
+    pub fn boxed(centre: DVector<f64>, half_widths: DVector<f64>) -> Result<Self, PolytopeError> {
+        check_vector("required wrench centre", centre.as_slice(), centre.len())?;
+        check_vector(
+            "required box half-widths",
+            half_widths.as_slice(),
+            centre.len(),
+        )?;
+        if let Some(&h) = half_widths.iter().find(|&&h| h < 0.0) {
+            return Err(PolytopeError::InvalidParameter {
+                what: "required box half-width",
+                must: "≥ 0",
+                value: h,
+            });
+        }
+        Ok(Self {
+            centre,
+            shape: Shape::Box(half_widths),
+        })
+    }
+
+    /// Dimension of the wrenches.
+    pub fn dof(&self) -> usize {
+        self.centre.len()
+    }
+
+    /// The centre wrench.
+    pub fn centre(&self) -> &DVector<f64> {
+        &self.centre
+    }
+
+    /// h_R(−n) = max_{w ∈ R} (−n · w).
+    #[inline]
+    fn mirrored_support(&self, n: &[f64]) -> f64 {
+        let centre = -n
+            .iter()
+            .zip(self.centre.iter())
+            .map(|(a, b)| a * b)
+            .sum::<f64>();
+        match &self.shape {
+            Shape::Ball(r) => centre + r,
+            Shape::Box(h) => {
+                centre
+                    + n.iter()
+                        .zip(h.iter())
+                        .map(|(a, b)| a.abs() * b)
+                        .sum::<f64>()
+            }
+        }
+    }
+}
+
+/// The capacity margin min_k (d_k − h_R(−n_k)) of a required external wrench set against an
+/// AWS (module docs). +∞ if the AWS has no facet (unbounded in every direction).
+///
+/// ```
+/// use cdpr_polytope::{capacity_margin, hyperplane_shifting::available_wrench_set, RequiredWrenchSet};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// // AWS = [−9, 9]²; gravity w_ext = (0, −5) leaves 4 below / 9 sideways / 14 above: margin 4.
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+/// let gravity = RequiredWrenchSet::point(dvector![0.0, -5.0]).unwrap();
+/// assert!((capacity_margin(&aws, &gravity).unwrap() - 4.0).abs() < 1e-12);
+/// ```
+pub fn capacity_margin(
+    aws: &AvailableWrenchSet,
+    required: &RequiredWrenchSet,
+) -> Result<f64, PolytopeError> {
+    if required.dof() != aws.dof() {
+        return Err(PolytopeError::DimensionMismatch {
+            what: "required wrench set vs AWS dimension",
+            expected: aws.dof(),
+            found: required.dof(),
+        });
+    }
+    Ok(aws
+        .facets()
+        .iter()
+        .map(|f| f.offset - required.mirrored_support(f.normal.as_slice()))
+        .fold(f64::INFINITY, f64::min))
+}
+
+/// Allocation-free capacity margin for repeated poses: hyperplane shifting on the fly, each
+/// half-space scored as it is found.
+///
+/// ```
+/// use cdpr_polytope::{CapacityMargin, RequiredWrenchSet};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let bounds = TensionBounds::uniform(4, 1.0, 10.0).unwrap();
+/// let mut cm = CapacityMargin::new(2, 4);
+/// let r = RequiredWrenchSet::ball(dvector![0.0, -5.0], 1.0).unwrap();
+/// assert!((cm.margin(&w, &bounds, &r).unwrap() - 3.0).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CapacityMargin {
+    dof: usize,
+    cables: usize,
+}
+
+impl CapacityMargin {
+    /// A margin evaluator for DOF × n wrench matrices.
+    pub fn new(dof: usize, cables: usize) -> Self {
+        Self { dof, cables }
+    }
+
+    /// The capacity margin of `required` at the pose whose wrench matrix is `w`.
+    pub fn margin(
+        &mut self,
+        w: &DMatrix<f64>,
+        bounds: &TensionBounds,
+        required: &RequiredWrenchSet,
+    ) -> Result<f64, PolytopeError> {
+        if w.nrows() != self.dof {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "rows of W",
+                expected: self.dof,
+                found: w.nrows(),
+            });
+        }
+        if w.ncols() != self.cables {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "columns of W",
+                expected: self.cables,
+                found: w.ncols(),
+            });
+        }
+        if required.dof() != self.dof {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "required wrench set vs rows of W",
+                expected: self.dof,
+                found: required.dof(),
+            });
+        }
+        let mut m = f64::INFINITY;
+        for_each_halfspace(w, bounds, |n, d| {
+            m = m.min(d - required.mirrored_support(n));
+        })?;
+        Ok(m)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hyperplane_shifting::available_wrench_set;
+    use approx::assert_relative_eq;
+    use nalgebra::{dmatrix, dvector};
+
+    fn square() -> (DMatrix<f64>, TensionBounds) {
+        (
+            dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0],
+            TensionBounds::uniform(4, 1.0, 10.0).unwrap(),
+        )
+    }
+
+    #[test]
+    fn box_margin_by_hand() {
+        // AWS = [−9, 9]². External box centred (3, 0) with half-widths (2, 1): the balanced
+        // set is −AWS = [−9, 9]², the box spans x ∈ [1, 5], y ∈ [−1, 1]: margin 9 − 5 = 4.
+        let (w, b) = square();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        let r = RequiredWrenchSet::boxed(dvector![3.0, 0.0], dvector![2.0, 1.0]).unwrap();
+        assert_relative_eq!(capacity_margin(&aws, &r).unwrap(), 4.0, epsilon = 1e-12);
+        let mut cm = CapacityMargin::new(2, 4);
+        assert_relative_eq!(cm.margin(&w, &b, &r).unwrap(), 4.0, epsilon = 1e-12);
+        // Half-width 12: −R spans x ∈ [−15, 9], 6 beyond the facet x ≥ −9: margin −6.
+        let r = RequiredWrenchSet::boxed(dvector![3.0, 0.0], dvector![12.0, 1.0]).unwrap();
+        assert_relative_eq!(cm.margin(&w, &b, &r).unwrap(), -6.0, epsilon = 1e-12);
+    }
+
+    #[test]
+    fn the_sign_of_the_external_wrench_matters() {
+        // Unsymmetric AWS: x ∈ [−3, 3], y ∈ [1, 4] (cables can only pull up, 1 ≤ t3 ≤ 4).
+        // Gravity w_ext = (0, −2) needs the cables to pull up by 2: balanced, margin
+        // min(3, 3, 4 − 2, 2 − 1) = 1. The opposite load (0, +2) cannot be balanced: margin −3.
+        let w = dmatrix![1.0, -1.0, 0.0; 0.0, 0.0, 1.0];
+        let b = TensionBounds::new(vec![0.0, 2.0, 1.0], vec![5.0, 3.0, 4.0]).unwrap();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        let gravity = RequiredWrenchSet::point(dvector![0.0, -2.0]).unwrap();
+        assert_relative_eq!(
+            capacity_margin(&aws, &gravity).unwrap(),
+            1.0,
+            epsilon = 1e-12
+        );
+        assert!(aws.can_balance(gravity.centre()));
+        let lift = RequiredWrenchSet::point(dvector![0.0, 2.0]).unwrap();
+        assert_relative_eq!(capacity_margin(&aws, &lift).unwrap(), -3.0, epsilon = 1e-12);
+        assert!(!aws.can_balance(lift.centre()));
+    }
+
+    #[test]
+    fn bad_required_sets_are_errors() {
+        assert!(RequiredWrenchSet::ball(dvector![0.0, f64::NAN], 1.0).is_err());
+        assert!(RequiredWrenchSet::ball(dvector![0.0, 0.0], -1.0).is_err());
+        assert!(RequiredWrenchSet::boxed(dvector![0.0, 0.0], dvector![1.0]).is_err());
+        assert!(RequiredWrenchSet::boxed(dvector![0.0, 0.0], dvector![1.0, -1.0]).is_err());
+        let (w, b) = square();
+        let r3 = RequiredWrenchSet::point(dvector![0.0, 0.0, 0.0]).unwrap();
+        assert!(CapacityMargin::new(2, 4).margin(&w, &b, &r3).is_err());
+        assert!(CapacityMargin::new(3, 4).margin(&w, &b, &r3).is_err());
+        let aws = available_wrench_set(&w, &b).unwrap();
+        assert!(capacity_margin(&aws, &r3).is_err());
+    }
+}

@@ -1,0 +1,263 @@
+//! # Maximum isotropic force
+//!
+//! The largest force the platform can resist in *every* direction: the radius of the largest
+//! ball centred at the origin inside the operational force polytope (seed 001 §IV, Fig. 4).
+//! With the facets `n_k · w ≤ d_k` of the available wrench set (unit normals, signed d_k),
+//! eq. (19) reads
+//!
+//! ```text
+//!     f_min = min_k d_k          (= min_i 1/‖v_i‖ of eq. (19) when the origin is inside)
+//! ```
+//!
+//! and is **signed**: negative when the origin lies outside the polytope (the pose cannot even
+//! balance a zero load; seed 001 draws those poses white). It is then the most violated facet's
+//! signed distance, whose magnitude is at most the distance from the origin to the polytope.
+//! The AWS {W t} and the balanceable set −AWS give the same value: a ball centred at the origin
+//! is its own mirror.
+//!
+//! **Which ball.** For `point2` / `point3` robots every wrench component is a force and f_min is
+//! the force radius. For `planar` / `spatial` robots a wrench mixes forces (N) and moments (N·m);
+//! [`isotropic_force`] then returns the **force index at zero moment**: the radius of the largest
+//! force ball in the slice of the AWS by moment = 0. Writing each facet as n_k = [n_f,k; n_m,k]
+//! (force and moment parts), the slice is {f : n_f,k · f ≤ d_k}, so
+//!
+//! ```text
+//!     f_min = min_k d_k / ‖n_f,k‖
+//! ```
+//!
+//! where a facet with ‖n_f,k‖ ≈ 0 (below 1e-12) imposes no constraint if d_k ≥ 0 and makes the
+//! slice empty if d_k < 0 (result −∞). [`isotropic_wrench_radius`] gives the ball in the full
+//! wrench space instead (min_k d_k with unit normals; unit-dependent, for completeness).
+//!
+//! ## References
+//! - S. Krut, O. Company, F. Pierrot, IROS 2004 (seed 001), §IV-A eq. (19), §IV-B.
+//! - S. Krut, O. Company, F. Pierrot, *Velocity performance indexes for parallel mechanisms with
+//!   actuation redundancy*, Robotica 22(2), 2004 (seed 001's [1]).
+
+use crate::PolytopeError;
+use crate::available_wrench_set::AvailableWrenchSet;
+use crate::hyperplane_shifting::for_each_halfspace;
+use cdpr_kinematics::{MotionPattern, Pose, PoseKinematics, Robot};
+use cdpr_tension::TensionBounds;
+use nalgebra::DMatrix;
+
+/// ‖n_f‖ below which a facet has no force part.
+const NO_FORCE_PART: f64 = 1e-12;
+
+/// Contribution of one facet to the zero-moment force index (see the module docs).
+#[inline]
+fn force_term(normal: &[f64], offset: f64, force_rows: usize) -> f64 {
+    let nf = normal[..force_rows]
+        .iter()
+        .map(|x| x * x)
+        .sum::<f64>()
+        .sqrt();
+    if nf > NO_FORCE_PART {
+        offset / nf
+    } else if offset >= 0.0 {
+        f64::INFINITY
+    } else {
+        f64::NEG_INFINITY
+    }
+}
+
+/// Maximum isotropic force of an AWS, eq. (19), signed; the zero-moment force index for planar
+/// and spatial motion patterns (module docs). +∞ if no facet limits the force (infinite t_max
+/// with positively spanning cables).
+///
+/// ```
+/// use cdpr_kinematics::MotionPattern;
+/// use cdpr_polytope::{hyperplane_shifting::available_wrench_set, isotropic_force};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::dmatrix;
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+/// assert!((isotropic_force(&aws, MotionPattern::Point2).unwrap() - 9.0).abs() < 1e-12);
+/// ```
+pub fn isotropic_force(
+    aws: &AvailableWrenchSet,
+    motion: MotionPattern,
+) -> Result<f64, PolytopeError> {
+    if aws.dof() != motion.dof() {
+        return Err(PolytopeError::DimensionMismatch {
+            what: "AWS dimension vs motion pattern DOF",
+            expected: motion.dof(),
+            found: aws.dof(),
+        });
+    }
+    let rows = motion.translation_dof();
+    Ok(aws
+        .facets()
+        .iter()
+        .map(|f| force_term(f.normal.as_slice(), f.offset, rows))
+        .fold(f64::INFINITY, f64::min))
+}
+
+/// Radius of the largest origin-centred ball in the full wrench space inside the AWS:
+/// min_k d_k (unit normals), signed. Mixes N and N·m for planar/spatial robots.
+pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
+    aws.facets()
+        .iter()
+        .map(|f| f.offset)
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Allocation-free maximum isotropic force for repeated poses (hyperplane shifting on the fly,
+/// no facet list is built).
+///
+/// ```
+/// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+/// use cdpr_polytope::IsotropicForce;
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::Vector3;
+/// // Seed 001's robot: motors at 1000 mm, 30°, 150°, 270°; tensions in [50, 500].
+/// let motor = |deg: f64| Cable {
+///     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
+///     platform: Vector3::zeros(),
+/// };
+/// let robot = Robot::new(MotionPattern::Point2, vec![motor(30.0), motor(150.0), motor(270.0)]).unwrap();
+/// let bounds = TensionBounds::uniform(3, 50.0, 500.0).unwrap();
+/// let mut index = IsotropicForce::new(&robot);
+/// let f = index.force_at_pose(&robot, &Pose::point(0.0, 0.0, 0.0), &bounds).unwrap();
+/// assert!((f - 225.0 * 3f64.sqrt()).abs() < 1e-9);
+/// ```
+#[derive(Debug, Clone)]
+pub struct IsotropicForce {
+    motion: MotionPattern,
+    kinematics: PoseKinematics,
+    w: DMatrix<f64>,
+}
+
+impl IsotropicForce {
+    /// Buffers for `robot` (its motion pattern and cable count).
+    pub fn new(robot: &Robot) -> Self {
+        Self {
+            motion: robot.motion(),
+            kinematics: PoseKinematics::for_robot(robot),
+            w: DMatrix::zeros(robot.dof(), robot.cable_count()),
+        }
+    }
+
+    /// The force index (zero-moment slice for planar/spatial) of W, see [`isotropic_force`].
+    pub fn force(
+        &mut self,
+        w: &DMatrix<f64>,
+        bounds: &TensionBounds,
+    ) -> Result<f64, PolytopeError> {
+        isotropic_force_of(self.motion, w, bounds)
+    }
+
+    /// The full-wrench-space ball radius of W, see [`isotropic_wrench_radius`].
+    pub fn wrench_radius(
+        &mut self,
+        w: &DMatrix<f64>,
+        bounds: &TensionBounds,
+    ) -> Result<f64, PolytopeError> {
+        isotropic_wrench_radius_of(w, bounds)
+    }
+
+    /// Inverse kinematics, W and the force index at `pose`, reusing this value's buffers.
+    pub fn force_at_pose(
+        &mut self,
+        robot: &Robot,
+        pose: &Pose,
+        bounds: &TensionBounds,
+    ) -> Result<f64, PolytopeError> {
+        robot.update_kinematics(pose, &mut self.kinematics)?;
+        self.kinematics.write_wrench_matrix(&mut self.w);
+        self.motion = robot.motion();
+        isotropic_force_of(self.motion, &self.w, bounds)
+    }
+}
+
+/// [`isotropic_force`] straight from W without building the facet list (no allocation).
+pub fn isotropic_force_of(
+    motion: MotionPattern,
+    w: &DMatrix<f64>,
+    bounds: &TensionBounds,
+) -> Result<f64, PolytopeError> {
+    if w.nrows() != motion.dof() {
+        return Err(PolytopeError::DimensionMismatch {
+            what: "rows of W vs motion pattern DOF",
+            expected: motion.dof(),
+            found: w.nrows(),
+        });
+    }
+    let rows = motion.translation_dof();
+    let mut r = f64::INFINITY;
+    for_each_halfspace(w, bounds, |n, d| r = r.min(force_term(n, d, rows)))?;
+    Ok(r)
+}
+
+/// [`isotropic_wrench_radius`] straight from W without building the facet list (no allocation).
+pub fn isotropic_wrench_radius_of(
+    w: &DMatrix<f64>,
+    bounds: &TensionBounds,
+) -> Result<f64, PolytopeError> {
+    let mut r = f64::INFINITY;
+    for_each_halfspace(w, bounds, |_, d| r = r.min(d))?;
+    Ok(r)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hyperplane_shifting::available_wrench_set;
+    use approx::assert_relative_eq;
+    use nalgebra::dmatrix;
+
+    #[test]
+    fn zero_moment_slice_by_hand() {
+        // Planar-like W with rows f_x, f_y, m: cables ±x (moment arm ±1 about z is carried by
+        // columns 1, 2), ±y without moment. Columns: [1,0,1], [-1,0,1], [0,1,0], [0,-1,0].
+        // Tensions in [0, 1]. At zero moment t1 + t2 = 0 ⇒ t1 = t2 = 0 ⇒ f_x = 0: the slice is
+        // the segment f_x = 0, f_y ∈ [−1, 1], so the force index is 0.
+        let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0; 1.0, 1.0, 0.0, 0.0];
+        let b = TensionBounds::uniform(4, 0.0, 1.0).unwrap();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        assert_relative_eq!(
+            isotropic_force(&aws, MotionPattern::Planar).unwrap(),
+            0.0,
+            epsilon = 1e-12
+        );
+        // Without moment coupling (third row from independent cables) the slice is the square.
+        let w = dmatrix![1.0, -1.0, 0.0, 0.0, 0.0, 0.0;
+                         0.0, 0.0, 1.0, -1.0, 0.0, 0.0;
+                         0.0, 0.0, 0.0, 0.0, 1.0, -1.0];
+        let b = TensionBounds::uniform(6, 1.0, 3.0).unwrap();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        assert_relative_eq!(
+            isotropic_force(&aws, MotionPattern::Planar).unwrap(),
+            2.0,
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(isotropic_wrench_radius(&aws), 2.0, epsilon = 1e-12);
+        assert_relative_eq!(
+            isotropic_force_of(MotionPattern::Planar, &w, &b).unwrap(),
+            2.0,
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            isotropic_wrench_radius_of(&w, &b).unwrap(),
+            2.0,
+            epsilon = 1e-12
+        );
+        assert!(isotropic_force_of(MotionPattern::Point2, &w, &b).is_err());
+    }
+
+    #[test]
+    fn empty_slice_is_minus_infinity() {
+        // A facet with no force part and d < 0: the moment row m = t3 ∈ [1, 2] can never be 0.
+        let w = dmatrix![1.0, -1.0, 0.0, 0.0, 0.0;
+                         0.0, 0.0, 1.0, -1.0, 0.0;
+                         0.0, 0.0, 0.0, 0.0, 1.0];
+        let b = TensionBounds::uniform(5, 1.0, 2.0).unwrap();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        assert_eq!(
+            isotropic_force(&aws, MotionPattern::Planar).unwrap(),
+            f64::NEG_INFINITY
+        );
+        assert_relative_eq!(isotropic_wrench_radius(&aws), -1.0, epsilon = 1e-12);
+        assert!(isotropic_force(&aws, MotionPattern::Point2).is_err());
+    }
+}
