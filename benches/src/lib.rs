@@ -4,21 +4,7 @@
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 
-/// The 8-cable spatial robot of `examples/robots/ipanema-like-8.toml`: frame anchors at the corners
-/// of a 4 m × 3 m × 2 m box, attachments at the corners of a 0.2 × 0.2 × 0.1 m platform, crossed:
-/// the upper cables hold the lower platform corners and vice versa.
-pub fn ipanema_like_8() -> Robot {
-    let mut cables = Vec::new();
-    for (z, pz) in [(2.0, -0.05), (0.0, 0.05)] {
-        for (x, y) in [(2.0, 1.5), (-2.0, 1.5), (-2.0, -1.5), (2.0, -1.5)] {
-            cables.push(Cable {
-                frame: Vector3::new(x, y, z),
-                platform: Vector3::new(0.1f64.copysign(x), 0.1f64.copysign(y), pz),
-            });
-        }
-    }
-    Robot::new(MotionPattern::Spatial, cables).expect("valid robot")
-}
+pub use cdpr_kinematics::reference_robots::ipanema_like_8;
 
 /// `count` deterministic poses spread over the central part of the 8-cable robot's frame
 /// (|x| ≤ 1, |y| ≤ 0.75, z ∈ [0.5, 1.5], angles within ±0.1 rad), from a fixed LCG.

@@ -37,6 +37,7 @@ mod inverse_kinematics;
 mod motion;
 mod path;
 mod pose;
+pub mod reference_robots;
 mod robot;
 #[cfg(feature = "proptest")]
 pub mod strategies;
