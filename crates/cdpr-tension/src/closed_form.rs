@@ -17,6 +17,14 @@
 //! |N_i| ≤ 1. The Hadamard ratio √det(W Wᵀ)/Π‖row_k(W)‖ = |det A|·‖(N, 1)‖/Π‖row_k‖ detects
 //! singular poses with the same threshold as the other methods.
 //!
+//! **Small fast path.** For DOF ≤ 3 (point2 with 3 cables, planar and point3 with 4) the same
+//! answer is computed in closed form without elimination: the null vector of W is the vector of
+//! signed maximal minors d_j = (−1)^j det(W without column j) (generalised cross product), so
+//! N = d / d_f with f = argmax |d_j| (the basis of largest |det A| = |d_f|, hence |N_i| ≤ 1), the
+//! Hadamard ratio is ‖d‖ / Π‖row_k(W)‖ (Cauchy–Binet: det(W Wᵀ) = Σ d_j²), and M solves
+//! A M_A = −w_ext by Cramer's rule with fixed-size 3 × 3 determinants. Both paths are compared on
+//! random problems in the unit tests.
+//!
 //! ## References
 //! - Seed 000 (thesis ch. 6), eqs. (6.15)–(6.20), Algorithm 6.1.
 
@@ -102,9 +110,116 @@ pub(crate) struct ClosedForm {
     pub free: usize,
 }
 
+/// det of the m × m matrix (m ≤ 3) whose columns are `a`, `b`, `c` (only the first m entries and
+/// columns are used).
+#[inline(always)]
+fn det_small<const M: usize>(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> f64 {
+    match M {
+        1 => a[0],
+        2 => a[0] * b[1] - a[1] * b[0],
+        _ => {
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - b[0] * (a[1] * c[2] - a[2] * c[1])
+                + c[0] * (a[1] * b[2] - a[2] * b[1])
+        }
+    }
+}
+
 impl ClosedForm {
     /// Eq. (6.16) with the basis choice described in the module docs.
     fn parametrise(&mut self, problem: &TensionProblem) -> Result<(), Infeasibility> {
+        let (m, n) = problem.wrench_matrix.shape();
+        match (m, n) {
+            (1, 2) => self.parametrise_small::<1>(problem),
+            (2, 3) => self.parametrise_small::<2>(problem),
+            (3, 4) => self.parametrise_small::<3>(problem),
+            _ => self.parametrise_general(problem),
+        }
+    }
+
+    /// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs).
+    fn parametrise_small<const M: usize>(
+        &mut self,
+        problem: &TensionProblem,
+    ) -> Result<(), Infeasibility> {
+        let w = problem.wrench_matrix;
+        let (m, n) = (M, M + 1);
+        let ws = w.as_slice();
+        // Columns of W (zero-padded to 3 rows) and −w_ext as column n.
+        let mut cols = [[0.0f64; 3]; 5];
+        let mut row_norm = [0.0f64; 3];
+        for (i, col) in cols.iter_mut().enumerate().take(n) {
+            for k in 0..m {
+                let v = ws[i * m + k];
+                col[k] = v;
+                row_norm[k] += v * v;
+            }
+        }
+        // Π ‖row_k‖², one square root below.
+        let mut rows2 = 1.0;
+        for &r in &row_norm[..m] {
+            if r == 0.0 {
+                return Err(Infeasibility::SingularPose {
+                    condition: f64::INFINITY,
+                });
+            }
+            rows2 *= r;
+        }
+        for (c, w) in cols[4].iter_mut().zip(problem.external_wrench.iter()) {
+            *c = -w;
+        }
+        // Signed maximal minors: W d = 0.
+        let mut d = [0.0f64; 4];
+        let mut others = [[0usize; 3]; 4];
+        let mut dn = 0.0;
+        for j in 0..n {
+            // The columns other than j, in order (entries beyond M are unused by det_small).
+            let o = [
+                usize::from(j == 0),
+                1 + usize::from(j <= 1),
+                2 + usize::from(j <= 2),
+            ];
+            let det = det_small::<M>(&cols[o[0]], &cols[o[1]], &cols[o[2]]);
+            d[j] = if j % 2 == 0 { det } else { -det };
+            others[j] = o;
+            dn += det * det;
+        }
+        let mut free = 0;
+        for j in 1..n {
+            if d[j].abs() > d[free].abs() * (1.0 + 1e-12) {
+                free = j;
+            }
+        }
+        let ratio = (dn / rows2).sqrt().min(1.0);
+        if d[free] == 0.0 || ratio.is_nan() || ratio < SINGULARITY_RATIO {
+            return Err(Infeasibility::SingularPose {
+                condition: 1.0 / ratio,
+            });
+        }
+        self.m_vec.resize(n, 0.0);
+        self.n_vec.resize(n, 0.0);
+        let inv_free = 1.0 / d[free];
+        for (nj, dj) in self.n_vec.iter_mut().zip(&d) {
+            *nj = dj * inv_free;
+        }
+        // M_A = A⁻¹ (−w_ext) by Cramer's rule; A = the columns other than `free`, in order,
+        // det A = (−1)^free d_free.
+        let o = others[free];
+        let inv_a = if free % 2 == 0 { inv_free } else { -inv_free };
+        let rhs = &cols[4];
+        self.m_vec[free] = 0.0;
+        self.m_vec[o[0]] = det_small::<M>(rhs, &cols[o[1]], &cols[o[2]]) * inv_a;
+        if M >= 2 {
+            self.m_vec[o[1]] = det_small::<M>(&cols[o[0]], rhs, &cols[o[2]]) * inv_a;
+        }
+        if M >= 3 {
+            self.m_vec[o[2]] = det_small::<M>(&cols[o[0]], &cols[o[1]], rhs) * inv_a;
+        }
+        self.free = free;
+        Ok(())
+    }
+
+    /// Eq. (6.16) by Gaussian elimination with complete pivoting (any DOF).
+    fn parametrise_general(&mut self, problem: &TensionProblem) -> Result<(), Infeasibility> {
         let w = problem.wrench_matrix;
         let (m, n) = w.shape();
         let c = n + 1;
@@ -241,8 +356,9 @@ impl ClosedForm {
                 }
                 continue;
             }
-            let a = (tmin[i] - mi) / ni;
-            let b = (tmax[i] - mi) / ni; // ±∞ for an infinite t_max
+            let inv = 1.0 / ni;
+            let a = (tmin[i] - mi) * inv;
+            let b = (tmax[i] - mi) * inv; // ±∞ for an infinite t_max
             let (l, h) = if ni > 0.0 { (a, b) } else { (b, a) };
             lo = lo.max(l);
             hi = hi.min(h);
@@ -321,5 +437,108 @@ mod tests {
         let m = DVector::from_column_slice(&cf.m_vec);
         assert!((&w * n).norm() < 1e-15);
         assert!((&w * m + we).norm() < 1e-12);
+    }
+
+    /// Tensions at both interval ends from a parametrisation.
+    fn ends(cf: &ClosedForm, p: &TensionProblem) -> Option<(Vec<f64>, Vec<f64>)> {
+        let mut c = cf.clone();
+        let (lo, hi) = c.interval(p).ok()?;
+        let at = |l: f64| -> Vec<f64> {
+            (0..c.m_vec.len())
+                .map(|i| c.m_vec[i] + c.n_vec[i] * l)
+                .collect()
+        };
+        Some((at(lo), at(hi)))
+    }
+
+    #[test]
+    fn small_fast_path_agrees_with_elimination() {
+        // Deterministic pseudo-random problems for DOF 1, 2, 3 (n = DOF + 1).
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut compared = 0;
+        for case in 0..600 {
+            let m = 1 + case % 3;
+            let n = m + 1;
+            let w = DMatrix::from_fn(m, n, |_, _| rnd());
+            let we = DVector::from_fn(m, |_, _| 3.0 * rnd());
+            let b = TensionBounds::uniform(n, 0.5, 10.0).unwrap();
+            let p = TensionProblem::new(&w, &we, &b);
+            let (mut fast, mut slow) = (ClosedForm::default(), ClosedForm::default());
+            let rf = match m {
+                1 => fast.parametrise_small::<1>(&p),
+                2 => fast.parametrise_small::<2>(&p),
+                _ => fast.parametrise_small::<3>(&p),
+            };
+            let rs = slow.parametrise_general(&p);
+            assert_eq!(rf.is_ok(), rs.is_ok(), "case {case}: {rf:?} vs {rs:?}");
+            if rf.is_err() {
+                continue;
+            }
+            // The same null direction (up to scale), both |N_i| ≤ 1, M solves W M = −w_ext.
+            let nf = DVector::from_column_slice(&fast.n_vec);
+            let mf = DVector::from_column_slice(&fast.m_vec);
+            assert!(nf.amax() <= 1.0 + 1e-12);
+            assert!((&w * &nf).amax() < 1e-12, "case {case}");
+            assert!(
+                (&w * &mf + &we).amax() < 1e-11 * (1.0 + mf.amax()),
+                "case {case}"
+            );
+            let ns = DVector::from_column_slice(&slow.n_vec);
+            assert!(((nf.dot(&ns)).abs() - nf.norm() * ns.norm()).abs() < 1e-10);
+            // Same feasible set: the same tensions at the interval ends.
+            match (ends(&fast, &p), ends(&slow, &p)) {
+                (Some((fl, fh)), Some((sl, sh))) => {
+                    let close = |a: &[f64], b: &[f64]| {
+                        a.iter()
+                            .zip(b)
+                            .all(|(x, y)| (x - y).abs() < 1e-9 * (1.0 + y.abs()))
+                    };
+                    assert!(
+                        (close(&fl, &sl) && close(&fh, &sh))
+                            || (close(&fl, &sh) && close(&fh, &sl)),
+                        "case {case}: {fl:?} {fh:?} vs {sl:?} {sh:?}"
+                    );
+                    compared += 1;
+                }
+                (None, None) => {}
+                (a, b) => panic!("case {case}: feasibility differs: {a:?} vs {b:?}"),
+            }
+        }
+        assert!(compared > 50, "only {compared} feasible cases");
+    }
+
+    #[test]
+    fn small_fast_path_hand_values() {
+        // Planar point held by 3 cables (m = 2): t1 (1, 0) + t2 (0, 1) + t3 (−1, −1) = (2, 1).
+        // Null vector ∝ (1, 1, 1); with t3 free: t1 = 2 + t3, t2 = 1 + t3.
+        let w = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, -1.0, 0.0, 1.0, -1.0]);
+        let we = DVector::from_vec(vec![-2.0, -1.0]);
+        let b = TensionBounds::uniform(3, 1.0, 10.0).unwrap();
+        let p = TensionProblem::new(&w, &we, &b);
+        let mut cf = ClosedForm::default();
+        let (lo, hi) = cf.interval(&p).unwrap();
+        assert_eq!(cf.n_vec, vec![1.0, 1.0, 1.0]);
+        // t3 ∈ [1, 9] (t1 = 2 + t3 ≤ 10) once the free cable is chosen: check via tensions.
+        let t_lo: Vec<f64> = (0..3).map(|i| cf.m_vec[i] + cf.n_vec[i] * lo).collect();
+        let t_hi: Vec<f64> = (0..3).map(|i| cf.m_vec[i] + cf.n_vec[i] * hi).collect();
+        for (a, e) in t_lo.iter().zip([3.0, 2.0, 1.0]) {
+            assert!((a - e).abs() < 1e-14);
+        }
+        for (a, e) in t_hi.iter().zip([10.0, 9.0, 8.0]) {
+            assert!((a - e).abs() < 1e-14);
+        }
+        // A rank-deficient W is singular.
+        let w = DMatrix::from_row_slice(2, 3, &[1.0, 2.0, 3.0, 2.0, 4.0, 6.0]);
+        let p = TensionProblem::new(&w, &we, &b);
+        assert!(matches!(
+            cf.interval(&p),
+            Err(Infeasibility::SingularPose { .. })
+        ));
     }
 }

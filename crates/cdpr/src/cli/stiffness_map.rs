@@ -1,16 +1,286 @@
-//! `cdpr stiffness-map` (being written: see the issue tracker).
+//! `cdpr stiffness-map`: the stiffness-oriented study of seed 002 at one pose (Fig. 4).
 
-use super::CliError;
+use super::tension::sotda_settings;
+use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json, wrench};
+use cdpr::plot::HeatMap;
+use cdpr::tension::{
+    FeasiblePolygon, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    sotda_displacement,
+};
+use nalgebra::{DVector, Vector2};
+use serde_json::json;
 use std::path::PathBuf;
 
 /// Platform displacement over the feasible polygon (seed 002 Fig. 4).
+///
+/// At one pose of a robot with redundancy n − DOF = 2, every equilibrium tension is
+/// t = t0 + N λ, λ in the feasible polygon (seed 002 eqs. (5)–(6)). For each tension the platform
+/// moves by δX = K(t)⁻¹ δw under the load δw, with K = Kp + Ka (eq. (4), k_i = E·S / l_i from the
+/// robot file's `axial_stiffness`). This command evaluates |d · δp| on a grid over the polygon
+/// (Fig. 4 left), at the barycentre and at the SOTDA optimum (eq. (7)), along the intermediate
+/// solutions t(ν) = t_bary + ν (t_opt − t_bary), ν ∈ [0, 1] (Fig. 4 right, simulated), and reports
+/// the reduction 100 (δ_bary − δ_opt) / δ_bary in %.
+///
+/// The tensions balance --wrench plus the platform's gravity; the displacement is the response to
+/// --wrench alone (the lateral load of the paper; a unit force along d if --wrench is zero).
+/// Displacements are printed in thousandths of the robot's length unit: mm for a robot in metres
+/// with forces in N.
+///
+/// JSON fields: `displacement_barycenter`, `displacement_optimum`, `reduction_percent`,
+/// `spread` (largest − smallest grid value), `polygon` (vertices λ), `barycenter_lambda`,
+/// `optimum_lambda`, `tensions_barycenter`, `tensions_optimum`, `nu_curve` ([ν, displacement]
+/// pairs), `grid` (`lambda1`, `lambda2`, `values[j][i]` at (lambda1[i], lambda2[j]), null outside
+/// the polygon), `unit`; `feasible` false with `reason` when the polygon is empty.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file (TOML) with redundancy 2 and `axial_stiffness` on every cable.
     robot: PathBuf,
+    /// Platform pose (motion-pattern coordinates), e.g. --pose 1.5,0.35,0.59,0,0,0.
+    #[arg(long, allow_hyphen_values = true)]
+    pose: Numbers,
+    /// External wrench w_e (DOF numbers; default zero), e.g. --wrench 0,50,0,0,0,0.
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
+    /// Direction d of the displacement (2 or 3 numbers; default +y as in seed 002).
+    #[arg(long, allow_hyphen_values = true)]
+    direction: Option<Numbers>,
+    /// Grid resolution per λ axis over the polygon's bounding box.
+    #[arg(long, default_value_t = 80)]
+    grid: usize,
+    /// Number of ν values in [0, 1] for the intermediate-solution curve.
+    #[arg(long, default_value_t = 21)]
+    nu_samples: usize,
+    /// Use SOTDA's real-time variant (polygon corners only) for the optimum instead of the full
+    /// search (grid + pattern search).
+    #[arg(long)]
+    corners: bool,
+    /// Heat map of the displacement over the polygon (.svg or .png).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Write one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
-    Err(format!("{}: `stiffness-map` is not available yet", args.robot.display()).into())
+    let robot = load_robot(&args.robot)?;
+    if !(2..=2000).contains(&args.grid) {
+        return Err("--grid must lie in [2, 2000]".into());
+    }
+    if !(2..=10_000).contains(&args.nu_samples) {
+        return Err("--nu-samples must lie in [2, 10000]".into());
+    }
+    let es = robot
+        .axial_stiffness
+        .clone()
+        .ok_or("stiffness-map needs `axial_stiffness` (E·S, N) on every cable of the robot file")?;
+    let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
+    if r != 2 {
+        return Err(format!(
+            "stiffness-map needs redundancy n − DOF = 2 (the feasible polygon), this robot has {r}"
+        )
+        .into());
+    }
+    let pose = pose(&robot, &args.pose)?;
+    let w_e = wrench(&robot, args.wrench.as_deref())?;
+    let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
+    let kin = robot.robot.inverse_kinematics(&pose)?;
+    let w = kin.wrench_matrix();
+    let mut settings = sotda_settings(args.direction.as_deref(), 1.0, !args.corners)?;
+    if w_e.amax() > 0.0 {
+        settings.perturbation = Some(w_e.clone());
+    }
+    let mut problem = TensionProblem::new(&w, &w_ext, &robot.bounds);
+    problem.stiffness = Some(StiffnessData {
+        kinematics: &kin,
+        axial_stiffness: &es,
+    });
+    let unit = "mm (1e-3 of the robot's length unit)";
+    let polygon = match FeasiblePolygon::compute(&problem)? {
+        Ok(p) => p,
+        Err(reason) => {
+            return report_infeasible(&args, &robot.name, &reason.to_string());
+        }
+    };
+    let optimum = match TensionSolver::sotda(settings.clone()).solve(&problem)? {
+        TensionOutcome::Feasible(s) => s.tensions,
+        TensionOutcome::Infeasible(reason) => {
+            return report_infeasible(&args, &robot.name, &reason.to_string());
+        }
+    };
+    let stiff = problem.stiffness.expect("set above");
+    let disp = |t: &DVector<f64>| -> Result<f64, CliError> {
+        Ok(sotda_displacement(&stiff, &settings, &w_ext, t.as_slice())?.unwrap_or(f64::NAN) * 1e3)
+    };
+    let t_bary = polygon.barycenter();
+    let l_bary = polygon.barycenter_lambda();
+    let l_opt = {
+        let v = polygon.null_space.transpose() * (&optimum - &polygon.particular);
+        Vector2::new(v[0], v[1])
+    };
+    let d_bary = disp(&t_bary)?;
+    let d_opt = disp(&optimum)?;
+    let reduction = 100.0 * (d_bary - d_opt) / d_bary;
+    let nu_curve = (0..args.nu_samples)
+        .map(|k| {
+            let nu = k as f64 / (args.nu_samples - 1) as f64;
+            let t = &t_bary + (&optimum - &t_bary) * nu;
+            Ok([nu, disp(&t)?])
+        })
+        .collect::<Result<Vec<_>, CliError>>()?;
+    let grid = stiffness_grid(&polygon, &robot.bounds, args.grid, |t| disp(t))?;
+    let (gmin, gmax) = grid
+        .values
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
+    if let Some(path) = &args.plot {
+        let fig = HeatMap {
+            title: format!(
+                "{}: |d·δp| over the feasible polygon (reduction {reduction:.1} %)",
+                robot.name
+            ),
+            labels: ("λ1 (N)".into(), "λ2 (N)".into()),
+            value_label: "|d·δp| (mm)".into(),
+            x_range: grid.x_range,
+            y_range: grid.y_range,
+            shape: (args.grid, args.grid),
+            values: grid.values.clone(),
+            blank_below: f64::NEG_INFINITY,
+            markers: Vec::new(),
+            outlines: vec![polygon.vertices.iter().map(|v| (v.x, v.y)).collect()],
+            highlight: vec![
+                ((l_bary.x, l_bary.y), format!("barycentre {d_bary:.3} mm")),
+                ((l_opt.x, l_opt.y), format!("SOTDA optimum {d_opt:.3} mm")),
+            ],
+        };
+        cdpr::plot::save(&fig, path)?;
+    }
+    let n = args.grid;
+    if args.json {
+        let row = |j: usize| -> Vec<Option<f64>> {
+            grid.values[j * n..(j + 1) * n]
+                .iter()
+                .map(|v| v.is_finite().then_some(*v))
+                .collect()
+        };
+        print_json(&json!({
+            "robot": robot.name,
+            "pose": args.pose.0,
+            "feasible": true,
+            "direction": settings.direction.as_slice(),
+            "external_wrench": w_ext.as_slice(),
+            "load": settings.perturbation.as_ref().map(|p| p.as_slice().to_vec()),
+            "method": if args.corners { "sotda (corners)" } else { "sotda (full search)" },
+            "unit": unit,
+            "displacement_barycenter": d_bary,
+            "displacement_optimum": d_opt,
+            "reduction_percent": reduction,
+            "spread": gmax - gmin,
+            "grid_min": gmin,
+            "grid_max": gmax,
+            "polygon": polygon.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+            "barycenter_lambda": [l_bary.x, l_bary.y],
+            "optimum_lambda": [l_opt.x, l_opt.y],
+            "tensions_barycenter": t_bary.as_slice(),
+            "tensions_optimum": optimum.as_slice(),
+            "nu_curve": nu_curve,
+            "grid": {
+                "lambda1": grid.axis(0, n),
+                "lambda2": grid.axis(1, n),
+                "values": (0..n).map(row).collect::<Vec<_>>(),
+            },
+        }))
+    } else {
+        println!(
+            "robot {}, pose {:?}, w_ext {:?} (tensions), load {:?} (displacement), direction {:?}",
+            robot.name,
+            args.pose.0,
+            w_ext.as_slice(),
+            settings
+                .perturbation
+                .as_ref()
+                .map(|p| p.as_slice().to_vec()),
+            settings.direction.as_slice()
+        );
+        println!("feasible polygon: {} vertices", polygon.vertices.len());
+        println!("displacement |d·δp| in {unit}:");
+        println!("  barycentre      {d_bary:.6}");
+        println!("  SOTDA optimum   {d_opt:.6}");
+        println!("  reduction       {reduction:.3} %");
+        println!(
+            "  grid min / max  {gmin:.6} / {gmax:.6} (spread {:.6})",
+            gmax - gmin
+        );
+        println!("{:>6} {:>12}", "nu", "|d·δp|");
+        for [nu, d] in &nu_curve {
+            println!("{nu:>6.3} {d:>12.6}");
+        }
+        Ok(())
+    }
+}
+
+fn report_infeasible(args: &Args, name: &str, reason: &str) -> Result<(), CliError> {
+    if args.json {
+        print_json(&json!({
+            "robot": name,
+            "pose": args.pose.0,
+            "feasible": false,
+            "reason": reason,
+        }))
+    } else {
+        println!("no feasible polygon at this pose: {reason}");
+        Ok(())
+    }
+}
+
+/// Values of `f(t(λ))` on an n × n grid over the polygon's bounding box (NaN outside).
+struct Grid {
+    x_range: (f64, f64),
+    y_range: (f64, f64),
+    values: Vec<f64>,
+}
+
+impl Grid {
+    fn axis(&self, k: usize, n: usize) -> Vec<f64> {
+        let (a, b) = if k == 0 { self.x_range } else { self.y_range };
+        (0..n)
+            .map(|i| a + (b - a) * i as f64 / (n - 1) as f64)
+            .collect()
+    }
+}
+
+fn stiffness_grid(
+    polygon: &FeasiblePolygon,
+    bounds: &cdpr::tension::TensionBounds,
+    n: usize,
+    mut f: impl FnMut(&DVector<f64>) -> Result<f64, CliError>,
+) -> Result<Grid, CliError> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for v in &polygon.vertices {
+        for d in 0..2 {
+            lo[d] = lo[d].min(v[d]);
+            hi[d] = hi[d].max(v[d]);
+        }
+    }
+    let mut values = vec![f64::NAN; n * n];
+    for j in 0..n {
+        for i in 0..n {
+            let l = Vector2::new(
+                lo[0] + (hi[0] - lo[0]) * i as f64 / (n - 1) as f64,
+                lo[1] + (hi[1] - lo[1]) * j as f64 / (n - 1) as f64,
+            );
+            if polygon.contains(&l, bounds) {
+                values[j * n + i] = f(&polygon.tensions_at(&l))?;
+            }
+        }
+    }
+    Ok(Grid {
+        x_range: (lo[0], hi[0]),
+        y_range: (lo[1], hi[1]),
+        values,
+    })
 }

@@ -1,16 +1,340 @@
-//! `cdpr trajectory` (being written: see the issue tracker).
+//! `cdpr trajectory`: tension profiles along a path (issue 8).
+//!
+//! The waypoints file (`--waypoints FILE.toml`) has these keys:
+//!
+//! ```toml
+//! [[waypoints]]
+//! pose = [1.2, 0.35, 0.59, 0.0, 0.0, 0.0]   # motion-pattern coordinates
+//! wrench = [0.0, 30.0, 0.0, 0.0, 0.0, 0.0]  # optional w_e at this waypoint (default: --wrench)
+//! [[waypoints]]
+//! pose = [1.8, 0.35, 0.59, 0.0, 0.0, 0.0]
+//! ```
+//!
+//! Between waypoints the wrench is interpolated linearly in the path parameter s.
 
-use super::CliError;
+use super::tension::sotda_settings;
+use super::{CliError, Numbers, load_robot, pose, print_json, wrench};
+use cdpr::kinematics::{Path, PathSample, Pose, Sampling};
+use cdpr::plot::{LinePlot, Series};
+use cdpr::tension::profile::{TensionProfile, tension_profile};
+use cdpr::tension::{Method, TensionSolver};
+use nalgebra::DVector;
+use serde::Deserialize;
+use serde_json::json;
 use std::path::PathBuf;
 
 /// Tensions along a path: profiles, infeasible samples, largest jumps.
+///
+/// The path is the segment --from → --to, or the polyline of --waypoints FILE.toml
+/// (`[[waypoints]]` tables with `pose = [...]` and an optional `wrench = [...]`; the wrench is
+/// interpolated linearly in s between waypoints, waypoints without one use --wrench). Positions
+/// are interpolated linearly, orientations by the shortest rotation; s ∈ [0, 1] is proportional to
+/// the pose distance √(‖Δp‖² + θ²) (θ in rad). Sampled by --samples N (evenly in s) or --step H
+/// (at most H apart, every waypoint included).
+///
+/// At every sample the tensions come from --method (any method of `cdpr tension`), with w_e plus
+/// the platform's gravity, and are certified (equilibrium and bounds to 1e-9); infeasible samples
+/// are listed with their s and reason, never dropped.
+///
+/// Continuity: `max_jump` is, per cable, the largest |t_i(k+1) − t_i(k)| between consecutive
+/// feasible samples; `discontinuities` lists the steps k → k+1 whose jump exceeds --jump-ratio
+/// times the median jump (a continuous profile's jumps shrink with the step, a discontinuity's do
+/// not: refine the sampling to tell them apart).
+///
+/// JSON fields: `s`, `tensions` (array per sample, null where infeasible), `max_jump` (per
+/// cable), `reasons` (null or string per sample), `feasible_count`, `discontinuities` (indices k),
+/// `method`, `poses`, `t_min`, `t_max`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML).
     robot: PathBuf,
+    /// Start pose (motion-pattern coordinates), e.g. --from 1.2,0.35,0.59,0,0,0.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        requires = "to",
+        conflicts_with = "waypoints"
+    )]
+    from: Option<Numbers>,
+    /// End pose of the straight segment.
+    #[arg(long, allow_hyphen_values = true, requires = "from")]
+    to: Option<Numbers>,
+    /// A polyline in a TOML file instead of --from/--to (see above for its keys).
+    #[arg(long)]
+    waypoints: Option<PathBuf>,
+    /// Number of samples, evenly spaced in s (at least 2).
+    #[arg(long, conflicts_with = "step")]
+    samples: Option<usize>,
+    /// Largest pose distance between samples (alternative to --samples; default: 101 samples).
+    #[arg(long)]
+    step: Option<f64>,
+    /// External wrench w_e held constant along the path (DOF numbers; default zero).
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
+    /// Tension distribution method (see `cdpr tension --help`).
+    #[arg(long, default_value = "l2")]
+    method: Method,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
+    #[arg(long, default_value_t = 1.0)]
+    nu: f64,
+    /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    #[arg(long, allow_hyphen_values = true)]
+    direction: Option<Numbers>,
+    /// SOTDA: search the whole polygon instead of its corners.
+    #[arg(long)]
+    full: bool,
+    /// A step is flagged as a discontinuity when its jump exceeds this many median jumps.
+    #[arg(long, default_value_t = 20.0)]
+    jump_ratio: f64,
+    /// Tension profiles (one line per cable vs s, dashed t_min/t_max, gaps where infeasible).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Write one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WaypointFile {
+    waypoints: Vec<Waypoint>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Waypoint {
+    pose: Vec<f64>,
+    wrench: Option<Vec<f64>>,
+}
+
+/// Path parameter of each waypoint (cumulative pose distance / total).
+fn waypoint_s(motion: cdpr::kinematics::MotionPattern, poses: &[Pose]) -> Vec<f64> {
+    let total = Path::new(motion, poses.to_vec())
+        .map(|p| p.length())
+        .unwrap_or(0.0);
+    (0..poses.len())
+        .map(|k| {
+            if k == 0 || total == 0.0 {
+                if k == 0 { 0.0 } else { 1.0 }
+            } else {
+                Path::new(motion, poses[..=k].to_vec())
+                    .map(|p| p.length() / total)
+                    .unwrap_or(1.0)
+            }
+        })
+        .collect()
+}
+
+/// Linear interpolation of per-waypoint wrenches at path parameter s.
+fn interpolate(s_way: &[f64], wrenches: &[DVector<f64>], s: f64) -> DVector<f64> {
+    let k = s_way.partition_point(|&c| c <= s).clamp(1, s_way.len() - 1) - 1;
+    let span = s_way[k + 1] - s_way[k];
+    let tau = if span > 0.0 {
+        ((s - s_way[k]) / span).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    &wrenches[k] * (1.0 - tau) + &wrenches[k + 1] * tau
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
-    Err(format!("{}: `trajectory` is not available yet", args.robot.display()).into())
+    let robot = load_robot(&args.robot)?;
+    let motion = robot.robot.motion();
+    let default_wrench = wrench(&robot, args.wrench.as_deref())?;
+    let (poses, wrenches): (Vec<Pose>, Vec<DVector<f64>>) = match (&args.waypoints, &args.from) {
+        (Some(file), _) => {
+            let text = std::fs::read_to_string(file)
+                .map_err(|e| format!("{}: cannot read: {e}", file.display()))?;
+            let parsed: WaypointFile =
+                toml::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+            if parsed.waypoints.len() < 2 {
+                return Err(format!("{}: needs at least two [[waypoints]]", file.display()).into());
+            }
+            let mut poses = Vec::new();
+            let mut wrenches = Vec::new();
+            for (k, w) in parsed.waypoints.iter().enumerate() {
+                poses.push(
+                    pose(&robot, &w.pose)
+                        .map_err(|e| format!("{}: waypoints[{k}].pose: {e}", file.display()))?,
+                );
+                wrenches.push(match &w.wrench {
+                    Some(v) => wrench(&robot, Some(v))
+                        .map_err(|e| format!("{}: waypoints[{k}].wrench: {e}", file.display()))?,
+                    None => default_wrench.clone(),
+                });
+            }
+            (poses, wrenches)
+        }
+        (None, Some(from)) => {
+            let to = args.to.as_ref().ok_or("--from needs --to")?;
+            (
+                vec![pose(&robot, from)?, pose(&robot, to)?],
+                vec![default_wrench.clone(), default_wrench.clone()],
+            )
+        }
+        (None, None) => {
+            return Err("give the path: --from POSE --to POSE, or --waypoints FILE".into());
+        }
+    };
+    let sampling = match (args.samples, args.step) {
+        (Some(n), _) => Sampling::Count(n),
+        (None, Some(h)) => Sampling::Step(h),
+        (None, None) => Sampling::Count(101),
+    };
+    if let Sampling::Count(n) = sampling
+        && n > 10_000_000
+    {
+        return Err("--samples: at most 10 000 000".into());
+    }
+    if !(args.jump_ratio.is_finite() && args.jump_ratio > 1.0) {
+        return Err("--jump-ratio must be a finite number > 1".into());
+    }
+    let path = Path::new(motion, poses.clone())?;
+    let samples = path.sample(sampling)?;
+    let s_way = waypoint_s(motion, &poses);
+    let es = robot.axial_stiffness.clone();
+    let mut solver = if args.method == Method::Sotda {
+        if es.is_none() {
+            return Err(
+                "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file".into(),
+            );
+        }
+        TensionSolver::sotda(sotda_settings(
+            args.direction.as_deref(),
+            args.nu,
+            args.full,
+        )?)
+    } else {
+        TensionSolver::new(args.method)
+    };
+    let gravity = |p: &Pose| robot.platform.gravity_wrench(motion, p);
+    let profile = tension_profile(
+        &robot.robot,
+        &samples,
+        &robot.bounds,
+        &mut solver,
+        es.as_deref(),
+        |sample: &PathSample| interpolate(&s_way, &wrenches, sample.s) + gravity(&sample.pose),
+    )?;
+    let discontinuities = profile.discontinuities(args.jump_ratio);
+    if let Some(file) = &args.plot {
+        cdpr::plot::save(&profile_plot(&robot, &args, &profile), file)?;
+    }
+    if args.json {
+        print_json(&json!({
+            "robot": robot.name,
+            "method": args.method.name(),
+            "nu": (args.method == Method::Sotda).then_some(args.nu),
+            "s": profile.s,
+            "poses": samples.iter().map(|p| p.pose.coordinates(motion)).collect::<Vec<_>>(),
+            "tensions": profile.tensions.iter().map(|t| t.as_ref().map(|t| t.as_slice().to_vec())).collect::<Vec<_>>(),
+            "reasons": profile.reasons,
+            "feasible_count": profile.feasible_count(),
+            "max_jump": profile.max_jump,
+            "discontinuities": discontinuities,
+            "t_min": robot.bounds.min().as_slice(),
+            "t_max": robot.bounds.max().as_slice(),
+        }))
+    } else {
+        print_table(&robot, &args, &profile, &samples, &discontinuities);
+        Ok(())
+    }
+}
+
+fn print_table(
+    robot: &cdpr::RobotDescription,
+    args: &Args,
+    profile: &TensionProfile,
+    samples: &[PathSample],
+    discontinuities: &[usize],
+) {
+    let n = robot.robot.cable_count();
+    println!(
+        "robot {}, method {}, {} samples, {} feasible",
+        robot.name,
+        args.method.name(),
+        profile.s.len(),
+        profile.feasible_count()
+    );
+    let head: Vec<String> = (1..=n)
+        .map(|i| format!("{:>10}", format!("t{i}")))
+        .collect();
+    println!("{:>8}  {}", "s", head.join(" "));
+    // At most ~40 rows in the table: every k-th sample, plus every infeasible one.
+    let every = profile.s.len().div_ceil(40).max(1);
+    for (k, (s, t)) in profile.s.iter().zip(&profile.tensions).enumerate() {
+        match t {
+            Some(t) if k % every == 0 || k + 1 == profile.s.len() => {
+                let cells: Vec<String> = t.iter().map(|v| format!("{v:>10.4}")).collect();
+                println!("{s:>8.4}  {}", cells.join(" "));
+            }
+            Some(_) => {}
+            None => println!(
+                "{s:>8.4}  infeasible at {:?}: {}",
+                samples[k].pose.coordinates(robot.robot.motion()),
+                profile.reasons[k].as_deref().unwrap_or("")
+            ),
+        }
+    }
+    let jumps: Vec<String> = profile
+        .max_jump
+        .iter()
+        .map(|v| format!("{v:>10.4}"))
+        .collect();
+    println!("{:>8}  {}", "max jump", jumps.join(" "));
+    if discontinuities.is_empty() {
+        println!("no discontinuity flagged (jump ratio {})", args.jump_ratio);
+    } else {
+        let at: Vec<String> = discontinuities
+            .iter()
+            .map(|&k| format!("{:.4}→{:.4}", profile.s[k], profile.s[k + 1]))
+            .collect();
+        println!("discontinuities flagged at s = {}", at.join(", "));
+    }
+}
+
+/// One line per cable against s, NaN (a gap) where infeasible, dashed t_min / t_max.
+pub fn profile_plot(
+    robot: &cdpr::RobotDescription,
+    args: &Args,
+    profile: &TensionProfile,
+) -> LinePlot {
+    let n = robot.robot.cable_count();
+    let series = (0..n)
+        .map(|i| Series {
+            label: format!("t{}", i + 1),
+            points: profile
+                .s
+                .iter()
+                .zip(&profile.tensions)
+                .map(|(&s, t)| (s, t.as_ref().map_or(f64::NAN, |t| t[i])))
+                .collect(),
+        })
+        .collect();
+    let mut reference_lines = Vec::new();
+    let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
+    if lo.iter().all(|&v| v == lo[0]) {
+        reference_lines.push((lo[0], "t_min".to_string()));
+    }
+    if hi.iter().all(|&v| v == hi[0]) && hi[0].is_finite() {
+        reference_lines.push((hi[0], "t_max".to_string()));
+    }
+    let nu = if args.method == Method::Sotda {
+        format!(", ν = {}", args.nu)
+    } else {
+        String::new()
+    };
+    LinePlot {
+        title: format!(
+            "{}: tensions along the path ({}{nu}; {} of {} samples feasible)",
+            robot.name,
+            args.method.name(),
+            profile.feasible_count(),
+            profile.s.len()
+        ),
+        labels: ("path parameter s".into(), "tension".into()),
+        series,
+        reference_lines,
+    }
 }
