@@ -1,3 +1,49 @@
-fn main() {
-    println!("Hello, world!");
+//! # xtask: project automation for the `cdpr` workspace
+//!
+//! Run as `cargo xtask <subcommand>` (alias in `.cargo/config.toml`, release build):
+//!
+//! - `reproduce`: regenerate the published results from the code alone: Tables 6.5–6.10 of
+//!   seed 000 (every published design re-evaluated, our optimiser re-run from every published
+//!   start), written to `docs/reproduction.md` and `target/reproduce/tables.json`, with every
+//!   convention the thesis leaves open settled by experiment;
+//! - `bench [--quick] [--no-run] [FILTER]`: run the criterion suite of `benches/` and print each
+//!   benchmark's median against the performance target from the issues (pass/miss), also
+//!   written to `target/bench/summary.md` (see [`bench`]);
+//! - `fuzz [--seconds N] [--target NAME]`: run the cargo-fuzz targets of `fuzz/` for N seconds
+//!   each on stable Rust (`--sanitizer none`); exit code 1 if one crashed (see [`fuzz`]).
+
+mod bench;
+mod fuzz;
+mod reproduce;
+
+use std::path::Path;
+use std::process::ExitCode;
+
+const USAGE: &str =
+    "usage: cargo xtask <reproduce | bench | fuzz> [options]   (`cargo xtask <command> --help`)";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives one level below the workspace root");
+    match args.first().map(String::as_str) {
+        Some("reproduce") => match reproduce::run(root) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
+        Some("bench") => bench::run(root, &args[1..]),
+        Some("fuzz") => fuzz::run(root, &args[1..]),
+        Some("-h" | "--help" | "help") => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
+        _ => {
+            eprintln!("{USAGE}");
+            ExitCode::from(2)
+        }
+    }
 }

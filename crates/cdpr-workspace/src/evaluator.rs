@@ -1,0 +1,435 @@
+//! # Pose evaluator
+//!
+//! Decides whether one pose satisfies a list of [`Criterion`]s, reusing every buffer (inverse
+//! kinematics, W, tension solvers and their tensions, the wrench-closure and capacity-margin
+//! scratch, K): no allocation per pose once warmed up (`tests/no_allocation.rs` counts them;
+//! tension methods that allocate internally, such as the interior-point path of
+//! `cdpr-tension`, are the exception). Cheap criteria are tested first and the first failure
+//! ends the test. Grids clone one evaluator per rayon task.
+//!
+//! ## References
+//! - Seed 000, eq. (6.23): the constant-orientation workspace definition.
+
+use crate::criteria::square_determinant;
+use crate::wrench_closure::WrenchClosureTest;
+use crate::{Criterion, PoseContext, WorkspaceError};
+use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
+use cdpr_polytope::{CapacityMargin, isotropic_force_of};
+use cdpr_tension::{Method, StiffnessData, TensionBounds, TensionProblem, TensionSolver};
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
+
+/// Tests poses against composable workspace criteria (seed 000 eq. (6.23) and more).
+///
+/// ```
+/// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+/// use cdpr_tension::{Method, TensionBounds};
+/// use cdpr_workspace::{Criterion, PoseEvaluator};
+/// use nalgebra::{DVector, Vector3};
+/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let robot = Robot::new(MotionPattern::Point2, vec![c(1.0, 1.0), c(-1.0, 1.0), c(0.0, -1.0)]).unwrap();
+/// let mut eval = PoseEvaluator::new(
+///     robot,
+///     TensionBounds::uniform(3, 5.0, 100.0).unwrap(),
+///     vec![
+///         Criterion::TensionFeasible { method: Method::L1, wrench: DVector::from_vec(vec![0.0, -10.0]) },
+///         Criterion::MinCableLength(0.1),
+///     ],
+/// ).unwrap();
+/// assert!(eval.is_feasible(&Pose::point(0.0, 0.0, 0.0)));
+/// assert!(!eval.is_feasible(&Pose::point(0.0, -0.95, 0.0))); // cable 3 shorter than 0.1
+/// assert!(!eval.is_feasible(&Pose::point(0.0, -1.0, 0.0)));  // zero-length cable
+/// ```
+#[derive(Debug, Clone)]
+pub struct PoseEvaluator {
+    robot: Robot,
+    bounds: TensionBounds,
+    criteria: Vec<Criterion>,
+    axial_stiffness: Option<Vec<f64>>,
+    /// Criterion indices, cheapest first.
+    order: Vec<usize>,
+    /// Index of the TensionFeasible criterion whose tensions the stiffness criterion uses.
+    tension_source: Option<usize>,
+    scratch: Scratch,
+}
+
+#[derive(Debug, Clone)]
+struct Scratch {
+    kin: PoseKinematics,
+    w: DMatrix<f64>,
+    solvers: Vec<Option<TensionSolver>>,
+    closure: Option<WrenchClosureTest>,
+    margin: Option<CapacityMargin>,
+    tensions: DVector<f64>,
+    tensions_valid: bool,
+    stiffness: DMatrix<f64>,
+}
+
+impl PoseEvaluator {
+    /// An evaluator for `robot` with tension limits `bounds` (one pair per cable) and the
+    /// criteria a pose must all satisfy. Errors on wrong sizes or non-finite limits.
+    pub fn new(
+        robot: Robot,
+        bounds: TensionBounds,
+        criteria: Vec<Criterion>,
+    ) -> Result<Self, WorkspaceError> {
+        let (dof, n) = (robot.dof(), robot.cable_count());
+        if bounds.len() != n {
+            return Err(WorkspaceError::DimensionMismatch {
+                what: "tension bounds (one pair per cable)",
+                expected: n,
+                found: bounds.len(),
+            });
+        }
+        let mut tension_source = None;
+        let mut needs_tensions = false;
+        for (k, c) in criteria.iter().enumerate() {
+            match c {
+                Criterion::TensionFeasible { wrench, .. } => {
+                    if wrench.len() != dof {
+                        return Err(WorkspaceError::DimensionMismatch {
+                            what: "external wrench (one entry per DOF)",
+                            expected: dof,
+                            found: wrench.len(),
+                        });
+                    }
+                    if let Some(&v) = wrench.iter().find(|v| !v.is_finite()) {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "external wrench",
+                            value: v,
+                        });
+                    }
+                    tension_source.get_or_insert(k);
+                }
+                Criterion::MinCableLength(v) | Criterion::MinJacobianDeterminant(v) => {
+                    if !v.is_finite() || *v < 0.0 {
+                        return Err(WorkspaceError::InvalidSetting {
+                            what: "criterion floor (l_min or D_min)",
+                            value: *v,
+                            expected: "finite and ≥ 0",
+                        });
+                    }
+                }
+                Criterion::Stiffness { min_eigenvalue } => {
+                    if !min_eigenvalue.is_finite() {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "stiffness floor",
+                            value: *min_eigenvalue,
+                        });
+                    }
+                    needs_tensions = true;
+                }
+                Criterion::CapacityMargin {
+                    required,
+                    min_margin,
+                } => {
+                    if required.dof() != dof {
+                        return Err(WorkspaceError::DimensionMismatch {
+                            what: "required wrench set (one entry per DOF)",
+                            expected: dof,
+                            found: required.dof(),
+                        });
+                    }
+                    if !min_margin.is_finite() {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "capacity margin floor",
+                            value: *min_margin,
+                        });
+                    }
+                }
+                Criterion::IsotropicForce { min } => {
+                    if !min.is_finite() {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "isotropic force floor",
+                            value: *min,
+                        });
+                    }
+                }
+                Criterion::WrenchClosure | Criterion::Custom(_) => {}
+            }
+        }
+        if needs_tensions && tension_source.is_none() {
+            return Err(WorkspaceError::StiffnessNeedsTensions);
+        }
+        let mut order: Vec<usize> = (0..criteria.len()).collect();
+        order.sort_by_key(|&k| (criteria[k].cost(), k));
+        let solvers = criteria
+            .iter()
+            .map(|c| match c {
+                Criterion::TensionFeasible { method, .. } => Some(TensionSolver::new(*method)),
+                _ => None,
+            })
+            .collect();
+        let closure = criteria
+            .iter()
+            .any(|c| matches!(c, Criterion::WrenchClosure))
+            .then(|| WrenchClosureTest::new(dof, n));
+        let margin = criteria
+            .iter()
+            .any(|c| matches!(c, Criterion::CapacityMargin { .. }))
+            .then(|| CapacityMargin::new(dof, n));
+        let scratch = Scratch {
+            margin,
+            kin: PoseKinematics::for_robot(&robot),
+            w: DMatrix::zeros(dof, n),
+            solvers,
+            closure,
+            tensions: DVector::zeros(n),
+            tensions_valid: false,
+            stiffness: DMatrix::zeros(dof, dof),
+        };
+        Ok(Self {
+            robot,
+            bounds,
+            criteria,
+            axial_stiffness: None,
+            order,
+            tension_source: needs_tensions.then_some(tension_source).flatten(),
+            scratch,
+        })
+    }
+
+    /// Sets the cables' axial stiffness E·S (N, one per cable; k_i = E·S / l_i), needed by the
+    /// stiffness criterion and by the SOTDA tension method.
+    pub fn with_axial_stiffness(mut self, es: Vec<f64>) -> Result<Self, WorkspaceError> {
+        if es.len() != self.robot.cable_count() {
+            return Err(WorkspaceError::DimensionMismatch {
+                what: "axial stiffness (one per cable)",
+                expected: self.robot.cable_count(),
+                found: es.len(),
+            });
+        }
+        if let Some(&v) = es.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
+            return Err(WorkspaceError::InvalidSetting {
+                what: "axial stiffness E·S",
+                value: v,
+                expected: "finite and > 0",
+            });
+        }
+        self.axial_stiffness = Some(es);
+        Ok(self)
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// The tension limits.
+    pub fn bounds(&self) -> &TensionBounds {
+        &self.bounds
+    }
+
+    /// The criteria, in the order given.
+    pub fn criteria(&self) -> &[Criterion] {
+        &self.criteria
+    }
+
+    /// The axial stiffness E·S, if given.
+    pub fn axial_stiffness(&self) -> Option<&[f64]> {
+        self.axial_stiffness.as_deref()
+    }
+
+    /// Checks that everything the criteria need is present (axial stiffness for the stiffness
+    /// criterion and for SOTDA). Workspace functions call it before evaluating any pose.
+    pub fn validate(&self) -> Result<(), WorkspaceError> {
+        if self.axial_stiffness.is_none() {
+            for c in &self.criteria {
+                match c {
+                    Criterion::Stiffness { .. } => {
+                        return Err(WorkspaceError::MissingAxialStiffness {
+                            criterion: "stiffness",
+                        });
+                    }
+                    Criterion::TensionFeasible {
+                        method: Method::Sotda,
+                        ..
+                    } => {
+                        return Err(WorkspaceError::MissingAxialStiffness { criterion: "sotda" });
+                    }
+                    _ => {}
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Whether `pose` satisfies every criterion; `false` for a pose with a zero-length cable and
+    /// for any input error (see [`PoseEvaluator::check`] to tell them apart).
+    #[inline]
+    pub fn is_feasible(&mut self, pose: &Pose) -> bool {
+        self.check(pose).unwrap_or(false)
+    }
+
+    /// Whether `pose` satisfies every criterion. A zero-length cable gives `Ok(false)`; a
+    /// non-finite pose or missing axial stiffness is an error.
+    pub fn check(&mut self, pose: &Pose) -> Result<bool, WorkspaceError> {
+        if let Some(&v) = pose.rotation.matrix().iter().find(|v| !v.is_finite()) {
+            return Err(WorkspaceError::NotFinite {
+                what: "pose rotation",
+                value: v,
+            });
+        }
+        let Self {
+            robot,
+            bounds,
+            criteria,
+            axial_stiffness,
+            order,
+            tension_source,
+            scratch,
+        } = self;
+        match robot.update_kinematics(pose, &mut scratch.kin) {
+            Ok(()) => {}
+            Err(KinematicsError::DegenerateCable { .. }) => return Ok(false),
+            Err(e) => return Err(e.into()),
+        }
+        scratch.kin.write_wrench_matrix(&mut scratch.w);
+        scratch.tensions_valid = false;
+        for &k in order.iter() {
+            let ok = match &criteria[k] {
+                Criterion::MinCableLength(l_min) => scratch.kin.min_length() >= *l_min,
+                Criterion::MinJacobianDeterminant(d_min) => {
+                    scratch.w.nrows() != scratch.w.ncols()
+                        || square_determinant(&scratch.w).abs() >= *d_min
+                }
+                Criterion::Custom(c) => (c.test)(&PoseContext {
+                    pose,
+                    kinematics: &scratch.kin,
+                    wrench_matrix: &scratch.w,
+                }),
+                Criterion::WrenchClosure => scratch
+                    .closure
+                    .as_mut()
+                    .is_some_and(|t| t.is_wrench_closure(&scratch.w)),
+                Criterion::CapacityMargin {
+                    required,
+                    min_margin,
+                } => {
+                    let cm = scratch
+                        .margin
+                        .as_mut()
+                        .expect("a margin evaluator exists for a margin criterion");
+                    cm.margin(&scratch.w, bounds, required)? >= *min_margin
+                }
+                Criterion::IsotropicForce { min } => {
+                    isotropic_force_of(robot.motion(), &scratch.w, bounds)? >= *min
+                }
+                Criterion::TensionFeasible { method, wrench } => {
+                    let stiffness = match (method, axial_stiffness.as_deref()) {
+                        (Method::Sotda, None) => {
+                            return Err(WorkspaceError::MissingAxialStiffness {
+                                criterion: "sotda",
+                            });
+                        }
+                        (_, Some(es)) => Some(StiffnessData {
+                            kinematics: &scratch.kin,
+                            axial_stiffness: es,
+                        }),
+                        (_, None) => None,
+                    };
+                    let problem = TensionProblem {
+                        wrench_matrix: &scratch.w,
+                        external_wrench: wrench,
+                        bounds,
+                        stiffness,
+                    };
+                    let solver = scratch.solvers[k]
+                        .as_mut()
+                        .expect("a solver exists for every tension criterion");
+                    if *tension_source == Some(k) {
+                        let found = solver.solve_into(&problem, &mut scratch.tensions)?.is_ok();
+                        scratch.tensions_valid = found;
+                        found
+                    } else {
+                        solver.is_feasible(&problem)?
+                    }
+                }
+                Criterion::Stiffness { min_eigenvalue } => {
+                    let Some(es) = axial_stiffness.as_deref() else {
+                        return Err(WorkspaceError::MissingAxialStiffness {
+                            criterion: "stiffness",
+                        });
+                    };
+                    // The tension criterion ran before (cost order) and failed the pose
+                    // otherwise, so the tensions are those of this pose.
+                    scratch.tensions_valid && {
+                        cdpr_wrench::write_stiffness_matrix(
+                            &scratch.kin,
+                            scratch.tensions.as_slice(),
+                            es,
+                            &mut scratch.stiffness,
+                        )?;
+                        let lambda_min = min_symmetric_eigenvalue(&scratch.stiffness);
+                        lambda_min >= *min_eigenvalue
+                    }
+                }
+            };
+            if !ok {
+                return Ok(false);
+            }
+        }
+        Ok(true)
+    }
+
+    /// The tensions of the first tension-feasibility criterion at `pose`, if feasible (for
+    /// reporting; allocates).
+    pub fn tensions(&mut self, pose: &Pose) -> Result<Option<DVector<f64>>, WorkspaceError> {
+        let Self {
+            robot,
+            bounds,
+            criteria,
+            axial_stiffness,
+            scratch: s,
+            ..
+        } = self;
+        let Some((k, method, wrench)) = criteria.iter().enumerate().find_map(|(k, c)| match c {
+            Criterion::TensionFeasible { method, wrench } => Some((k, *method, wrench)),
+            _ => None,
+        }) else {
+            return Ok(None);
+        };
+        match robot.update_kinematics(pose, &mut s.kin) {
+            Ok(()) => {}
+            Err(KinematicsError::DegenerateCable { .. }) => return Ok(None),
+            Err(e) => return Err(e.into()),
+        }
+        s.kin.write_wrench_matrix(&mut s.w);
+        let stiffness = axial_stiffness.as_deref().map(|es| StiffnessData {
+            kinematics: &s.kin,
+            axial_stiffness: es,
+        });
+        if method == Method::Sotda && stiffness.is_none() {
+            return Err(WorkspaceError::MissingAxialStiffness { criterion: "sotda" });
+        }
+        let problem = TensionProblem {
+            wrench_matrix: &s.w,
+            external_wrench: wrench,
+            bounds,
+            stiffness,
+        };
+        let solver = s.solvers[k]
+            .as_mut()
+            .expect("solver of a tension criterion");
+        Ok(solver.solve(&problem)?.tensions().cloned())
+    }
+}
+
+/// Smallest eigenvalue of (K + Kᵀ)/2, on the stack for DOF ∈ {2, 3, 6}.
+fn min_symmetric_eigenvalue(k: &DMatrix<f64>) -> f64 {
+    macro_rules! fixed {
+        ($m:ty) => {{
+            let m = <$m>::from_column_slice(k.as_slice());
+            SymmetricEigen::new((m + m.transpose()) * 0.5)
+                .eigenvalues
+                .min()
+        }};
+    }
+    match k.shape() {
+        (2, 2) => fixed!(Matrix2<f64>),
+        (3, 3) => fixed!(Matrix3<f64>),
+        (6, 6) => fixed!(Matrix6<f64>),
+        _ => SymmetricEigen::new((k + k.transpose()) * 0.5)
+            .eigenvalues
+            .min(),
+    }
+}

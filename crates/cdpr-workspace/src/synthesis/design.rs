@@ -1,0 +1,232 @@
+//! # Design parametrisation of the planar frame (seed 000 §6.6.1)
+//!
+//! The frame anchors **c**^i of the planar manipulator lie on the 2 × 2 square frame centred at the
+//! origin. Anchor i sits where the ray from the origin at polar angle β^i meets the frame, so the
+//! design vector is **d** = [β^1, …, β^n] (rad). The only design constraint is a lower limit
+//! β_min on the angular separation of consecutive anchors, measured the short way round the
+//! frame, including the pair (n, 1) (eq. (6.29)).
+//!
+//! ## References
+//! - Seed 000 (thesis chapter 6, "The planar tendon-driven parallel manipulator"), §6.2 and
+//!   §6.6.1, eq. (6.29); Tables 6.1, 6.2.
+
+use super::SynthesisError;
+use cdpr_kinematics::{Cable, MotionPattern, Robot};
+use nalgebra::Vector3;
+use std::f64::consts::{PI, TAU};
+
+/// Half the side of the square frame (the frame is [−1, 1]², seed 000 §6.2).
+pub const FRAME_HALF_SIDE: f64 = 1.0;
+
+/// Frame anchor **c** = ρ(β) [cos β, sin β] with ρ(β) = 1 / max(|cos β|, |sin β|): the point where
+/// the ray at polar angle β (rad) meets the boundary of the square frame [−1, 1]².
+pub fn frame_anchor(beta: f64) -> [f64; 2] {
+    let (s, c) = beta.sin_cos();
+    let rho = FRAME_HALF_SIDE / c.abs().max(s.abs());
+    [rho * c, rho * s]
+}
+
+/// Platform attachments **ā**^i of Table 6.1 (platform coordinates, z = 0) for the 3- or 4-cable
+/// manipulator of seed 000; `None` for other cable counts.
+pub fn thesis_platform(cables: usize) -> Option<Vec<[f64; 2]>> {
+    let s = 0.1 / 2f64.sqrt();
+    match cables {
+        3 => Some(vec![[s, s], [-s, s], [0.0, -0.1]]),
+        4 => Some(vec![[s, s], [-s, s], [-0.1, -0.1], [0.1, -0.1]]),
+        _ => None,
+    }
+}
+
+/// The planar robot with frame anchors at the angles `betas` (rad) and the given platform
+/// attachments (one per angle, in the same order).
+///
+/// Errors: empty or non-finite design, or a platform of a different length.
+pub fn robot_from_design(betas: &[f64], platform: &[[f64; 2]]) -> Result<Robot, SynthesisError> {
+    check_design(betas)?;
+    if platform.len() != betas.len() {
+        return Err(SynthesisError::DimensionMismatch {
+            expected: platform.len(),
+            found: betas.len(),
+        });
+    }
+    let cables = betas
+        .iter()
+        .zip(platform)
+        .map(|(&b, a)| {
+            let c = frame_anchor(b);
+            Cable {
+                frame: Vector3::new(c[0], c[1], 0.0),
+                platform: Vector3::new(a[0], a[1], 0.0),
+            }
+        })
+        .collect();
+    Ok(Robot::new(MotionPattern::Planar, cables)?)
+}
+
+/// Errors on an empty design or a non-finite angle.
+pub fn check_design(betas: &[f64]) -> Result<(), SynthesisError> {
+    if betas.is_empty() {
+        return Err(SynthesisError::EmptyDesign);
+    }
+    if let Some((index, &value)) = betas.iter().enumerate().find(|(_, b)| !b.is_finite()) {
+        return Err(SynthesisError::NotFinite { index, value });
+    }
+    Ok(())
+}
+
+/// Angular separation of two anchors measured the short way round: in [0, π].
+pub fn separation(beta_a: f64, beta_b: f64) -> f64 {
+    let d = (beta_b - beta_a).rem_euclid(TAU);
+    d.min(TAU - d)
+}
+
+/// Index pairs constrained by eq. (6.29): (i, i+1) for i = 1 … n−1 and (n, 1); for n = 2 the single
+/// pair (1, 2); none for n = 1.
+pub fn constrained_pairs(n: usize) -> impl Iterator<Item = (usize, usize)> {
+    let wrap = if n > 2 { Some((n - 1, 0)) } else { None };
+    (0..n.saturating_sub(1)).map(|i| (i, i + 1)).chain(wrap)
+}
+
+/// The separations of all pairs of eq. (6.29), in [`constrained_pairs`] order.
+pub fn separations(betas: &[f64]) -> Vec<f64> {
+    constrained_pairs(betas.len())
+        .map(|(i, j)| separation(betas[i], betas[j]))
+        .collect()
+}
+
+/// Total violation Σ max(0, β_min − s_ij) of eq. (6.29) (rad); zero for a feasible design.
+pub fn separation_violation(betas: &[f64], min_separation: f64) -> f64 {
+    constrained_pairs(betas.len())
+        .map(|(i, j)| (min_separation - separation(betas[i], betas[j])).max(0.0))
+        .sum()
+}
+
+/// One constraint of eq. (6.29) linearised at a design: s_ij(d + δ) ≈ value + δ_j σ − δ_i σ,
+/// exact while the short way round does not switch sides (σ = +1 if the short way from β^i to
+/// β^j is counter-clockwise, −1 otherwise).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct LinearSeparation {
+    pub i: usize,
+    pub j: usize,
+    pub value: f64,
+    pub sign: f64,
+}
+
+/// The constraints of eq. (6.29) linearised at `betas` (the separation is piecewise linear in β, so
+/// the linearisation is exact in a neighbourhood of any design without coincident or opposite
+/// anchors).
+pub(crate) fn linear_separations(betas: &[f64]) -> Vec<LinearSeparation> {
+    constrained_pairs(betas.len())
+        .map(|(i, j)| {
+            let d = (betas[j] - betas[i]).rem_euclid(TAU);
+            let (value, sign) = if d <= PI { (d, 1.0) } else { (TAU - d, -1.0) };
+            LinearSeparation { i, j, value, sign }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_abs_diff_eq;
+    use proptest::prelude::*;
+
+    #[test]
+    fn anchors_of_hand_picked_angles() {
+        let close = |b: f64, e: [f64; 2]| {
+            let c = frame_anchor(b);
+            assert_abs_diff_eq!(c[0], e[0], epsilon = 1e-12);
+            assert_abs_diff_eq!(c[1], e[1], epsilon = 1e-12);
+        };
+        close(0.0, [1.0, 0.0]);
+        close(PI / 4.0, [1.0, 1.0]);
+        close(3.0 * PI / 2.0, [0.0, -1.0]);
+        close(PI, [-1.0, 0.0]);
+        close(-PI / 4.0, [1.0, -1.0]);
+        // tan(π/6) = 1/√3 on the right edge.
+        close(PI / 6.0, [1.0, 1.0 / 3f64.sqrt()]);
+        // Table 6.2's 3-cable frame: c¹ = [1, 1], c² = [−1, 1], c³ = [0, −1].
+        close(3.0 * PI / 4.0, [-1.0, 1.0]);
+    }
+
+    #[test]
+    fn separation_short_way_round() {
+        assert_abs_diff_eq!(separation(0.1, 0.3), 0.2, epsilon = 1e-12);
+        assert_abs_diff_eq!(separation(0.3, 0.1), 0.2, epsilon = 1e-12);
+        assert_abs_diff_eq!(separation(0.1, TAU - 0.1), 0.2, epsilon = 1e-12);
+        assert_abs_diff_eq!(separation(-0.3146, 5.794), 0.1740, epsilon = 1e-3);
+        assert_abs_diff_eq!(separation(0.0, PI), PI, epsilon = 1e-12);
+        // Table 6.5 run 1 optimum: 3.605 − 3.430 = 0.175 ≥ β_min = π/18 (to print precision).
+        let d = [0.7676, 3.430, 3.605];
+        let s = separations(&d);
+        assert_eq!(s.len(), 3);
+        assert_abs_diff_eq!(s[1], 0.175, epsilon = 1e-9);
+        // Pair (3, 1): 3.605 − 0.7676 = 2.8374 < π, so the short way is the direct one.
+        assert_abs_diff_eq!(s[2], 2.8374, epsilon = 1e-9);
+        assert_eq!(separation_violation(&d, 0.17), 0.0);
+        assert_abs_diff_eq!(separation_violation(&d, 0.2), 0.025, epsilon = 1e-9);
+    }
+
+    #[test]
+    fn constrained_pairs_match_eq_6_29() {
+        assert_eq!(
+            constrained_pairs(4).collect::<Vec<_>>(),
+            vec![(0, 1), (1, 2), (2, 3), (3, 0)]
+        );
+        assert_eq!(constrained_pairs(2).collect::<Vec<_>>(), vec![(0, 1)]);
+        assert_eq!(constrained_pairs(1).count(), 0);
+    }
+
+    #[test]
+    fn robot_from_design_validates() {
+        let p = thesis_platform(3).unwrap();
+        assert!(matches!(
+            robot_from_design(&[], &p),
+            Err(SynthesisError::EmptyDesign)
+        ));
+        assert!(matches!(
+            robot_from_design(&[0.0, f64::NAN, 1.0], &p),
+            Err(SynthesisError::NotFinite { index: 1, .. })
+        ));
+        assert!(matches!(
+            robot_from_design(&[0.0, 1.0], &p),
+            Err(SynthesisError::DimensionMismatch { .. })
+        ));
+        let r = robot_from_design(&[PI / 4.0, 3.0 * PI / 4.0, 1.5 * PI], &p).unwrap();
+        assert_abs_diff_eq!(r.cables()[2].frame.y, -1.0, epsilon = 1e-12);
+        assert_abs_diff_eq!(
+            r.cables()[1].platform.x,
+            -0.1 / 2f64.sqrt(),
+            epsilon = 1e-15
+        );
+        assert!(thesis_platform(5).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn anchors_lie_on_the_frame_at_the_right_angle(beta in -10.0..10.0f64) {
+            let c = frame_anchor(beta);
+            prop_assert!((c[0].abs().max(c[1].abs()) - 1.0).abs() < 1e-12);
+            // Same direction as [cos β, sin β].
+            let (s, co) = beta.sin_cos();
+            prop_assert!((c[0] * s - c[1] * co).abs() < 1e-12);
+            prop_assert!(c[0] * co + c[1] * s > 0.0);
+        }
+
+        #[test]
+        fn linearisation_is_exact_nearby(
+            betas in proptest::collection::vec(-7.0..7.0f64, 2..6),
+            step in proptest::collection::vec(-1e-4..1e-4f64, 6),
+        ) {
+            let lin = linear_separations(&betas);
+            let moved: Vec<f64> = betas.iter().zip(&step).map(|(b, s)| b + s).collect();
+            let exact = separations(&moved);
+            for (l, e) in lin.iter().zip(&exact) {
+                // Skip pairs near 0 or π where the short way switches sides.
+                prop_assume!(l.value > 1e-3 && l.value < PI - 1e-3);
+                let approx = l.value + l.sign * (step[l.j] - step[l.i]);
+                prop_assert!((approx - e).abs() < 1e-9);
+            }
+        }
+    }
+}

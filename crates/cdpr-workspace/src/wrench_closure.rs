@@ -1,0 +1,317 @@
+//! # Wrench closure (positive spanning of W)
+//!
+//! A pose is *wrench-closure* when the cables can balance any wrench with positive tensions,
+//! i.e. the n columns of W positively span R^DOF. Equivalently (Gordan's alternative) rank W =
+//! DOF and W t = 0 for some t > 0, i.e. some t in the null space of W has all components
+//! positive. Writing the null space as {N λ : λ ∈ R^r}, r = n − rank W, the test is whether the
+//! rows ν_i of N lie strictly on one side of a hyperplane through 0 (∃ λ: ν_i·λ > 0 ∀ i).
+//!
+//! - r = 0 (n = DOF, or W rank-deficient by its excess): never (W t = 0 forces t = 0, or the rank
+//!   condition fails).
+//! - r = 1: the null vector has components of a single strict sign.
+//! - r = 2: the rows ν_i ∈ R² lie in an open half-plane iff the largest angular gap between
+//!   consecutive directions exceeds π, i.e. some consecutive pair (sorted by angle) has a
+//!   negative cross product (an O(n log n) test without trigonometry).
+//! - r ≥ 3: a linear programme, W t = 0 with t ≥ 1 (the scale of t is free), solved with the
+//!   `L1` method of `cdpr-tension` under bounds [1, ∞).
+//!
+//! N comes from the reduced row echelon form of W (partial pivoting), computed in reusable
+//! buffers: no allocation per pose for r ≤ 2.
+//!
+//! ## References
+//! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
+//! - Pham, Yeo, Yang, Kurbanhusen, Chen, Lin (2006), "Force-closure workspace analysis of
+//!   cable-driven parallel mechanisms", Mech. Mach. Theory 41: the null-space test.
+//! - CASPR (Lau et al. 2016): the wrench-closure workspace condition.
+
+use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
+use nalgebra::{DMatrix, DVector};
+
+/// Relative size below which a pivot counts as zero (rank decision).
+const RANK_TOLERANCE: f64 = 1e-9;
+/// Relative margin for strict positivity.
+const STRICT_TOLERANCE: f64 = 1e-9;
+
+/// Reusable state of the wrench-closure test for one robot (DOF × n wrench matrices).
+#[derive(Debug, Clone)]
+pub struct WrenchClosureTest {
+    dof: usize,
+    n: usize,
+    /// Row-major copy of W reduced in place to RREF.
+    a: Vec<f64>,
+    /// Pivot column of each pivot row.
+    pivots: Vec<usize>,
+    /// Whether a column is a pivot column.
+    is_pivot: Vec<bool>,
+    /// Null basis N, n × r, row-major (row i = ν_i).
+    null: Vec<f64>,
+    /// Pseudo-angles of the rows for r = 2, and their sorting permutation.
+    angles: Vec<f64>,
+    order: Vec<usize>,
+    /// LP for r ≥ 3.
+    lp: Option<Lp>,
+}
+
+#[derive(Debug, Clone)]
+struct Lp {
+    solver: TensionSolver,
+    bounds: TensionBounds,
+    zero: DVector<f64>,
+}
+
+impl WrenchClosureTest {
+    /// Buffers for DOF × n wrench matrices.
+    pub fn new(dof: usize, n: usize) -> Self {
+        let lp = (n >= dof + 3).then(|| Lp {
+            solver: TensionSolver::new(Method::L1),
+            bounds: TensionBounds::uniform(n, 1.0, f64::INFINITY)
+                .expect("finite lower bound 1 below infinite upper bound"),
+            zero: DVector::zeros(dof),
+        });
+        Self {
+            dof,
+            n,
+            a: vec![0.0; dof * n],
+            pivots: Vec::with_capacity(dof),
+            is_pivot: vec![false; n],
+            null: vec![0.0; n * n.saturating_sub(dof).max(1)],
+            angles: vec![0.0; n],
+            order: vec![0; n],
+            lp,
+        }
+    }
+
+    /// Whether the columns of `w` positively span R^DOF. `w` must be DOF × n as given to
+    /// [`WrenchClosureTest::new`]; a matrix of another shape is not wrench-closure.
+    pub fn is_wrench_closure(&mut self, w: &DMatrix<f64>) -> bool {
+        let (dof, n) = (self.dof, self.n);
+        if w.shape() != (dof, n) || n <= dof || w.iter().any(|v| !v.is_finite()) {
+            return false;
+        }
+        let r = match self.reduce(w) {
+            Some(r) => r,
+            None => return false,
+        };
+        match r {
+            1 => self.one_dimensional(),
+            2 => self.half_plane(),
+            _ => self.linear_programme(w),
+        }
+    }
+
+    /// RREF of W; fills the null basis and returns r = n − DOF, or `None` if rank W < DOF.
+    fn reduce(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+        let (dof, n) = (self.dof, self.n);
+        for i in 0..dof {
+            for j in 0..n {
+                self.a[i * n + j] = w[(i, j)];
+            }
+        }
+        let scale = self
+            .a
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(1e-300);
+        self.pivots.clear();
+        self.is_pivot.iter_mut().for_each(|p| *p = false);
+        let a = &mut self.a[..dof * n];
+        let mut row = 0;
+        for col in 0..n {
+            if row == dof {
+                break;
+            }
+            let (mut best, mut best_abs) = (row, 0.0);
+            for i in row..dof {
+                let v = a[i * n + col].abs();
+                if v > best_abs {
+                    best = i;
+                    best_abs = v;
+                }
+            }
+            if best_abs <= RANK_TOLERANCE * scale {
+                continue;
+            }
+            if best != row {
+                let (lo, hi) = a.split_at_mut(best * n);
+                lo[row * n..row * n + n].swap_with_slice(&mut hi[..n]);
+            }
+            // Normalise the pivot row (its columns before `col` are zero), then eliminate.
+            let inv = 1.0 / a[row * n + col];
+            a[row * n + col..row * n + n]
+                .iter_mut()
+                .for_each(|v| *v *= inv);
+            let (before, rest) = a.split_at_mut(row * n);
+            let (pivot_row, after) = rest.split_at_mut(n);
+            let pivot = &pivot_row[col..];
+            for other in before.chunks_exact_mut(n).chain(after.chunks_exact_mut(n)) {
+                let f = other[col];
+                if f != 0.0 {
+                    for (o, p) in other[col..].iter_mut().zip(pivot) {
+                        *o -= f * p;
+                    }
+                }
+            }
+            self.pivots.push(col);
+            self.is_pivot[col] = true;
+            row += 1;
+        }
+        if self.pivots.len() < dof {
+            return None;
+        }
+        let r = n - dof;
+        // Column k of N: the free variable f_k set to 1, pivot variables x_p = −a[p][f_k].
+        self.null[..n * r].iter_mut().for_each(|v| *v = 0.0);
+        let mut k = 0;
+        for f in 0..n {
+            if self.is_pivot[f] {
+                continue;
+            }
+            self.null[f * r + k] = 1.0;
+            for (p, &pc) in self.pivots.iter().enumerate() {
+                self.null[pc * r + k] = -self.a[p * n + f];
+            }
+            k += 1;
+        }
+        Some(r)
+    }
+
+    fn one_dimensional(&self) -> bool {
+        let v = &self.null[..self.n];
+        let scale = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let tol = STRICT_TOLERANCE * scale;
+        v.iter().all(|&x| x > tol) || v.iter().all(|&x| x < -tol)
+    }
+
+    fn half_plane(&mut self) -> bool {
+        let n = self.n;
+        let null = &self.null[..2 * n];
+        let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+        let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
+        let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
+        for i in 0..n {
+            if norm2(i) <= tol2 * scale2 {
+                return false; // this cable is slack in every self-stress
+            }
+            self.angles[i] = diamond_angle(null[2 * i], null[2 * i + 1]);
+            self.order[i] = i;
+        }
+        let (angles, order) = (&self.angles, &mut self.order[..n]);
+        order.sort_unstable_by(|&a, &b| angles[a].total_cmp(&angles[b]));
+        // All gaps between consecutive directions sum to 2π, so at most one exceeds π: the one
+        // whose (counter-clockwise) ends u, w have a negative cross product.
+        (0..n).any(|k| {
+            let (u, w) = (order[k], order[(k + 1) % n]);
+            let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+            cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+        })
+    }
+
+    fn linear_programme(&mut self, w: &DMatrix<f64>) -> bool {
+        let Some(lp) = self.lp.as_mut() else {
+            return false;
+        };
+        let problem = TensionProblem {
+            wrench_matrix: w,
+            external_wrench: &lp.zero,
+            bounds: &lp.bounds,
+            stiffness: None,
+        };
+        lp.solver.is_feasible(&problem).unwrap_or(false)
+    }
+
+    /// The same decision by the linear programme alone (any r ≥ 1), for cross-checks.
+    pub fn is_wrench_closure_by_lp(&mut self, w: &DMatrix<f64>) -> bool {
+        let (dof, n) = (self.dof, self.n);
+        if w.shape() != (dof, n) || n <= dof || self.reduce(w).is_none() {
+            return false;
+        }
+        let lp = self.lp.get_or_insert_with(|| Lp {
+            solver: TensionSolver::new(Method::L1),
+            bounds: TensionBounds::uniform(n, 1.0, f64::INFINITY)
+                .expect("finite lower bound 1 below infinite upper bound"),
+            zero: DVector::zeros(dof),
+        });
+        let problem = TensionProblem {
+            wrench_matrix: w,
+            external_wrench: &lp.zero,
+            bounds: &lp.bounds,
+            stiffness: None,
+        };
+        lp.solver.is_feasible(&problem).unwrap_or(false)
+    }
+}
+
+/// A monotone stand-in for atan2(y, x) ∈ [0, 4) (the "diamond angle"), without trigonometry.
+#[inline]
+fn diamond_angle(x: f64, y: f64) -> f64 {
+    if y >= 0.0 {
+        if x >= 0.0 {
+            y / (x + y)
+        } else {
+            1.0 - x / (-x + y)
+        }
+    } else if x < 0.0 {
+        2.0 - y / (-x - y)
+    } else {
+        3.0 + x / (x - y)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mat(rows: usize, cols: usize, v: &[f64]) -> DMatrix<f64> {
+        DMatrix::from_row_slice(rows, cols, v)
+    }
+
+    #[test]
+    fn three_cables_on_a_point_by_hand() {
+        // Unit vectors at 0°, 120°, 240°: positively spanning (t = (1, 1, 1) balances).
+        let (c, s) = (0.5, 3f64.sqrt() / 2.0);
+        let w = mat(2, 3, &[1.0, -c, -c, 0.0, s, -s]);
+        let mut t = WrenchClosureTest::new(2, 3);
+        assert!(t.is_wrench_closure(&w));
+        // All three in the upper half-plane: not.
+        let w = mat(2, 3, &[1.0, 0.0, -1.0, 0.1, 1.0, 0.1]);
+        assert!(!t.is_wrench_closure(&w));
+        // Two opposite cables and one along them: W t = 0 needs t_3 = 0 or rank 1.
+        let w = mat(2, 3, &[1.0, -1.0, 1.0, 0.0, 0.0, 0.0]);
+        assert!(!t.is_wrench_closure(&w));
+    }
+
+    #[test]
+    fn four_cables_on_a_point_by_hand() {
+        let mut t = WrenchClosureTest::new(2, 4);
+        // ±x, ±y: positively spanning.
+        let w = mat(2, 4, &[1.0, 0.0, -1.0, 0.0, 0.0, 1.0, 0.0, -1.0]);
+        assert!(t.is_wrench_closure(&w));
+        // All in the closed upper half-plane (two opposite on its edge): not strictly.
+        let w = mat(2, 4, &[1.0, 0.0, -1.0, 0.5, 0.0, 1.0, 0.0, 1.0]);
+        assert!(!t.is_wrench_closure(&w));
+        // Redundancy 2 but one cable (−y) needed: drop it → upper half-plane + axis: not.
+        let w = mat(2, 4, &[1.0, 0.3, -1.0, -0.3, 0.0, 1.0, 0.0, 1.0]);
+        assert!(!t.is_wrench_closure(&w));
+    }
+
+    #[test]
+    fn diamond_angle_is_monotone_in_the_angle() {
+        let mut prev = -1.0;
+        for k in 0..720 {
+            let a = k as f64 * std::f64::consts::TAU / 720.0;
+            let d = diamond_angle(a.cos(), a.sin());
+            assert!(d > prev && (0.0..4.0).contains(&d), "{a}");
+            prev = d;
+        }
+    }
+
+    #[test]
+    fn square_or_wrong_shape_is_never_closure() {
+        let mut t = WrenchClosureTest::new(2, 2);
+        assert!(!t.is_wrench_closure(&DMatrix::identity(2, 2)));
+        let mut t = WrenchClosureTest::new(2, 3);
+        assert!(!t.is_wrench_closure(&DMatrix::identity(2, 2)));
+        let w = mat(2, 3, &[1.0, f64::NAN, 0.0, 0.0, 1.0, -1.0]);
+        assert!(!t.is_wrench_closure(&w));
+    }
+}

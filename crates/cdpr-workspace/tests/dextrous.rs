@@ -1,0 +1,227 @@
+//! Dextrous workspace, eq. (6.28), and the §6.5 check of the two-extremes shortcut.
+mod common;
+
+use cdpr_tension::{Method, TensionBounds};
+use cdpr_workspace::{
+    Criterion, Grid, GridWorkspace, OrientationRange, PoseEvaluator, Region,
+    constant_orientation_workspace, dextrous_workspace, dextrous_workspace_about_axis,
+    dextrous_workspace_over, euler_box, planar_workspace,
+};
+use common::*;
+use nalgebra::{Rotation3, Vector3};
+use proptest::prelude::*;
+
+/// The dextrous workspace is exactly the intersection of the slices, and the central check is
+/// (extremes ∩) ⊆ central, both recomputed here from constant-orientation workspaces.
+fn check_against_slices(
+    eval: &PoseEvaluator,
+    range: &OrientationRange,
+    grid: &Grid,
+) -> GridWorkspace {
+    let dex = dextrous_workspace(eval, range, grid).unwrap();
+    let slices: Vec<GridWorkspace> = range
+        .angles()
+        .iter()
+        .map(|&phi| planar_workspace(eval, phi, grid).unwrap())
+        .collect();
+    for s in &slices {
+        assert!(dex.workspace.is_subset_of(s));
+    }
+    for i in 0..dex.workspace.total_points {
+        assert_eq!(
+            dex.workspace.feasible[i],
+            slices.iter().all(|s| s.feasible[i])
+        );
+    }
+    let lo = &slices[0];
+    let hi = &slices[slices.len() - 1];
+    let mid = planar_workspace(eval, range.central(), grid).unwrap();
+    let ext: Vec<bool> = lo
+        .feasible
+        .iter()
+        .zip(&hi.feasible)
+        .map(|(a, b)| *a && *b)
+        .collect();
+    let violations = ext
+        .iter()
+        .zip(&mid.feasible)
+        .filter(|(e, m)| **e && !**m)
+        .count();
+    assert_eq!(dex.central_check.violations, violations);
+    assert_eq!(dex.central_check.holds, violations == 0);
+    assert_eq!(
+        dex.central_check.extremes_points,
+        ext.iter().filter(|e| **e).count()
+    );
+    dex.workspace
+}
+
+#[test]
+fn three_cable_dextrous_is_the_intersection_of_slices() {
+    let g = Grid::over_frame(&three_cable(), 50);
+    for load_case in 0..3 {
+        let eval = three_cable_eval(load_case);
+        for range in [
+            OrientationRange {
+                min: 0.0,
+                max: 0.1,
+                slices: 3,
+            },
+            OrientationRange {
+                min: 0.0,
+                max: 0.1,
+                slices: 6,
+            },
+            OrientationRange {
+                min: 0.05,
+                max: 0.05,
+                slices: 1,
+            },
+        ] {
+            check_against_slices(&eval, &range, &g);
+        }
+    }
+}
+
+#[test]
+fn four_cable_dextrous_is_the_intersection_of_slices() {
+    let g = Grid::over_frame(&four_cable(), 40);
+    for load_case in 0..3 {
+        let eval = four_cable_eval(load_case, Method::L1);
+        let dex = check_against_slices(
+            &eval,
+            &OrientationRange {
+                min: -0.2,
+                max: 0.2,
+                slices: 5,
+            },
+            &g,
+        );
+        assert!(dex.feasible_points > 0, "L{}", load_case + 1);
+    }
+}
+
+/// A case where the shortcut fails: feasible at both extremes but not in between. A custom
+/// criterion rejects |φ| < 0.05 in a disc (a platform feature in the way, say).
+#[test]
+fn central_check_detects_a_failing_shortcut() {
+    use cdpr_workspace::CustomCriterion;
+    let eval = PoseEvaluator::new(
+        four_cable(),
+        TensionBounds::uniform(4, T_MIN, T_MAX).unwrap(),
+        vec![Criterion::Custom(CustomCriterion::new("notch", |ctx| {
+            let phi = ctx.pose.rotation.angle();
+            let u = ctx.pose.position;
+            !(phi < 0.05 && u.x * u.x + u.y * u.y < 0.04)
+        }))],
+    )
+    .unwrap();
+    let g = Grid::new(40, Region::planar(-0.5, 0.5, -0.5, 0.5));
+    let dex = dextrous_workspace(
+        &eval,
+        &OrientationRange {
+            min: -0.2,
+            max: 0.2,
+            slices: 2,
+        },
+        &g,
+    )
+    .unwrap();
+    assert!(!dex.central_check.holds);
+    assert!(dex.central_check.violations > 0);
+    // With three slices the central orientation is part of the intersection.
+    let dex3 = check_against_slices(
+        &eval,
+        &OrientationRange {
+            min: -0.2,
+            max: 0.2,
+            slices: 3,
+        },
+        &g,
+    );
+    assert!(dex3.is_subset_of(&dex.workspace));
+    assert_eq!(
+        dex.workspace.feasible_points - dex3.feasible_points,
+        dex.central_check.violations
+    );
+}
+
+#[test]
+fn spatial_dextrous_about_an_axis_and_over_an_euler_box() {
+    // A cube frame with 8 cables to the corners of a small platform (IPAnema-like layout).
+    let robot = common::eight_cable_spatial();
+    let eval = PoseEvaluator::new(
+        robot,
+        TensionBounds::uniform(8, 1.0, 100.0).unwrap(),
+        vec![Criterion::WrenchClosure],
+    )
+    .unwrap();
+    let g = Grid::new(
+        8,
+        Region::cuboid(Vector3::repeat(-0.6), Vector3::repeat(0.6)),
+    );
+    let range = OrientationRange {
+        min: -0.1,
+        max: 0.1,
+        slices: 3,
+    };
+    let dex = dextrous_workspace_about_axis(
+        &eval,
+        &Vector3::x_axis(),
+        &Rotation3::identity(),
+        &range,
+        &g,
+    )
+    .unwrap();
+    assert!(dex.workspace.feasible_points > 0);
+    for a in range.angles() {
+        let r = Rotation3::from_axis_angle(&Vector3::x_axis(), a);
+        let slice = constant_orientation_workspace(&eval, &r, &g).unwrap();
+        assert!(dex.workspace.is_subset_of(&slice));
+    }
+    let box_rots = euler_box([-0.1, 0.0, -0.1], [0.1, 0.0, 0.1], 2).unwrap();
+    assert_eq!(box_rots.len(), 4);
+    let over = dextrous_workspace_over(&eval, &box_rots, &g).unwrap();
+    for r in &box_rots {
+        assert!(over.is_subset_of(&constant_orientation_workspace(&eval, r, &g).unwrap()));
+    }
+}
+
+#[test]
+fn bad_ranges_are_errors() {
+    let eval = four_cable_eval(0, Method::L2);
+    let g = Grid::over_frame(eval.robot(), 10);
+    for range in [
+        OrientationRange {
+            min: 0.1,
+            max: 0.0,
+            slices: 3,
+        },
+        OrientationRange {
+            min: 0.0,
+            max: 0.1,
+            slices: 1,
+        },
+        OrientationRange {
+            min: f64::NAN,
+            max: 0.1,
+            slices: 3,
+        },
+    ] {
+        assert!(dextrous_workspace(&eval, &range, &g).is_err());
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+    #[test]
+    fn dextrous_is_inside_every_slice(lo in -0.3f64..0.1, width in 0.0f64..0.3, slices in 2usize..6, load_case in 0usize..3) {
+        let eval = four_cable_eval(load_case, Method::L1);
+        let g = Grid::over_frame(eval.robot(), 16);
+        let range = OrientationRange { min: lo, max: lo + width, slices };
+        let dex = dextrous_workspace(&eval, &range, &g).unwrap();
+        for phi in range.angles() {
+            prop_assert!(dex.workspace.is_subset_of(&planar_workspace(&eval, phi, &g).unwrap()));
+        }
+    }
+}
