@@ -7,7 +7,8 @@
 
 use cdpr_benches::{ipanema_like_8, krut_poses, krut_three_motor, spatial_poses};
 use cdpr_polytope::{
-    CapacityMargin, IsotropicForce, RequiredWrenchSet, hyperplane_shifting, krut_vertex_projection,
+    CapacityMargin, CapacityMarginEvaluator, IsotropicForce, RequiredWrenchSet,
+    hyperplane_shifting, krut_vertex_projection,
 };
 use cdpr_tension::TensionBounds;
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -28,13 +29,25 @@ fn capacity_margin(c: &mut Criterion) {
         DVector::from_vec(vec![20.0, 20.0, 20.0, 2.0, 2.0, 2.0]),
     )
     .unwrap();
-    let mut cm = CapacityMargin::new(6, 8);
+    let cm = CapacityMarginEvaluator::new(&bounds, &required).unwrap();
     let mut g = c.benchmark_group("capacity_margin");
     let mut i = 0;
     g.bench_function("hyperplane_shifting_8_spatial", |b| {
         b.iter(|| {
             i = (i + 1) % ws.len();
-            black_box(cm.margin(black_box(&ws[i]), &bounds, &required).unwrap())
+            black_box(cm.margin(black_box(&ws[i])).unwrap())
+        })
+    });
+    // The same through the per-call-checked API (bounds and required set passed each time).
+    let mut legacy = CapacityMargin::new(6, 8);
+    g.bench_function("hyperplane_shifting_8_spatial_unprepared", |b| {
+        b.iter(|| {
+            i = (i + 1) % ws.len();
+            black_box(
+                legacy
+                    .margin(black_box(&ws[i]), &bounds, &required)
+                    .unwrap(),
+            )
         })
     });
     g.finish();
@@ -44,17 +57,13 @@ fn isotropic_force(c: &mut Criterion) {
     let robot = krut_three_motor();
     let poses = krut_poses(64);
     let bounds = TensionBounds::uniform(3, 50.0, 500.0).unwrap();
-    let mut index = IsotropicForce::new(&robot);
+    let mut index = IsotropicForce::new(&robot, &bounds).unwrap();
     let mut g = c.benchmark_group("isotropic_force");
     let mut i = 0;
     g.bench_function("seed001_point2", |b| {
         b.iter(|| {
             i = (i + 1) % poses.len();
-            black_box(
-                index
-                    .force_at_pose(&robot, black_box(&poses[i]), &bounds)
-                    .unwrap(),
-            )
+            black_box(index.force_at_pose(black_box(&poses[i])).unwrap())
         })
     });
     g.finish();

@@ -25,23 +25,23 @@
 
 use crate::PolytopeError;
 use crate::available_wrench_set::AvailableWrenchSet;
-use crate::hyperplane_shifting::for_each_halfspace;
-use crate::input::check_vector;
+use crate::hyperplane_shifting::{HyperplaneShifting, for_each_halfspace};
+use crate::input::{MAX_DOF, check_vector};
 use cdpr_tension::TensionBounds;
 use nalgebra::{DMatrix, DVector};
 
-#[derive(Debug, Clone, PartialEq)]
-enum Shape {
-    Box(DVector<f64>),
-    Ball(f64),
-}
-
 /// A set of *external* wrenches w_ext (acting on the platform) the robot is required to
-/// balance: a box or a ball around a centre wrench (e.g. gravity).
+/// balance: a box or a ball around a centre wrench (e.g. gravity), of dimension 1 to 6.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RequiredWrenchSet {
     centre: DVector<f64>,
-    shape: Shape,
+    /// Half-widths (box) or zeros (ball), padded to 6.
+    half_widths: [f64; MAX_DOF],
+    /// Ball radius (0 for a box).
+    radius: f64,
+    /// Centre padded to 6.
+    centre_fixed: [f64; MAX_DOF],
+    is_box: bool,
 }
 
 impl RequiredWrenchSet {
@@ -52,7 +52,7 @@ impl RequiredWrenchSet {
 
     /// All external wrenches within `radius` of `centre` (Euclidean, in wrench units).
     pub fn ball(centre: DVector<f64>, radius: f64) -> Result<Self, PolytopeError> {
-        check_vector("required wrench centre", centre.as_slice(), centre.len())?;
+        let centre_fixed = Self::check_centre(&centre)?;
         if !(radius.is_finite() && radius >= 0.0) {
             return Err(PolytopeError::InvalidParameter {
                 what: "required ball radius",
@@ -62,13 +62,16 @@ impl RequiredWrenchSet {
         }
         Ok(Self {
             centre,
-            shape: Shape::Ball(radius),
+            half_widths: [0.0; MAX_DOF],
+            radius,
+            centre_fixed,
+            is_box: false,
         })
     }
 
     /// The box `centre_i − h_i ≤ w_ext,i ≤ centre_i + h_i` (half-widths h_i ≥ 0).
     pub fn boxed(centre: DVector<f64>, half_widths: DVector<f64>) -> Result<Self, PolytopeError> {
-        check_vector("required wrench centre", centre.as_slice(), centre.len())?;
+        let centre_fixed = Self::check_centre(&centre)?;
         check_vector(
             "required box half-widths",
             half_widths.as_slice(),
@@ -81,10 +84,25 @@ impl RequiredWrenchSet {
                 value: h,
             });
         }
+        let mut h = [0.0; MAX_DOF];
+        h[..centre.len()].copy_from_slice(half_widths.as_slice());
         Ok(Self {
             centre,
-            shape: Shape::Box(half_widths),
+            half_widths: h,
+            radius: 0.0,
+            centre_fixed,
+            is_box: true,
         })
+    }
+
+    fn check_centre(centre: &DVector<f64>) -> Result<[f64; MAX_DOF], PolytopeError> {
+        if centre.is_empty() || centre.len() > MAX_DOF {
+            return Err(PolytopeError::UnsupportedDof { dof: centre.len() });
+        }
+        check_vector("required wrench centre", centre.as_slice(), centre.len())?;
+        let mut c = [0.0; MAX_DOF];
+        c[..centre.len()].copy_from_slice(centre.as_slice());
+        Ok(c)
     }
 
     /// Dimension of the wrenches.
@@ -97,24 +115,42 @@ impl RequiredWrenchSet {
         &self.centre
     }
 
-    /// h_R(−n) = max_{w ∈ R} (−n · w).
+    /// The box half-widths, `None` for a ball.
+    pub fn half_widths(&self) -> Option<&[f64]> {
+        self.is_box.then(|| &self.half_widths[..self.dof()])
+    }
+
+    /// The ball radius, `None` for a box.
+    pub fn radius(&self) -> Option<f64> {
+        (!self.is_box).then_some(self.radius)
+    }
+
+    /// h_R(−n) = max_{w ∈ R} (−n · w) = −n·c + Σ_i |n_i| h_i + ρ (a box has ρ = 0, a ball
+    /// h = 0). `n` has length DOF.
     #[inline]
     fn mirrored_support(&self, n: &[f64]) -> f64 {
-        let centre = -n
-            .iter()
-            .zip(self.centre.iter())
-            .map(|(a, b)| a * b)
-            .sum::<f64>();
-        match &self.shape {
-            Shape::Ball(r) => centre + r,
-            Shape::Box(h) => {
-                centre
-                    + n.iter()
-                        .zip(h.iter())
-                        .map(|(a, b)| a.abs() * b)
-                        .sum::<f64>()
-            }
+        let (along, spread) = self.support_parts(n);
+        spread - along
+    }
+
+    /// (n·c, ρ + Σ_i |n_i| h_i): h_R(−n) = spread − along and h_R(n) = spread + along.
+    #[inline(always)]
+    fn support_parts(&self, n: &[f64]) -> (f64, f64) {
+        let (mut along, mut spread) = (0.0, self.radius);
+        for ((a, c), h) in n.iter().zip(&self.centre_fixed).zip(&self.half_widths) {
+            along += a * c;
+            spread += a.abs() * h;
         }
+        (along, spread)
+    }
+}
+
+/// A margin that came out NaN (only through overflow of huge wrenches) is reported as such.
+fn finite_or_overflow(m: f64) -> Result<f64, PolytopeError> {
+    if m.is_nan() {
+        Err(PolytopeError::Overflow { value: m })
+    } else {
+        Ok(m)
     }
 }
 
@@ -135,6 +171,28 @@ pub fn capacity_margin(
     aws: &AvailableWrenchSet,
     required: &RequiredWrenchSet,
 ) -> Result<f64, PolytopeError> {
+    Ok(limiting_facet(aws, required)?.map_or(f64::INFINITY, |(_, m)| m))
+}
+
+/// The facet of the AWS that limits the capacity margin: `(k, s_k)` with s_k the margin,
+/// `k` an index into [`AvailableWrenchSet::facets`]; `None` if the AWS has no facet.
+///
+/// ```
+/// use cdpr_polytope::{capacity_margin::limiting_facet, hyperplane_shifting::available_wrench_set, RequiredWrenchSet};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+/// let gravity = RequiredWrenchSet::point(dvector![0.0, -5.0]).unwrap();
+/// let (k, m) = limiting_facet(&aws, &gravity).unwrap().unwrap();
+/// // Balancing (0, −5) needs the cables to pull up: the limiting facet is y ≤ 9.
+/// assert_eq!(aws.facets()[k].normal.as_slice(), &[0.0, 1.0]);
+/// assert!((m - 4.0).abs() < 1e-12);
+/// ```
+pub fn limiting_facet(
+    aws: &AvailableWrenchSet,
+    required: &RequiredWrenchSet,
+) -> Result<Option<(usize, f64)>, PolytopeError> {
     if required.dof() != aws.dof() {
         return Err(PolytopeError::DimensionMismatch {
             what: "required wrench set vs AWS dimension",
@@ -142,15 +200,19 @@ pub fn capacity_margin(
             found: required.dof(),
         });
     }
-    Ok(aws
-        .facets()
-        .iter()
-        .map(|f| f.offset - required.mirrored_support(f.normal.as_slice()))
-        .fold(f64::INFINITY, f64::min))
+    let mut best: Option<(usize, f64)> = None;
+    for (k, f) in aws.facets().iter().enumerate() {
+        let s = finite_or_overflow(f.offset - required.mirrored_support(f.normal.as_slice()))?;
+        if best.is_none_or(|(_, m)| s < m) {
+            best = Some((k, s));
+        }
+    }
+    Ok(best)
 }
 
 /// Allocation-free capacity margin for repeated poses: hyperplane shifting on the fly, each
-/// half-space scored as it is found.
+/// half-space scored as it is found. Checks the bounds and the required set at each call; use
+/// [`CapacityMarginEvaluator`] to check them once.
 ///
 /// ```
 /// use cdpr_polytope::{CapacityMargin, RequiredWrenchSet};
@@ -206,7 +268,63 @@ impl CapacityMargin {
         for_each_halfspace(w, bounds, |n, d| {
             m = m.min(d - required.mirrored_support(n));
         })?;
-        Ok(m)
+        finite_or_overflow(m)
+    }
+}
+
+/// The capacity margin of one required set with fixed tension bounds, both checked once at
+/// construction: the fast path for sweeps over many poses (no allocation, no re-validation;
+/// each call checks only the shape and finiteness of W).
+///
+/// ```
+/// use cdpr_polytope::{CapacityMarginEvaluator, RequiredWrenchSet};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// let bounds = TensionBounds::uniform(4, 1.0, 10.0).unwrap();
+/// let r = RequiredWrenchSet::ball(dvector![0.0, -5.0], 1.0).unwrap();
+/// let cm = CapacityMarginEvaluator::new(&bounds, &r).unwrap();
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// assert!((cm.margin(&w).unwrap() - 3.0).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct CapacityMarginEvaluator {
+    engine: HyperplaneShifting,
+    required: RequiredWrenchSet,
+}
+
+impl CapacityMarginEvaluator {
+    /// An evaluator for DOF × n wrench matrices, DOF = `required.dof()`, n = `bounds.len()`.
+    pub fn new(
+        bounds: &TensionBounds,
+        required: &RequiredWrenchSet,
+    ) -> Result<Self, PolytopeError> {
+        Ok(Self {
+            engine: HyperplaneShifting::new(required.dof(), bounds)?,
+            required: required.clone(),
+        })
+    }
+
+    /// The required set.
+    pub fn required(&self) -> &RequiredWrenchSet {
+        &self.required
+    }
+
+    /// The capacity margin at the pose whose wrench matrix is `w` (+∞ if no facet).
+    #[inline]
+    pub fn margin(&self, w: &DMatrix<f64>) -> Result<f64, PolytopeError> {
+        let r = &self.required;
+        let mut m = f64::INFINITY;
+        // Both half-spaces ±c of a subset share n·c and Σ|n_i| h_i; +∞ offsets stay +∞.
+        self.engine.for_each_pair(w, |n, dp, dm| {
+            let (along, spread) = r.support_parts(n);
+            let (a, b) = (dp - (spread - along), dm - (spread + along));
+            let s = if a < b { a } else { b };
+            if s < m {
+                m = s;
+            }
+            2
+        })?;
+        finite_or_overflow(m)
     }
 }
 

@@ -83,6 +83,12 @@ pub enum PolytopeError {
         /// The value found.
         value: f64,
     },
+    /// A facet offset overflowed f64 (|W|·|t| beyond ~1.8e308): rescale W or the bounds.
+    #[error("a facet offset overflows ({value}): |W|·|t| is beyond the range of f64")]
+    Overflow {
+        /// The non-finite offset.
+        value: f64,
+    },
     /// The polygon is unbounded, so the largest inscribed ellipse is unbounded too.
     #[error("the polygon is unbounded: no largest inscribed ellipse")]
     Unbounded,

@@ -86,151 +86,341 @@ pub fn available_wrench_set(
 ///
 /// This is the engine behind [`crate::CapacityMargin`] and [`crate::IsotropicForce`]; use it
 /// for custom indices. If it returns an error, half-spaces already visited must be discarded.
+/// For many poses with the same bounds, [`HyperplaneShifting`] checks the bounds only once.
 pub fn for_each_halfspace<F: FnMut(&[f64], f64)>(
     w: &DMatrix<f64>,
     bounds: &TensionBounds,
     f: F,
 ) -> Result<usize, PolytopeError> {
-    let (_, wmax) = input::check(w, bounds)?;
+    input::check_shape(w.nrows(), w.ncols(), bounds)?;
+    run(w, bounds.min().as_slice(), bounds.max().as_slice(), f)
+}
+
+/// Hyperplane shifting with its wrench-space dimension and tension bounds checked once, for
+/// sweeps over many poses: each call then only checks the shape and finiteness of W (one pass
+/// over its entries) before the enumeration.
+///
+/// ```
+/// use cdpr_polytope::hyperplane_shifting::HyperplaneShifting;
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::dmatrix;
+/// let hs = HyperplaneShifting::new(2, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let mut radius = f64::INFINITY;
+/// let count = hs.for_each_halfspace(&w, |_, d| radius = radius.min(d)).unwrap();
+/// assert_eq!((count, radius), (8, 9.0)); // the square [−9, 9]², each facet found twice
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct HyperplaneShifting {
+    dof: usize,
+    min: Vec<f64>,
+    max: Vec<f64>,
+    bounded: bool,
+}
+
+impl HyperplaneShifting {
+    /// An enumerator for DOF × n wrench matrices with these bounds (n = `bounds.len()`).
+    /// Errors if DOF is not in 1..=6.
+    pub fn new(dof: usize, bounds: &TensionBounds) -> Result<Self, PolytopeError> {
+        input::check_shape(dof, bounds.len(), bounds)?;
+        Ok(Self {
+            dof,
+            min: bounds.min().as_slice().to_vec(),
+            max: bounds.max().as_slice().to_vec(),
+            bounded: bounds.max().iter().all(|x| x.is_finite()),
+        })
+    }
+
+    /// Rows of the wrench matrices accepted.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Columns (cables) of the wrench matrices accepted.
+    pub fn cables(&self) -> usize {
+        self.min.len()
+    }
+
+    /// [`for_each_halfspace`] with the checked bounds; errors if W is not DOF × n.
+    #[inline]
+    pub fn for_each_halfspace<F: FnMut(&[f64], f64)>(
+        &self,
+        w: &DMatrix<f64>,
+        f: F,
+    ) -> Result<usize, PolytopeError> {
+        self.for_each_pair(w, singles(f))
+    }
+
+    /// The pairs of opposite half-spaces, see [`for_each_pair`].
+    #[inline]
+    pub(crate) fn for_each_pair<F: FnMut(&[f64], f64, f64) -> usize>(
+        &self,
+        w: &DMatrix<f64>,
+        f: F,
+    ) -> Result<usize, PolytopeError> {
+        if w.nrows() != self.dof {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "rows of W vs the prepared enumerator",
+                expected: self.dof,
+                found: w.nrows(),
+            });
+        }
+        if w.ncols() != self.min.len() {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "columns of W vs the prepared tension bounds",
+                expected: self.min.len(),
+                found: w.ncols(),
+            });
+        }
+        for_each_pair(w, &self.min, &self.max, self.bounded, f)
+    }
+}
+
+/// Adapts a pair callback (see [`for_each_pair`]) to single half-spaces, dropping those at
+/// infinity.
+#[inline(always)]
+fn singles<F: FnMut(&[f64], f64)>(mut f: F) -> impl FnMut(&[f64], f64, f64) -> usize {
+    move |c: &[f64], dp: f64, dm: f64| {
+        let mut visited = 0;
+        if dp < f64::INFINITY {
+            f(c, dp);
+            visited += 1;
+        }
+        if dm < f64::INFINITY {
+            let mut neg = [0.0f64; MAX_DOF];
+            for (x, y) in neg.iter_mut().zip(c) {
+                *x = -y;
+            }
+            f(&neg[..c.len()], dm);
+            visited += 1;
+        }
+        visited
+    }
+}
+
+/// The enumeration on checked shapes: finiteness of W, rank test, dispatch on DOF.
+#[inline]
+fn run<F: FnMut(&[f64], f64)>(
+    w: &DMatrix<f64>,
+    tmin: &[f64],
+    tmax: &[f64],
+    f: F,
+) -> Result<usize, PolytopeError> {
+    let bounded = tmax.iter().all(|x| x.is_finite());
+    for_each_pair(w, tmin, tmax, bounded, singles(f))
+}
+
+/// The engine's interface: calls `f(c, d₊, d₋)` once per independent subset of DOF − 1
+/// columns with a column off its hyperplane, for the pair of half-spaces `c · w ≤ d₊` and
+/// `−c · w ≤ d₋` (unit c); an offset pushed to infinity by an infinite t_max is passed as +∞.
+/// `f` returns how many half-spaces it counted; the sum is returned. `bounded` must be true
+/// iff every t_max is finite (shapes are checked by the caller).
+#[inline]
+pub(crate) fn for_each_pair<F: FnMut(&[f64], f64, f64) -> usize>(
+    w: &DMatrix<f64>,
+    tmin: &[f64],
+    tmax: &[f64],
+    bounded: bool,
+    f: F,
+) -> Result<usize, PolytopeError> {
+    let wmax = input::finite_amax(w.as_slice())?;
     let (m, n) = w.shape();
-    let k = m - 1; // columns per subset
-    let ws = w.as_slice();
-    let (tmin, tmax) = (bounds.min().as_slice(), bounds.max().as_slice());
-    if k > n || wmax == 0.0 {
+    if m - 1 > n || wmax == 0.0 {
         return Err(PolytopeError::LowerDimensional {
             rank: input::numerical_rank(w),
             dof: m,
         });
     }
-
-    let (visited, proper) = match m {
-        1 => engine::<1, F>(ws, n, tmin, tmax, wmax, f),
-        2 => engine::<2, F>(ws, n, tmin, tmax, wmax, f),
-        3 => engine::<3, F>(ws, n, tmin, tmax, wmax, f),
-        4 => engine::<4, F>(ws, n, tmin, tmax, wmax, f),
-        5 => engine::<5, F>(ws, n, tmin, tmax, wmax, f),
-        _ => engine::<MAX_DOF, F>(ws, n, tmin, tmax, wmax, f),
+    let ws = w.as_slice();
+    let tally = match (m, bounded) {
+        (1, true) => engine::<1, true, F>(ws, tmin, tmax, wmax, f),
+        (2, true) => engine::<2, true, F>(ws, tmin, tmax, wmax, f),
+        (3, true) => engine::<3, true, F>(ws, tmin, tmax, wmax, f),
+        (4, true) => engine::<4, true, F>(ws, tmin, tmax, wmax, f),
+        (5, true) => engine::<5, true, F>(ws, tmin, tmax, wmax, f),
+        (_, true) => engine::<MAX_DOF, true, F>(ws, tmin, tmax, wmax, f),
+        (1, false) => engine::<1, false, F>(ws, tmin, tmax, wmax, f),
+        (2, false) => engine::<2, false, F>(ws, tmin, tmax, wmax, f),
+        (3, false) => engine::<3, false, F>(ws, tmin, tmax, wmax, f),
+        (4, false) => engine::<4, false, F>(ws, tmin, tmax, wmax, f),
+        (5, false) => engine::<5, false, F>(ws, tmin, tmax, wmax, f),
+        (_, false) => engine::<MAX_DOF, false, F>(ws, tmin, tmax, wmax, f),
     };
-    if !proper {
+    if let Some(value) = tally.overflow {
+        return Err(PolytopeError::Overflow { value });
+    }
+    if !tally.proper {
         return Err(PolytopeError::LowerDimensional {
             rank: input::numerical_rank(w).min(m - 1),
             dof: m,
         });
     }
-    Ok(visited)
+    Ok(tally.visited)
 }
 
-/// The enumeration for a wrench space of dimension M (fixed so that loops unroll). Returns the
-/// number of half-spaces visited and whether some subset had a column off its hyperplane.
-#[inline]
-fn engine<const M: usize, F: FnMut(&[f64], f64)>(
+/// What one enumeration found.
+struct Tally {
+    /// Half-spaces counted by the callback.
+    visited: usize,
+    /// Some subset had a column off its hyperplane (W has rank DOF).
+    proper: bool,
+    /// A non-finite offset caused by overflow of |W|·|t| (not by an infinite t_max).
+    overflow: Option<f64>,
+}
+
+/// The enumeration for a wrench space of dimension M (fixed so that loops unroll); BOUNDED:
+/// every t_max is finite (then the offsets are accumulated without branches).
+///
+/// Subsets of M − 1 columns are visited in lexicographic order; `red[l]` holds column idx[l]
+/// scaled by 1/max|W_ij| (so that the elimination neither overflows nor underflows) and reduced
+/// by the rows above it, `piv[l]` its pivot component and `inv[l]` the pivot's reciprocal. Rows
+/// of a prefix shared with the previous subset are kept. The offsets d± then need one dot
+/// product per column *outside* the subset (columns inside are orthogonal to c by
+/// construction).
+#[inline(always)]
+fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usize>(
     ws: &[f64],
-    n: usize,
     tmin: &[f64],
     tmax: &[f64],
     wmax: f64,
     mut f: F,
-) -> (usize, bool) {
+) -> Tally {
     let k = M - 1;
-    let pivot_tol = PIVOT_TOL * wmax;
+    let n = tmin.len();
+    let scale = {
+        let s = 1.0 / wmax;
+        if s.is_finite() { s } else { 2f64.powi(1022) }
+    };
+    let pivot_tol = PIVOT_TOL * (wmax * scale);
     let in_plane = IN_PLANE_TOL * wmax;
     let off_plane = OFF_PLANE_TOL * wmax;
-    let mut visited = 0usize;
-    let mut proper = false;
+    let mut tally = Tally {
+        visited: 0,
+        proper: false,
+        overflow: None,
+    };
     let mut idx = [0usize; M];
     for (i, x) in idx.iter_mut().enumerate().take(k) {
         *x = i;
     }
-    // red[l]: column idx[l] reduced by the rows above it; piv[l]: its pivot component.
     let mut red = [[0.0f64; M]; M];
+    let mut inv = [0.0f64; M];
     let mut piv = [0usize; M];
+    // used[l]: bit mask of the pivot components of levels < l.
+    let mut used = [0u32; 8];
     let mut valid = 0usize; // leading levels reduced and independent for the current idx
     let mut first_changed = 0usize;
     loop {
         let start = valid.min(first_changed);
         let mut ok = true;
         for l in start..k {
-            let col = &ws[idx[l] * M..idx[l] * M + M];
+            let base = idx[l] * M;
             let mut r = [0.0f64; M];
-            r.copy_from_slice(col);
+            for (x, y) in r.iter_mut().zip(&ws[base..base + M]) {
+                *x = y * scale;
+            }
             for i in 0..l {
                 let p = piv[i];
-                let factor = r[p] / red[i][p];
-                if factor != 0.0 {
-                    for (x, y) in r.iter_mut().zip(red[i].iter()) {
-                        *x -= factor * y;
-                    }
+                let factor = r[p] * inv[i];
+                for (x, y) in r.iter_mut().zip(red[i].iter()) {
+                    *x -= factor * y;
                 }
                 r[p] = 0.0;
             }
+            let mask = used[l];
             let mut best = 0usize;
             let mut best_abs = -1.0f64;
             for (j, &x) in r.iter().enumerate() {
-                if !piv[..l].contains(&j) && x.abs() > best_abs {
+                if mask & (1 << j) == 0 && x.abs() > best_abs {
                     best = j;
                     best_abs = x.abs();
                 }
             }
-            if best_abs <= pivot_tol {
+            // Written so that a NaN pivot also counts as dependent.
+            if best_abs.partial_cmp(&pivot_tol) != Some(std::cmp::Ordering::Greater) {
                 ok = false;
                 valid = l;
                 break;
             }
             red[l] = r;
             piv[l] = best;
+            inv[l] = 1.0 / r[best];
+            used[l + 1] = mask | (1 << best);
         }
         if ok {
             valid = k;
-            // Null vector: the remaining (free) component set to 1, back substitution.
+            // Null vector: the free component (the one never pivoted) set to 1, back substitution.
+            // c[piv[i]] is still 0 when row i is summed, so the sum may run over all components.
             let mut c = [0.0f64; M];
-            let free = (0..M).find(|j| !piv[..k].contains(j)).unwrap_or(0);
-            c[free] = 1.0;
+            c[(!used[k]).trailing_zeros() as usize] = 1.0;
             for i in (0..k).rev() {
-                let p = piv[i];
                 let mut s = 0.0;
                 for j in 0..M {
-                    if j != p {
-                        s += red[i][j] * c[j];
+                    s += red[i][j] * c[j];
+                }
+                c[piv[i]] = -s * inv[i];
+            }
+            let mut norm2 = 0.0;
+            for x in c {
+                norm2 += x * x;
+            }
+            // norm2 ≥ 1; a non-finite one (extreme round-off) skips the subset.
+            if norm2.is_finite() {
+                let inv_norm = 1.0 / norm2.sqrt();
+                for x in c.iter_mut() {
+                    *x *= inv_norm;
+                }
+                // Shifted offsets d± over the columns outside the subset.
+                let (mut dp, mut dm, mut off) = (0.0f64, 0.0f64, 0.0f64);
+                let (mut unbounded_p, mut unbounded_m) = (false, false);
+                let mut in_subset = 0usize;
+                for j in 0..n {
+                    if in_subset < k && idx[in_subset] == j {
+                        in_subset += 1;
+                        continue;
+                    }
+                    let col = &ws[j * M..j * M + M];
+                    let mut p = 0.0;
+                    for i in 0..M {
+                        p += c[i] * col[i];
+                    }
+                    let (lo, hi) = (tmin[j], tmax[j]);
+                    off = fmax(off, p.abs());
+                    if BOUNDED {
+                        // Branch-free: an in-plane column (|p| ~ round-off) adds round-off only.
+                        let (a, b) = (p * hi, p * lo);
+                        dp += fmax(a, b);
+                        dm -= fmin(a, b);
+                    } else {
+                        if p.abs() <= in_plane {
+                            continue;
+                        }
+                        if p > 0.0 {
+                            dp += p * hi;
+                            dm -= p * lo;
+                            unbounded_p |= hi == f64::INFINITY;
+                        } else {
+                            dp += p * lo;
+                            dm -= p * hi;
+                            unbounded_m |= hi == f64::INFINITY;
+                        }
                     }
                 }
-                c[p] = -s / red[i][p];
-            }
-            let norm = c.iter().map(|x| x * x).sum::<f64>().sqrt();
-            for x in c.iter_mut() {
-                *x /= norm;
-            }
-            // Shifted offsets over all columns.
-            let (mut dp, mut dm) = (0.0f64, 0.0f64);
-            let mut off = 0.0f64;
-            for (j, col) in ws.chunks_exact(M).enumerate() {
-                let mut p = 0.0;
-                for (a, b) in c.iter().zip(col) {
-                    p += a * b;
-                }
-                if p.abs() <= in_plane {
-                    continue;
-                }
-                off = off.max(p.abs());
-                if p > 0.0 {
-                    dp += p * tmax[j];
-                    dm -= p * tmin[j];
-                } else {
-                    dp += p * tmin[j];
-                    dm -= p * tmax[j];
-                }
-            }
-            if off > off_plane {
-                proper = true;
-                if dp.is_finite() {
-                    f(&c[..], dp);
-                    visited += 1;
-                }
-                if dm.is_finite() {
-                    for x in c.iter_mut() {
-                        *x = -*x;
+                if off > off_plane {
+                    tally.proper = true;
+                    if unbounded_p {
+                        dp = f64::INFINITY; // pushed to infinity by an infinite t_max
+                    } else if !dp.is_finite() {
+                        tally.overflow = Some(dp);
+                        return tally;
                     }
-                    f(&c[..], dm);
-                    visited += 1;
+                    if unbounded_m {
+                        dm = f64::INFINITY;
+                    } else if !dm.is_finite() {
+                        tally.overflow = Some(dm);
+                        return tally;
+                    }
+                    tally.visited += f(&c[..], dp, dm);
                 }
             }
         }
@@ -239,7 +429,19 @@ fn engine<const M: usize, F: FnMut(&[f64], f64)>(
             None => break,
         }
     }
-    (visited, proper)
+    tally
+}
+
+/// max(a, b) as one instruction (NaN handling left to the callers' finiteness checks).
+#[inline(always)]
+fn fmax(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// min(a, b) as one instruction.
+#[inline(always)]
+fn fmin(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
 }
 
 /// Next k-combination in lexicographic order; returns the first position that changed.

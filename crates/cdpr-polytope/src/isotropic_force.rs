@@ -36,7 +36,7 @@
 
 use crate::PolytopeError;
 use crate::available_wrench_set::AvailableWrenchSet;
-use crate::hyperplane_shifting::for_each_halfspace;
+use crate::hyperplane_shifting::{HyperplaneShifting, for_each_halfspace};
 use cdpr_kinematics::{MotionPattern, Pose, PoseKinematics, Robot};
 use cdpr_tension::TensionBounds;
 use nalgebra::DMatrix;
@@ -47,6 +47,9 @@ const NO_FORCE_PART: f64 = 1e-12;
 /// Contribution of one facet to the zero-moment force index (see the module docs).
 #[inline]
 fn force_term(normal: &[f64], offset: f64, force_rows: usize) -> f64 {
+    if force_rows == normal.len() {
+        return offset; // a pure force space: the normal is already a unit force direction
+    }
     let nf = normal[..force_rows]
         .iter()
         .map(|x| x * x)
@@ -59,6 +62,16 @@ fn force_term(normal: &[f64], offset: f64, force_rows: usize) -> f64 {
     } else {
         f64::NEG_INFINITY
     }
+}
+
+/// min of [`force_term`] over the pair of half-spaces ±n (same ‖n_f‖); +∞ offsets stay +∞.
+#[inline(always)]
+fn pair_force_term(normal: &[f64], dp: f64, dm: f64, force_rows: usize) -> f64 {
+    let d = if dp < dm { dp } else { dm };
+    if force_rows == normal.len() {
+        return d;
+    }
+    force_term(normal, d, force_rows)
 }
 
 /// Maximum isotropic force of an AWS, eq. (19), signed; the zero-moment force index for planar
@@ -102,8 +115,8 @@ pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// Allocation-free maximum isotropic force for repeated poses (hyperplane shifting on the fly,
-/// no facet list is built).
+/// Allocation-free maximum isotropic force for repeated poses of one robot with fixed tension
+/// bounds, checked once at construction (hyperplane shifting on the fly, no facet list).
 ///
 /// ```
 /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -117,56 +130,95 @@ pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
 /// };
 /// let robot = Robot::new(MotionPattern::Point2, vec![motor(30.0), motor(150.0), motor(270.0)]).unwrap();
 /// let bounds = TensionBounds::uniform(3, 50.0, 500.0).unwrap();
-/// let mut index = IsotropicForce::new(&robot);
-/// let f = index.force_at_pose(&robot, &Pose::point(0.0, 0.0, 0.0), &bounds).unwrap();
+/// let mut index = IsotropicForce::new(&robot, &bounds).unwrap();
+/// let f = index.force_at_pose(&Pose::point(0.0, 0.0, 0.0)).unwrap();
 /// assert!((f - 225.0 * 3f64.sqrt()).abs() < 1e-9);
 /// ```
 #[derive(Debug, Clone)]
 pub struct IsotropicForce {
-    motion: MotionPattern,
+    robot: Robot,
+    engine: HyperplaneShifting,
     kinematics: PoseKinematics,
     w: DMatrix<f64>,
 }
 
 impl IsotropicForce {
-    /// Buffers for `robot` (its motion pattern and cable count).
-    pub fn new(robot: &Robot) -> Self {
-        Self {
-            motion: robot.motion(),
+    /// Buffers for `robot` with `bounds` (one pair per cable).
+    pub fn new(robot: &Robot, bounds: &TensionBounds) -> Result<Self, PolytopeError> {
+        if bounds.len() != robot.cable_count() {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "tension bounds vs cables of the robot",
+                expected: robot.cable_count(),
+                found: bounds.len(),
+            });
+        }
+        Ok(Self {
+            robot: robot.clone(),
+            engine: HyperplaneShifting::new(robot.dof(), bounds)?,
             kinematics: PoseKinematics::for_robot(robot),
             w: DMatrix::zeros(robot.dof(), robot.cable_count()),
-        }
+        })
+    }
+
+    /// The robot.
+    pub fn robot(&self) -> &Robot {
+        &self.robot
+    }
+
+    /// The wrench matrix of the last pose evaluated (zeros before the first).
+    pub fn wrench_matrix(&self) -> &DMatrix<f64> {
+        &self.w
     }
 
     /// The force index (zero-moment slice for planar/spatial) of W, see [`isotropic_force`].
-    pub fn force(
-        &mut self,
-        w: &DMatrix<f64>,
-        bounds: &TensionBounds,
-    ) -> Result<f64, PolytopeError> {
-        isotropic_force_of(self.motion, w, bounds)
+    #[inline]
+    pub fn force(&self, w: &DMatrix<f64>) -> Result<f64, PolytopeError> {
+        Ok(self.indices(w)?.0)
     }
 
     /// The full-wrench-space ball radius of W, see [`isotropic_wrench_radius`].
-    pub fn wrench_radius(
-        &mut self,
-        w: &DMatrix<f64>,
-        bounds: &TensionBounds,
-    ) -> Result<f64, PolytopeError> {
-        isotropic_wrench_radius_of(w, bounds)
+    #[inline]
+    pub fn wrench_radius(&self, w: &DMatrix<f64>) -> Result<f64, PolytopeError> {
+        Ok(self.indices(w)?.1)
+    }
+
+    /// Both indices of W in one enumeration: (force index, wrench radius).
+    #[inline]
+    pub fn indices(&self, w: &DMatrix<f64>) -> Result<(f64, f64), PolytopeError> {
+        let rows = self.robot.motion().translation_dof();
+        let (mut f, mut r) = (f64::INFINITY, f64::INFINITY);
+        self.engine.for_each_pair(w, |n, dp, dm| {
+            f = f.min(pair_force_term(n, dp, dm, rows));
+            r = r.min(dp).min(dm);
+            2
+        })?;
+        Ok((f, r))
     }
 
     /// Inverse kinematics, W and the force index at `pose`, reusing this value's buffers.
-    pub fn force_at_pose(
-        &mut self,
-        robot: &Robot,
-        pose: &Pose,
-        bounds: &TensionBounds,
-    ) -> Result<f64, PolytopeError> {
-        robot.update_kinematics(pose, &mut self.kinematics)?;
+    #[inline]
+    pub fn force_at_pose(&mut self, pose: &Pose) -> Result<f64, PolytopeError> {
+        self.update(pose)?;
+        let rows = self.robot.motion().translation_dof();
+        let mut f = f64::INFINITY;
+        self.engine.for_each_pair(&self.w, |n, dp, dm| {
+            f = f.min(pair_force_term(n, dp, dm, rows));
+            2
+        })?;
+        Ok(f)
+    }
+
+    /// Inverse kinematics, W and both indices (force index, wrench radius) at `pose`.
+    pub fn indices_at_pose(&mut self, pose: &Pose) -> Result<(f64, f64), PolytopeError> {
+        self.update(pose)?;
+        self.indices(&self.w)
+    }
+
+    #[inline]
+    fn update(&mut self, pose: &Pose) -> Result<(), PolytopeError> {
+        self.robot.update_kinematics(pose, &mut self.kinematics)?;
         self.kinematics.write_wrench_matrix(&mut self.w);
-        self.motion = robot.motion();
-        isotropic_force_of(self.motion, &self.w, bounds)
+        Ok(())
     }
 }
 

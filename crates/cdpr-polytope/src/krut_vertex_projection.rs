@@ -48,7 +48,8 @@ type V6 = SVector<f64, 6>;
 /// Available wrench set {W t : t_min ≤ t ≤ t_max} by Krut's steps 1–6 (unit normals, signed
 /// offsets, duplicates merged, vertices for DOF 2 and 3).
 ///
-/// Needs finite t_max, rank(W) = DOF, n ≤ [`MAX_CABLES`].
+/// Needs finite t_max, rank(W) = DOF, n ≤ [`MAX_CABLES`]; a polytope with an empty interior (e.g. a
+/// zero-width tension box) is [`PolytopeError::LowerDimensional`].
 ///
 /// ```
 /// use cdpr_polytope::krut_vertex_projection::available_wrench_set;
@@ -159,6 +160,18 @@ pub fn available_wrench_set(
         if !next_combination(&mut idx, vertex_count) {
             break;
         }
+    }
+
+    // No border at all: the projected vertices lie in a hyperplane (e.g. a zero-width tension
+    // box, or the cables with t_min < t_max do not span the wrench space), so the polytope has
+    // an empty interior and no hyperplane through DOF affinely independent vertices exists.
+    if borders.is_empty() {
+        let p0 = tau_r[0];
+        let spread = DMatrix::from_fn(dof, vertex_count, |i, j| tau_r[j][i] - p0[i]);
+        return Err(PolytopeError::LowerDimensional {
+            rank: input::numerical_rank(&spread).min(dof - 1),
+            dof,
+        });
     }
 
     // Step 6: f = U S τ_r, so a·τ_r ≤ b ⇔ (U S⁻¹ a)·f ≤ b, eqs. (17)–(18).

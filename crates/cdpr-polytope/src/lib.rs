@@ -22,7 +22,9 @@
 //!
 //! The indices come in two flavours: functions of an [`AvailableWrenchSet`] (facets built and
 //! kept, vertices for plotting), and allocation-free evaluators for sweeps over many poses
-//! ([`IsotropicForce`], [`CapacityMargin`], [`isotropic_force_of`]).
+//! ([`IsotropicForce`], [`CapacityMarginEvaluator`], [`CapacityMargin`],
+//! [`isotropic_force_of`]), built on [`hyperplane_shifting::HyperplaneShifting`], which checks
+//! the tension bounds once.
 //!
 //! ```
 //! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -63,7 +65,9 @@ pub mod isotropic_force;
 pub mod krut_vertex_projection;
 
 pub use available_wrench_set::{AvailableWrenchSet, Facet};
-pub use capacity_margin::{CapacityMargin, RequiredWrenchSet, capacity_margin};
+pub use capacity_margin::{
+    CapacityMargin, CapacityMarginEvaluator, RequiredWrenchSet, capacity_margin, limiting_facet,
+};
 pub use ellipse::{InscribedEllipse, largest_inscribed_ellipse};
 pub use error::PolytopeError;
 pub use isotropic_force::{

@@ -4,9 +4,9 @@
 use cdpr_kinematics::strategies::{arb_pose, arb_robot, arb_robot_and_pose};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use cdpr_polytope::{
-    AvailableWrenchSet, CapacityMargin, PolytopeError, RequiredWrenchSet, capacity_margin,
-    hyperplane_shifting, isotropic_force, isotropic_force_of, isotropic_wrench_radius,
-    krut_vertex_projection, largest_inscribed_ellipse,
+    AvailableWrenchSet, CapacityMargin, CapacityMarginEvaluator, PolytopeError, RequiredWrenchSet,
+    capacity_margin, hyperplane_shifting, isotropic_force, isotropic_force_of,
+    isotropic_wrench_radius, krut_vertex_projection, largest_inscribed_ellipse, limiting_facet,
 };
 use cdpr_tension::TensionBounds;
 use clarabel::algebra::CscMatrix;
@@ -356,6 +356,13 @@ proptest! {
         let margin = capacity_margin(&aws, &bx).unwrap();
         let mut cm = CapacityMargin::new(dof, n);
         prop_assert!((cm.margin(&w, &b, &bx).unwrap() - margin).abs() <= tol);
+        let ev = CapacityMarginEvaluator::new(&b, &bx).unwrap();
+        prop_assert!((ev.margin(&w).unwrap() - margin).abs() <= tol);
+        // The limiting facet's own slack d_k − max_{w ∈ box} (−n_k · w), recomputed here.
+        let (k, lim) = limiting_facet(&aws, &bx).unwrap().unwrap();
+        let fk = &aws.facets()[k];
+        let slack = fk.offset + fk.normal.dot(&c) - fk.normal.abs().dot(&h);
+        prop_assert!((slack - margin).abs() <= tol && (lim - margin).abs() <= tol);
         let big = 1e-6 * b.max().max() * n as f64;
         if margin.abs() > big {
             // All 2^dof corners of the box of external wrenches: balanced iff −w_ext ∈ {W t}.

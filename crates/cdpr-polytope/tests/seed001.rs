@@ -73,11 +73,14 @@ fn isotropic_force_at_the_centre_is_225_sqrt3() {
             assert_relative_eq!(p.norm(), 450.0, epsilon = 1e-9);
         }
     }
-    let mut fast = IsotropicForce::new(&seed_robot());
-    let f = fast
-        .force_at_pose(&seed_robot(), &Pose::point(0.0, 0.0, 0.0), &bounds(3))
-        .unwrap();
+    let mut fast = IsotropicForce::new(&seed_robot(), &bounds(3)).unwrap();
+    let f = fast.force_at_pose(&Pose::point(0.0, 0.0, 0.0)).unwrap();
     assert_relative_eq!(f, expected, epsilon = 1e-9);
+    // Point robot: the wrench radius is the force radius.
+    let (f2, r) = fast.indices_at_pose(&Pose::point(0.0, 0.0, 0.0)).unwrap();
+    assert_eq!(f2, f);
+    assert_relative_eq!(r, expected, epsilon = 1e-9);
+    assert!(IsotropicForce::new(&seed_robot(), &bounds(4)).is_err());
 }
 
 /// Fig. 9: the index is positive inside the workspace and negative outside (drawn white in the

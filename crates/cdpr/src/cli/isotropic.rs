@@ -1,16 +1,348 @@
-//! `cdpr isotropic` (being written: see the issue tracker).
+//! `cdpr isotropic`: the maximum isotropic force (seed 001 §IV) at a pose, or its map.
 
-use super::CliError;
+use super::{CliError, Numbers, load_robot, pose, print_json};
+use cdpr::RobotDescription;
+use cdpr::kinematics::{MotionPattern, Pose};
+use cdpr::plot::HeatMap;
+use cdpr::polytope::{
+    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force,
+    isotropic_wrench_radius, largest_inscribed_ellipse,
+};
+use indicatif::ProgressBar;
+use nalgebra::Vector3;
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
-/// Maximum isotropic force (seed 001) at a pose, or its heat map over a grid.
+/// Maximum isotropic force (Krut et al. 2004, seed 001): the largest force the platform can
+/// resist in EVERY direction with tensions in [t_min, t_max], i.e. the radius of the largest
+/// ball centred at the origin inside the available force polytope {W t} (eq. 19). It is signed:
+/// negative when the origin is outside the polytope (the pose cannot even hold a zero load).
+///
+/// For point robots (point2, point3) every wrench component is a force. For planar and spatial
+/// robots the index is the FORCE AT ZERO MOMENT: the largest force ball inside the slice
+/// {moment = 0} of the available wrench set (JSON `definition` says which). `wrench_radius` is
+/// the ball in the full wrench space (forces and moments mixed, unit-dependent).
+///
+/// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--json]`.
+/// A map: `cdpr isotropic ROBOT.toml --grid 100 [--box ...] [--orientation PHI] [--z Z]
+/// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (seed 001 Figs. 9–10; white
+/// where the index is negative).
+///
+/// JSON (pose): `isotropic_force`, `wrench_radius`, `definition`, `facets`, `vertices` (wrench
+/// spaces of dimension 2 and 3), `ellipse` (with --ellipse). JSON (grid): `grid` {`x`, `y`, `values`
+/// (rows along y, null where undefined)}, `stats` {`min`, `max`, `argmax`, `positive_fraction`,
+/// `undefined`, `centre`}, `definition`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML).
     robot: PathBuf,
+    /// Platform pose (motion-pattern coordinates), e.g. --pose 0,0 (point2) or 0.1,-0.2,0
+    /// (planar). Give either --pose or --grid.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "grid",
+        required_unless_present = "grid"
+    )]
+    pose: Option<Numbers>,
+    /// Map the index over a (M+1) × (M+1) grid of positions (M intervals per side).
+    #[arg(long, value_name = "M")]
+    grid: Option<usize>,
+    /// Grid: the area XMIN,XMAX,YMIN,YMAX (default: the bounding box of the frame anchors).
+    #[arg(
+        long = "box",
+        allow_hyphen_values = true,
+        value_name = "XMIN,XMAX,YMIN,YMAX",
+        requires = "grid"
+    )]
+    area: Option<Numbers>,
+    /// Grid: platform orientation φ (rad, rotation about z) for planar and spatial robots.
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_hyphen_values = true,
+        requires = "grid"
+    )]
+    orientation: f64,
+    /// Grid: height z of the slice for 3-D robots (default: middle of the frame anchors).
+    #[arg(long, allow_hyphen_values = true, requires = "grid")]
+    z: Option<f64>,
+    /// Grid: write the heat map (.png or .svg); white where the index is negative.
+    #[arg(long, requires = "grid")]
+    plot: Option<PathBuf>,
+    /// Pose: also the largest-area centred ellipse inside the force polygon (seed 001 §IV-C;
+    /// point2 robots only): semi-axes, angle of the major axis, area.
+    #[arg(long, conflicts_with = "grid")]
+    ellipse: bool,
+    /// Write one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// What the index means for this motion pattern (JSON `definition`).
+fn definition(motion: MotionPattern) -> &'static str {
+    if motion.has_orientation() {
+        "force at zero moment: radius of the largest force ball centred at the origin inside the \
+         moment = 0 slice of the available wrench set {W t : t_min <= t <= t_max}; negative when \
+         the origin is outside"
+    } else {
+        "radius of the largest force ball centred at the origin inside the available force \
+         polytope {W t : t_min <= t <= t_max} (seed 001 eq. 19); negative when the origin is \
+         outside"
+    }
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
-    Err(format!("{}: `isotropic` is not available yet", args.robot.display()).into())
+    let robot = load_robot(&args.robot)?;
+    match (&args.pose, args.grid) {
+        (Some(q), _) => run_pose(&args, &robot, q),
+        (None, Some(m)) => run_grid(&args, &robot, m),
+        (None, None) => Err("give --pose or --grid".into()),
+    }
+}
+
+fn ellipse_json(e: &Option<InscribedEllipse>) -> Value {
+    match e {
+        Some(e) => json!({
+            "semi_axes": e.semi_axes,
+            "angle": e.angle,
+            "angle_deg": e.angle.to_degrees(),
+            "area": e.area(),
+        }),
+        None => Value::Null,
+    }
+}
+
+fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliError> {
+    let motion = robot.robot.motion();
+    if args.ellipse && motion != MotionPattern::Point2 {
+        return Err(format!(
+            "--ellipse needs a 2-D force polygon (a point2 robot); this robot is {}",
+            motion.name()
+        )
+        .into());
+    }
+    let p = pose(robot, q)?;
+    let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
+    let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds)?;
+    let force = isotropic_force(&aws, motion)?;
+    let radius = isotropic_wrench_radius(&aws);
+    let ellipse = if args.ellipse {
+        Some(largest_inscribed_ellipse(&aws)?)
+    } else {
+        None
+    };
+    if args.json {
+        let mut v = json!({
+            "robot": robot.name,
+            "pose": q,
+            "isotropic_force": force,
+            "wrench_radius": radius,
+            "definition": definition(motion),
+            "facets": aws.facets().len(),
+            "vertices": aws.vertices().map(|v| v.iter().map(|p| p.as_slice().to_vec()).collect::<Vec<_>>()),
+        });
+        if let Some(e) = &ellipse {
+            v["ellipse"] = ellipse_json(e);
+        }
+        return print_json(&v);
+    }
+    println!("robot {}, pose {:?}", robot.name, q);
+    println!("maximum isotropic force: {force:.6}");
+    println!("  ({})", definition(motion));
+    println!("wrench-space ball radius: {radius:.6}");
+    println!("available wrench set: {} facets", aws.facets().len());
+    if force < 0.0 {
+        println!("the origin is outside the available wrench set: even a zero load cannot be held");
+    }
+    match &ellipse {
+        Some(Some(e)) => println!(
+            "largest centred ellipse: semi-axes {:.6}, {:.6}; major axis at {:.4}° ; area {:.6}",
+            e.semi_axes[0],
+            e.semi_axes[1],
+            e.angle.to_degrees(),
+            e.area()
+        ),
+        Some(None) => println!("largest centred ellipse: none (the origin is not strictly inside)"),
+        None => {}
+    }
+    Ok(())
+}
+
+/// The pose at grid point (x, y).
+fn grid_pose(motion: MotionPattern, x: f64, y: f64, z: f64, phi: f64) -> Pose {
+    match motion {
+        MotionPattern::Point2 => Pose::point(x, y, 0.0),
+        MotionPattern::Planar => Pose::planar(x, y, phi),
+        MotionPattern::Point3 => Pose::point(x, y, z),
+        MotionPattern::Spatial => Pose::spatial(Vector3::new(x, y, z), 0.0, 0.0, phi),
+    }
+}
+
+fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliError> {
+    if !(1..=2000).contains(&m) {
+        return Err("--grid M must lie in [1, 2000]".into());
+    }
+    let motion = robot.robot.motion();
+    let (lo, hi) = robot.robot.frame_bounding_box();
+    let (x0, x1, y0, y1) = match &args.area {
+        Some(b) if b.len() == 4 => (b[0], b[1], b[2], b[3]),
+        Some(b) => return Err(format!("--box needs 4 numbers, got {}", b.len()).into()),
+        None => (lo.x, hi.x, lo.y, hi.y),
+    };
+    if !(x0 < x1 && y0 < y1 && [x0, x1, y0, y1].iter().all(|v| v.is_finite())) {
+        return Err(
+            format!("the grid box [{x0}, {x1}] × [{y0}, {y1}] is empty or not finite").into(),
+        );
+    }
+    let z = args.z.unwrap_or(0.5 * (lo.z + hi.z));
+    if !z.is_finite() || !args.orientation.is_finite() {
+        return Err("--z and --orientation must be finite".into());
+    }
+    let k = m + 1;
+    let xs: Vec<f64> = (0..k)
+        .map(|i| x0 + (x1 - x0) * i as f64 / m as f64)
+        .collect();
+    let ys: Vec<f64> = (0..k)
+        .map(|j| y0 + (y1 - y0) * j as f64 / m as f64)
+        .collect();
+    let template = IsotropicForce::new(&robot.robot, &robot.bounds)?;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(k as u64)
+    } else {
+        ProgressBar::hidden()
+    };
+    // One evaluator per worker; a pose where the index is undefined (a cable of zero length,
+    // a singular W) is NaN: null in JSON, white in the plot.
+    let rows: Vec<Vec<f64>> = ys
+        .par_iter()
+        .map_init(
+            || template.clone(),
+            |index, &y| {
+                let row = xs
+                    .iter()
+                    .map(|&x| {
+                        index
+                            .force_at_pose(&grid_pose(motion, x, y, z, args.orientation))
+                            .unwrap_or(f64::NAN)
+                    })
+                    .collect();
+                bar.inc(1);
+                row
+            },
+        )
+        .collect();
+    bar.finish_and_clear();
+    let values: Vec<f64> = rows.concat();
+
+    let defined: Vec<(usize, f64)> = values
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, v)| !v.is_nan())
+        .collect();
+    let (amax, vmax) = defined
+        .iter()
+        .copied()
+        .fold((usize::MAX, f64::NEG_INFINITY), |a, b| {
+            if b.1 > a.1 { b } else { a }
+        });
+    let vmin = defined.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
+    let positive = defined.iter().filter(|p| p.1 > 0.0).count();
+    let undefined = values.len() - defined.len();
+    let argmax = (amax != usize::MAX).then(|| [xs[amax % k], ys[amax / k]]);
+    let centre_pose = grid_pose(
+        motion,
+        0.5 * (x0 + x1),
+        0.5 * (y0 + y1),
+        z,
+        args.orientation,
+    );
+    let centre = template.clone().force_at_pose(&centre_pose).ok();
+    let finite = |v: f64| v.is_finite().then_some(v);
+
+    if let Some(path) = &args.plot {
+        let fig = HeatMap {
+            title: format!(
+                "{}: maximum isotropic force{}",
+                robot.name,
+                if motion.has_orientation() {
+                    " at zero moment"
+                } else {
+                    ""
+                }
+            ),
+            labels: ("x".into(), "y".into()),
+            value_label: "isotropic force (N)".into(),
+            x_range: (x0, x1),
+            y_range: (y0, y1),
+            shape: (k, k),
+            values: values.clone(),
+            blank_below: 0.0,
+            markers: robot
+                .robot
+                .cables()
+                .iter()
+                .map(|c| (c.frame.x, c.frame.y))
+                .collect(),
+            outlines: Vec::new(),
+            highlight: match argmax {
+                Some([x, y]) if vmax > 0.0 => vec![((x, y), format!("max {vmax:.1} N"))],
+                _ => Vec::new(),
+            },
+        };
+        cdpr::plot::save(&fig, path)?;
+    }
+    if args.json {
+        let grid_rows: Vec<Vec<Option<f64>>> = values
+            .chunks(k)
+            .map(|r| r.iter().map(|&v| finite(v)).collect())
+            .collect();
+        let mut slice = json!({ "orientation": args.orientation });
+        if motion.space_dim() == 3 {
+            slice["z"] = json!(z);
+        }
+        return print_json(&json!({
+            "robot": robot.name,
+            "definition": definition(motion),
+            "slice": slice,
+            "grid": {
+                "x": xs,
+                "y": ys,
+                "shape": [k, k],
+                "values": grid_rows,
+            },
+            "stats": {
+                "min": finite(vmin),
+                "max": finite(vmax),
+                "argmax": argmax,
+                "positive_fraction": positive as f64 / values.len() as f64,
+                "undefined": undefined,
+                "centre": centre.and_then(finite),
+            },
+        }));
+    }
+    println!(
+        "robot {}: maximum isotropic force over [{x0}, {x1}] × [{y0}, {y1}], {k} × {k} points",
+        robot.name
+    );
+    println!("  ({})", definition(motion));
+    match argmax {
+        Some([x, y]) => println!("max {vmax:.6} at ({x:.6}, {y:.6}); min {vmin:.6}"),
+        None => println!("no defined value"),
+    }
+    if let Some(c) = centre {
+        println!("centre of the box: {c:.6}");
+    }
+    println!(
+        "positive (pose holds every force up to the index): {:.1} % of the grid; undefined: {undefined}",
+        100.0 * positive as f64 / values.len() as f64
+    );
+    if let Some(p) = &args.plot {
+        println!("heat map written to {}", p.display());
+    }
+    Ok(())
 }

@@ -1,0 +1,220 @@
+//! `cdpr isotropic` and `cdpr capacity`: the JSON contract and values derived by hand for
+//! seed 001's regular robots (motors at 1000 mm, tensions in [50, 500] N).
+
+use assert_cmd::Command;
+use std::path::PathBuf;
+
+fn robot(name: &str) -> String {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/robots")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+fn cdpr() -> Command {
+    Command::cargo_bin("cdpr").unwrap()
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let out = cdpr().args(args).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+fn f(v: &serde_json::Value) -> f64 {
+    v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
+}
+
+/// At the centre of the 3-motor robot the cables' free tension ranges s_i ∈ [−225, 225] (about
+/// the 275 N pretension) make the AWS a regular hexagon with apothem 225·√3 ≈ 389.71 N
+/// (seed 001 §IV-B); its largest centred ellipse is the inscribed circle.
+#[test]
+fn isotropic_force_at_the_centre_of_krut_3() {
+    let v = json(&[
+        "isotropic",
+        &robot("krut-3.toml"),
+        "--pose",
+        "0,0",
+        "--ellipse",
+        "--json",
+    ]);
+    let expected = 225.0 * 3f64.sqrt();
+    // The robot file rounds the anchors to 1e-6 mm: agreement to 1e-6 relative.
+    assert!((f(&v["isotropic_force"]) - expected).abs() < 1e-6 * expected);
+    assert!((f(&v["wrench_radius"]) - expected).abs() < 1e-6 * expected);
+    assert!(v["definition"].as_str().unwrap().contains("eq. 19"));
+    assert_eq!(v["facets"], 6);
+    assert_eq!(v["vertices"].as_array().unwrap().len(), 6);
+    let e = &v["ellipse"];
+    for a in e["semi_axes"].as_array().unwrap() {
+        assert!((f(a) - expected).abs() < 1e-5 * expected, "{a}");
+    }
+    let area = std::f64::consts::PI * expected * expected;
+    assert!((f(&e["area"]) - area).abs() < 1e-5 * area);
+}
+
+#[test]
+fn planar_index_is_the_force_at_zero_moment() {
+    let v = json(&[
+        "isotropic",
+        &robot("tdpm-4.toml"),
+        "--pose",
+        "0,0,0",
+        "--json",
+    ]);
+    assert!(v["definition"].as_str().unwrap().contains("zero moment"));
+    // The zero-moment force ball lies inside the full wrench ball's slice, so it is at least
+    // as large as the wrench radius (the slice of a ball of radius r has radius r).
+    assert!(f(&v["isotropic_force"]) >= f(&v["wrench_radius"]) - 1e-9);
+    assert!(!v["vertices"].as_array().unwrap().is_empty()); // DOF 3: vertices in (f_x, f_y, m)
+}
+
+/// 4 motors at 90° steps: the AWS is a square of half-width 2·225 = 450 N at the centre; the
+/// corners of the frame's bounding box are outside the workspace (negative index).
+#[test]
+fn grid_json_of_krut_4() {
+    let v = json(&["isotropic", &robot("krut-4.toml"), "--grid", "4", "--json"]);
+    let g = &v["grid"];
+    assert_eq!(g["shape"], serde_json::json!([5, 5]));
+    let rows = g["values"].as_array().unwrap();
+    assert_eq!(rows.len(), 5);
+    assert!((f(&rows[2][2]) - 450.0).abs() < 1e-6);
+    assert!(f(&rows[0][0]) < 0.0 && f(&rows[4][4]) < 0.0);
+    let s = &v["stats"];
+    assert!((f(&s["max"]) - 450.0).abs() < 1e-6);
+    assert!((f(&s["centre"]) - 450.0).abs() < 1e-6);
+    assert!(f(&s["argmax"][0]).abs() < 1e-9 && f(&s["argmax"][1]).abs() < 1e-9);
+    assert!(f(&s["min"]) < 0.0);
+    let frac = f(&s["positive_fraction"]);
+    assert!(frac > 0.0 && frac < 1.0);
+    // --box: a square well inside the workspace is positive everywhere.
+    let v = json(&[
+        "isotropic",
+        &robot("krut-4.toml"),
+        "--grid",
+        "2",
+        "--box",
+        "-100,100,-100,100",
+        "--json",
+    ]);
+    assert_eq!(f(&v["stats"]["positive_fraction"]), 1.0);
+    assert!((f(&v["grid"]["x"][0]) + 100.0).abs() < 1e-12);
+}
+
+#[test]
+fn grid_heat_map_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("map.png");
+    cdpr()
+        .args([
+            "isotropic",
+            &robot("krut-3.toml"),
+            "--grid",
+            "30",
+            "--plot",
+            png.to_str().unwrap(),
+        ])
+        .assert()
+        .success();
+    assert!(std::fs::metadata(&png).unwrap().len() > 1000);
+    // Spatial robot: a z slice.
+    let v = json(&[
+        "isotropic",
+        &robot("ipanema-like-8.toml"),
+        "--grid",
+        "4",
+        "--z",
+        "1",
+        "--json",
+    ]);
+    assert_eq!(f(&v["slice"]["z"]), 1.0);
+    assert!(f(&v["stats"]["max"]) > 0.0);
+}
+
+/// krut-4 at the centre: facets at 450 N with normals at 30°, 120°, 210°, 300°. A box of
+/// external forces x ∈ [90, 110], y = 0 must be balanced by pulling towards −x: the facet with
+/// normal (cos 210°, sin 210°) limits, margin 450 − 110·cos 30° = 354.737 N.
+#[test]
+fn capacity_margin_of_a_box_by_hand() {
+    let v = json(&[
+        "capacity",
+        &robot("krut-4.toml"),
+        "--pose",
+        "0,0",
+        "--wrench",
+        "100,0",
+        "--wrench-box",
+        "10,0",
+        "--json",
+    ]);
+    let expected = 450.0 - 110.0 * 30f64.to_radians().cos();
+    assert!((f(&v["capacity_margin"]) - expected).abs() < 1e-6);
+    assert_eq!(v["feasible"], true);
+    let n = &v["limiting_facet"]["normal"];
+    assert!((f(&n[0]) - 210f64.to_radians().cos()).abs() < 1e-9);
+    assert!((f(&n[1]) - 210f64.to_radians().sin()).abs() < 1e-9);
+    assert_eq!(v["required"]["shape"], "box");
+}
+
+/// A ball of radius ρ around zero: margin = 225√3 − ρ; beyond the isotropic force it is
+/// infeasible, which is an answer (exit 0), not an error.
+#[test]
+fn capacity_margin_of_a_ball_and_infeasibility() {
+    let iso = 225.0 * 3f64.sqrt();
+    for rho in [100.0, 400.0] {
+        let v = json(&[
+            "capacity",
+            &robot("krut-3.toml"),
+            "--pose",
+            "0,0",
+            "--wrench-ball",
+            &rho.to_string(),
+            "--json",
+        ]);
+        assert!((f(&v["capacity_margin"]) - (iso - rho)).abs() < 1e-5);
+        assert_eq!(v["feasible"], rho < iso);
+        assert_eq!(f(&v["required"]["radius"]), rho);
+    }
+}
+
+#[test]
+fn bad_arguments_are_errors() {
+    let fail = |args: &[&str]| {
+        let out = cdpr().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        String::from_utf8_lossy(&out.stderr).to_string()
+    };
+    let k3 = robot("krut-3.toml");
+    fail(&["isotropic", &k3, "--pose", "0,0", "--grid", "4"]);
+    fail(&["isotropic", &k3]);
+    assert!(
+        fail(&[
+            "isotropic",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "0,0,0",
+            "--ellipse"
+        ])
+        .contains("point2")
+    );
+    assert!(fail(&["isotropic", &k3, "--grid", "4", "--box", "1,0,0,1"]).contains("empty"));
+    assert!(
+        fail(&["capacity", &k3, "--pose", "0,0", "--wrench-box", "1,2,3"]).contains("half-widths")
+    );
+    assert!(fail(&["capacity", &k3, "--pose", "0,0", "--wrench-ball", "-1"]).contains("radius"));
+    fail(&[
+        "capacity",
+        &k3,
+        "--pose",
+        "0,0",
+        "--wrench-ball",
+        "1",
+        "--wrench-box",
+        "1,1",
+    ]);
+}
