@@ -12,5 +12,9 @@ pub struct Args {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
-    Err(format!("{}: `synthesize` is not available yet", args.robot.display()).into())
+    Err(format!(
+        "{}: `synthesize` is not available yet",
+        args.robot.display()
+    )
+    .into())
 }
