@@ -85,7 +85,100 @@ impl Projector {
                 break;
             }
         }
+        // Dykstra converges slowly where constraints are nearly parallel (thin feasible sets);
+        // finish exactly: project onto the constraints active at its iterate and keep the result
+        // if it satisfies the KKT conditions (feasible, non-negative multipliers).
+        polish_on_active_set(y, radius, halfspaces, s);
     }
+}
+
+/// Rows a·s ≥ b of the box |s_k| ≤ radius and the half-spaces.
+fn rows(n: usize, radius: f64, halfspaces: &[PairHalfSpace]) -> Vec<(Vec<f64>, f64)> {
+    let mut out = Vec::with_capacity(2 * n + halfspaces.len());
+    for k in 0..n {
+        for sign in [1.0, -1.0] {
+            let mut a = vec![0.0; n];
+            a[k] = sign;
+            out.push((a, -radius));
+        }
+    }
+    for h in halfspaces.iter().filter(|h| h.i != h.j) {
+        let mut a = vec![0.0; n];
+        a[h.j] += h.sign;
+        a[h.i] -= h.sign;
+        out.push((a, h.rhs));
+    }
+    out
+}
+
+/// When `s` is infeasible, replaces it by the exact projection of `y`: the KKT point
+/// s* = y + Aᵀμ (A s* = b on an active set, μ ≥ 0, s* feasible). The active set is guessed from
+/// the constraints nearly active at `s`, and, for up to 6 variables, found by enumeration when
+/// the guess fails (a KKT point of this convex problem is its unique solution).
+fn polish_on_active_set(y: &[f64], radius: f64, halfspaces: &[PairHalfSpace], s: &mut [f64]) {
+    let all = rows(y.len(), radius, halfspaces);
+    let dot = |a: &[f64], v: &[f64]| a.iter().zip(v).map(|(p, q)| p * q).sum::<f64>();
+    if all
+        .iter()
+        .all(|(a, b)| dot(a, s) - b >= -1e-13 * (1.0 + radius))
+    {
+        return;
+    }
+    for tol in [1e-6, 1e-4, 1e-2] {
+        let active: Vec<usize> = (0..all.len())
+            .filter(|&k| dot(&all[k].0, s) - all[k].1 <= tol * (1.0 + radius))
+            .collect();
+        if let Some(candidate) = kkt_point(y, &all, &active, radius) {
+            s.copy_from_slice(&candidate);
+            return;
+        }
+    }
+    let (n, m) = (y.len(), all.len());
+    if n > 6 || m > 20 {
+        return;
+    }
+    for mask in 1u32..(1 << m) {
+        if mask.count_ones() as usize > n {
+            continue;
+        }
+        let active: Vec<usize> = (0..m).filter(|&k| mask & (1 << k) != 0).collect();
+        if let Some(candidate) = kkt_point(y, &all, &active, radius) {
+            s.copy_from_slice(&candidate);
+            return;
+        }
+    }
+}
+
+/// The KKT point with the rows `active` held as equalities, if it is one.
+fn kkt_point(
+    y: &[f64],
+    all: &[(Vec<f64>, f64)],
+    active: &[usize],
+    radius: f64,
+) -> Option<Vec<f64>> {
+    let n = y.len();
+    let dot = |a: &[f64], v: &[f64]| a.iter().zip(v).map(|(p, q)| p * q).sum::<f64>();
+    if active.is_empty() {
+        return None;
+    }
+    let m = active.len();
+    let a = nalgebra::DMatrix::from_fn(m, n, |r, c| all[active[r]].0[c]);
+    let rhs = nalgebra::DVector::from_fn(m, |r, _| all[active[r]].1 - dot(&all[active[r]].0, y));
+    let pinv = (&a * a.transpose()).pseudo_inverse(1e-12).ok()?;
+    let mu = pinv * rhs;
+    if mu.iter().any(|&v| v < -1e-12) {
+        return None;
+    }
+    let candidate = nalgebra::DVector::from_column_slice(y) + a.transpose() * mu;
+    let c = candidate.as_slice();
+    let scale = 1e-12 * (1.0 + radius);
+    // Feasible everywhere, and the multipliers reproduce the active rows (a rank-deficient set
+    // may not).
+    let feasible = all.iter().all(|(r, b)| dot(r, c) - b >= -scale);
+    let consistent = active
+        .iter()
+        .all(|&k| (dot(&all[k].0, c) - all[k].1).abs() <= scale);
+    (feasible && consistent).then(|| c.to_vec())
 }
 
 /// Largest violation of the box and half-spaces at `s` (0 when feasible).

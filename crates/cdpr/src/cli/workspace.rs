@@ -1,16 +1,872 @@
-//! `cdpr workspace` (being written: see the issue tracker).
+//! `cdpr workspace`: the constant-orientation workspace by discretisation (seed 000 Algorithm 6.2)
+//! or by the chord method (§6.4.3), and the helpers shared with `cdpr dextrous` and
+//! `cdpr synthesize` (criteria from the command line, grids with a progress bar, plots).
 
-use super::CliError;
-use std::path::PathBuf;
+use super::{CliError, Numbers, external_wrench, load_robot, print_json};
+use cdpr::RobotDescription;
+use cdpr::kinematics::{MotionPattern, Pose, Robot};
+use cdpr::plot::WorkspacePlot;
+use cdpr::polytope::RequiredWrenchSet;
+use cdpr::tension::Method;
+use cdpr::workspace::{
+    CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, PoseEvaluator,
+    Region, chord_workspace,
+};
+use indicatif::ProgressBar;
+use nalgebra::{DVector, Rotation3, Unit, Vector3};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
 
-/// Constant-orientation workspace by discretisation (Algorithm 6.2) or the chord method.
+/// The long help of the command (`--help`), also its documentation.
+const LONG_HELP: &str = "\
+Constant-orientation workspace: the platform positions where every criterion holds at a fixed
+orientation (seed 000 eq. 6.23).
+
+Methods (--boundary):
+  grid  (default) Algorithm 6.2: test the (M+1)² points of a regular grid (M intervals per
+        side) over --box (default: the bounding box of the frame anchors, Alg. 6.2 step 2);
+        area = feasible points × cell area. Robots moving in space (point3, spatial) use the
+        (M+1)³ points of a 3-D grid; `volume` is then given and `area` is the same number.
+  chord the chord method (§6.4.3, Alg. 6.3): closed boundary polygons with vertices on the
+        boundary (to 1e-8) a chord length --chord apart, every region and hole (seeded by a
+        coarse grid of --grid M), corners refined; area = sum of the polygons' signed areas.
+        Planar and point2 robots only.
+
+Criteria (--criteria, a comma list; default: tension, plus length and det when the robot file
+gives min_cable_length / min_jacobian_det):
+  tension         tensions within [t_min, t_max] balance w_ext (eq. 6.21), by --method
+  length[:L]      every cable length ≥ l_min (eq. 6.22; L overrides the file's value)
+  det[:D]         |det J| ≥ D_min (eq. 6.24; D overrides the file), only when n = DOF
+  wrench-closure  the cables positively span the wrench space (no load, no bounds)
+  capacity[:M]    capacity margin ≥ M (default 0) of the box --wrench-box around w_ext
+  isotropic:F     maximum isotropic force ≥ F (seed 001; force at zero moment if rotating)
+  stiffness:K     smallest eigenvalue of sym(K), K = Kp + Ka (seed 002), ≥ K; needs
+                  axial_stiffness in the robot file and the tension criterion
+
+The external wrench w_ext is --wrench plus the platform's gravity from the robot file.
+
+JSON (grid): `area`, `feasible_points`, `total_points`, `cell_area`, `resolution`, `box`,
+`orientation`, `external_wrench`, `criteria`, `method`; 3-D grids add `volume` (= `area`).
+JSON (chord): `area`, `boundaries` (closed polygons [[x, y], …]: counter-clockwise around
+regions, clockwise around holes), `signed_areas`, `bifurcations` (corner points per polygon),
+`abandoned`, `evaluations`, `chord`.
+
+--plot FILE.svg|png draws the frame anchors, the cables and platform at --draw-pose (default:
+the centre of the box at the orientation), the feasible cells filled and the chord boundaries
+outlined (3-D robots: the z-slice of the grid nearest the drawn pose).";
+
+/// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
+#[command(after_long_help = LONG_HELP)]
 pub struct Args {
     /// Robot file (TOML).
     robot: PathBuf,
+    /// Platform orientation: φ (rad) for planar robots, rx,ry,rz (XYZ Euler angles, rad) for
+    /// spatial robots; point robots have none (default 0).
+    #[arg(long, allow_hyphen_values = true)]
+    orientation: Option<Numbers>,
+    #[command(flatten)]
+    criteria: CriteriaArgs,
+    /// Method: `grid` (Algorithm 6.2) or `chord` (the chord method, planar robots).
+    #[arg(long, default_value = "grid", value_parser = ["grid", "chord"])]
+    boundary: String,
+    /// Chord length d of the chord method (the thesis uses 0.05, and 0.03 or 0.02 to resolve
+    /// features narrower than 0.05).
+    #[arg(long, default_value_t = 0.05)]
+    chord: f64,
+    /// Grid resolution M: M intervals per side, (M+1)² points (or (M+1)³ in space); with
+    /// --boundary chord, the coarse grid that seeds the walks. Default 50 (thesis), 20 in space.
+    #[arg(long, value_name = "M")]
+    grid: Option<usize>,
+    /// Search box XMIN,XMAX,YMIN,YMAX (in space: XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX); default the
+    /// bounding box of the frame anchors.
+    #[arg(
+        long = "box",
+        allow_hyphen_values = true,
+        value_name = "XMIN,XMAX,YMIN,YMAX"
+    )]
+    area: Option<Numbers>,
+    /// Pose at which the robot is drawn in the plot (motion-pattern coordinates); default the
+    /// centre of the box at --orientation.
+    #[arg(long, allow_hyphen_values = true, requires = "plot")]
+    draw_pose: Option<Numbers>,
+    /// Write the workspace figure (.svg or .png).
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Write one JSON object on stdout.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Workspace criteria and load, shared by `workspace`, `dextrous` and `synthesize`.
+#[derive(clap::Args, Clone)]
+pub struct CriteriaArgs {
+    /// External wrench w_e on the platform (DOF numbers; default zero), e.g. --wrench 0,-10,0 for
+    /// the thesis' load L1. The platform's gravity from the robot file is added.
+    #[arg(long, allow_hyphen_values = true)]
+    pub wrench: Option<Numbers>,
+    /// Tension distribution method of the `tension` criterion: exact (n = DOF, eq. 6.12),
+    /// closed-form (Alg. 6.1, n = DOF + 1), l1 (eq. 6.19), l2 (eq. 6.17), pinv (eq. 6.14: bounds
+    /// only checked, smaller workspace), linf, improved-closed-form, barycenter, sotda, …
+    /// Default: exact when n = DOF, else l2 (the thesis' workspace figures); synthesize: exact,
+    /// closed-form or l1 (the thesis' constrained minimum ℓ1).
+    #[arg(long)]
+    pub method: Option<Method>,
+    /// Comma list of criteria that must all hold: tension, length[:L], det[:D], wrench-closure,
+    /// capacity[:M], isotropic:F, stiffness:K (see the command's help). Default: tension, plus
+    /// length and det when the robot file gives their limits.
+    #[arg(long, value_name = "LIST")]
+    pub criteria: Option<String>,
+    /// Half-widths of the required wrench box of the `capacity` criterion (DOF numbers ≥ 0),
+    /// centred on the external wrench.
+    #[arg(long, allow_hyphen_values = true)]
+    pub wrench_box: Option<Numbers>,
+}
+
+/// One criterion as read from the command line (the wrench is bound per orientation later).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Spec {
+    /// Tensions in bounds (eq. 6.21).
+    Tension,
+    /// l_i ≥ l_min (eq. 6.22).
+    Length(f64),
+    /// |det J| ≥ D_min (eq. 6.24).
+    Det(f64),
+    /// Positive spanning.
+    WrenchClosure,
+    /// Capacity margin ≥ the value, for the box of half-widths `wrench_box`.
+    Capacity(f64),
+    /// Isotropic force ≥ the value.
+    Isotropic(f64),
+    /// λ_min(sym K) ≥ the value.
+    Stiffness(f64),
+}
+
+impl Spec {
+    /// Name with its value, for reports.
+    pub fn label(&self) -> String {
+        match self {
+            Spec::Tension => "tension".into(),
+            Spec::Length(l) => format!("length:{l}"),
+            Spec::Det(d) => format!("det:{d}"),
+            Spec::WrenchClosure => "wrench-closure".into(),
+            Spec::Capacity(m) => format!("capacity:{m}"),
+            Spec::Isotropic(f) => format!("isotropic:{f}"),
+            Spec::Stiffness(k) => format!("stiffness:{k}"),
+        }
+    }
+}
+
+/// The criteria of a command, ready to build an evaluator at any orientation.
+#[derive(Debug, Clone)]
+pub struct CriteriaSetup {
+    /// The criteria.
+    pub specs: Vec<Spec>,
+    /// Tension method of the tension criterion.
+    pub method: Method,
+    /// w_e from the command line (gravity is added per orientation).
+    pub wrench: Option<Vec<f64>>,
+    /// Half-widths of the capacity box.
+    pub wrench_box: Option<Vec<f64>>,
+}
+
+/// Default tension method of the workspace commands: exact when n = DOF, else constrained ℓ2.
+pub fn default_method(robot: &Robot) -> Method {
+    if robot.cable_count() == robot.dof() {
+        Method::Exact
+    } else {
+        Method::L2
+    }
+}
+
+fn number(token: &str, value: &str) -> Result<f64, CliError> {
+    let v: f64 = value
+        .parse()
+        .map_err(|_| format!("--criteria: `{token}`: `{value}` is not a number"))?;
+    if !v.is_finite() {
+        return Err(format!("--criteria: `{token}`: the value must be finite").into());
+    }
+    Ok(v)
+}
+
+impl CriteriaSetup {
+    /// Reads the criteria options against the robot file.
+    pub fn from_args(
+        args: &CriteriaArgs,
+        desc: &RobotDescription,
+        method: Method,
+    ) -> Result<Self, CliError> {
+        let dof = desc.robot.dof();
+        let limits = desc.limits;
+        let specs = match &args.criteria {
+            None => {
+                let mut s = vec![Spec::Tension];
+                if let Some(l) = limits.min_cable_length {
+                    s.push(Spec::Length(l));
+                }
+                if let Some(d) = limits.min_jacobian_det {
+                    s.push(Spec::Det(d));
+                }
+                s
+            }
+            Some(list) => {
+                let mut s = Vec::new();
+                for token in list.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+                    let (name, value) = match token.split_once(':') {
+                        Some((n, v)) => (n, Some(v)),
+                        None => (token, None),
+                    };
+                    let spec = match (name, value) {
+                        ("tension", None) => Spec::Tension,
+                        ("length", Some(v)) => Spec::Length(number(token, v)?),
+                        ("length", None) => Spec::Length(limits.min_cable_length.ok_or(
+                            "--criteria length: the robot file has no [limits] min_cable_length \
+                             (give one as length:L)",
+                        )?),
+                        ("det", Some(v)) => Spec::Det(number(token, v)?),
+                        ("det", None) => Spec::Det(limits.min_jacobian_det.ok_or(
+                            "--criteria det: the robot file has no [limits] min_jacobian_det \
+                             (give one as det:D)",
+                        )?),
+                        ("wrench-closure", None) => Spec::WrenchClosure,
+                        ("capacity", v) => {
+                            Spec::Capacity(v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0))
+                        }
+                        ("isotropic", Some(v)) => Spec::Isotropic(number(token, v)?),
+                        ("stiffness", Some(v)) => Spec::Stiffness(number(token, v)?),
+                        ("isotropic" | "stiffness", None) => {
+                            return Err(
+                                format!("--criteria {name} needs a floor, e.g. {name}:10").into()
+                            );
+                        }
+                        _ => {
+                            return Err(format!(
+                                "--criteria: unknown criterion `{token}` (known: tension, \
+                                 length[:L], det[:D], wrench-closure, capacity[:M], \
+                                 isotropic:F, stiffness:K)"
+                            )
+                            .into());
+                        }
+                    };
+                    s.push(spec);
+                }
+                s
+            }
+        };
+        if specs.is_empty() {
+            return Err("--criteria: give at least one criterion".into());
+        }
+        let wrench_box = args.wrench_box.as_ref().map(|b| b.0.clone());
+        if specs.iter().any(|s| matches!(s, Spec::Capacity(_))) {
+            match &wrench_box {
+                None => {
+                    return Err(
+                        "--criteria capacity needs --wrench-box (half-widths per component)".into(),
+                    );
+                }
+                Some(b) if b.len() != dof => {
+                    return Err(format!(
+                        "--wrench-box needs {dof} half-widths (one per wrench component), got {}",
+                        b.len()
+                    )
+                    .into());
+                }
+                Some(_) => {}
+            }
+        }
+        let needs_stiffness = specs.iter().any(|s| matches!(s, Spec::Stiffness(_)))
+            || (method == Method::Sotda && specs.contains(&Spec::Tension));
+        if needs_stiffness && desc.axial_stiffness.is_none() {
+            return Err(
+                "the stiffness criterion and the sotda method need `axial_stiffness` (E·S, N) on \
+                 every cable of the robot file"
+                    .into(),
+            );
+        }
+        if specs.iter().any(|s| matches!(s, Spec::Stiffness(_))) && !specs.contains(&Spec::Tension)
+        {
+            return Err(
+                "--criteria stiffness:K needs the tension criterion too (K uses its tensions)"
+                    .into(),
+            );
+        }
+        Ok(Self {
+            specs,
+            method,
+            wrench: args.wrench.as_ref().map(|w| w.0.clone()),
+            wrench_box,
+        })
+    }
+
+    /// Criterion labels.
+    pub fn labels(&self) -> Vec<String> {
+        self.specs.iter().map(Spec::label).collect()
+    }
+
+    /// The external wrench (w_e + gravity) at orientation `rotation`.
+    pub fn external_wrench(
+        &self,
+        desc: &RobotDescription,
+        rotation: &Rotation3<f64>,
+    ) -> Result<DVector<f64>, CliError> {
+        external_wrench(
+            desc,
+            &Pose::new(Vector3::zeros(), *rotation),
+            self.wrench.as_deref(),
+        )
+    }
+
+    /// An evaluator for `robot` (the file's, or a synthesised one with as many cables) at the
+    /// orientation `rotation` (which fixes the gravity moment of an offset centre of mass).
+    pub fn evaluator(
+        &self,
+        desc: &RobotDescription,
+        robot: Robot,
+        rotation: &Rotation3<f64>,
+    ) -> Result<PoseEvaluator, CliError> {
+        let w_ext = self.external_wrench(desc, rotation)?;
+        let criteria = self
+            .specs
+            .iter()
+            .map(|s| {
+                Ok(match s {
+                    Spec::Tension => Criterion::TensionFeasible {
+                        method: self.method,
+                        wrench: w_ext.clone(),
+                    },
+                    Spec::Length(l) => Criterion::MinCableLength(*l),
+                    Spec::Det(d) => Criterion::MinJacobianDeterminant(*d),
+                    Spec::WrenchClosure => Criterion::WrenchClosure,
+                    Spec::Capacity(m) => Criterion::CapacityMargin {
+                        required: RequiredWrenchSet::boxed(
+                            w_ext.clone(),
+                            DVector::from_column_slice(
+                                self.wrench_box.as_deref().unwrap_or_default(),
+                            ),
+                        )?,
+                        min_margin: *m,
+                    },
+                    Spec::Isotropic(f) => Criterion::IsotropicForce { min: *f },
+                    Spec::Stiffness(k) => Criterion::Stiffness { min_eigenvalue: *k },
+                })
+            })
+            .collect::<Result<Vec<_>, CliError>>()?;
+        let mut eval = PoseEvaluator::new(robot, desc.bounds.clone(), criteria)?;
+        if let Some(es) = &desc.axial_stiffness {
+            eval = eval.with_axial_stiffness(es.clone())?;
+        }
+        eval.validate()?;
+        Ok(eval)
+    }
+}
+
+/// The platform orientation from command-line numbers: φ (planar), rx,ry,rz (spatial), none
+/// (point robots; zeros are accepted).
+pub fn rotation(motion: MotionPattern, q: Option<&[f64]>) -> Result<Rotation3<f64>, CliError> {
+    let q = q.unwrap_or(&[]);
+    if let Some(v) = q.iter().find(|v| !v.is_finite()) {
+        return Err(format!("--orientation: {v} is not a finite number").into());
+    }
+    match motion {
+        MotionPattern::Point2 | MotionPattern::Point3 => {
+            if q.iter().any(|&v| v != 0.0) {
+                return Err(format!(
+                    "a `{}` robot has no orientation: omit --orientation",
+                    motion.name()
+                )
+                .into());
+            }
+            Ok(Rotation3::identity())
+        }
+        MotionPattern::Planar => match q {
+            [] => Ok(Rotation3::identity()),
+            [phi] => Ok(Rotation3::from_axis_angle(&Vector3::z_axis(), *phi)),
+            _ => Err(format!(
+                "--orientation needs 1 number (φ) for a planar robot, got {}",
+                q.len()
+            )
+            .into()),
+        },
+        MotionPattern::Spatial => match q {
+            [] => Ok(Rotation3::identity()),
+            [rx, ry, rz] => Ok(Pose::spatial(Vector3::zeros(), *rx, *ry, *rz).rotation),
+            _ => Err(format!(
+                "--orientation needs 3 numbers (rx,ry,rz) for a spatial robot, got {}",
+                q.len()
+            )
+            .into()),
+        },
+    }
+}
+
+/// The search box: 4 numbers in the plane, 6 in space; default the frame anchors' bounding box.
+pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, CliError> {
+    let dim = robot.motion().space_dim();
+    let r = match q {
+        None => Region::frame_bounding_box(robot),
+        Some(b) if dim == 2 && b.len() == 4 => Region::planar(b[0], b[1], b[2], b[3]),
+        Some(b) if dim == 3 && b.len() == 6 => Region::cuboid(
+            Vector3::new(b[0], b[2], b[4]),
+            Vector3::new(b[1], b[3], b[5]),
+        ),
+        Some(b) => {
+            return Err(format!(
+                "{option} needs {} numbers ({}) for a `{}` robot, got {}",
+                2 * dim,
+                if dim == 2 {
+                    "XMIN,XMAX,YMIN,YMAX"
+                } else {
+                    "XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX"
+                },
+                robot.motion().name(),
+                b.len()
+            )
+            .into());
+        }
+    };
+    r.validate(dim)?;
+    Ok(r)
+}
+
+/// Grid resolution: default 50 in the plane (the thesis), 20 in space; bounded to keep the
+/// point count reasonable.
+pub fn resolution(m: Option<usize>, dim: usize, default_2d: usize) -> Result<usize, CliError> {
+    let max = if dim == 2 { 4000 } else { 300 };
+    let m = m.unwrap_or(if dim == 2 { default_2d } else { 20 });
+    if !(1..=max).contains(&m) {
+        return Err(format!("--grid M must lie in [1, {max}] for a {dim}-D grid").into());
+    }
+    Ok(m)
+}
+
+/// A progress bar on stderr counting `len` chunks, hidden unless stderr is a terminal.
+pub fn progress(len: usize) -> ProgressBar {
+    if std::io::stderr().is_terminal() {
+        ProgressBar::new(len as u64)
+    } else {
+        ProgressBar::hidden()
+    }
+}
+
+/// Evaluates `f` at every point of `grid` in parallel (grid order: x fastest), one clone of
+/// `state` per rayon task; `bar` counts rows of the grid (chunks of M + 1 points).
+pub fn map_rows<S, T, F>(state: &S, grid: &Grid, dim: usize, bar: &ProgressBar, f: F) -> Vec<T>
+where
+    S: Clone + Send + Sync,
+    T: Send,
+    F: Fn(&mut S, Vector3<f64>) -> T + Sync,
+{
+    let row = grid.points_per_axis();
+    let total = grid.point_count(dim);
+    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
+        .into_par_iter()
+        .map_init(
+            || state.clone(),
+            |s, r| {
+                let out = (r * row..((r + 1) * row).min(total))
+                    .map(|idx| f(s, grid.point(dim, idx)))
+                    .collect();
+                bar.inc(1);
+                out
+            },
+        )
+        .collect();
+    rows.into_iter().flatten().collect()
+}
+
+/// Algorithm 6.2 at a fixed orientation, with a progress bar (same verdicts as
+/// `cdpr::workspace::constant_orientation_workspace`).
+pub fn grid_workspace(
+    eval: &PoseEvaluator,
+    rotation: &Rotation3<f64>,
+    grid: &Grid,
+    bar: &ProgressBar,
+) -> Result<GridWorkspace, CliError> {
+    let dim = eval.robot().motion().space_dim();
+    grid.validate(dim)?;
+    eval.validate()?;
+    let r = *rotation;
+    let feasible = map_rows(eval, grid, dim, bar, |ev, u| {
+        ev.is_feasible(&Pose::new(u, r))
+    });
+    bar.finish_and_clear();
+    Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
+}
+
+/// A dextrous workspace on a grid (eq. 6.28) with the §6.5 check.
+pub struct Dextrous {
+    /// Points feasible at every sampled orientation.
+    pub workspace: GridWorkspace,
+    /// The check of the two-extremes shortcut.
+    pub central_check: CentralCheck,
+    /// Sampled angles.
+    pub angles: Vec<f64>,
+}
+
+/// One evaluator per sampled orientation (each with the gravity moment of that orientation).
+#[derive(Clone)]
+struct Slices {
+    evals: Vec<PoseEvaluator>,
+    rotations: Vec<Rotation3<f64>>,
+    /// Index of the central orientation among the slices, or its own evaluator.
+    central: Result<usize, (Box<PoseEvaluator>, Rotation3<f64>)>,
+}
+
+/// Eq. (6.28) for rotations `base · R(axis, φ)`, φ over `range`, on `grid`: the points feasible at
+/// every sampled orientation, tested as `cdpr::workspace::dextrous_workspace_about_axis` does
+/// (extremes first, then the central orientation, then the others), but with one evaluator per
+/// orientation so that the gravity moment of an offset centre of mass follows the platform.
+#[allow(clippy::too_many_arguments)]
+pub fn dextrous(
+    setup: &CriteriaSetup,
+    desc: &RobotDescription,
+    robot: &Robot,
+    base: &Rotation3<f64>,
+    axis: &Unit<Vector3<f64>>,
+    range: &OrientationRange,
+    grid: &Grid,
+    bar: &ProgressBar,
+) -> Result<Dextrous, CliError> {
+    range.validate()?;
+    let motion = robot.motion();
+    let dim = motion.space_dim();
+    grid.validate(dim)?;
+    let rot = |phi: f64| -> Rotation3<f64> {
+        match motion {
+            MotionPattern::Point2 | MotionPattern::Point3 => Rotation3::identity(),
+            _ => base * Rotation3::from_axis_angle(axis, phi),
+        }
+    };
+    let angles = range.angles();
+    let rotations: Vec<Rotation3<f64>> = angles.iter().map(|&a| rot(a)).collect();
+    let evals = rotations
+        .iter()
+        .map(|r| setup.evaluator(desc, robot.clone(), r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let c = range.central();
+    let central = match angles.iter().position(|&a| a == c) {
+        Some(k) => Ok(k),
+        None => {
+            let r = rot(c);
+            Err((Box::new(setup.evaluator(desc, robot.clone(), &r)?), r))
+        }
+    };
+    let slices = Slices {
+        evals,
+        rotations,
+        central,
+    };
+    let n = angles.len();
+    let verdicts = map_rows(&slices, grid, dim, bar, |s, u| {
+        let mut ok = |k: usize| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k]));
+        if !ok(0) || (n > 1 && !ok(n - 1)) {
+            return (false, false, false);
+        }
+        let (central_ok, central_index) = match &mut s.central {
+            Ok(k) => {
+                let k = *k;
+                (
+                    s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])),
+                    Some(k),
+                )
+            }
+            Err((ev, r)) => (ev.is_feasible(&Pose::new(u, *r)), None),
+        };
+        let others_ok = (1..n.saturating_sub(1))
+            .filter(|&k| Some(k) != central_index)
+            .all(|k| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])));
+        let dextrous = (central_ok || central_index.is_none()) && others_ok;
+        (dextrous, true, !central_ok)
+    });
+    bar.finish_and_clear();
+    let violations = verdicts.iter().filter(|v| v.2).count();
+    Ok(Dextrous {
+        workspace: GridWorkspace::from_verdicts(*grid, dim, verdicts.iter().map(|v| v.0).collect()),
+        central_check: CentralCheck {
+            holds: violations == 0,
+            violations,
+            extremes_points: verdicts.iter().filter(|v| v.1).count(),
+        },
+        angles,
+    })
+}
+
+/// The pose at which the robot is drawn: `--draw-pose` or the box centre at `rotation`.
+pub fn draw_pose(
+    robot: &Robot,
+    q: Option<&[f64]>,
+    region: &Region,
+    rotation: &Rotation3<f64>,
+) -> Result<Pose, CliError> {
+    match q {
+        Some(q) => Ok(Pose::from_coordinates(robot.motion(), q)?),
+        None => {
+            let mut c = (region.min + region.max) * 0.5;
+            if robot.motion().space_dim() == 2 {
+                c.z = 0.0;
+            }
+            Ok(Pose::new(c, *rotation))
+        }
+    }
+}
+
+/// The workspace figure: anchors, cables at `pose`, feasible cells (3-D: the z-slice nearest
+/// the pose), outlined (and filled) boundaries.
+pub fn workspace_plot(
+    robot: &Robot,
+    pose: &Pose,
+    ws: Option<&GridWorkspace>,
+    boundaries: Vec<Vec<(f64, f64)>>,
+    title: String,
+    mut notes: Vec<String>,
+) -> WorkspacePlot {
+    let mut feasible_points = Vec::new();
+    let mut cell = (0.0, 0.0);
+    if let Some(ws) = ws {
+        let g = &ws.grid;
+        let m = g.resolution as f64;
+        let ext = g.region.extent();
+        cell = (ext.x / m, ext.y / m);
+        let p = g.points_per_axis();
+        let slice = if ws.dim == 3 {
+            let k =
+                (((pose.position.z - g.region.min.z) / ext.z * m).round()).clamp(0.0, m) as usize;
+            let z = ws.point(k * p * p).z;
+            notes.push(format!("z-slice at z = {z:.4} (of the 3-D grid)"));
+            k
+        } else {
+            0
+        };
+        let first = slice * p * p;
+        let count = p * p;
+        for idx in first..first + count {
+            if ws.feasible[idx] {
+                let u = ws.point(idx);
+                feasible_points.push((u.x, u.y));
+            }
+        }
+    }
+    let fill = ws.is_none() && !boundaries.is_empty();
+    WorkspacePlot {
+        title,
+        feasible_points,
+        cell,
+        boundaries,
+        fill_boundaries: fill,
+        notes,
+        ..WorkspacePlot::default()
+    }
+    .with_robot(robot, pose)
+}
+
+/// Writes a plot and reports its file on stderr-free stdout text mode (callers print).
+pub fn save_plot(fig: &WorkspacePlot, path: &Path) -> Result<(), CliError> {
+    cdpr::plot::save(fig, path)?;
+    Ok(())
+}
+
+/// Box as JSON numbers.
+pub fn box_json(r: &Region, dim: usize) -> Value {
+    if dim == 2 {
+        json!([r.min.x, r.max.x, r.min.y, r.max.y])
+    } else {
+        json!([r.min.x, r.max.x, r.min.y, r.max.y, r.min.z, r.max.z])
+    }
 }
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
-    Err(format!("{}: `workspace` is not available yet", args.robot.display()).into())
+    let desc = load_robot(&args.robot)?;
+    let robot = &desc.robot;
+    let motion = robot.motion();
+    let dim = motion.space_dim();
+    let method = args
+        .criteria
+        .method
+        .unwrap_or_else(|| default_method(robot));
+    let setup = CriteriaSetup::from_args(&args.criteria, &desc, method)?;
+    let rot = rotation(motion, args.orientation.as_deref())?;
+    let region = region(robot, args.area.as_deref(), "--box")?;
+    let m = resolution(args.grid, dim, 50)?;
+    let eval = setup.evaluator(&desc, robot.clone(), &rot)?;
+    let w_ext = setup.external_wrench(&desc, &rot)?;
+    let orientation = match (&args.orientation, motion) {
+        (Some(o), _) => o.0.clone(),
+        (None, MotionPattern::Planar) => vec![0.0],
+        (None, MotionPattern::Spatial) => vec![0.0; 3],
+        (None, _) => vec![],
+    };
+    let pose = if args.plot.is_some() {
+        Some(draw_pose(robot, args.draw_pose.as_deref(), &region, &rot)?)
+    } else {
+        None
+    };
+    if args.boundary == "chord" {
+        if dim != 2 {
+            return Err(format!(
+                "--boundary chord maps boundary curves in the plane; this robot is `{}` \
+                 (use --boundary grid)",
+                motion.name()
+            )
+            .into());
+        }
+        let phi = if motion == MotionPattern::Planar {
+            orientation.first().copied().unwrap_or(0.0)
+        } else {
+            0.0
+        };
+        let settings = ChordSettings {
+            chord: args.chord,
+            seed_resolution: m,
+            ..ChordSettings::default()
+        };
+        let ws = chord_workspace(&eval, phi, &region, &settings)?;
+        let polys: Vec<Vec<(f64, f64)>> = ws
+            .boundaries
+            .iter()
+            .map(|b| b.vertices.iter().map(|v| (v[0], v[1])).collect())
+            .collect();
+        let regions = ws
+            .boundaries
+            .iter()
+            .filter(|b| b.signed_area() > 0.0)
+            .count();
+        let holes = ws.boundaries.len() - regions;
+        if let (Some(path), Some(pose)) = (&args.plot, &pose) {
+            let fig = workspace_plot(
+                robot,
+                pose,
+                None,
+                polys.clone(),
+                format!("{}: chord-method workspace, φ = {phi}", desc.name),
+                vec![format!(
+                    "area {:.4}, {regions} region(s), {holes} hole(s), d = {}; {}",
+                    ws.area,
+                    args.chord,
+                    setup.labels().join(", ")
+                )],
+            );
+            save_plot(&fig, path)?;
+        }
+        if args.json {
+            return print_json(&json!({
+                "robot": desc.name,
+                "method": "chord",
+                "orientation": orientation,
+                "external_wrench": w_ext.as_slice(),
+                "criteria": setup.labels(),
+                "tension_method": method.name(),
+                "box": box_json(&region, dim),
+                "chord": args.chord,
+                "area": ws.area,
+                "boundaries": ws.boundaries.iter().map(|b| &b.vertices).collect::<Vec<_>>(),
+                "signed_areas": ws.boundaries.iter().map(|b| b.signed_area()).collect::<Vec<_>>(),
+                "bifurcations": ws.boundaries.iter().map(|b| b.bifurcations.iter().map(|&k| b.vertices[k]).collect::<Vec<_>>()).collect::<Vec<_>>(),
+                "abandoned": ws.abandoned,
+                "evaluations": ws.evaluations,
+            }));
+        }
+        println!(
+            "robot {}: chord-method workspace at orientation {:?}, w_ext {:?}",
+            desc.name,
+            orientation,
+            w_ext.as_slice()
+        );
+        println!(
+            "criteria: {} (tensions: {})",
+            setup.labels().join(", "),
+            method.name()
+        );
+        println!(
+            "area {:.6}: {regions} region(s), {holes} hole(s), chord d = {}, {} pose evaluations",
+            ws.area, args.chord, ws.evaluations
+        );
+        for (k, b) in ws.boundaries.iter().enumerate() {
+            println!(
+                "  boundary {}: {} vertices, signed area {:+.6}, perimeter {:.4}, {} bifurcation point(s)",
+                k + 1,
+                b.vertices.len(),
+                b.signed_area(),
+                b.perimeter(),
+                b.bifurcations.len()
+            );
+        }
+        if ws.abandoned > 0 {
+            println!(
+                "warning: {} boundary walk(s) abandoned (curves missing)",
+                ws.abandoned
+            );
+        }
+    } else {
+        let grid = Grid::new(m, region);
+        let bar = progress(grid.point_count(dim).div_ceil(grid.points_per_axis()));
+        let ws = grid_workspace(&eval, &rot, &grid, &bar)?;
+        let what = if dim == 2 { "area" } else { "volume" };
+        if let (Some(path), Some(pose)) = (&args.plot, &pose) {
+            let fig = workspace_plot(
+                robot,
+                pose,
+                Some(&ws),
+                Vec::new(),
+                format!(
+                    "{}: constant-orientation workspace {:?}",
+                    desc.name, orientation
+                ),
+                vec![format!(
+                    "{what} {:.4} ({} of {} points, m = {m}); {}",
+                    ws.area,
+                    ws.feasible_points,
+                    ws.total_points,
+                    setup.labels().join(", ")
+                )],
+            );
+            save_plot(&fig, path)?;
+        }
+        if args.json {
+            let mut v = json!({
+                "robot": desc.name,
+                "method": "grid",
+                "orientation": orientation,
+                "external_wrench": w_ext.as_slice(),
+                "criteria": setup.labels(),
+                "tension_method": method.name(),
+                "box": box_json(&region, dim),
+                "resolution": m,
+                "dimension": dim,
+                "area": ws.area,
+                "feasible_points": ws.feasible_points,
+                "total_points": ws.total_points,
+                "cell_area": ws.cell_area,
+            });
+            if dim == 3 {
+                v["volume"] = json!(ws.area);
+            }
+            return print_json(&v);
+        }
+        println!(
+            "robot {}: constant-orientation workspace at orientation {:?}, w_ext {:?}",
+            desc.name,
+            orientation,
+            w_ext.as_slice()
+        );
+        println!(
+            "criteria: {} (tensions: {})",
+            setup.labels().join(", "),
+            method.name()
+        );
+        println!(
+            "grid m = {m} over {}: {} of {} points feasible, cell {what} {:.6e}",
+            box_json(&region, dim),
+            ws.feasible_points,
+            ws.total_points,
+            ws.cell_area
+        );
+        println!("{what} {:.6}", ws.area);
+    }
+    if let Some(p) = &args.plot {
+        println!("plot written to {}", p.display());
+    }
+    Ok(())
 }

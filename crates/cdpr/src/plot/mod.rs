@@ -5,10 +5,12 @@
 
 mod heat_map;
 mod lines;
+mod panels;
 mod workspace;
 
 pub use heat_map::HeatMap;
 pub use lines::{LinePlot, Series};
+pub use panels::Panels;
 pub use workspace::WorkspacePlot;
 
 use plotters::coord::Shift;

@@ -22,6 +22,9 @@ pub struct WorkspacePlot {
     pub cell: (f64, f64),
     /// Boundary polygons (chord method), outlined.
     pub boundaries: Vec<Vec<(f64, f64)>>,
+    /// Fill the inside of `boundaries`: counter-clockwise polygons (regions) in the workspace
+    /// colour, clockwise ones (holes) white, largest first so that nested curves show.
+    pub fill_boundaries: bool,
     /// Extra annotation lines printed under the title (area, settings).
     pub notes: Vec<String>,
     /// The frame outline (e.g. the 2 × 2 square), drawn thin.
@@ -58,8 +61,17 @@ impl Figure for WorkspacePlot {
         // Equal scales on both axes: a square view around the content.
         let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.08;
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-        let mut chart = ChartBuilder::on(root)
-            .caption(&self.title, ("sans-serif", 20))
+        // Title, then the note lines, then the chart.
+        let titled = root.titled(&self.title, ("sans-serif", 20))?;
+        let (notes, body) = titled.split_vertically(4 + 18 * self.notes.len() as u32);
+        for (k, note) in self.notes.iter().enumerate() {
+            notes.draw(&Text::new(
+                note.clone(),
+                (70, 2 + 18 * k as i32),
+                ("sans-serif", 14).into_font(),
+            ))?;
+        }
+        let mut chart = ChartBuilder::on(&body)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(55)
@@ -87,6 +99,18 @@ impl Figure for WorkspacePlot {
                 .iter()
                 .map(|&(x, y)| Rectangle::new([(x - dx, y - dy), (x + dx, y + dy)], FILL.filled())),
         )?;
+        if self.fill_boundaries {
+            let mut order: Vec<(f64, &Vec<(f64, f64)>)> = self
+                .boundaries
+                .iter()
+                .map(|b| (signed_area(b), b))
+                .collect();
+            order.sort_by(|a, b| b.0.abs().total_cmp(&a.0.abs()));
+            for (area, b) in order {
+                let colour = if area > 0.0 { FILL } else { WHITE };
+                chart.draw_series(std::iter::once(Polygon::new(b.clone(), colour.filled())))?;
+            }
+        }
         for b in &self.boundaries {
             let mut p = b.clone();
             if let Some(&first) = b.first() {
@@ -121,15 +145,19 @@ impl Figure for WorkspacePlot {
                     ("sans-serif", 14).into_font(),
                 )
         }))?;
-        for (k, note) in self.notes.iter().enumerate() {
-            root.draw(&Text::new(
-                note.clone(),
-                (70, 40 + 18 * k as i32),
-                ("sans-serif", 14).into_font(),
-            ))?;
-        }
         Ok(())
     }
+}
+
+/// Shoelace signed area (positive counter-clockwise).
+fn signed_area(p: &[(f64, f64)]) -> f64 {
+    let n = p.len();
+    0.5 * (0..n)
+        .map(|k| {
+            let (a, b) = (p[k], p[(k + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
 }
 
 impl WorkspacePlot {
