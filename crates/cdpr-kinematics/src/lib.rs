@@ -30,7 +30,8 @@
 //! assert!(kin.min_length() > 0.1);          // l_min of eq. (6.22)
 //! ```
 //!
-//! Enable the `proptest` feature for the [`strategies`] every crate of the stack tests with.
+//! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
+//! and poses) that every crate of the stack tests with.
 
 mod error;
 mod inverse_kinematics;
