@@ -1,7 +1,8 @@
 //! Tension distribution: per-pose cost of each method on 1000 feasible poses of the 8-cable
 //! spatial robot (`ipanema_like_8`, t ∈ [1, 1000] N, 10 kg platform under gravity), and of the
-//! closed form (Algorithm 6.1) on the thesis' planar 4-cable robot. Each iteration solves all
-//! poses; divide the reported time by the pose count.
+//! closed form (Algorithm 6.1) on the thesis' planar 4-cable robot, and of the exact solution
+//! (6.12) on the thesis' planar 3-cable robot (the workspace-grid hot path). Each iteration
+//! solves all poses; criterion's throughput gives the per-pose cost.
 
 use cdpr_benches::{ipanema_like_8, spatial_poses};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
@@ -133,5 +134,43 @@ fn bench_planar(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_spatial, bench_planar);
+fn bench_planar_exact(c: &mut Criterion) {
+    let robot = cdpr_kinematics::reference_robots::thesis_three_cable();
+    let we = DVector::from_vec(vec![0.0, -10.0, 0.0]);
+    let b = TensionBounds::uniform(3, 5.0, 100.0).unwrap();
+    let mut ws = Vec::new();
+    for i in 0..=20 {
+        for j in 0..=20 {
+            let pose = Pose::planar(-0.5 + 0.05 * i as f64, -0.5 + 0.05 * j as f64, 0.0);
+            ws.push(robot.inverse_kinematics(&pose).unwrap().wrench_matrix());
+        }
+    }
+    let mut g = c.benchmark_group("tension_planar_3_cable");
+    g.throughput(Throughput::Elements(ws.len() as u64));
+    let mut solver = TensionSolver::new(Method::Exact);
+    let mut t = DVector::zeros(3);
+    g.bench_function("exact", |bch| {
+        bch.iter(|| {
+            let mut ok = 0;
+            for w in &ws {
+                let p = TensionProblem::new(w, &we, &b);
+                ok += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+            }
+            black_box(ok)
+        })
+    });
+    g.bench_function("exact_is_feasible", |bch| {
+        bch.iter(|| {
+            let mut ok = 0;
+            for w in &ws {
+                let p = TensionProblem::new(w, &we, &b);
+                ok += solver.is_feasible(&p).unwrap() as usize;
+            }
+            black_box(ok)
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench_spatial, bench_planar, bench_planar_exact);
 criterion_main!(benches);

@@ -58,21 +58,25 @@ impl TensionBounds {
     }
 
     /// Lower limits t_min.
+    #[inline]
     pub fn min(&self) -> &DVector<f64> {
         &self.min
     }
 
     /// Upper limits t_max.
+    #[inline]
     pub fn max(&self) -> &DVector<f64> {
         &self.max
     }
 
     /// Number of cables.
+    #[inline]
     pub fn len(&self) -> usize {
         self.min.len()
     }
 
     /// Whether there are no cables.
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.min.is_empty()
     }

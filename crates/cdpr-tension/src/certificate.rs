@@ -62,17 +62,64 @@ pub(crate) fn bound_violation(lo: f64, hi: f64, t: f64) -> f64 {
 /// assert!(!certify(&w, &we, &b, &[3.0, 3.0]).is_valid()); // not in equilibrium
 /// assert!(!certify(&w, &we, &b, &[12.0, 11.0]).is_valid()); // above t_max
 /// ```
+#[inline]
 pub fn certify(
     w: &DMatrix<f64>,
     w_ext: &DVector<f64>,
     bounds: &TensionBounds,
     t: &[f64],
 ) -> Certificate {
-    let (m, n) = w.shape();
-    debug_assert_eq!(n, t.len());
-    let mut residual: f64 = 0.0;
-    let mut w_norm: f64 = 0.0;
-    for k in 0..m {
+    debug_assert_eq!(w.ncols(), t.len());
+    let mut bound: f64 = f64::NEG_INFINITY;
+    for ((&ti, &lo), &hi) in t.iter().zip(bounds.min().iter()).zip(bounds.max().iter()) {
+        bound = bound.max(bound_violation(lo, hi, ti));
+    }
+    let (residual, scale) = equilibrium_any(w, w_ext, t);
+    Certificate {
+        residual,
+        scale,
+        bound_violation: bound,
+    }
+}
+
+/// (‖W t + w_ext‖∞, scale) for a DOF × n matrix `ws` (column-major), DOF = M: one fused pass
+/// over the columns. Sums in the same order as the general loop (w_ext_k + Σ_i W_ki t_i).
+#[inline(always)]
+fn equilibrium<const M: usize>(ws: &[f64], we: &[f64], t: &[f64]) -> (f64, f64) {
+    let mut res = [0.0f64; M];
+    let mut rows = [0.0f64; M];
+    res.copy_from_slice(&we[..M]);
+    let mut t_max: f64 = 0.0;
+    for (col, &ti) in ws.chunks_exact(M).zip(t) {
+        for k in 0..M {
+            res[k] += col[k] * ti;
+            rows[k] += col[k].abs();
+        }
+        t_max = t_max.max(ti.abs());
+    }
+    finish(&res, &rows, we, t_max)
+}
+
+#[inline(always)]
+fn finish(res: &[f64], rows: &[f64], we: &[f64], t_max: f64) -> (f64, f64) {
+    let (mut residual, mut w_norm, mut we_max) = (0.0f64, 0.0f64, 0.0f64);
+    let mut nan = false;
+    for ((&r, &row), &e) in res.iter().zip(rows).zip(we) {
+        residual = residual.max(r.abs());
+        nan |= r.is_nan();
+        w_norm = w_norm.max(row);
+        we_max = we_max.max(e.abs());
+    }
+    if nan {
+        residual = f64::INFINITY;
+    }
+    (residual, 1f64.max(we_max).max(w_norm * t_max))
+}
+
+/// The same for any DOF, row by row (no allocation).
+fn equilibrium_dyn(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (f64, f64) {
+    let (mut residual, mut w_norm, mut nan) = (0.0f64, 0.0f64, false);
+    for k in 0..w.nrows() {
         let mut s = w_ext[k];
         let mut row = 0.0;
         for (i, ti) in t.iter().enumerate() {
@@ -81,27 +128,73 @@ pub fn certify(
             row += v.abs();
         }
         residual = residual.max(s.abs());
-        if s.is_nan() {
-            residual = f64::INFINITY;
-        }
+        nan |= s.is_nan();
         w_norm = w_norm.max(row);
+    }
+    if nan {
+        residual = f64::INFINITY;
     }
     let t_max = t.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let we_max = w_ext.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    let scale = 1f64.max(we_max).max(w_norm * t_max);
-    let mut bound: f64 = f64::NEG_INFINITY;
-    for (i, &ti) in t.iter().enumerate() {
-        bound = bound.max(bound_violation(bounds.min()[i], bounds.max()[i], ti));
+    (residual, 1f64.max(we_max).max(w_norm * t_max))
+}
+
+/// ‖W t + w_ext‖∞ and the scale, by DOF.
+#[inline(always)]
+fn equilibrium_any(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (f64, f64) {
+    let (ws, we) = (w.as_slice(), w_ext.as_slice());
+    match w.nrows() {
+        1 => equilibrium::<1>(ws, we, t),
+        2 => equilibrium::<2>(ws, we, t),
+        3 => equilibrium::<3>(ws, we, t),
+        4 => equilibrium::<4>(ws, we, t),
+        5 => equilibrium::<5>(ws, we, t),
+        6 => equilibrium::<6>(ws, we, t),
+        _ => equilibrium_dyn(w, w_ext, t),
     }
-    Certificate {
-        residual,
-        scale,
-        bound_violation: bound,
+}
+
+/// Snaps `t` onto its bounds where it violates them by at most the tolerance (as
+/// [`snap_to_bounds`]) and certifies it ([`certify`]) in one pass: `Ok(residual)` exactly when
+/// `certify` of the snapped tensions is valid. After snapping, a tension is either inside
+/// [t_min, t_max] or violates a bound by more than the tolerance, so the bound test needs no
+/// division; the full [`certify`] runs only to describe a failure.
+#[inline]
+pub(crate) fn snap_and_certify(
+    w: &DMatrix<f64>,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+    t: &mut [f64],
+) -> Result<f64, Certificate> {
+    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let mut inside = true;
+    for ((ti, &l), &h) in t.iter_mut().zip(lo).zip(hi) {
+        if !(*ti >= l && *ti <= h) {
+            inside &= snap_one(l, h, ti);
+        }
     }
+    let (residual, scale) = equilibrium_any(w, w_ext, t);
+    if inside && residual <= EQUILIBRIUM_TOLERANCE * scale {
+        Ok(residual)
+    } else {
+        Err(certify(w, w_ext, bounds, t))
+    }
+}
+
+/// Snaps one tension outside [lo, hi] (or NaN) onto the bound it violates by at most the
+/// tolerance; false if it stays outside.
+#[cold]
+fn snap_one(lo: f64, hi: f64, t: &mut f64) -> bool {
+    if bound_violation(lo, hi, *t) > BOUND_TOLERANCE {
+        return false;
+    }
+    *t = if *t < lo { lo } else { hi };
+    true
 }
 
 /// Moves tensions that violate a bound by at most the tolerance onto the bound (so returned
 /// tensions lie inside [t_min, t_max] exactly whenever they are certified).
+#[cfg(test)]
 pub(crate) fn snap_to_bounds(bounds: &TensionBounds, t: &mut [f64]) {
     for (i, ti) in t.iter_mut().enumerate() {
         let (lo, hi) = (bounds.min()[i], bounds.max()[i]);
@@ -115,7 +208,9 @@ pub(crate) fn snap_to_bounds(bounds: &TensionBounds, t: &mut [f64]) {
 
 /// Polishes an approximate solution from an iterative solver: snaps near-active tensions onto
 /// their bounds and corrects the equilibrium residual with a minimum-norm step on the cables
-/// strictly inside their bounds (two passes). Allocates; used on the interior-point path only.
+/// strictly inside their bounds. A step that pushes a free cable across a bound is followed by
+/// another pass (the cable is snapped and becomes active), up to 8 passes; the result is clamped
+/// to the bounds. Allocates; used on the interior-point path only.
 pub(crate) fn polish(
     w: &DMatrix<f64>,
     w_ext: &DVector<f64>,
@@ -123,21 +218,24 @@ pub(crate) fn polish(
     t: &mut [f64],
 ) {
     let n = t.len();
-    for _ in 0..2 {
+    let (lo, hi) = (bounds.min(), bounds.max());
+    let inside = |i: usize, v: f64| v >= lo[i] && v <= hi[i];
+    let mut clean_steps = 0;
+    for _ in 0..8 {
         for (i, ti) in t.iter_mut().enumerate() {
-            *ti = ti.clamp(bounds.min()[i], bounds.max()[i]);
+            *ti = ti.clamp(lo[i], hi[i]);
         }
         let tv = DVector::from_column_slice(t);
         let res = w * &tv + w_ext;
         if res.amax() == 0.0 {
             return;
         }
-        // Free cables: not (numerically) at a bound.
+        // Free cables: not (numerically) at a bound. Tolerances are relative to each bound
+        // (not to t_max − t_min, which is ∞ for an infinite t_max).
         let free: Vec<usize> = (0..n)
             .filter(|&i| {
-                let (lo, hi) = (bounds.min()[i], bounds.max()[i]);
-                let tol = 1e-9 * (hi - lo).abs().max(1.0);
-                t[i] > lo + tol && (!hi.is_finite() || t[i] < hi - tol)
+                t[i] > lo[i] + 1e-9 * lo[i].abs().max(1.0)
+                    && (!hi[i].is_finite() || t[i] < hi[i] - 1e-9 * hi[i].abs().max(1.0))
             })
             .collect();
         if free.is_empty() {
@@ -151,5 +249,127 @@ pub(crate) fn polish(
         for (c, &i) in free.iter().enumerate() {
             t[i] -= step[c];
         }
+        if free.iter().all(|&i| inside(i, t[i])) {
+            clean_steps += 1;
+            if clean_steps == 2 {
+                return;
+            }
+        }
+    }
+    for (i, ti) in t.iter_mut().enumerate() {
+        *ti = ti.clamp(lo[i], hi[i]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The fused snap-and-certify agrees with snap_to_bounds + certify, including at the
+    /// tolerance margins, for NaN, and for every DOF (fixed and dynamic sizes).
+    #[test]
+    fn fused_check_agrees_with_snap_then_certify() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut failures = 0;
+        for case in 0..4000 {
+            let m = [1, 2, 3, 4, 6, 7][case % 6];
+            let n = m + case % 4;
+            let w = DMatrix::from_fn(m, n, |_, _| 2.0 * rnd() - 1.0);
+            let lo: Vec<f64> = (0..n).map(|_| 10.0 * rnd()).collect();
+            let hi: Vec<f64> = lo
+                .iter()
+                .map(|l| {
+                    if rnd() < 0.2 {
+                        f64::INFINITY
+                    } else {
+                        l + 100.0 * rnd()
+                    }
+                })
+                .collect();
+            let bounds = TensionBounds::new(lo.clone(), hi.clone()).unwrap();
+            let mut t: Vec<f64> = (0..n)
+                .map(|i| {
+                    let u = rnd();
+                    let h = if hi[i].is_finite() {
+                        hi[i]
+                    } else {
+                        lo[i] + 50.0
+                    };
+                    let s = lo[i].abs().max(1.0);
+                    match case % 7 {
+                        // Within, exactly at, and just beyond the bound tolerance.
+                        0 => lo[i] - s * 1e-9 * u,
+                        1 => lo[i] - s * 1e-9,
+                        2 => lo[i] - s * 1.000001e-9,
+                        3 => h + h.abs().max(1.0) * 1e-9 * u,
+                        4 if u < 0.1 => f64::NAN,
+                        _ => lo[i] + u * (h - lo[i]),
+                    }
+                })
+                .collect();
+            let t_true = DVector::from_column_slice(&t);
+            // Equilibrium exact up to rounding, or off by a perturbation.
+            let mut we = -(&w * &t_true);
+            if case % 3 == 0 {
+                we[0] += 1e-6 * rnd();
+            }
+            let mut t2 = t.clone();
+            snap_to_bounds(&bounds, &mut t2);
+            let reference = certify(&w, &we, &bounds, &t2);
+            let fused = snap_and_certify(&w, &we, &bounds, &mut t);
+            assert_eq!(
+                t.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                t2.iter().map(|v| v.to_bits()).collect::<Vec<_>>()
+            );
+            match fused {
+                Ok(r) => {
+                    assert!(reference.is_valid(), "case {case}: {reference:?}");
+                    assert_eq!(r, reference.residual);
+                }
+                Err(c) => {
+                    assert!(!reference.is_valid(), "case {case}: {reference:?}");
+                    assert_eq!(c, reference);
+                    failures += 1;
+                }
+            }
+        }
+        assert!(failures > 500 && failures < 3500, "{failures}");
+    }
+
+    /// The fixed-size residual sums in the same order as a plain row loop.
+    #[test]
+    fn fixed_size_certificate_matches_row_loop() {
+        let w = DMatrix::from_row_slice(
+            3,
+            4,
+            &[
+                0.3, -1.0, 0.7, 0.1, 1.0, 0.2, -0.4, 0.9, -0.05, 0.08, 0.1, -0.02,
+            ],
+        );
+        let we = DVector::from_vec(vec![0.25, -1.5, 0.01]);
+        let b = TensionBounds::uniform(4, 0.0, 10.0).unwrap();
+        let t = [1.0, 2.0, 3.0, 4.0];
+        let c = certify(&w, &we, &b, &t);
+        let mut residual: f64 = 0.0;
+        let mut norm: f64 = 0.0;
+        for k in 0..3 {
+            let mut s = we[k];
+            let mut row = 0.0;
+            for i in 0..4 {
+                s += w[(k, i)] * t[i];
+                row += w[(k, i)].abs();
+            }
+            residual = residual.max(s.abs());
+            norm = norm.max(row);
+        }
+        assert_eq!(c.residual, residual);
+        assert_eq!(c.scale, 1f64.max(1.5).max(norm * 4.0));
+        assert_eq!(c.bound_violation, -0.6); // t_4 = 4: (4 − 10)/10
     }
 }

@@ -136,85 +136,19 @@ impl ClosedForm {
         }
     }
 
-    /// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs).
+    /// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs), into
+    /// the reusable vectors.
     fn parametrise_small<const M: usize>(
         &mut self,
         problem: &TensionProblem,
     ) -> Result<(), Infeasibility> {
-        let w = problem.wrench_matrix;
-        let (m, n) = (M, M + 1);
-        let ws = w.as_slice();
-        // Columns of W (zero-padded to 3 rows) and −w_ext as column n.
-        let mut cols = [[0.0f64; 3]; 5];
-        let mut row_norm = [0.0f64; 3];
-        for (i, col) in cols.iter_mut().enumerate().take(n) {
-            for k in 0..m {
-                let v = ws[i * m + k];
-                col[k] = v;
-                row_norm[k] += v * v;
-            }
-        }
-        // Π ‖row_k‖², one square root below.
-        let mut rows2 = 1.0;
-        for &r in &row_norm[..m] {
-            if r == 0.0 {
-                return Err(Infeasibility::SingularPose {
-                    condition: f64::INFINITY,
-                });
-            }
-            rows2 *= r;
-        }
-        for (c, w) in cols[4].iter_mut().zip(problem.external_wrench.iter()) {
-            *c = -w;
-        }
-        // Signed maximal minors: W d = 0.
-        let mut d = [0.0f64; 4];
-        let mut others = [[0usize; 3]; 4];
-        let mut dn = 0.0;
-        for j in 0..n {
-            // The columns other than j, in order (entries beyond M are unused by det_small).
-            let o = [
-                usize::from(j == 0),
-                1 + usize::from(j <= 1),
-                2 + usize::from(j <= 2),
-            ];
-            let det = det_small::<M>(&cols[o[0]], &cols[o[1]], &cols[o[2]]);
-            d[j] = if j % 2 == 0 { det } else { -det };
-            others[j] = o;
-            dn += det * det;
-        }
-        let mut free = 0;
-        for j in 1..n {
-            if d[j].abs() > d[free].abs() * (1.0 + 1e-12) {
-                free = j;
-            }
-        }
-        let ratio = (dn / rows2).sqrt().min(1.0);
-        if d[free] == 0.0 || ratio.is_nan() || ratio < SINGULARITY_RATIO {
-            return Err(Infeasibility::SingularPose {
-                condition: 1.0 / ratio,
-            });
-        }
-        self.m_vec.resize(n, 0.0);
-        self.n_vec.resize(n, 0.0);
-        let inv_free = 1.0 / d[free];
-        for (nj, dj) in self.n_vec.iter_mut().zip(&d) {
-            *nj = dj * inv_free;
-        }
-        // M_A = A⁻¹ (−w_ext) by Cramer's rule; A = the columns other than `free`, in order,
-        // det A = (−1)^free d_free.
-        let o = others[free];
-        let inv_a = if free % 2 == 0 { inv_free } else { -inv_free };
-        let rhs = &cols[4];
-        self.m_vec[free] = 0.0;
-        self.m_vec[o[0]] = det_small::<M>(rhs, &cols[o[1]], &cols[o[2]]) * inv_a;
-        if M >= 2 {
-            self.m_vec[o[1]] = det_small::<M>(&cols[o[0]], rhs, &cols[o[2]]) * inv_a;
-        }
-        if M >= 3 {
-            self.m_vec[o[2]] = det_small::<M>(&cols[o[0]], &cols[o[1]], rhs) * inv_a;
-        }
-        self.free = free;
+        let s = param_small::<M>(problem)?;
+        let n = M + 1;
+        self.m_vec.clear();
+        self.m_vec.extend_from_slice(&s.m[..n]);
+        self.n_vec.clear();
+        self.n_vec.extend_from_slice(&s.n[..n]);
+        self.free = s.free;
         Ok(())
     }
 
@@ -345,74 +279,251 @@ impl ClosedForm {
             });
         }
         self.parametrise(problem)?;
-        let (tmin, tmax) = (problem.bounds.min(), problem.bounds.max());
-        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
-        for i in 0..self.n_vec.len() {
-            let (mi, ni) = (self.m_vec[i], self.n_vec[i]);
-            if ni.abs() <= 1e-14 {
-                // t_i does not depend on t^B: it must satisfy its bounds by itself.
-                if bound_violation(tmin[i], tmax[i], mi) > 1e-12 {
-                    return Err(Infeasibility::NoFeasibleTension);
-                }
-                continue;
-            }
-            let inv = 1.0 / ni;
-            let a = (tmin[i] - mi) * inv;
-            let b = (tmax[i] - mi) * inv; // ±∞ for an infinite t_max
-            let (l, h) = if ni > 0.0 { (a, b) } else { (b, a) };
-            lo = lo.max(l);
-            hi = hi.min(h);
-        }
-        if lo > hi {
-            // Empty, unless only by rounding: accept the midpoint if it violates no bound by
-            // more than 10⁻¹² (relative), the tolerance of the polygon clipping too.
-            let mid = 0.5 * (lo + hi);
-            let worst = (0..self.n_vec.len())
-                .map(|i| bound_violation(tmin[i], tmax[i], self.m_vec[i] + self.n_vec[i] * mid))
-                .fold(f64::NEG_INFINITY, f64::max);
-            if worst > 1e-12 {
-                return Err(Infeasibility::NoFeasibleTension);
-            }
-            return Ok((mid, mid));
-        }
-        Ok((lo, hi))
+        interval_of(&self.m_vec, &self.n_vec, None, problem).map(|iv| (iv.lo, iv.hi))
     }
 
     /// Minimum (or maximum) ‖t‖₁ = Σ t_i over the interval, comparing both ends (Alg. 6.1).
+    /// For DOF ≤ 3 everything stays in fixed-size arrays (no scratch vectors are touched).
+    #[inline]
     pub fn solve(
         &mut self,
         problem: &TensionProblem,
         maximize: bool,
         t: &mut [f64],
     ) -> Result<(), Infeasibility> {
-        let (lo, hi) = self.interval(problem)?;
-        if maximize && !hi.is_finite() {
-            return Err(Infeasibility::Unbounded {
+        match problem.wrench_matrix.shape() {
+            (1, 2) => return solve_small::<1>(problem, maximize, t),
+            (2, 3) => return solve_small::<2>(problem, maximize, t),
+            (3, 4) => return solve_small::<3>(problem, maximize, t),
+            _ => {}
+        }
+        let r = problem.redundancy();
+        if r != 1 {
+            return Err(Infeasibility::NotApplicable {
                 method: "closed-form",
+                redundancy: r,
             });
         }
-        let sum_at = |tb: f64| -> f64 {
-            self.m_vec
-                .iter()
-                .zip(&self.n_vec)
-                .map(|(m, n)| m + n * tb)
-                .sum()
-        };
-        let tb = if !hi.is_finite() {
-            lo
-        } else {
-            let (s_lo, s_hi) = (sum_at(lo), sum_at(hi));
-            if (maximize && s_hi > s_lo) || (!maximize && s_hi < s_lo) {
-                hi
-            } else {
-                lo
-            }
-        };
-        for (i, ti) in t.iter_mut().enumerate() {
-            *ti = self.m_vec[i] + self.n_vec[i] * tb;
-        }
-        Ok(())
+        self.parametrise(problem)?;
+        let iv = interval_of(&self.m_vec, &self.n_vec, None, problem)?;
+        write_end(&self.m_vec, &self.n_vec, &iv, maximize, t)
     }
+}
+
+/// t = M + N t^B of a small problem (DOF = M ≤ 3, n = M + 1), padded to 4 cables.
+#[derive(Debug, Clone, Copy)]
+struct Small {
+    m: [f64; 4],
+    n: [f64; 4],
+    /// 1 / N_i = d_free / d_i, computed from the minors (in parallel with 1 / d_free rather
+    /// than after it).
+    inv_n: [f64; 4],
+    free: usize,
+}
+
+/// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs).
+#[inline(always)]
+fn param_small<const M: usize>(problem: &TensionProblem) -> Result<Small, Infeasibility> {
+    let (m, n) = (M, M + 1);
+    let ws = problem.wrench_matrix.as_slice();
+    // Columns of W (zero-padded to 3 rows) and −w_ext as column 4.
+    let mut cols = [[0.0f64; 3]; 5];
+    let mut row_norm = [0.0f64; 3];
+    for (col, w) in cols.iter_mut().zip(ws.chunks_exact(m)) {
+        col[..m].copy_from_slice(&w[..m]);
+        for (r, v) in row_norm.iter_mut().zip(w) {
+            *r += v * v;
+        }
+    }
+    // Π ‖row_k‖².
+    let mut rows2 = 1.0;
+    let mut zero_row = false;
+    for &r in &row_norm[..m] {
+        zero_row |= r == 0.0;
+        rows2 *= r;
+    }
+    if zero_row {
+        return Err(Infeasibility::SingularPose {
+            condition: f64::INFINITY,
+        });
+    }
+    for (c, w) in cols[4].iter_mut().zip(problem.external_wrench.as_slice()) {
+        *c = -w;
+    }
+    // Signed maximal minors: W d = 0. `others[j]`: the columns other than j, in order.
+    const OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+    let mut d = [0.0f64; 4];
+    let mut dn = 0.0;
+    for j in 0..n {
+        let o = OTHERS[j];
+        // Entries beyond M are unused by det_small (for M < 3, o[M..] may name column M + 1,
+        // which is zero-padded data of no consequence).
+        let det = det_small::<M>(&cols[o[0]], &cols[o[1]], &cols[o[2]]);
+        d[j] = if j % 2 == 0 { det } else { -det };
+        dn += det * det;
+    }
+    let mut free = 0;
+    for j in 1..n {
+        if d[j].abs() > d[free].abs() * (1.0 + 1e-12) {
+            free = j;
+        }
+    }
+    // Hadamard ratio √(dn / rows2) ≥ SINGULARITY_RATIO, tested without the square root.
+    if !(d[free] != 0.0 && dn >= SINGULARITY_RATIO * SINGULARITY_RATIO * rows2) {
+        let ratio = (dn / rows2).sqrt().min(1.0);
+        return Err(Infeasibility::SingularPose {
+            condition: 1.0 / ratio,
+        });
+    }
+    let inv_free = 1.0 / d[free];
+    let mut out = Small {
+        m: [0.0; 4],
+        n: [0.0; 4],
+        inv_n: [0.0; 4],
+        free,
+    };
+    for (v, dj) in out.inv_n.iter_mut().zip(&d).take(n) {
+        *v = d[free] / dj;
+    }
+    for (nj, dj) in out.n.iter_mut().zip(&d).take(n) {
+        *nj = dj * inv_free;
+    }
+    // M_A = A⁻¹ (−w_ext) by Cramer's rule; A = the columns other than `free`, in order,
+    // det A = (−1)^free d_free.
+    let o = OTHERS[free];
+    let inv_a = if free % 2 == 0 { inv_free } else { -inv_free };
+    let rhs = &cols[4];
+    out.m[o[0]] = det_small::<M>(rhs, &cols[o[1]], &cols[o[2]]) * inv_a;
+    if M >= 2 {
+        out.m[o[1]] = det_small::<M>(&cols[o[0]], rhs, &cols[o[2]]) * inv_a;
+    }
+    if M >= 3 {
+        out.m[o[2]] = det_small::<M>(&cols[o[0]], &cols[o[1]], rhs) * inv_a;
+    }
+    Ok(out)
+}
+
+/// Algorithm 6.1 + the choice of the end for DOF ≤ 3, on the stack.
+#[inline(always)]
+fn solve_small<const M: usize>(
+    problem: &TensionProblem,
+    maximize: bool,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    let s = param_small::<M>(problem)?;
+    let n = M + 1;
+    let iv = interval_of(&s.m[..n], &s.n[..n], Some(&s.inv_n[..n]), problem)?;
+    write_end(&s.m[..n], &s.n[..n], &iv, maximize, t)
+}
+
+/// A feasible interval [lo, hi] of t^B with the cables whose bounds define its ends.
+#[derive(Debug, Clone, Copy)]
+struct Interval {
+    lo: f64,
+    hi: f64,
+    /// (cable, bound) defining `lo` / `hi`, if the interval is not a rounding-collapsed point.
+    at_lo: Option<(usize, f64)>,
+    at_hi: Option<(usize, f64)>,
+}
+
+/// Algorithm 6.1: intersect the intervals of t^B allowed by each cable's bounds (eq. (6.18)).
+#[inline(always)]
+fn interval_of(
+    m: &[f64],
+    n: &[f64],
+    inv_n: Option<&[f64]>,
+    problem: &TensionProblem,
+) -> Result<Interval, Infeasibility> {
+    let (tmin, tmax) = (
+        problem.bounds.min().as_slice(),
+        problem.bounds.max().as_slice(),
+    );
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    let (mut at_lo, mut at_hi) = (None, None);
+    for (i, (((&mi, &ni), &tl), &th)) in m.iter().zip(n).zip(tmin).zip(tmax).enumerate() {
+        if ni.abs() <= 1e-14 {
+            // t_i does not depend on t^B: it must satisfy its bounds by itself.
+            if bound_violation(tl, th, mi) > 1e-12 {
+                return Err(Infeasibility::NoFeasibleTension);
+            }
+            continue;
+        }
+        let inv = match inv_n {
+            Some(v) => v[i],
+            None => 1.0 / ni,
+        };
+        let a = (tl - mi) * inv;
+        let b = (th - mi) * inv; // ±∞ for an infinite t_max
+        let ((l, bl), (h, bh)) = if ni > 0.0 {
+            ((a, tl), (b, th))
+        } else {
+            ((b, th), (a, tl))
+        };
+        if l > lo {
+            lo = l;
+            at_lo = Some((i, bl));
+        }
+        if h < hi {
+            hi = h;
+            at_hi = Some((i, bh));
+        }
+    }
+    if lo > hi {
+        // Empty, unless only by rounding: accept the midpoint if it violates no bound by
+        // more than 10⁻¹² (relative), the tolerance of the polygon clipping too.
+        let mid = 0.5 * (lo + hi);
+        let worst = (0..n.len())
+            .map(|i| bound_violation(tmin[i], tmax[i], m[i] + n[i] * mid))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if worst > 1e-12 {
+            return Err(Infeasibility::NoFeasibleTension);
+        }
+        return Ok(Interval {
+            lo: mid,
+            hi: mid,
+            at_lo: None,
+            at_hi: None,
+        });
+    }
+    Ok(Interval {
+        lo,
+        hi,
+        at_lo,
+        at_hi,
+    })
+}
+
+/// Writes t at the end of the interval with the smaller (or larger) Σ t. Σ t = Σ M + (Σ N) t^B
+/// is linear in t^B, so both ends are compared through the sign of Σ N; the cable whose bound
+/// defines the chosen end is set exactly onto that bound (it differs from M_i + N_i t^B only by
+/// rounding).
+#[inline(always)]
+fn write_end(
+    m: &[f64],
+    n: &[f64],
+    iv: &Interval,
+    maximize: bool,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    if maximize && !iv.hi.is_finite() {
+        return Err(Infeasibility::Unbounded {
+            method: "closed-form",
+        });
+    }
+    let slope: f64 = n.iter().sum();
+    let take_hi = iv.hi.is_finite() && if maximize { slope > 0.0 } else { slope < 0.0 };
+    let (tb, at) = if take_hi {
+        (iv.hi, iv.at_hi)
+    } else {
+        (iv.lo, iv.at_lo)
+    };
+    for ((ti, &mi), &ni) in t.iter_mut().zip(m).zip(n) {
+        *ti = mi + ni * tb;
+    }
+    if let Some((i, bound)) = at {
+        t[i] = bound;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
@@ -540,5 +651,48 @@ mod tests {
             cf.interval(&p),
             Err(Infeasibility::SingularPose { .. })
         ));
+    }
+
+    /// The fixed-size solver path (Algorithm 6.1 on the stack, active cable set exactly onto its
+    /// bound) gives the general path's tensions, for min and max Σ t.
+    #[test]
+    fn small_solve_agrees_with_general_solve() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut compared = 0;
+        for case in 0..900 {
+            let m = 1 + case % 3;
+            let n = m + 1;
+            let w = DMatrix::from_fn(m, n, |_, _| rnd());
+            let we = DVector::from_fn(m, |_, _| 3.0 * rnd());
+            let hi = if case % 4 == 0 { f64::INFINITY } else { 10.0 };
+            let b = TensionBounds::uniform(n, 0.5, hi).unwrap();
+            let p = TensionProblem::new(&w, &we, &b);
+            for maximize in [false, true] {
+                let mut fast = vec![0.0; n];
+                let rf = ClosedForm::default().solve(&p, maximize, &mut fast);
+                let mut cf = ClosedForm::default();
+                let mut slow = vec![0.0; n];
+                let rs = cf.parametrise_general(&p).and_then(|()| {
+                    let iv = interval_of(&cf.m_vec, &cf.n_vec, None, &p)?;
+                    write_end(&cf.m_vec, &cf.n_vec, &iv, maximize, &mut slow)
+                });
+                assert_eq!(rf.is_ok(), rs.is_ok(), "case {case}: {rf:?} vs {rs:?}");
+                if rf.is_ok() {
+                    compared += 1;
+                    for (a, e) in fast.iter().zip(&slow) {
+                        assert!((a - e).abs() <= 1e-9 * e.abs().max(1.0), "case {case}");
+                    }
+                    // Certified as is.
+                    assert!(crate::certify(&w, &we, &b, &fast).is_valid(), "case {case}");
+                }
+            }
+        }
+        assert!(compared > 100, "{compared}");
     }
 }

@@ -37,17 +37,55 @@ pub(crate) type P2 = [f64; 2];
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Region {
     pub verts: Vec<P2>,
+    /// `edges[j]`: index into `lines` of the line carrying the edge verts[j] → verts[j + 1]
+    /// ([`NO_LINE`] when unknown; then the edge is interpolated).
+    edges: Vec<u32>,
+    /// Lines a·λ = b of the box and of the clipping half-planes.
+    lines: Vec<(P2, f64)>,
     tmp: Vec<P2>,
+    tmp_edges: Vec<u32>,
     saved: Vec<P2>,
+    saved_edges: Vec<u32>,
+    saved_lines: usize,
     /// Half-width of the initial box.
     pub radius: f64,
+    /// Data scale max(1, |t0_i|, |t_min,i|, finite |t_max,i|): the floor of the duplicate test.
+    scale: f64,
     /// Whether the initial box is artificial (some t_max is infinite).
     pub artificial: bool,
+}
+
+/// No known supporting line.
+const NO_LINE: u32 = u32::MAX;
+
+/// Intersection of the lines e·λ = be and a·λ = b (Cramer), if they are not nearly parallel.
+#[inline]
+fn intersect(e: P2, be: f64, a: P2, b: f64) -> Option<P2> {
+    let det = e[0] * a[1] - e[1] * a[0];
+    let scale = (e[0].abs() + e[1].abs()) * (a[0].abs() + a[1].abs());
+    if det.abs() <= 1e-6 * scale || det.is_nan() {
+        return None;
+    }
+    Some([(be * a[1] - e[1] * b) / det, (e[0] * b - be * a[0]) / det])
 }
 
 #[inline]
 fn dot(a: P2, b: P2) -> f64 {
     a[0] * b[0] + a[1] * b[1]
+}
+
+/// Whether two vertices coincide up to rounding (10⁻¹³ relative to their size and the data).
+#[inline]
+fn close(p: P2, q: P2, scale: f64) -> bool {
+    let size = p[0]
+        .abs()
+        .max(p[1].abs())
+        .max(q[0].abs())
+        .max(q[1].abs())
+        .max(scale)
+        .max(1e-300);
+    let eps = 1e-13 * size;
+    (p[0] - q[0]).abs() <= eps && (p[1] - q[1]).abs() <= eps
 }
 
 impl Region {
@@ -58,8 +96,14 @@ impl Region {
         let cap = 2 * n + 8;
         if self.verts.capacity() < cap {
             self.verts.reserve(cap);
+            self.edges.reserve(cap);
             self.tmp.reserve(cap);
+            self.tmp_edges.reserve(cap);
             self.saved.reserve(cap);
+            self.saved_edges.reserve(cap);
+        }
+        if self.lines.capacity() < 3 * n + 8 {
+            self.lines.reserve(3 * n + 8);
         }
         let (lo, hi) = (bounds.min(), bounds.max());
         let mut rad2 = 0.0;
@@ -82,18 +126,37 @@ impl Region {
             rad2.sqrt() * (1.0 + 1e-6) + 1e-9 * data_scale
         };
         self.radius = radius;
+        self.scale = data_scale;
         self.verts.clear();
+        self.edges.clear();
+        self.lines.clear();
         match r {
-            0 => self.verts.push([0.0, 0.0]),
+            0 => {
+                self.verts.push([0.0, 0.0]);
+                self.edges.push(NO_LINE);
+            }
             1 => {
-                self.verts.push([-radius, 0.0]);
-                self.verts.push([radius, 0.0]);
+                // Both edges of the segment lie on λ₂ = 0.
+                self.lines.push(([0.0, 1.0], 0.0));
+                self.verts
+                    .extend_from_slice(&[[-radius, 0.0], [radius, 0.0]]);
+                self.edges.extend_from_slice(&[0, 0]);
             }
             _ => {
-                self.verts.push([-radius, -radius]);
-                self.verts.push([radius, -radius]);
-                self.verts.push([radius, radius]);
-                self.verts.push([-radius, radius]);
+                // Counter-clockwise; edge j lies on line j (inside: a·λ ≥ b).
+                self.lines.extend_from_slice(&[
+                    ([0.0, 1.0], -radius),
+                    ([-1.0, 0.0], -radius),
+                    ([0.0, -1.0], -radius),
+                    ([1.0, 0.0], -radius),
+                ]);
+                self.verts.extend_from_slice(&[
+                    [-radius, -radius],
+                    [radius, -radius],
+                    [radius, radius],
+                    [-radius, radius],
+                ]);
+                self.edges.extend_from_slice(&[0, 1, 2, 3]);
             }
         }
         for i in 0..n {
@@ -115,6 +178,12 @@ impl Region {
     }
 
     /// Keeps the part of the region where a·λ ≥ b − tol; false if nothing is left.
+    ///
+    /// A new vertex is the intersection of the clipping line with the line carrying the cut edge,
+    /// solved directly (2 × 2 Cramer) rather than interpolated along the edge: interpolation
+    /// along an edge of the (possibly 10⁶ times too large, artificial) initial box would carry
+    /// an absolute error ε·R into the vertices. Interpolation remains the fallback for nearly
+    /// parallel lines or an unknown edge line.
     pub fn clip(&mut self, a: P2, b: f64, tol: f64) -> bool {
         if self.verts.is_empty() {
             return false;
@@ -125,41 +194,76 @@ impl Region {
                 return true;
             }
             self.verts.clear();
+            self.edges.clear();
             return false;
         }
-        self.tmp.clear();
         let k = self.verts.len();
+        // Nothing to cut (the common case late in the build): keep the region as it is.
+        if self.verts.iter().all(|&p| dot(a, p) - b >= -tol) {
+            return true;
+        }
+        if self.edges.len() != k {
+            self.edges.clear();
+            self.edges.resize(k, NO_LINE);
+        }
+        let line = self.lines.len() as u32;
+        self.lines.push((a, b));
+        self.tmp.clear();
+        self.tmp_edges.clear();
+        let mut dq = dot(a, self.verts[0]) - b;
         for j in 0..k {
             let p = self.verts[j];
             let q = self.verts[(j + 1) % k];
-            let dp = dot(a, p) - b;
-            let dq = dot(a, q) - b;
+            let dp = dq;
+            dq = dot(a, q) - b;
+            let e = self.edges[j];
             let (ip, iq) = (dp >= -tol, dq >= -tol);
             if ip {
                 self.tmp.push(p);
+                self.tmp_edges.push(e);
             }
             if ip != iq {
-                let s = (dp / (dp - dq)).clamp(0.0, 1.0);
-                self.tmp
-                    .push([p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]);
+                let interpolated = || {
+                    let s = (dp / (dp - dq)).clamp(0.0, 1.0);
+                    [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]
+                };
+                let exact = if e == NO_LINE {
+                    None
+                } else {
+                    let (el, eb) = self.lines[e as usize];
+                    // Must lie on the segment p q (up to rounding of p and q).
+                    intersect(el, eb, a, b).filter(|x| {
+                        let d = [q[0] - p[0], q[1] - p[1]];
+                        let dd = dot(d, d);
+                        let sx = dot([x[0] - p[0], x[1] - p[1]], d);
+                        sx >= -1e-6 * dd && sx <= (1.0 + 1e-6) * dd
+                    })
+                };
+                let x = exact.unwrap_or_else(interpolated);
+                self.tmp.push(x);
+                // Leaving the half-plane: the new edge runs along the clipping line.
+                self.tmp_edges.push(if ip { line } else { e });
             }
         }
-        // Drop consecutive duplicates.
-        let eps = 1e-13 * self.radius.max(1e-300);
+        // Drop consecutive duplicates (a dropped vertex passes its outgoing edge to the kept
+        // one). The tolerance is relative to the vertices and the data, not to the box.
         self.verts.clear();
-        for &p in &self.tmp {
+        self.edges.clear();
+        for (&p, &e) in self.tmp.iter().zip(&self.tmp_edges) {
             if let Some(&last) = self.verts.last()
-                && (p[0] - last[0]).abs() <= eps
-                && (p[1] - last[1]).abs() <= eps
+                && close(p, last, self.scale)
             {
+                *self.edges.last_mut().expect("same length as verts") = e;
                 continue;
             }
             self.verts.push(p);
+            self.edges.push(e);
         }
         while self.verts.len() > 1 {
             let (f, l) = (self.verts[0], self.verts[self.verts.len() - 1]);
-            if (f[0] - l[0]).abs() <= eps && (f[1] - l[1]).abs() <= eps {
+            if close(f, l, self.scale) {
                 self.verts.pop();
+                self.edges.pop();
             } else {
                 break;
             }
@@ -171,12 +275,18 @@ impl Region {
     pub fn save(&mut self) {
         self.saved.clear();
         self.saved.extend_from_slice(&self.verts);
+        self.saved_edges.clear();
+        self.saved_edges.extend_from_slice(&self.edges);
+        self.saved_lines = self.lines.len();
     }
 
     /// Restores the saved vertices.
     pub fn restore(&mut self) {
         self.verts.clear();
         self.verts.extend_from_slice(&self.saved);
+        self.edges.clear();
+        self.edges.extend_from_slice(&self.saved_edges);
+        self.lines.truncate(self.saved_lines);
     }
 
     /// The vertex minimising (or, with `maximize`, maximising) `f`; first one on ties.
@@ -283,7 +393,18 @@ impl Region {
             } else {
                 0.0
             };
-            let x = [p[0] + s * d[0], p[1] + s * d[1]];
+            // Step from the nearer end (an edge may be 10⁶ times longer than the data on an
+            // artificial box; p + s·d with s ≈ 1 would carry an error ε·‖d‖).
+            let x = if s == 0.0 {
+                p
+            } else if s == 1.0 {
+                q
+            } else if s <= 0.5 {
+                [p[0] + s * d[0], p[1] + s * d[1]]
+            } else {
+                let u = (dot([c[0] - q[0], c[1] - q[1]], d) / dd).clamp(-1.0, 0.0);
+                [q[0] + u * d[0], q[1] + u * d[1]]
+            };
             let dist = (x[0] - c[0]).powi(2) + (x[1] - c[1]).powi(2);
             if dist < bd {
                 bd = dist;
@@ -434,5 +555,56 @@ mod tests {
         assert!(p[0].abs() < 1e-15 && p[1].abs() < 1e-15);
         // Clipping away everything.
         assert!(!r.clip([1.0, 0.0], 2.0, 0.0));
+    }
+
+    /// Regression (infinite t_max): vertices cut from a huge artificial box are exact
+    /// intersections of their lines, not interpolations with error ε·R along box edges.
+    #[test]
+    fn vertices_cut_from_a_huge_box_are_exact() {
+        let radius = 2e8;
+        let mut r = Region {
+            radius,
+            scale: 1.0,
+            ..Region::default()
+        };
+        r.lines.extend_from_slice(&[
+            ([0.0, 1.0], -radius),
+            ([-1.0, 0.0], -radius),
+            ([0.0, -1.0], -radius),
+            ([1.0, 0.0], -radius),
+        ]);
+        r.verts = vec![
+            [-radius, -radius],
+            [radius, -radius],
+            [radius, radius],
+            [-radius, radius],
+        ];
+        r.edges = vec![0, 1, 2, 3];
+        // 0.6 λ₁ + 0.8 λ₂ ≥ 1.3 and 0.8 λ₁ − 0.6 λ₂ ≥ −0.7: corner at (0.22, 1.46)
+        // (0.6·0.22 + 0.8·1.46 = 1.3, 0.8·0.22 − 0.6·1.46 = −0.7).
+        assert!(r.clip([0.6, 0.8], 1.3, 0.0));
+        assert!(r.clip([0.8, -0.6], -0.7, 0.0));
+        let corner = r
+            .verts
+            .iter()
+            .copied()
+            .min_by(|a, b| (a[0].abs() + a[1].abs()).total_cmp(&(b[0].abs() + b[1].abs())))
+            .unwrap();
+        assert!((corner[0] - 0.22).abs() < 1e-15, "{corner:?}");
+        assert!((corner[1] - 1.46).abs() < 1e-15, "{corner:?}");
+        // The segment case (r = 1): λ₁ ≥ 503.2447700885809 on [−R, R] is exact too.
+        let mut s = Region {
+            radius,
+            scale: 1.0,
+            ..Region::default()
+        };
+        s.lines.push(([0.0, 1.0], 0.0));
+        s.verts = vec![[-radius, 0.0], [radius, 0.0]];
+        s.edges = vec![0, 0];
+        assert!(s.clip([0.2, 0.0], 0.2 * 503.2447700885809, 0.0));
+        let x = s.verts.iter().map(|v| v[0]).fold(f64::INFINITY, f64::min);
+        assert!((x - 503.2447700885809).abs() <= 1e-13, "{x}");
+        // Projection onto that long segment returns its end exactly.
+        assert_eq!(s.project([0.0, 0.0])[0], x);
     }
 }

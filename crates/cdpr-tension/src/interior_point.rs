@@ -9,6 +9,10 @@
 //!   l1: min 1ᵀt   l1-max: min −1ᵀt   l2: min ½ tᵀ(2I)t   linf: min s, t_i − s ≤ 0
 //! ```
 //!
+//! When the QP or the ℓ∞ LP is declared infeasible, the ℓ₁ LP decides; if it finds tensions,
+//! the objective is re-solved in units of their largest tension (Clarabel misjudges sets that
+//! lie ~10⁵ times above the data scale).
+//!
 //! The returned tensions are polished (near-active tensions snapped to their bounds, then a
 //! minimum-norm equilibrium correction on the free cables) so that they pass the certificate.
 //!
@@ -56,6 +60,45 @@ pub fn interior_point(
     objective: Objective,
 ) -> Result<Result<DVector<f64>, Infeasibility>, TensionError> {
     validate(problem)?;
+    let first = solve_scaled(problem, objective, 1.0)?;
+    // Clarabel can call a non-empty set infeasible when it is reached only at tensions many
+    // orders of magnitude above the data (e.g. a pure moment on small moment arms with
+    // t_max = ∞: ~10⁵). Then the LP decides, and the objective is re-solved in units of the LP
+    // answer's largest tension.
+    if objective != Objective::L1 && matches!(first, Err(Infeasibility::NoFeasibleTension)) {
+        if let Ok(t1) = solve_scaled(problem, Objective::L1, 1.0)? {
+            let sigma = t1.amax();
+            if sigma > 1.0 {
+                return Ok(match solve_scaled(problem, objective, sigma)? {
+                    Err(Infeasibility::NoFeasibleTension) => Err(Infeasibility::SolverFailure {
+                        detail: format!(
+                            "clarabel: {} infeasible, l1 feasible (max tension {sigma:.3e})",
+                            objective_name(objective)
+                        ),
+                    }),
+                    other => other,
+                });
+            }
+        }
+    }
+    Ok(first)
+}
+
+fn objective_name(objective: Objective) -> &'static str {
+    match objective {
+        Objective::L1 => "l1",
+        Objective::L1Max => "l1-max",
+        Objective::L2 => "l2",
+        Objective::Linf => "linf",
+    }
+}
+
+/// One Clarabel solve in the variables x = t / σ (σ > 0), returning polished t.
+fn solve_scaled(
+    problem: &TensionProblem,
+    objective: Objective,
+    sigma: f64,
+) -> Result<Result<DVector<f64>, Infeasibility>, TensionError> {
     let w = problem.wrench_matrix;
     let (m, n) = w.shape();
     let (lo, hi) = (problem.bounds.min(), problem.bounds.max());
@@ -74,7 +117,7 @@ pub fn interior_point(
                 vals.push(w[(k, i)]);
             }
         }
-        b.push(-problem.external_wrench[k]);
+        b.push(-problem.external_wrench[k] / sigma);
     }
     let mut row = m;
     for i in 0..n {
@@ -82,13 +125,13 @@ pub fn interior_point(
             ri.push(row);
             ci.push(i);
             vals.push(1.0);
-            b.push(hi[i]);
+            b.push(hi[i] / sigma);
             row += 1;
         }
         ri.push(row);
         ci.push(i);
         vals.push(-1.0);
-        b.push(-lo[i]);
+        b.push(-lo[i] / sigma);
         row += 1;
         if objective == Objective::Linf {
             ri.push(row);
@@ -138,7 +181,7 @@ pub fn interior_point(
     let status = solver.solution.status;
     match status {
         SolverStatus::Solved | SolverStatus::AlmostSolved => {
-            let mut t = solver.solution.x[..n].to_vec();
+            let mut t: Vec<f64> = solver.solution.x[..n].iter().map(|x| x * sigma).collect();
             polish(w, problem.external_wrench, problem.bounds, &mut t);
             Ok(Ok(DVector::from_vec(t)))
         }
@@ -147,12 +190,7 @@ pub fn interior_point(
         }
         SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => {
             Ok(Err(Infeasibility::Unbounded {
-                method: match objective {
-                    Objective::L1 => "l1",
-                    Objective::L1Max => "l1-max",
-                    Objective::L2 => "l2",
-                    Objective::Linf => "linf",
-                },
+                method: objective_name(objective),
             }))
         }
         other => Ok(Err(Infeasibility::SolverFailure {

@@ -189,8 +189,30 @@ impl TensionOutcome {
     }
 }
 
+/// Whether every entry is finite (branch-free, one pass).
+#[inline]
+fn all_finite(s: &[f64]) -> bool {
+    s.iter().fold(true, |ok, v| ok & v.is_finite())
+}
+
 /// Checks shapes and finiteness of a problem (bounds are validated by [`TensionBounds`]).
+/// One branch-free pass over W and w_ext; the offending entry is located only on failure.
+#[inline]
 pub(crate) fn validate(problem: &TensionProblem) -> Result<(), TensionError> {
+    let (m, n) = problem.wrench_matrix.shape();
+    if m != 0
+        && problem.external_wrench.len() == m
+        && problem.bounds.len() == n
+        && all_finite(problem.wrench_matrix.as_slice())
+        && all_finite(problem.external_wrench.as_slice())
+    {
+        return Ok(());
+    }
+    validate_slow(problem)
+}
+
+#[cold]
+fn validate_slow(problem: &TensionProblem) -> Result<(), TensionError> {
     let w = problem.wrench_matrix;
     let (m, n) = w.shape();
     if m == 0 {

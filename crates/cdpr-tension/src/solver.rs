@@ -17,13 +17,13 @@
 //! | improved-closed-form | Pott 2014 | ← | ← | ← |
 //! | barycenter, sotda | – | – | polygon | – |
 
-use crate::certificate::{certify, snap_to_bounds};
+use crate::certificate::snap_and_certify;
 use crate::closed_form::ClosedForm;
 use crate::feasible_polygon::Region;
 use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
 use crate::linear_program::{self, Linear};
-use crate::minimum_norm::minimum_norm;
+use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
 use crate::sotda::{Sotda, SotdaSettings};
@@ -104,12 +104,14 @@ impl TensionSolver {
 
     /// Same verdict as `solve(..).is_feasible()`, without allocating after the first call
     /// (except on the interior-point path, see the module docs).
+    #[inline]
     pub fn is_feasible(&mut self, problem: &TensionProblem) -> Result<bool, TensionError> {
         Ok(self.run(problem)?.is_ok())
     }
 
     /// Like [`TensionSolver::solve`] but writes the tensions into `tensions` (resized to n) and
     /// returns the residual; no allocation after the first call on the fast paths.
+    #[inline]
     pub fn solve_into(
         &mut self,
         problem: &TensionProblem,
@@ -125,48 +127,78 @@ impl TensionSolver {
         Ok(out)
     }
 
+    #[inline]
     fn run(&mut self, p: &TensionProblem) -> Result<Result<f64, Infeasibility>, TensionError> {
         validate(p)?;
         let (m, n) = p.wrench_matrix.shape();
         if self.method == Method::Sotda {
-            let s = p.stiffness.as_ref().ok_or(TensionError::MissingStiffness)?;
-            if s.kinematics.cable_count() != n {
-                return Err(TensionError::DimensionMismatch {
-                    what: "sotda: kinematics cables vs wrench matrix columns",
-                    expected: n,
-                    found: s.kinematics.cable_count(),
-                });
-            }
-            if s.kinematics.motion().dof() != m {
-                return Err(TensionError::DimensionMismatch {
-                    what: "sotda: motion pattern DOF vs wrench matrix rows",
-                    expected: m,
-                    found: s.kinematics.motion().dof(),
-                });
-            }
-            if s.axial_stiffness.len() != n {
-                return Err(TensionError::DimensionMismatch {
-                    what: "sotda: axial stiffness per cable",
-                    expected: n,
-                    found: s.axial_stiffness.len(),
-                });
-            }
-            self.sotda.prepare(&self.settings, s, p.external_wrench)?;
+            self.prepare_sotda(p, m, n)?;
         }
-        self.t.resize(n, 0.0);
+        if self.t.len() != n {
+            self.t.resize(n, 0.0);
+        }
+        // Fixed-size exact solve (n = DOF ≤ 3); the QR path repeats it if it fails the
+        // certificate (see `minimum_norm` docs).
+        if self.method == Method::Exact && m == n && m <= 3 {
+            let small = match m {
+                1 => exact_small::<1>(p, &mut self.t),
+                2 => exact_small::<2>(p, &mut self.t),
+                _ => exact_small::<3>(p, &mut self.t),
+            };
+            match small {
+                Err(reason) => return Ok(Err(reason)),
+                Ok(()) => {
+                    if let Ok(residual) =
+                        snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t)
+                    {
+                        return Ok(Ok(residual));
+                    }
+                }
+            }
+        }
         if let Err(reason) = self.dispatch(p)? {
             return Ok(Err(reason));
         }
-        snap_to_bounds(p.bounds, &mut self.t);
-        let c = certify(p.wrench_matrix, p.external_wrench, p.bounds, &self.t);
-        Ok(if c.is_valid() {
-            Ok(c.residual)
-        } else {
-            Err(Infeasibility::CertificateFailed {
-                residual: c.residual,
-                bound_violation: c.bound_violation,
-            })
-        })
+        Ok(
+            snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).map_err(
+                |c| Infeasibility::CertificateFailed {
+                    residual: c.residual,
+                    bound_violation: c.bound_violation,
+                },
+            ),
+        )
+    }
+
+    #[cold]
+    fn prepare_sotda(
+        &mut self,
+        p: &TensionProblem,
+        m: usize,
+        n: usize,
+    ) -> Result<(), TensionError> {
+        let s = p.stiffness.as_ref().ok_or(TensionError::MissingStiffness)?;
+        if s.kinematics.cable_count() != n {
+            return Err(TensionError::DimensionMismatch {
+                what: "sotda: kinematics cables vs wrench matrix columns",
+                expected: n,
+                found: s.kinematics.cable_count(),
+            });
+        }
+        if s.kinematics.motion().dof() != m {
+            return Err(TensionError::DimensionMismatch {
+                what: "sotda: motion pattern DOF vs wrench matrix rows",
+                expected: m,
+                found: s.kinematics.motion().dof(),
+            });
+        }
+        if s.axial_stiffness.len() != n {
+            return Err(TensionError::DimensionMismatch {
+                what: "sotda: axial stiffness per cable",
+                expected: n,
+                found: s.axial_stiffness.len(),
+            });
+        }
+        self.sotda.prepare(&self.settings, s, p.external_wrench)
     }
 
     fn dispatch(&mut self, p: &TensionProblem) -> Result<Result<(), Infeasibility>, TensionError> {
