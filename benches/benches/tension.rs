@@ -5,13 +5,14 @@
 //! solves all poses; criterion's throughput gives the per-pose cost.
 
 use cdpr_benches::{ipanema_like_8, spatial_poses};
-use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
+use cdpr_kinematics::reference_robots::thesis_four_cable;
+use cdpr_kinematics::{Pose, PoseKinematics};
 use cdpr_tension::{
     Method, SotdaSettings, SotdaVariant, StiffnessData, TensionBounds, TensionProblem,
     TensionSolver,
 };
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use nalgebra::{DMatrix, DVector, Vector3};
+use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
 
 struct Pose8 {
@@ -39,24 +40,6 @@ fn feasible_spatial(count: usize) -> (Vec<Pose8>, DVector<f64>, TensionBounds, V
     }
     assert_eq!(out.len(), count, "not enough feasible poses");
     (out, we, b, vec![80e9 * 0.75e-6; 8])
-}
-
-fn thesis_four_cable() -> Robot {
-    let s = 0.1 / 2f64.sqrt();
-    let cable = |c: [f64; 2], a: [f64; 2]| Cable {
-        frame: Vector3::new(c[0], c[1], 0.0),
-        platform: Vector3::new(a[0], a[1], 0.0),
-    };
-    Robot::new(
-        MotionPattern::Planar,
-        vec![
-            cable([1.0, 0.5], [s, s]),
-            cable([-1.0, 0.5], [-s, s]),
-            cable([-1.0, -0.5], [-0.1, -0.1]),
-            cable([1.0, -0.5], [0.1, -0.1]),
-        ],
-    )
-    .unwrap()
 }
 
 fn bench_spatial(c: &mut Criterion) {

@@ -86,28 +86,9 @@ impl PoseKinematics {
 
 #[cfg(test)]
 mod tests {
-    use crate::{Cable, MotionPattern, Pose, Robot};
+    use crate::Pose;
+    use crate::reference_robots::thesis_four_cable;
     use approx::assert_relative_eq;
-    use nalgebra::Vector3;
-
-    /// The thesis 4-cable manipulator, Tables 6.1 and 6.2.
-    fn thesis_four_cable() -> Robot {
-        let s = 0.1 / 2f64.sqrt();
-        let cable = |c: [f64; 2], a: [f64; 2]| Cable {
-            frame: Vector3::new(c[0], c[1], 0.0),
-            platform: Vector3::new(a[0], a[1], 0.0),
-        };
-        Robot::new(
-            MotionPattern::Planar,
-            vec![
-                cable([1.0, 0.5], [s, s]),
-                cable([-1.0, 0.5], [-s, s]),
-                cable([-1.0, -0.5], [-0.1, -0.1]),
-                cable([1.0, -0.5], [0.1, -0.1]),
-            ],
-        )
-        .unwrap()
-    }
 
     #[test]
     fn thesis_four_cable_at_origin_by_hand() {
