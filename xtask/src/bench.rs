@@ -1,6 +1,6 @@
 //! # `cargo xtask bench`
 //!
-//! Runs the criterion suite (`cargo bench -p cdpr-benches --benches`), reads every benchmark's
+//! Runs the criterion suite (`cargo bench -p cdpr-benches --bench '*'`), reads every benchmark's
 //! median from `target/criterion/**/new/{benchmark,estimates}.json` and prints a table:
 //! benchmark, median per iteration, median per operation, the performance target from the
 //! issues, pass/miss. The same table goes to `target/bench/summary.md`.
@@ -142,7 +142,7 @@ pub fn target_of(id: &str) -> Option<&'static Target> {
 
 const USAGE: &str = "usage: cargo xtask bench [--quick] [--no-run] [FILTER]
 
-Runs the criterion benchmarks of `benches/` (cargo bench -p cdpr-benches --benches) and prints
+Runs the criterion benchmarks of `benches/` (cargo bench -p cdpr-benches --bench '*') and prints
 benchmark, median, the target from the issues and pass/miss; also written to
 target/bench/summary.md.
   --quick   shorter runs: --warm-up-time 1 --measurement-time 2
@@ -314,7 +314,7 @@ pub fn run(root: &Path, args: &[String]) -> ExitCode {
     if !no_run {
         let mut cmd = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()));
         cmd.current_dir(root)
-            .args(["bench", "-p", "cdpr-benches", "--benches", "--"]);
+            .args(["bench", "-p", "cdpr-benches", "--bench", "*", "--"]);
         if quick {
             cmd.args(["--warm-up-time", "1", "--measurement-time", "2"]);
         }

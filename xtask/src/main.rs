@@ -8,9 +8,9 @@
 //!   convention the thesis leaves open settled by experiment;
 //! - `bench [--quick] [--no-run] [FILTER]`: run the criterion suite of `benches/` and print each
 //!   benchmark's median against the performance target from the issues (pass/miss), also
-//!   written to `target/bench/summary.md` (see [`bench`]);
+//!   written to `target/bench/summary.md` (see `xtask/src/bench.rs`);
 //! - `fuzz [--seconds N] [--target NAME]`: run the cargo-fuzz targets of `fuzz/` for N seconds
-//!   each on stable Rust (`--sanitizer none`); exit code 1 if one crashed (see [`fuzz`]).
+//!   each on stable Rust (`--sanitizer none`); exit code 1 if one crashed (see `xtask/src/fuzz.rs`).
 
 mod bench;
 mod fuzz;

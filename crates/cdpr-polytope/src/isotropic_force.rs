@@ -32,7 +32,7 @@
 //! ## References
 //! - S. Krut, O. Company, F. Pierrot, IROS 2004 (seed 001), §IV-A eq. (19), §IV-B.
 //! - S. Krut, O. Company, F. Pierrot, *Velocity performance indexes for parallel mechanisms with
-//!   actuation redundancy*, Robotica 22(2), 2004 (seed 001's [1]).
+//!   actuation redundancy*, Robotica 22(2), 2004 (seed 001's reference \[1\]).
 
 use crate::PolytopeError;
 use crate::available_wrench_set::AvailableWrenchSet;

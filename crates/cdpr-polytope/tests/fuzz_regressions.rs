@@ -161,3 +161,349 @@ fn hyperplane_shifting_keeps_thin_facets() {
     let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
     assert!((hs + 3_441_234.398_963_446_3).abs() <= 1e-3, "{hs}");
 }
+
+/// Second thin-facet fuzz finding (crash-8127c50d…): the facet spanned by cables 4 and 6, two
+/// generators of norm ≈ 2.07 against a largest generator of 4.8·10⁵ (each ratio 4·10⁻⁶), is
+/// the most violated one. Krut's vertex projection drops it (radius −1 050 423.99 instead of
+/// −1 051 985.99). Reference: exact rational arithmetic as above.
+#[test]
+#[ignore = "fuzz finding: Krut's vertex projection drops a facet spanned by two small generators (ratios 4e-6)"]
+fn krut_keeps_facet_of_two_small_generators() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.05406, -26.01, 690.4, -0.05406, 690.4, -26.01, 0.0, 0.0, 0.0, 690.4, -26.01,
+            -0.006169, -0.0, -0.0, -0.0, -0.006169, -0.006169, 690.4,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-26.01, 1525.8, -0.006169, -0.001, -0.001, -0.001],
+        vec![26.016169, 2216.2, 3.936169, 0.002, 0.002, 0.002],
+    )
+    .unwrap();
+    let exact = -1_051_985.991_830_551_3;
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
+
+/// Fuzz finding (crash-2eb492e9…): cable 4 has t_min = t_max (a zero generator), and the origin
+/// lies outside the AWS. The AWS is the parallelogram spanned by generators 1–3 (cables 1 and 2
+/// are antiparallel); its facets are normal to columns 1 and 3 only, with signed distances
+/// −3500.912…, −21.93…, 21.96…, 3612.14… (exact rational arithmetic, outside this code).
+/// Hyperplane shifting also emits the half-spaces normal to column 4, which are supporting but
+/// not facets (its module docs: "when W has rank DOF each is a true facet" does not hold for a
+/// zero-width cable); one has d = −31 973.75, so `isotropic_wrench_radius` (documented as "the
+/// most violated facet's signed distance") returns −31 973.75 where Krut's method returns the
+/// facet value −3500.91.
+#[test]
+#[ignore = "fuzz finding: hyperplane shifting emits non-facet half-spaces normal to a cable with t_min = t_max"]
+fn hyperplane_shifting_has_no_halfspace_normal_to_a_fixed_cable() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        2,
+        4,
+        &[
+            0.052199999999999996,
+            -3.2612000000000005,
+            -0.052199999999999996,
+            3.2612000000000005,
+            -1.3763,
+            -14.539,
+            10.956,
+            0.00064,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![25751.0, 15701.0, 13.746, 0.016449000000000002],
+        vec![25753.5532, 16008.0, 13.759112, 0.016449000000000002],
+    )
+    .unwrap();
+    let exact = -3_500.912_236_489_569;
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!((krut - exact).abs() <= 1e-6 * exact.abs(), "Krut {krut}");
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs} vs exact {exact}"
+    );
+}
+
+/// Fuzz finding (crash-978b0090…): soundness of hyperplane shifting. For t = t_min (a corner of
+/// the admissible box) W t must lie in the AWS, but it violates one half-space by 0.044 (the
+/// offsets are ~10⁶; the crate's own `contains` tolerance is 1e-9·max|W|·max|t| ≈ 4.6e-3), so
+/// `contains(W t)` is false for a wrench the cables do produce. Likely cause: the support sum
+/// d(c) = Σ_j max(c·w_j t_min,j, c·w_j t_max,j) skips the subset's own columns assuming
+/// c·w_j = 0 exactly, while c from an ill-conditioned subset (columns 1–2 nearly parallel after
+/// scaling) is only approximately orthogonal to them: the omitted terms |c·w_j|·|t_j| are the
+/// error. Summing over every column keeps each half-space a supporting one for any c.
+#[test]
+#[ignore = "fuzz finding: hyperplane shifting half-space cuts off W t_min (unsound by 0.044 at scale 1e6)"]
+fn hyperplane_shifting_contains_every_box_corner() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.05406,
+            -26.01,
+            690.4,
+            -0.05406,
+            -26.01,
+            -26.01,
+            -0.0,
+            -0.0,
+            -0.0,
+            690.4,
+            690.4,
+            4.4999999999999996e-5,
+            668.2,
+            -0.05406,
+            668.2,
+            4.4999999999999996e-5,
+            4.4999999999999996e-5,
+            1525.8,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-26.01, -0.05406, -26.01, 690.4, 3003.0, -3.93],
+        vec![52.02, 690.45406, 26.06406, 690.45406, 3029.01, 3.931],
+    )
+    .unwrap();
+    let aws = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+    let wt = &w * b.min();
+    let v = aws.violation(&wt);
+    assert!(
+        v <= 1e-9 * 1525.8 * 3029.01,
+        "W t_min outside the AWS by {v:e}"
+    );
+    assert!(aws.contains(&wt));
+}
+
+/// Fuzz finding (timeout-9917bef0…, a libFuzzer timeout > 10 s): 6 DOF, 6 cables, every
+/// tension fixed (t_min = t_max = −30.584). All 2⁶ box vertices project to one point, so each of
+/// the C(64, 6) = 7.5·10⁷ candidates is singular and goes to the fallback of
+/// `candidate_hyperplane` (krut_vertex_projection.rs, a heap-allocated SVD per candidate): the
+/// call runs for minutes before returning. Hyperplane shifting answers in microseconds. A rank
+/// check of the columns with t_min < t_max before the enumeration would return at once.
+#[test]
+#[ignore = "fuzz finding: Krut's vertex projection runs for minutes on a zero-width box in 6 DOF (SVD per candidate)"]
+fn krut_zero_width_box_in_six_dof_is_fast() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        6,
+        6,
+        &[
+            295.07, 0.007196, 295.07, 0.007196, 295.07, 0.007196, 295.07, 295.07, 295.07, 0.007196,
+            295.07, 295.07, 295.07, 295.07, -30.618, -30.584, -30.584, -30.584, -30.584, -30.584,
+            -30.684, -30.584, -30.584, -30.584, 4.744, 1830.4, 1.0, 522.0, -3.2612, 141.5, -30.584,
+            -2.936, -30.584, -305.84, -0.32703, -2.6874,
+        ],
+    );
+    let b = TensionBounds::uniform(6, -30.584, -30.584).unwrap();
+    let start = std::time::Instant::now();
+    let hs = hyperplane_shifting::available_wrench_set(&w, &b);
+    assert!(start.elapsed().as_secs_f64() < 1.0);
+    let start = std::time::Instant::now();
+    let krut = krut_vertex_projection::available_wrench_set(&w, &b);
+    let secs = start.elapsed().as_secs_f64();
+    assert!(secs < 1.0, "Krut took {secs:.1} s");
+    // Both describe the single point W t (or refuse it as lower-dimensional).
+    if let (Ok(hs), Ok(krut)) = (hs, krut) {
+        let p = &w * b.min();
+        assert!(hs.contains(&p) && krut.contains(&p));
+    }
+}
+
+/// Third case of the Krut precision finding (crash-b6459005…): 2 DOF, columns 1 and 4 are
+/// identical and generator 4 is 1.6·10⁻⁵ of the largest; the origin is ~5·10⁷ outside the AWS.
+/// Exact facet minimum (rational arithmetic): −50 072 706.449 (hyperplane shifting agrees);
+/// Krut's method returns −50 078 131.39, a half-space 5.4·10³ off.
+#[test]
+#[ignore = "fuzz finding: Krut's vertex projection is off by 1e-4 relative with a duplicate column of tiny range"]
+fn krut_duplicate_column_with_tiny_range() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        2,
+        4,
+        &[
+            0.021963999999999997,
+            -10.872,
+            -668.3,
+            -668.3,
+            691.2,
+            -31544.0,
+            0.021963999999999997,
+            -10.872,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-665.7, 25841.0, 2197.0, 1.6777000000000002],
+        vec![732.85, 25843.3876, 2197.021964, 1.6996640000000003],
+    )
+    .unwrap();
+    let exact = -50_072_706.449_046_71;
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
+
+/// The clearest case of the Krut precision finding (crash-12c18d59…), and its likely root cause:
+/// every generator is of ordinary size (1.6–2.8) and conditioning, but cable 6 carries a fixed
+/// ~11 051 N so the AWS lies ~10⁵ away from the origin. `candidate_hyperplane` accepts T_k only
+/// if |det T_k| > 1e-10 · Π‖τ_r,i‖: the product of the *distances of the vertices from the
+/// origin* (~(1.6·10⁵)³ here), not of their separations (~2.7). The facet spanned by the
+/// generators of cables 3 and 5 (5·10⁻³ rad apart) gives det ≈ 6·10³ < 4·10⁵ and is dropped;
+/// Krut's radius is −98 464.69 instead of the exact −113 332.73 (rational arithmetic; hyperplane
+/// shifting agrees). The same test explains `krut_keeps_thin_facets`,
+/// `krut_keeps_facet_of_two_small_generators` and `krut_duplicate_column_with_tiny_range`.
+/// A fix: measure T_k's singularity on the differences τ_r,i − τ_r,0 (translation-invariant).
+#[test]
+#[ignore = "fuzz finding: Krut's determinant test is relative to the vertices' distance from the origin; facets of a far-away AWS are dropped"]
+fn krut_keeps_facets_of_a_far_away_polytope() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.001,
+            -3.0841000000000003,
+            -14.457,
+            -0.0,
+            -0.0,
+            -0.0,
+            -14.393,
+            -14.529,
+            -14.393,
+            -14.393,
+            -0.013823,
+            -1e-5,
+            -14.393,
+            -14.393,
+            -14.393,
+            -14.393,
+            0.11069000000000001,
+            0.11051,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![0.11051, 0.11051, 0.11051, 0.11051, 0.11051, 11051.0],
+        vec![
+            0.22102,
+            0.22102,
+            0.22102,
+            0.22102,
+            0.22099999999999997,
+            11051.11052,
+        ],
+    )
+    .unwrap();
+    let exact = -113_332.730_486_091_21;
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
+
+/// Fuzz finding (crash-d711426e…, minor): `isotropic_force(&available_wrench_set(W), m)` and
+/// `isotropic_force_of(m, W)` (documented as the same value without the facet list) differ by
+/// 4.7·10⁻⁵ relative (−50 444.41 vs −50 446.81). `from_halfspaces` merges half-spaces whose
+/// unit normals differ by < 1e-7 and keeps the first normal with the group's smallest offset;
+/// the zero-moment force index divides each offset by the normal's force part ‖n_f‖, so when
+/// ‖n_f‖ is small the 1e-7 normal change is amplified. (One t_max is infinite here.)
+#[test]
+#[ignore = "fuzz finding: isotropic_force (facet list) and isotropic_force_of (streamed) differ by 5e-5 relative after facet merging"]
+fn isotropic_force_of_matches_the_facet_list() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        7,
+        &[
+            23.517,
+            -0.001,
+            1e-15,
+            -3.928,
+            -0.001,
+            2729.0,
+            0.0,
+            0.0,
+            0.0,
+            -2776.0,
+            -1e-5,
+            1e-300,
+            -0.10421,
+            -3023.2,
+            -0.26549,
+            -0.028557,
+            1136.6,
+            1.7587000000000002,
+            -1268.7,
+            1136.6,
+            1.7587000000000002,
+        ],
+    );
+    let mut max = vec![-0.028557; 7];
+    max[5] = f64::INFINITY;
+    let b = TensionBounds::new(vec![-0.26549; 7], max).unwrap();
+    let aws = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+    for m in [MotionPattern::Planar, MotionPattern::Point3] {
+        let f = isotropic_force(&aws, m).unwrap();
+        let g = cdpr_polytope::isotropic_force_of(m, &w, &b).unwrap();
+        assert!(
+            f == g || (f - g).abs() <= 1e-6 * f.abs().max(g.abs()),
+            "{m:?}: facets {f} vs streamed {g}"
+        );
+    }
+}
+
+/// Fuzz finding (crash-9fdab428…): the origin on the AWS boundary. DOF 1, W = [−0.0138, −0,
+/// −21177, −0.0138], t ∈ [−10024, 0]: AWS = [0, 2.12·10⁸], so the isotropic radius is 0
+/// (hyperplane shifting: 0). Krut's method returns 2.12·10⁸: the facet −w ≤ 0 passes through
+/// the projected vertex τ = 0, which `candidate_hyperplane` rejects (`hadamard == 0`: "a
+/// projected vertex at the origin: not a Cramer system"), and the through-origin fallback
+/// never sees it.
+#[test]
+#[ignore = "fuzz finding: Krut's vertex projection drops facets through a projected vertex at the origin (origin on the AWS boundary)"]
+fn krut_keeps_facets_through_the_origin() {
+    let w = dmatrix![-0.013826000000000001, -0.0, -21177.0, -0.013826000000000001];
+    let b = TensionBounds::uniform(4, -10024.0, 0.0).unwrap();
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert_eq!(hs, 0.0);
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(krut.abs() <= 1e-6, "Krut {krut}, exact 0");
+}
+
+/// The same in 2-D with t_min = 0 (every cable slack allowed): AWS = [0, 1]², whose facets
+/// x ≥ 0 and y ≥ 0 pass through the projected vertex t = 0. Exact isotropic force: 0; Krut's
+/// method returns 1 (it keeps only x ≤ 1 and y ≤ 1).
+#[test]
+#[ignore = "fuzz finding: Krut's vertex projection gives isotropic force 1 instead of 0 for W = I, t in [0, 1]"]
+fn krut_unit_square_from_zero_tension() {
+    let w = dmatrix![1.0, 0.0; 0.0, 1.0];
+    let b = TensionBounds::uniform(2, 0.0, 1.0).unwrap();
+    let hs = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+    assert_eq!(isotropic_force(&hs, MotionPattern::Point2).unwrap(), 0.0);
+    let krut = krut_vertex_projection::available_wrench_set(&w, &b).unwrap();
+    let f = isotropic_force(&krut, MotionPattern::Point2).unwrap();
+    assert!(f.abs() <= 1e-9, "Krut {f}, exact 0");
+}
