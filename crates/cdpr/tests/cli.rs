@@ -1,19 +1,8 @@
 //! The `cdpr` binary: output formats, exit codes, error messages.
 
-use assert_cmd::Command;
-use std::path::PathBuf;
+mod common;
 
-fn robot(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/robots")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn cdpr() -> Command {
-    Command::cargo_bin("cdpr").unwrap()
-}
+use common::{cdpr, robot};
 
 #[test]
 fn kinematics_json_has_the_contract_fields() {

@@ -1,30 +1,9 @@
 //! `cdpr isotropic` and `cdpr capacity`: the JSON contract and values derived by hand for
 //! seed 001's regular robots (motors at 1000 mm, tensions in [50, 500] N).
 
-use assert_cmd::Command;
-use std::path::PathBuf;
+mod common;
 
-fn robot(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/robots")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn cdpr() -> Command {
-    Command::cargo_bin("cdpr").unwrap()
-}
-
-fn json(args: &[&str]) -> serde_json::Value {
-    let out = cdpr().args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use common::{cdpr, json, robot};
 
 fn f(v: &serde_json::Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))

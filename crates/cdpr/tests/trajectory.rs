@@ -1,32 +1,12 @@
 //! `cdpr trajectory` and `cdpr stiffness-map` (issue 8): JSON contract, infeasible samples kept,
 //! continuity, per-waypoint wrenches, the stiffness-oriented study of seed 002.
 
-use assert_cmd::Command;
+mod common;
+
+use common::{cdpr, json, robot};
+
 use nalgebra::{DMatrix, DVector};
 use serde_json::Value;
-use std::path::PathBuf;
-
-fn robot(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/robots")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn cdpr() -> Command {
-    Command::cargo_bin("cdpr").unwrap()
-}
-
-fn json(args: &[&str]) -> Value {
-    let out = cdpr().args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
 
 fn floats(v: &Value) -> Vec<f64> {
     v.as_array()

@@ -1,7 +1,10 @@
 //! `cdpr workspace`, `cdpr dextrous` and `cdpr synthesize`: JSON contract, agreement with the
 //! library, hand-derived workspaces and published numbers of seed 000.
 
-use assert_cmd::Command;
+mod common;
+
+use common::{cdpr, json, robot};
+
 use cdpr::RobotDescription;
 use cdpr::tension::Method;
 use cdpr::workspace::synthesis::objective::THESIS_LOADS;
@@ -11,30 +14,7 @@ use cdpr::workspace::{
 };
 use nalgebra::DVector;
 use serde_json::Value;
-use std::path::{Path, PathBuf};
-
-fn robot(name: &str) -> String {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/robots")
-        .join(name)
-        .display()
-        .to_string()
-}
-
-fn cdpr() -> Command {
-    Command::cargo_bin("cdpr").unwrap()
-}
-
-/// Runs a command that must succeed and returns its JSON.
-fn json(args: &[&str]) -> Value {
-    let out = cdpr().args(args).output().unwrap();
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use std::path::Path;
 
 /// Runs a command that must fail with exit code 2; returns stderr.
 fn fails(args: &[&str]) -> String {
