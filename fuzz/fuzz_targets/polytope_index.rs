@@ -52,7 +52,12 @@ fuzz_target!(|data: &[u8]| {
     let candidates: f64 = (0..dof).fold(1.0, |c, i| {
         c * ((1u64 << n) as f64 - i as f64) / (i + 1) as f64
     });
-    let krut = n <= 6 && candidates <= 1e5 && num.bytes().arbitrary::<bool>().unwrap_or(false);
+    // Krut's method has many open findings (crates/cdpr-polytope/tests/fuzz_regressions.rs):
+    // compare it only when CDPR_FUZZ_KRUT is set, so that default runs explore the rest.
+    let krut = n <= 6
+        && candidates <= 1e5
+        && std::env::var_os("CDPR_FUZZ_KRUT").is_some()
+        && num.bytes().arbitrary::<bool>().unwrap_or(false);
 
     if std::env::var_os("CDPR_FUZZ_DEBUG").is_some() {
         // Replaying an artifact: show the decoded input.
@@ -113,10 +118,11 @@ fuzz_target!(|data: &[u8]| {
             let wt = &case.w * &t;
             if wt.iter().all(|x| x.is_finite()) {
                 let v = aws.violation(&wt);
-                // Known finding (hyperplane_shifting_contains_every_box_corner): violations of
-                // ~1.6e-9·scale occur; 1e-7 keeps the target searching for gross ones.
+                // Known finding (hyperplane_shifting_contains_every_box_corner{,_duplicates}):
+                // violations up to ~1e-7·scale occur; 1e-5 keeps the target searching for
+                // gross ones.
                 assert!(
-                    v <= 100.0 * tol,
+                    v <= 1e4 * tol,
                     "W t outside the AWS by {v:e} (tol {tol:e})\nW = {:?}\nbounds = {bounds:?}\nt = {t:?}\nfacets = {:?}",
                     case.w,
                     aws.facets()
