@@ -39,9 +39,19 @@ pub struct Facet {
 
 /// The available wrench set {W t : t_min ≤ t ≤ t_max} in H-representation, plus its vertices for
 /// DOF 2 and 3 when it is bounded.
+///
+/// Two lists describe the same set: [`AvailableWrenchSet::supporting_halfspaces`], every
+/// half-space the method produced, and [`AvailableWrenchSet::facets`], the same with
+/// near-duplicates (normals within 1e-7) merged for presentation. Membership and the indices of
+/// this crate are computed from the first list, so they agree exactly with the streaming
+/// evaluators ([`crate::isotropic_force_of`], [`crate::CapacityMargin`]), which never build a
+/// list.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AvailableWrenchSet {
     dof: usize,
+    halfspaces: Vec<Facet>,
+    /// For each supporting half-space, the index of its merged facet.
+    group: Vec<usize>,
     facets: Vec<Facet>,
     vertices: Option<Vec<DVector<f64>>>,
     scale: f64,
@@ -70,19 +80,27 @@ impl AvailableWrenchSet {
                 .then(a.offset.total_cmp(&b.offset))
         });
         let mut facets: Vec<Facet> = Vec::with_capacity(raw.len());
-        for f in raw {
-            // Same normal: keep the tighter offset (both are valid supporting half-spaces).
-            if let Some(g) = facets
-                .iter_mut()
-                .find(|g| (&g.normal - &f.normal).amax() < MERGE_TOL)
+        let mut group = Vec::with_capacity(raw.len());
+        for f in &raw {
+            // Same normal: keep the tighter half-space, whole (normal and offset of one
+            // supporting half-space, so that the merged list stays sound).
+            if let Some(k) = facets
+                .iter()
+                .position(|g| (&g.normal - &f.normal).amax() < MERGE_TOL)
             {
-                g.offset = g.offset.min(f.offset);
+                if f.offset < facets[k].offset {
+                    facets[k] = f.clone();
+                }
+                group.push(k);
             } else {
-                facets.push(f);
+                group.push(facets.len());
+                facets.push(f.clone());
             }
         }
         let mut set = Self {
             dof,
+            halfspaces: raw,
+            group,
             facets,
             vertices: None,
             scale,
@@ -110,9 +128,22 @@ impl AvailableWrenchSet {
         self.vertices.as_deref()
     }
 
-    /// The largest violation `max_k (n_k · w − d_k)` (≤ 0 inside; panics-free, −∞ if no facet).
+    /// Every supporting half-space `n · w ≤ d` the method produced (unit normals, finite
+    /// offsets), before merging, sorted. Their intersection is the AWS.
+    pub fn supporting_halfspaces(&self) -> &[Facet] {
+        &self.halfspaces
+    }
+
+    /// The merged facet (an index into [`AvailableWrenchSet::facets`]) of supporting
+    /// half-space `k`.
+    pub(crate) fn facet_of(&self, k: usize) -> usize {
+        self.group[k]
+    }
+
+    /// The largest violation `max_k (n_k · w − d_k)` over the supporting half-spaces (≤ 0
+    /// inside; panic-free, −∞ if there is none).
     pub fn violation(&self, w: &DVector<f64>) -> f64 {
-        self.facets
+        self.halfspaces
             .iter()
             .map(|f| f.normal.dot(w) - f.offset)
             .fold(f64::NEG_INFINITY, f64::max)

@@ -201,13 +201,15 @@ pub fn limiting_facet(
         });
     }
     let mut best: Option<(usize, f64)> = None;
-    for (k, f) in aws.facets().iter().enumerate() {
+    // Scored over every supporting half-space (as the streaming evaluator does), reported as
+    // the merged facet it belongs to.
+    for (k, f) in aws.supporting_halfspaces().iter().enumerate() {
         let s = finite_or_overflow(f.offset - required.mirrored_support(f.normal.as_slice()))?;
         if best.is_none_or(|(_, m)| s < m) {
             best = Some((k, s));
         }
     }
-    Ok(best)
+    Ok(best.map(|(k, s)| (aws.facet_of(k), s)))
 }
 
 /// Allocation-free capacity margin for repeated poses: hyperplane shifting on the fly, each

@@ -10,10 +10,15 @@
 //!     d₋(c) = Σ_j max(−c·w_j t_min,j , −c·w_j t_max,j)    facet −c·w ≤ d₋
 //! ```
 //!
-//! (the sums run over all n columns; the columns of S contribute zero). d₊(c) is exactly the
-//! support function of the AWS in direction c, so every half-space produced is a supporting one;
-//! when W has rank DOF each is a true facet. The method enumerates C(n, DOF − 1) subsets:
-//! 56 for 8 cables in 6 DOF.
+//! (the sums run over all n columns; in exact arithmetic the columns of S contribute zero, and
+//! summing them anyway keeps the half-space supporting when c from an ill-conditioned subset is
+//! orthogonal to them only up to round-off). d₊(c) is exactly the support function of the AWS in
+//! direction c, so every half-space produced is a supporting one. The facets of the zonotope are
+//! spanned by its *generators* w_j (t_max,j − t_min,j): a cable with t_min = t_max only
+//! translates the set, so subsets are drawn from the other cables, and when those span the
+//! wrench space every half-space is a true facet. (If they do not, the AWS is flat: a second pass
+//! over all columns gives supporting half-spaces whose intersection is the flat set.) The method
+//! enumerates C(n, DOF − 1) subsets: 56 for 8 cables in 6 DOF.
 //!
 //! **Implementation.** The normal is the null vector of the (DOF−1) × DOF matrix whose rows are
 //! the subset's columns, found by Gaussian elimination with complete pivoting on fixed-size stack
@@ -232,20 +237,16 @@ pub(crate) fn for_each_pair<F: FnMut(&[f64], f64, f64) -> usize>(
         });
     }
     let ws = w.as_slice();
-    let tally = match (m, bounded) {
-        (1, true) => engine::<1, true, F>(ws, tmin, tmax, wmax, f),
-        (2, true) => engine::<2, true, F>(ws, tmin, tmax, wmax, f),
-        (3, true) => engine::<3, true, F>(ws, tmin, tmax, wmax, f),
-        (4, true) => engine::<4, true, F>(ws, tmin, tmax, wmax, f),
-        (5, true) => engine::<5, true, F>(ws, tmin, tmax, wmax, f),
-        (_, true) => engine::<MAX_DOF, true, F>(ws, tmin, tmax, wmax, f),
-        (1, false) => engine::<1, false, F>(ws, tmin, tmax, wmax, f),
-        (2, false) => engine::<2, false, F>(ws, tmin, tmax, wmax, f),
-        (3, false) => engine::<3, false, F>(ws, tmin, tmax, wmax, f),
-        (4, false) => engine::<4, false, F>(ws, tmin, tmax, wmax, f),
-        (5, false) => engine::<5, false, F>(ws, tmin, tmax, wmax, f),
-        (_, false) => engine::<MAX_DOF, false, F>(ws, tmin, tmax, wmax, f),
-    };
+    // A cable with t_min = t_max is a zero generator: it translates the zonotope but spans no
+    // facet. First pass: subsets of generators only (the exact facets when they span the
+    // wrench space). If they do not (a lower-dimensional AWS), no half-space was reported and
+    // a second pass over all columns gives supporting half-spaces of the flat set.
+    let has_fixed = tmin.iter().zip(tmax).any(|(lo, hi)| hi <= lo);
+    let mut f = f;
+    let mut tally = dispatch(m, bounded, ws, tmin, tmax, wmax, has_fixed, &mut f);
+    if has_fixed && !tally.proper && tally.overflow.is_none() {
+        tally = dispatch(m, bounded, ws, tmin, tmax, wmax, false, &mut f);
+    }
     if let Some(value) = tally.overflow {
         return Err(PolytopeError::Overflow { value });
     }
@@ -256,6 +257,36 @@ pub(crate) fn for_each_pair<F: FnMut(&[f64], f64, f64) -> usize>(
         });
     }
     Ok(tally.visited)
+}
+
+/// The engine for the wrench-space dimension m (fixed-size arrays per dimension).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn dispatch<F: FnMut(&[f64], f64, f64) -> usize>(
+    m: usize,
+    bounded: bool,
+    ws: &[f64],
+    tmin: &[f64],
+    tmax: &[f64],
+    wmax: f64,
+    generators_only: bool,
+    f: &mut F,
+) -> Tally {
+    let g = generators_only;
+    match (m, bounded) {
+        (1, true) => engine::<1, true, F>(ws, tmin, tmax, wmax, g, f),
+        (2, true) => engine::<2, true, F>(ws, tmin, tmax, wmax, g, f),
+        (3, true) => engine::<3, true, F>(ws, tmin, tmax, wmax, g, f),
+        (4, true) => engine::<4, true, F>(ws, tmin, tmax, wmax, g, f),
+        (5, true) => engine::<5, true, F>(ws, tmin, tmax, wmax, g, f),
+        (_, true) => engine::<MAX_DOF, true, F>(ws, tmin, tmax, wmax, g, f),
+        (1, false) => engine::<1, false, F>(ws, tmin, tmax, wmax, g, f),
+        (2, false) => engine::<2, false, F>(ws, tmin, tmax, wmax, g, f),
+        (3, false) => engine::<3, false, F>(ws, tmin, tmax, wmax, g, f),
+        (4, false) => engine::<4, false, F>(ws, tmin, tmax, wmax, g, f),
+        (5, false) => engine::<5, false, F>(ws, tmin, tmax, wmax, g, f),
+        (_, false) => engine::<MAX_DOF, false, F>(ws, tmin, tmax, wmax, g, f),
+    }
 }
 
 /// What one enumeration found.
@@ -275,15 +306,16 @@ struct Tally {
 /// scaled by 1/max|W_ij| (so that the elimination neither overflows nor underflows) and reduced
 /// by the rows above it, `piv[l]` its pivot component and `inv[l]` the pivot's reciprocal. Rows
 /// of a prefix shared with the previous subset are kept. The offsets d± then need one dot
-/// product per column *outside* the subset (columns inside are orthogonal to c by
-/// construction).
+/// product per column. `generators_only`: cables with t_min = t_max neither enter a subset nor
+/// count as off the hyperplane.
 #[inline(always)]
 fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usize>(
     ws: &[f64],
     tmin: &[f64],
     tmax: &[f64],
     wmax: f64,
-    mut f: F,
+    generators_only: bool,
+    f: &mut F,
 ) -> Tally {
     let k = M - 1;
     let n = tmin.len();
@@ -314,6 +346,11 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
         let start = valid.min(first_changed);
         let mut ok = true;
         for l in start..k {
+            if generators_only && tmax[idx[l]] <= tmin[idx[l]] {
+                ok = false; // a fixed cable spans no facet
+                valid = l;
+                break;
+            }
             let base = idx[l] * M;
             let mut r = [0.0f64; M];
             for (x, y) in r.iter_mut().zip(&ws[base..base + M]) {
@@ -370,14 +407,18 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
                 for x in c.iter_mut() {
                     *x *= inv_norm;
                 }
-                // Shifted offsets d± over the columns outside the subset.
+                // Shifted offsets d± over *every* column, eq. of the module docs. The subset's
+                // own columns contribute only round-off, but c from an ill-conditioned subset is
+                // orthogonal to them only approximately: leaving them out would make the
+                // half-space cut off box corners. The off-plane test looks at the other columns
+                // (generators with a range, on the first pass) only.
                 let (mut dp, mut dm, mut off) = (0.0f64, 0.0f64, 0.0f64);
                 let (mut unbounded_p, mut unbounded_m) = (false, false);
                 let mut in_subset = 0usize;
                 for j in 0..n {
-                    if in_subset < k && idx[in_subset] == j {
+                    let own = in_subset < k && idx[in_subset] == j;
+                    if own {
                         in_subset += 1;
-                        continue;
                     }
                     let col = &ws[j * M..j * M + M];
                     let mut p = 0.0;
@@ -385,14 +426,19 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
                         p += c[i] * col[i];
                     }
                     let (lo, hi) = (tmin[j], tmax[j]);
-                    off = fmax(off, p.abs());
+                    if !own && (!generators_only || hi > lo) {
+                        off = fmax(off, p.abs());
+                    }
                     if BOUNDED {
                         // Branch-free: an in-plane column (|p| ~ round-off) adds round-off only.
                         let (a, b) = (p * hi, p * lo);
                         dp += fmax(a, b);
                         dm -= fmin(a, b);
                     } else {
-                        if p.abs() <= in_plane {
+                        if hi == f64::INFINITY && (own || p.abs() <= in_plane) {
+                            // In the plane up to round-off: only the finite end counts.
+                            dp += fmax(p * lo, 0.0);
+                            dm += fmax(-p * lo, 0.0);
                             continue;
                         }
                         if p > 0.0 {

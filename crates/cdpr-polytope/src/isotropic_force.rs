@@ -100,7 +100,7 @@ pub fn isotropic_force(
     }
     let rows = motion.translation_dof();
     Ok(aws
-        .facets()
+        .supporting_halfspaces()
         .iter()
         .map(|f| force_term(f.normal.as_slice(), f.offset, rows))
         .fold(f64::INFINITY, f64::min))
@@ -109,7 +109,7 @@ pub fn isotropic_force(
 /// Radius of the largest origin-centred ball in the full wrench space inside the AWS:
 /// min_k d_k (unit normals), signed. Mixes N and N·m for planar/spatial robots.
 pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
-    aws.facets()
+    aws.supporting_halfspaces()
         .iter()
         .map(|f| f.offset)
         .fold(f64::INFINITY, f64::min)

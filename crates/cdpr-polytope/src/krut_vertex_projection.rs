@@ -7,24 +7,47 @@
 //! 1. SVD W = U [S 0] Vᵀ and the 2ⁿ box vertices τ_vertex (eq. (3));
 //! 2. τ_s = Vᵀ τ_vertex, eq. (8);
 //! 3. τ_r = P τ_s, the first DOF components, eq. (9);
-//! 4. for each of the C(2ⁿ, DOF) choices of DOF projected vertices, the hyperplane τ_rᵀ u_k = 1
-//!    through them, u_k = T_k⁻¹ [1 … 1]ᵀ, eqs. (10)–(14). When T_k is singular and the points
-//!    are affinely independent the hyperplane passes through the origin (the paper's second
-//!    situation, a singular posture or a non-frontier): it is kept as a candidate `a · τ_r = 0`;
+//! 4. for each of the C(2ⁿ, DOF) choices of DOF projected vertices, the hyperplane through them,
+//!    eqs. (10)–(14);
 //! 5. border test (15): all projected vertices on one side (type 1: τ_rᵀ u_k ≤ 1, type 2: ≥ 1);
 //!    a type-2 border means the origin is outside the polytope (the pose cannot balance a null
 //!    perturbation);
-//! 6. mapping to the operational space, eqs. (17)–(18): f = U S τ_r, so τ_rᵀ u ≤ 1 becomes
-//!    fᵀ (U v_k) ≤ 1 with v_k = S⁻¹ u_k (the paper's S' = S⁻¹ in the operational SVD base). The
-//!    facet's unit normal is U v_k / ‖v_k‖ and its distance from the origin 1/‖v_k‖, the term of
-//!    eq. (19).
+//! 6. mapping to the operational space, eqs. (17)–(18): f = U S τ_r, so a border a · τ_r ≤ b
+//!    becomes (U S⁻¹ a) · f ≤ b. The facet's unit normal is U S⁻¹ a / ‖S⁻¹ a‖ and its signed
+//!    distance from the origin the term of eq. (19) (1/‖v_k‖ for a type-1 border, v_k = S⁻¹ u_k).
+//!
+//! **Numerics.** Eq. (14) writes the hyperplane as τ_rᵀ u_k = 1, u_k = T_k⁻¹ [1 … 1]ᵀ, which
+//! fails for a hyperplane through the origin (the paper's second situation, T_k singular: the
+//! origin on the polytope's boundary) and loses every digit when the polytope is far from the
+//! origin compared with its size (T_k nearly singular). We compute the same hyperplanes in a
+//! translation-invariant form, and every quantity from the box's *generators*
+//! g_j = P Vᵀ e_j (t_max,j − t_min,j) = S⁻¹ Uᵀ w_j (t_max,j − t_min,j) (the second form, from W's
+//! columns: the small entries of a computed V carry round-off of order ε·s₁/s_DOF):
+//! - the normal a of the plane through the chosen vertices τ_r,0 … τ_r,DOF−1 is orthogonal to
+//!   their differences, each formed as Σ ± g_j over the bits in which the vertices differ
+//!   (Gaussian elimination with complete pivoting on the normalised differences; a difference
+//!   that cancels to round-off, as for antiparallel cables, means coincident vertices); b =
+//!   a · τ_r,0, and when b ≠ 0, u_k = a / b is the paper's u_k. A thin facet (spanned by a
+//!   generator 10⁻¹¹ times shorter than the others) keeps its precision;
+//! - the border test (15) compares a · τ_r,v with a · τ_r,0 for every vertex v through the
+//!   generators (Σ ± a · g_j over the differing bits), with a tolerance of 10⁻⁹ times that
+//!   path's length Σ ‖g_j‖: it depends neither on the distance of the polytope from the origin
+//!   nor on how the generators' lengths compare (a tolerance relative to the polytope's size
+//!   accepts planes cutting through its thin directions);
+//! - a border must contain DOF − 1 independent generators (a facet of the image of a box is
+//!   spanned by box edges; a plane tilted about an edge by a tiny generator difference can pass
+//!   the border test within round-off while touching only that edge), and its normal is then
+//!   recomputed from those generators, more precisely than from the vertex differences.
+//!
+//! A cable with t_min = t_max or a zero column is a zero generator: it translates the polytope
+//! and doubles each projected vertex, so the vertices are enumerated over the other cables only.
 //!
 //! The result is stored with unit normals and *signed* offsets (a type-2 border gets normal
-//! −U v_k/‖v_k‖ and offset −1/‖v_k‖), exactly as [`crate::hyperplane_shifting`] produces it.
+//! −U S⁻¹ a and offset −b, normalised), exactly as [`crate::hyperplane_shifting`] produces it.
 //!
 //! The cost is C(2ⁿ, DOF) small solves each followed by a 2ⁿ-point border test: the method is
 //! refused for n > 10 or more than 10⁸ candidates ([`PolytopeError::TooLarge`]; e.g. 6 DOF with
-//! 6 cables has 7.5·10⁷ candidates and takes seconds). Use hyperplane shifting beyond that.
+//! 6 cables has 7.5·10⁷ candidates and takes about a minute). Use hyperplane shifting beyond that.
 //!
 //! ## References
 //! - S. Krut, O. Company, F. Pierrot, *Force performance indexes for parallel mechanisms with
@@ -33,17 +56,26 @@
 
 use crate::PolytopeError;
 use crate::available_wrench_set::{AvailableWrenchSet, Facet, binomial, next_combination};
-use crate::input;
+use crate::input::{self, MAX_DOF};
 use cdpr_tension::TensionBounds;
-use nalgebra::{DMatrix, DVector, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector};
 
 /// Largest cable count accepted (2ⁿ box vertices).
 pub const MAX_CABLES: usize = 10;
 /// Largest number C(2ⁿ, DOF) of candidate hyperplanes accepted.
 pub const MAX_CANDIDATES: f64 = 1e8;
 
-type M6 = SMatrix<f64, 6, 6>;
-type V6 = SVector<f64, 6>;
+/// Relative pivot (on unit difference rows) below which DOF projected vertices count as
+/// affinely dependent.
+const PIVOT_TOL: f64 = 1e-10;
+/// Relative length below which a difference of generator sums counts as zero (cancellation).
+const COINCIDENT_TOL: f64 = 1e-10;
+/// Border-test tolerance: a vertex may be off the plane by this fraction of its path length
+/// from the first chosen vertex along the generators (an angle, so thin and wide generators are
+/// judged alike).
+const BORDER_TOL: f64 = 1e-9;
+
+type Vec6 = [f64; MAX_DOF];
 
 /// Available wrench set {W t : t_min ≤ t ≤ t_max} by Krut's steps 1–6 (unit normals, signed
 /// offsets, duplicates merged, vertices for DOF 2 and 3).
@@ -72,12 +104,18 @@ pub fn available_wrench_set(
             what: "Krut's vertex projection",
         });
     }
-    let candidates = if n <= 30 {
-        binomial((1u64 << n) as f64, dof)
+    let (tmin, tmax) = (bounds.min(), bounds.max());
+    // Cables whose tension can vary and whose column is not zero: the box's generators.
+    let varying: Vec<usize> = (0..n)
+        .filter(|&j| tmax[j] > tmin[j] && w.column(j).iter().any(|&x| x != 0.0))
+        .collect();
+    let nv = varying.len();
+    let candidates = if nv <= 30 {
+        binomial((1u64 << nv) as f64, dof)
     } else {
         f64::INFINITY
     };
-    if n > MAX_CABLES || candidates > MAX_CANDIDATES {
+    if nv > MAX_CABLES || candidates > MAX_CANDIDATES {
         return Err(PolytopeError::TooLarge {
             method: "Krut's vertex projection",
             cables: n,
@@ -87,18 +125,25 @@ pub fn available_wrench_set(
             max_candidates: MAX_CANDIDATES,
         });
     }
-    if n < dof {
+    // The generators must span the wrench space, or the polytope has an empty interior (e.g. a
+    // zero-width tension box): checked on their unit directions, so that a tiny generator still
+    // counts.
+    let directions = DMatrix::from_fn(dof, nv, |i, c| {
+        let col = w.column(varying[c]);
+        col[i] / col.amax()
+    });
+    if nv < dof || input::numerical_rank(&directions) < dof {
         return Err(PolytopeError::LowerDimensional {
-            rank: input::numerical_rank(w),
+            rank: input::numerical_rank(&directions).min(input::numerical_rank(w)),
             dof,
         });
     }
 
-    // Step 1: SVD W = U Σ Vᵀ (thin: U DOF × DOF, Vᵀ DOF × n).
-    let svd = w.clone().svd(true, true);
-    let (u, vt) = match (svd.u.as_ref(), svd.v_t.as_ref()) {
-        (Some(u), Some(vt)) => (u, vt),
-        _ => {
+    // Step 1: SVD W = U Σ Vᵀ (thin: U DOF × DOF; Vᵀ is used through S⁻¹ Uᵀ W, below).
+    let svd = w.clone().svd(true, false);
+    let u = match svd.u.as_ref() {
+        Some(u) => u,
+        None => {
             return Err(PolytopeError::SolverFailure {
                 detail: "SVD of W did not converge".into(),
             });
@@ -112,49 +157,69 @@ pub fn available_wrench_set(
             dof,
         });
     }
-    // Steps 1–3: box vertices (eq. (3)), τ_s = Vᵀ τ (eq. (8)), τ_r = P τ_s (eq. (9)). With the
-    // thin Vᵀ the projection P is implicit: its rows are the first DOF rows of the full Vᵀ.
-    let vertex_count = 1usize << n;
-    let mut tau_r: Vec<V6> = Vec::with_capacity(vertex_count);
-    let (tmin, tmax) = (bounds.min(), bounds.max());
-    for bits in 0..vertex_count {
-        let tau = DVector::from_fn(n, |j, _| {
-            if (bits >> j) & 1 == 1 {
-                tmax[j]
-            } else {
-                tmin[j]
-            }
-        });
-        let r = vt * tau;
-        let mut p = V6::zeros();
-        p.rows_mut(0, dof).copy_from(&r);
-        tau_r.push(p);
+    // Steps 1–3 (eqs. (3), (8), (9)), in generator form: the box vertex with bits v is
+    // τ = t_min + Σ_{j ∈ v} e_j (t_max,j − t_min,j), so τ_r = P Vᵀ t_min + Σ_{j ∈ v} g_j with
+    // g_j = P Vᵀ e_j (t_max,j − t_min,j). The first DOF rows of Vᵀ equal S⁻¹ Uᵀ W; g_j is formed
+    // that way, from the column w_j, because the computed V of an ill-conditioned W carries
+    // round-off of order ε·s₁/s_DOF in its small entries (a fuzzed W with condition 1.5·10⁷
+    // turned facet normals by 10⁻⁴).
+    let mut g: Vec<Vec6> = vec![[0.0; MAX_DOF]; nv];
+    for (c, &j) in varying.iter().enumerate() {
+        let uw = u.tr_mul(&w.column(j)); // Uᵀ w_j
+        for i in 0..dof {
+            g[c][i] = uw[i] / s[i] * (tmax[j] - tmin[j]);
+        }
     }
-    let pmax = tau_r.iter().map(|p| p.norm()).fold(0.0, f64::max);
+    let g_norm: Vec<f64> = g.iter().map(norm).collect();
 
-    // Steps 4–5: candidate hyperplanes a · τ_r = b (b = 1 for Cramer systems, b = 0 through
-    // the origin) and the border test (15).
-    let mut borders: Vec<(V6, f64)> = Vec::new();
+    // Steps 4–5: candidate hyperplanes through DOF vertices and the border test (15).
+    let vertex_count = 1usize << nv;
+    // path[m] = Σ_{j ∈ m} ‖g_j‖: the length of the way from a vertex v₀ to v₀ xor m along
+    // the generators, the scale of the round-off in that vertex's height.
+    let mut path = vec![0.0f64; vertex_count];
+    for m in 1..vertex_count {
+        path[m] = path[m & (m - 1)] + g_norm[m.trailing_zeros() as usize];
+    }
+    let mut height = vec![0.0f64; vertex_count]; // a · (τ_r,(v₀ xor m) − τ_r,v₀)
+    let mut q = vec![0.0f64; nv]; // the height gained by flipping bit j of v₀
+    let mut borders: Vec<(Vec6, usize)> = Vec::new(); // (outward a, a vertex on the border)
     let mut idx: Vec<usize> = (0..dof).collect();
     loop {
-        if let Some((a, b)) = candidate_hyperplane(&tau_r, &idx, dof, pmax) {
-            let tol = 1e-9 * (b.abs() + a.norm() * pmax);
-            // BorderType1: all ≤ b; BorderType2: all ≥ b. Early exit once both fail.
+        if let Some(a) = candidate_normal(&g, &g_norm, &idx, dof) {
+            let v0 = idx[0];
+            for (j, (qj, gj)) in q.iter_mut().zip(&g).enumerate() {
+                let p = dot(&a, gj, dof);
+                *qj = if v0 >> j & 1 == 1 { -p } else { p };
+            }
+            // Every vertex is v₀ xor m; its height relative to v₀ is a subset sum of q, built
+            // in increasing order of m (m extends m without its lowest bit), with an early exit.
+            // A vertex counts as on the plane within BORDER_TOL times its path length from v₀.
             let (mut type1, mut type2) = (true, true);
-            for p in &tau_r {
-                let x = a.dot(p);
-                type1 &= x <= b + tol;
-                type2 &= x >= b - tol;
+            for m in 1..vertex_count {
+                let x = height[m & (m - 1)] + q[m.trailing_zeros() as usize];
+                height[m] = x;
+                let tol = BORDER_TOL * path[m];
+                type1 &= x <= tol;
+                type2 &= x >= -tol;
                 if !type1 && !type2 {
                     break;
                 }
             }
-            if type1 && !type2 {
-                borders.push((a, b));
-            } else if type2 && !type1 {
-                // Origin test: the origin lies on the far side of this border; store it as
-                // (−a)·τ_r ≤ −b so that every border reads a·τ_r ≤ b.
-                borders.push((-a, -b));
+            // A facet of the image of the box is spanned by DOF − 1 independent generators
+            // lying in it; a plane that only touches an edge can pass the border test within
+            // round-off (vertices v₀ xor m whose generator heights cancel), so require it.
+            // The normal is then recomputed from those generators, which is more precise than
+            // from the differences of the chosen vertices.
+            if type1 != type2
+                && let Some(mut n) = facet_normal(&g, &g_norm, &q, &a, dof)
+            {
+                if type2 {
+                    // The origin test of the paper's type 2: stored as (−a) · τ_r ≤ −b.
+                    for x in n.iter_mut() {
+                        *x = -*x;
+                    }
+                }
+                borders.push((n, v0));
             }
         }
         if !next_combination(&mut idx, vertex_count) {
@@ -162,81 +227,144 @@ pub fn available_wrench_set(
         }
     }
 
-    // No border at all: the projected vertices lie in a hyperplane (e.g. a zero-width tension
-    // box, or the cables with t_min < t_max do not span the wrench space), so the polytope has
-    // an empty interior and no hyperplane through DOF affinely independent vertices exists.
-    if borders.is_empty() {
-        let p0 = tau_r[0];
-        let spread = DMatrix::from_fn(dof, vertex_count, |i, j| tau_r[j][i] - p0[i]);
-        return Err(PolytopeError::LowerDimensional {
-            rank: input::numerical_rank(&spread).min(dof - 1),
-            dof,
-        });
-    }
-
-    // Step 6: f = U S τ_r, so a·τ_r ≤ b ⇔ (U S⁻¹ a)·f ≤ b, eqs. (17)–(18).
+    // Step 6: f = U S τ_r (eq. (17)), so a · τ_r ≤ b ⇔ (U S⁻¹ a) · f ≤ b, eq. (18). The offset
+    // is the operational image of the border's vertex, f_v = W τ_v, on the unit normal.
     let mut raw = Vec::with_capacity(borders.len());
-    for (a, b) in borders {
-        let v = DVector::from_fn(dof, |i, _| a[i] / s[i]); // v_k = S⁻¹ u_k, eq. (17)
-        let g = u * v;
-        let norm = g.norm();
-        raw.push(Facet {
-            normal: g / norm,
-            offset: b / norm, // 1/‖v_k‖ for a type-1 border: the term of eq. (19)
+    for (a, v) in borders {
+        let sa = DVector::from_fn(dof, |i, _| a[i] / s[i]); // v_k = S⁻¹ u_k up to scale, eq. (17)
+        let gdir = u * sa;
+        let len = gdir.norm();
+        if !(len > 0.0 && len.is_finite()) {
+            continue;
+        }
+        let normal = gdir / len;
+        let tau = DVector::from_fn(n, |j, _| match varying.iter().position(|&c| c == j) {
+            Some(c) if v >> c & 1 == 1 => tmax[j],
+            _ => tmin[j],
         });
+        let offset = normal.dot(&(w * tau));
+        raw.push(Facet { normal, offset });
     }
     Ok(AvailableWrenchSet::from_halfspaces(dof, raw, true, scale))
 }
 
-/// Eqs. (12)–(14): the hyperplane through the chosen projected vertices, as (a, b) with
-/// a·τ_r = b. `None` if the points do not determine a hyperplane.
-fn candidate_hyperplane(tau_r: &[V6], idx: &[usize], dof: usize, pmax: f64) -> Option<(V6, f64)> {
-    // T_k padded with an identity block to a fixed 6 × 6 system (det unchanged).
-    let mut t = M6::identity();
-    let mut rhs = V6::zeros();
-    let mut hadamard = 1.0;
-    for (r, &i) in idx.iter().enumerate() {
-        let p = &tau_r[i];
-        for c in 0..dof {
-            t[(r, c)] = p[c];
+/// Eqs. (12)–(14) in translation-invariant form: the unit normal of the hyperplane through the
+/// projected vertices `idx` (bit patterns over the generators), orthogonal to their differences
+/// δ_i − δ_0 = Σ_j (v_i,j − v_0,j) g_j. `None` if the vertices are affinely dependent.
+fn candidate_normal(g: &[Vec6], g_norm: &[f64], idx: &[usize], dof: usize) -> Option<Vec6> {
+    let k = dof - 1;
+    let mut rows = [[0.0f64; MAX_DOF]; MAX_DOF];
+    for r in 0..k {
+        let (vi, v0) = (idx[r + 1], idx[0]);
+        let row = &mut rows[r];
+        let mut mass = 0.0;
+        for (j, gj) in g.iter().enumerate() {
+            let coef = (vi >> j & 1) as f64 - (v0 >> j & 1) as f64;
+            if coef != 0.0 {
+                mass += g_norm[j];
+                for c in 0..dof {
+                    row[c] += coef * gj[c];
+                }
+            }
         }
-        rhs[r] = 1.0;
-        hadamard *= p.norm();
-    }
-    if hadamard == 0.0 {
-        return None; // a projected vertex at the origin: not a Cramer system
-    }
-    let lu = t.lu();
-    if lu.determinant().abs() > 1e-10 * hadamard {
-        // Eq. (14): u_k = T_k⁻¹ [1 … 1]ᵀ.
-        return lu.solve(&rhs).map(|u| (u, 1.0));
-    }
-    // Singular T_k: identical projections give no hyperplane; affinely independent points
-    // aligned with the origin give a hyperplane through O (seed 001, after eq. (14)).
-    let mut d = M6::zeros();
-    let p0 = tau_r[idx[0]];
-    for (r, &i) in idx.iter().enumerate().skip(1) {
-        let diff = tau_r[i] - p0;
-        for c in 0..dof {
-            d[(r - 1, c)] = diff[c];
+        // Two chosen vertices coincide, exactly or up to the round-off of their generators
+        // (antiparallel cables: g_a + g_b ≈ 0): the difference has no direction.
+        let len = norm(row);
+        if !(len > COINCIDENT_TOL * mass && len.is_finite()) {
+            return None;
+        }
+        for x in row.iter_mut() {
+            *x /= len;
         }
     }
-    let block = d.view((0, 0), (dof, dof)).into_owned();
-    let svd = block.svd(false, true);
-    let vt = svd.v_t?;
-    let sv = &svd.singular_values;
-    // Smallest singular value's right vector is the normal; the others must be non-zero.
-    let mut order: Vec<usize> = (0..dof).collect();
-    order.sort_by(|&a, &b| sv[a].total_cmp(&sv[b]));
-    if dof > 1 && sv[order[1]] <= 1e-9 * pmax.max(f64::MIN_POSITIVE) {
+    orthogonal_complement(&mut rows[..k], dof)
+}
+
+/// The refined normal of a border: the generators lying in the candidate plane (height |q_j|
+/// within [`BORDER_TOL`] of their length) must span DOF − 1 dimensions, and the unit vector
+/// orthogonal to them, oriented like `a`, is returned. `None` if they span less: the plane only
+/// touches a lower-dimensional face (an edge, say) within round-off.
+fn facet_normal(g: &[Vec6], g_norm: &[f64], q: &[f64], a: &Vec6, dof: usize) -> Option<Vec6> {
+    let mut rows = [[0.0f64; MAX_DOF]; MAX_CABLES];
+    let mut count = 0;
+    for ((gj, &len), &qj) in g.iter().zip(g_norm).zip(q) {
+        if qj.abs() <= BORDER_TOL * len {
+            for c in 0..dof {
+                rows[count][c] = gj[c] / len;
+            }
+            count += 1;
+        }
+    }
+    let mut n = orthogonal_complement(&mut rows[..count], dof)?;
+    if dot(&n, a, dof) < 0.0 {
+        for x in n.iter_mut() {
+            *x = -*x;
+        }
+    }
+    Some(n)
+}
+
+/// The unit vector orthogonal to unit `rows` that span exactly dof − 1 dimensions, by Gaussian
+/// elimination with complete pivoting (pivots below [`PIVOT_TOL`] end the elimination); `None`
+/// if their rank is not dof − 1.
+fn orthogonal_complement(rows: &mut [Vec6], dof: usize) -> Option<Vec6> {
+    let k = dof - 1;
+    let mut piv = [0usize; MAX_DOF];
+    let mut used = [false; MAX_DOF];
+    let mut rank = 0;
+    while rank < rows.len().min(dof) {
+        let (mut bi, mut bj, mut best) = (rank, 0, -1.0f64);
+        for (i, row) in rows.iter().enumerate().skip(rank) {
+            for (j, &x) in row.iter().enumerate().take(dof) {
+                if !used[j] && x.abs() > best {
+                    (bi, bj, best) = (i, j, x.abs());
+                }
+            }
+        }
+        // Written so that a NaN pivot also ends the elimination.
+        if best.partial_cmp(&PIVOT_TOL) != Some(std::cmp::Ordering::Greater) {
+            break;
+        }
+        rows.swap(rank, bi);
+        used[bj] = true;
+        piv[rank] = bj;
+        let pivot_row = rows[rank];
+        for row in rows.iter_mut().skip(rank + 1) {
+            let f = row[bj] / pivot_row[bj];
+            for c in 0..dof {
+                row[c] -= f * pivot_row[c];
+            }
+            row[bj] = 0.0;
+        }
+        rank += 1;
+    }
+    if rank != k {
         return None;
     }
-    let mut a = V6::zeros();
-    for c in 0..dof {
-        a[c] = vt[(order[0], c)];
+    // The one column never pivoted is free: set it to 1 and back-substitute.
+    let mut x = [0.0f64; MAX_DOF];
+    x[(0..dof).find(|&j| !used[j])?] = 1.0;
+    for step in (0..k).rev() {
+        let row = &rows[step];
+        let sum: f64 = (0..dof).map(|c| row[c] * x[c]).sum();
+        x[piv[step]] = -sum / row[piv[step]];
     }
-    let b = a.dot(&p0);
-    (b.abs() <= 1e-9 * pmax).then_some((a, 0.0))
+    let len = norm(&x);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    for v in x.iter_mut() {
+        *v /= len;
+    }
+    Some(x)
+}
+
+fn dot(a: &Vec6, b: &Vec6, dof: usize) -> f64 {
+    (0..dof).map(|i| a[i] * b[i]).sum()
+}
+
+fn norm(a: &Vec6) -> f64 {
+    a.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 #[cfg(test)]

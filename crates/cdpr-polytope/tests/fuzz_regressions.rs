@@ -1,5 +1,14 @@
 //! Inputs found by the fuzz target `polytope_index` (fuzz/fuzz_targets/polytope_index.rs).
-//! A test marked `#[ignore = "fuzz finding: …"]` reproduces a bug that is not fixed yet.
+//! Each test's comment describes the wrong answer the code gave when the input was found; all are
+//! fixed. The three root causes were:
+//! - merging near-duplicate facets kept one facet's normal with another's offset (unsound by
+//!   ~1e-7 of the scale; indices changed): the set now keeps every supporting half-space, merges
+//!   whole half-spaces, and computes membership and indices from the unmerged list;
+//! - hyperplane shifting let a cable with t_min = t_max (a zero generator) span half-spaces that
+//!   are not facets: subsets are now drawn from the generators;
+//! - Krut's hyperplanes through DOF projected vertices used eq. (14) literally (T_k u = 1, a
+//!   determinant test relative to the distance from the origin): they are now computed from the
+//!   vertices' differences, through the box generators (module docs of krut_vertex_projection).
 
 use cdpr_kinematics::MotionPattern;
 use cdpr_polytope::{
@@ -67,7 +76,6 @@ fn krut_fixed_tension_cable_gives_a_segment_not_the_plane() {
 /// Reference value: exact rational arithmetic over every pair of generators (cross-product
 /// normals, support function Σ max(c·w_j t_min,j, c·w_j t_max,j)), computed outside this code.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection drops a thin facet (generator ratio ~1e-11), isotropic radius off by 15 %"]
 fn krut_keeps_thin_facets() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -167,7 +175,6 @@ fn hyperplane_shifting_keeps_thin_facets() {
 /// the most violated one. Krut's vertex projection drops it (radius −1 050 423.99 instead of
 /// −1 051 985.99). Reference: exact rational arithmetic as above.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection drops a facet spanned by two small generators (ratios 4e-6)"]
 fn krut_keeps_facet_of_two_small_generators() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -206,7 +213,6 @@ fn krut_keeps_facet_of_two_small_generators() {
 /// most violated facet's signed distance") returns −31 973.75 where Krut's method returns the
 /// facet value −3500.91.
 #[test]
-#[ignore = "fuzz finding: hyperplane shifting emits non-facet half-spaces normal to a cable with t_min = t_max"]
 fn hyperplane_shifting_has_no_halfspace_normal_to_a_fixed_cable() {
     let w = nalgebra::DMatrix::from_column_slice(
         2,
@@ -247,7 +253,6 @@ fn hyperplane_shifting_has_no_halfspace_normal_to_a_fixed_cable() {
 /// scaling) is only approximately orthogonal to them: the omitted terms |c·w_j|·|t_j| are the
 /// error. Summing over every column keeps each half-space a supporting one for any c.
 #[test]
-#[ignore = "fuzz finding: hyperplane shifting half-space cuts off W t_min (unsound by 0.044 at scale 1e6)"]
 fn hyperplane_shifting_contains_every_box_corner() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -295,7 +300,6 @@ fn hyperplane_shifting_contains_every_box_corner() {
 /// call runs for minutes before returning. Hyperplane shifting answers in microseconds. A rank
 /// check of the columns with t_min < t_max before the enumeration would return at once.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection runs for minutes on a zero-width box in 6 DOF (SVD per candidate)"]
 fn krut_zero_width_box_in_six_dof_is_fast() {
     let w = nalgebra::DMatrix::from_column_slice(
         6,
@@ -327,7 +331,6 @@ fn krut_zero_width_box_in_six_dof_is_fast() {
 /// Exact facet minimum (rational arithmetic): −50 072 706.449 (hyperplane shifting agrees);
 /// Krut's method returns −50 078 131.39, a half-space 5.4·10³ off.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection is off by 1e-4 relative with a duplicate column of tiny range"]
 fn krut_duplicate_column_with_tiny_range() {
     let w = nalgebra::DMatrix::from_column_slice(
         2,
@@ -373,7 +376,6 @@ fn krut_duplicate_column_with_tiny_range() {
 /// `krut_keeps_facet_of_two_small_generators` and `krut_duplicate_column_with_tiny_range`.
 /// A fix: measure T_k's singularity on the differences τ_r,i − τ_r,0 (translation-invariant).
 #[test]
-#[ignore = "fuzz finding: Krut's determinant test is relative to the vertices' distance from the origin; facets of a far-away AWS are dropped"]
 fn krut_keeps_facets_of_a_far_away_polytope() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -432,7 +434,6 @@ fn krut_keeps_facets_of_a_far_away_polytope() {
 /// the zero-moment force index divides each offset by the normal's force part ‖n_f‖, so when
 /// ‖n_f‖ is small the 1e-7 normal change is amplified. (One t_max is infinite here.)
 #[test]
-#[ignore = "fuzz finding: isotropic_force (facet list) and isotropic_force_of (streamed) differ by 5e-5 relative after facet merging"]
 fn isotropic_force_of_matches_the_facet_list() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -482,7 +483,6 @@ fn isotropic_force_of_matches_the_facet_list() {
 /// projected vertex at the origin: not a Cramer system"), and the through-origin fallback
 /// never sees it.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection drops facets through a projected vertex at the origin (origin on the AWS boundary)"]
 fn krut_keeps_facets_through_the_origin() {
     let w = dmatrix![-0.013826000000000001, -0.0, -21177.0, -0.013826000000000001];
     let b = TensionBounds::uniform(4, -10024.0, 0.0).unwrap();
@@ -497,7 +497,6 @@ fn krut_keeps_facets_through_the_origin() {
 /// x ≥ 0 and y ≥ 0 pass through the projected vertex t = 0. Exact isotropic force: 0; Krut's
 /// method returns 1 (it keeps only x ≤ 1 and y ≤ 1).
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection gives isotropic force 1 instead of 0 for W = I, t in [0, 1]"]
 fn krut_unit_square_from_zero_tension() {
     let w = dmatrix![1.0, 0.0; 0.0, 1.0];
     let b = TensionBounds::uniform(2, 0.0, 1.0).unwrap();
@@ -514,7 +513,6 @@ fn krut_unit_square_from_zero_tension() {
 /// are inside its set, so the extra half-space is supporting but not a facet (the mirror image
 /// of `hyperplane_shifting_has_no_halfspace_normal_to_a_fixed_cable`).
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection with a zero column gives radius -1.5e6 instead of -580.66"]
 fn krut_zero_column() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -552,7 +550,6 @@ fn krut_zero_column() {
 /// Second case of the facet-merging finding (crash-049d6668…): here the two values differ by 1 %
 /// (−2.696·10⁸ vs −2.723·10⁸), uniform bounds [0.0194, 13258], 8 cables, the origin outside.
 #[test]
-#[ignore = "fuzz finding: isotropic_force (facet list) and isotropic_force_of (streamed) differ by 1 % after facet merging"]
 fn isotropic_force_of_matches_the_facet_list_8_cables() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -602,7 +599,6 @@ fn isotropic_force_of_matches_the_facet_list_8_cables() {
 /// (kept when > 1e-12): for facets that are nearly pure moment, a 1e-7 change of the normal by
 /// merging changes d/‖n_f‖ arbitrarily.
 #[test]
-#[ignore = "fuzz finding: isotropic_force (facet list) and isotropic_force_of (streamed) differ by 16 % (spatial, facets with tiny force part)"]
 fn isotropic_force_of_matches_the_facet_list_spatial() {
     let w = nalgebra::DMatrix::from_column_slice(
         6,
@@ -688,7 +684,6 @@ fn isotropic_force_of_matches_the_facet_list_spatial() {
 /// method returns 56 454.11, the positive side of the same pair: it drops one facet of the pair.
 /// Cable 4's range [−29 813, 29 815] dwarfs the others (≈ ±20). Not diagnosed further.
 #[test]
-#[ignore = "fuzz finding: Krut's vertex projection drops one facet of a 4-DOF parallelotope (radius doubled)"]
 fn krut_parallelotope_4_dof() {
     let w = nalgebra::DMatrix::from_column_slice(
         4,
@@ -735,7 +730,6 @@ fn krut_parallelotope_4_dof() {
 /// identical columns (−19 019, −19 019, −19 019), a box corner t; W t lies 0.038 outside the
 /// hyperplane-shifting AWS, 10⁻⁷ of the scale max|W|·max|t|·n ≈ 3.8·10⁵ (100× the fuzz tolerance).
 #[test]
-#[ignore = "fuzz finding: hyperplane shifting half-space cuts off a box corner by 0.038 (duplicate columns)"]
 fn hyperplane_shifting_contains_every_box_corner_duplicates() {
     let w = nalgebra::DMatrix::from_column_slice(
         3,
@@ -777,4 +771,157 @@ fn hyperplane_shifting_contains_every_box_corner_duplicates() {
     let aws = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
     let v = aws.violation(&(&w * &t));
     assert!(v <= 1e-9 * 19019.0 * 2.2271, "W t outside the AWS by {v:e}");
+}
+
+/// Fuzz finding (crash-4e9d8327…, session 2): columns 2 and 6 are exactly antiparallel with the
+/// same tension range, so their generators cancel and pairs of box vertices coincide. Computed
+/// through the SVD, g₂ + g₆ was a round-off residual instead of zero; Krut's method took its
+/// direction as a vertex difference and kept a supporting half-space through an edge (not a
+/// facet): radius −1.590·10⁹ instead of the exact −1 146 869 005.598 (rational arithmetic over
+/// every pair of generators; hyperplane shifting agrees).
+#[test]
+fn krut_antiparallel_generators_cancel() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.05406,
+            2613.8,
+            3148.0,
+            3148.0,
+            3148.0,
+            21274.0,
+            21331.0,
+            21331.0,
+            21331.0,
+            21331.0,
+            21331.0,
+            -17581.0,
+            -2.6874000000000002,
+            21331.0,
+            15.26,
+            -3148.0,
+            -3148.0,
+            -21274.0,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![21331.0; 6],
+        vec![42662.0, 42662.0, 42766.0, 38566.0, 42662.0, 42662.0],
+    )
+    .unwrap();
+    let exact = -1_146_869_005.598_414;
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
+
+/// Fuzz finding (crash-39409e54…, session 2): W has condition number 1.5·10⁷ (singular values
+/// 25 752 and 0.00175). Krut's generators were read off the computed Vᵀ, whose small entries
+/// carry round-off of order ε·s₁/s₂; the facet normal to the cables along (1, 1) came out turned
+/// by 1.2·10⁻⁴ rad and the radius was −590 824 537.98 instead of the exact −590 754 502.876
+/// (rational arithmetic; hyperplane shifting agrees). The generators are now S⁻¹Uᵀw_j.
+#[test]
+fn krut_ill_conditioned_w() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        2,
+        4,
+        &[
+            -0.001, -0.001, -0.001, -0.001, 0.001, 0.001, 25751.0, -255.32,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-0.001, 32100.0, 32125.0, 32125.0],
+        vec![0.002, 64225.0, 64250.0, 64250.0],
+    )
+    .unwrap();
+    let exact = -590_754_502.875_848_2;
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
+
+/// Fuzz finding (timeout-6d91f0c0…, session 2; the "timeout" was the backtrace of a failed
+/// assertion): generator lengths range from 1.6·10⁻⁴ to 4.9·10⁶ (cable 3's range is 21 049 N,
+/// cables 1–2 have 0.003 N), one column is zero and two are equal. Krut's border test used a
+/// tolerance of 10⁻⁹ of the polytope's size, larger than the polytope's whole thickness in its
+/// thin directions, and accepted 60 planes cutting through it: radius −371.54 instead of the
+/// exact −300.440 (rational arithmetic; hyperplane shifting agrees). The tolerance is now
+/// relative to each vertex's path length from the plane's first vertex.
+#[test]
+fn krut_border_test_with_generators_of_very_different_lengths() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.05406, -0.001, -0.001, -0.05406, -0.001, -0.05406, 233.53, -14.197, -0.001, -0.0,
+            -0.0, -0.0, -0.001, -0.001, -0.001, -0.001, -0.001, -0.001,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-0.001, -0.001, 1.8194, 0.0522, -0.14907, -0.14907],
+        vec![0.002, 0.002, 21050.8194, 3.3134, 0.29814, 15.05607],
+    )
+    .unwrap();
+    let exact = -300.439_909_915_039_66;
+    let hs = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+    let krut = krut_vertex_projection::available_wrench_set(&w, &b).unwrap();
+    for (name, aws) in [("hyperplane shifting", &hs), ("Krut", &krut)] {
+        let r = isotropic_wrench_radius(aws);
+        assert!(
+            (r - exact).abs() <= 1e-6 * exact.abs(),
+            "{name} {r} vs exact {exact}"
+        );
+    }
+    assert_eq!(krut.facets().len(), hs.facets().len());
+}
+
+/// Fuzz finding (crash-69f9c48a…, session 2): a plane through three box vertices v₀,
+/// v₀ + g₆ − g₁ and v₀ + g₆ − g₂ (g₁, g₂ of length ~10⁻⁴, g₆ of length 1513) is tilted about
+/// the edge g₆ by the tiny g₁ − g₂; its heights cancel in pairs and it passed the border test
+/// within round-off while touching only the edge: Krut's radius −7 750 561.7 instead of the
+/// exact −2 997 115.058 (rational arithmetic; hyperplane shifting agrees). A border must now
+/// contain DOF − 1 independent generators, and its normal is recomputed from them.
+#[test]
+fn krut_rejects_planes_touching_only_an_edge() {
+    let w = nalgebra::DMatrix::from_column_slice(
+        3,
+        6,
+        &[
+            -0.05406, -0.001, -0.001, -0.05406, -0.001, -0.05406, -0.0, -0.0, -0.0, 5171.0,
+            -10.872, -197.68, -32.703, -2.6874, -0.001, -3.2612, 668.2, 5171.0,
+        ],
+    );
+    let b = TensionBounds::new(
+        vec![-0.05406, -0.05406, 685.7, 1513.0, 1935.9, 676.6],
+        vec![0.05506, 0.05506, 2198.7, 1654.5, 2230.97, 2189.6],
+    )
+    .unwrap();
+    let exact = -2_997_115.058_229_63;
+    let hs = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+    let krut = krut_vertex_projection::available_wrench_set(&w, &b).unwrap();
+    for (name, aws) in [("hyperplane shifting", &hs), ("Krut", &krut)] {
+        let r = isotropic_wrench_radius(aws);
+        assert!(
+            (r - exact).abs() <= 1e-9 * exact.abs(),
+            "{name} {r} vs exact {exact}"
+        );
+    }
+    assert_eq!(krut.facets().len(), hs.facets().len());
 }
