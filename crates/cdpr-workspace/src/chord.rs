@@ -341,7 +341,7 @@ pub fn chord_workspace(
         let m = settings.seed_resolution;
         let grid = Grid::new(m, *region);
         let coarse = map_grid(eval, &grid, 2, |ev, u| {
-            ev.is_feasible(&Pose::new(u, rotation))
+            ev.is_feasible_finite_rotation(&Pose::new(u, rotation))
         });
         walker.evaluations += coarse.len();
         let p = m + 1;
@@ -450,7 +450,8 @@ impl Walker<'_> {
             return false;
         }
         self.evaluations += 1;
-        self.eval.is_feasible(&Pose::new(p, self.rotation))
+        self.eval
+            .is_feasible_finite_rotation(&Pose::new(p, self.rotation))
     }
 
     /// Bisection on the segment from feasible `a` to infeasible `b`: the feasible end once

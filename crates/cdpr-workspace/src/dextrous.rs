@@ -183,7 +183,7 @@ pub fn dextrous_workspace_about_axis(
     let central_is_slice = angles.contains(&range.central());
     // Per point: (dextrous, feasible at both extremes, violation of the central check).
     let verdicts = map_grid(eval, grid, dim, |ev, u| {
-        let mut ok = |r: &Rotation3<f64>| ev.is_feasible(&Pose::new(u, *r));
+        let mut ok = |r: &Rotation3<f64>| ev.is_feasible_finite_rotation(&Pose::new(u, *r));
         if !ok(&first) || (angles.len() > 1 && !ok(&last)) {
             return (false, false, false);
         }
@@ -228,7 +228,8 @@ pub fn dextrous_workspace_over(
         .map(|r| checked_orientation(motion, r))
         .collect::<Result<Vec<_>, _>>()?;
     let feasible = map_grid(eval, grid, dim, |ev, u| {
-        rots.iter().all(|r| ev.is_feasible(&Pose::new(u, *r)))
+        rots.iter()
+            .all(|r| ev.is_feasible_finite_rotation(&Pose::new(u, *r)))
     });
     Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
 }

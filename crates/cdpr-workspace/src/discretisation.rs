@@ -6,8 +6,8 @@
 //! the 3-D grid of (m+1)³ points. The area (volume) estimate is the number of feasible points
 //! times the cell area (Δx/m)(Δy/m) (times Δz/m).
 //!
-//! Points are evaluated in parallel with rayon, one [`PoseEvaluator`] clone per task
-//! (`map_init`); each point's verdict depends on that point only, so the result is the same
+//! Points are evaluated in parallel with rayon, in contiguous tasks, with one [`PoseEvaluator`]
+//! clone per thread; each point's verdict depends on that point only, so the result is the same
 //! whatever the number of threads.
 //!
 //! ## References
@@ -17,9 +17,10 @@ use crate::{PoseEvaluator, Region, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
 use nalgebra::{Rotation3, Vector3};
 use rayon::prelude::*;
+use std::sync::Mutex;
 
-/// Smallest number of grid points a rayon task handles (amortises the evaluator clone).
-const MIN_POINTS_PER_TASK: usize = 128;
+/// Smallest number of grid points a rayon task handles (amortises rayon's per-task cost).
+const MIN_POINTS_PER_TASK: usize = 64;
 
 /// A regular grid of resolution m over a box (Algorithm 6.2 steps 1–3).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -67,21 +68,26 @@ impl Grid {
     #[inline]
     pub fn point(&self, dim: usize, idx: usize) -> Vector3<f64> {
         let p = self.points_per_axis();
-        let m = self.resolution as f64;
         // Axes beyond `dim` are 0 (a planar robot moves in z = 0 whatever the region's z).
         let mut q = Vector3::zeros();
         let mut rest = idx;
         for k in 0..dim {
-            let i = rest % p;
+            q[k] = self.coordinate(k, rest % p);
             rest /= p;
-            // Written as min + (i/m)(max − min) so that i = m lands exactly on max.
-            q[k] = if i == self.resolution {
-                self.region.max[k]
-            } else {
-                self.region.min[k] + (i as f64 / m) * (self.region.max[k] - self.region.min[k])
-            };
         }
         q
+    }
+
+    /// Coordinate i along axis k: x_min + (i/m)(x_max − x_min) (Algorithm 6.2 step 3), written
+    /// so that i = m lands exactly on x_max.
+    #[inline]
+    fn coordinate(&self, k: usize, i: usize) -> f64 {
+        if i == self.resolution {
+            self.region.max[k]
+        } else {
+            let m = self.resolution as f64;
+            self.region.min[k] + (i as f64 / m) * (self.region.max[k] - self.region.min[k])
+        }
     }
 
     /// Area (2-D) or volume (3-D) of one cell, Π_k (max_k − min_k)/m.
@@ -192,18 +198,115 @@ pub(crate) fn checked_orientation(
     }
 }
 
-/// Evaluates `f` at every grid point in parallel (one evaluator clone per rayon task), in
-/// grid order.
+/// The coordinates of a grid along each axis, computed once per grid (the values of
+/// [`Grid::point`], without its per-point divisions).
+struct Axes {
+    /// Points per axis, m + 1.
+    p: usize,
+    dim: usize,
+    /// Axis k's coordinates at `coords[k * p..(k + 1) * p]`.
+    coords: Vec<f64>,
+}
+
+impl Axes {
+    fn new(grid: &Grid, dim: usize) -> Self {
+        let p = grid.points_per_axis();
+        let coords = (0..dim)
+            .flat_map(|k| (0..p).map(move |i| grid.coordinate(k, i)))
+            .collect();
+        Self { p, dim, coords }
+    }
+
+    /// Calls `visit(slot, u)` for the points of flat indices `start..start + out.len()`, in order.
+    #[inline]
+    fn for_each_point<T>(
+        &self,
+        start: usize,
+        out: &mut [T],
+        mut visit: impl FnMut(&mut T, Vector3<f64>),
+    ) {
+        let p = self.p;
+        // Grid indices (i, j, l) of `start`; the loop then steps them like an odometer.
+        let mut ijl = [start % p, (start / p) % p, start / (p * p)];
+        let axis = |k: usize, i: usize| {
+            if k < self.dim {
+                self.coords[k * p + i]
+            } else {
+                0.0
+            }
+        };
+        let mut u = Vector3::new(axis(0, ijl[0]), axis(1, ijl[1]), axis(2, ijl[2]));
+        for slot in out {
+            visit(slot, u);
+            ijl[0] += 1;
+            if ijl[0] < p {
+                u.x = self.coords[ijl[0]];
+                continue;
+            }
+            ijl[0] = 0;
+            u.x = self.coords[0];
+            ijl[1] += 1;
+            if ijl[1] < p {
+                u.y = axis(1, ijl[1]);
+                continue;
+            }
+            ijl[1] = 0;
+            u.y = axis(1, 0);
+            ijl[2] += 1;
+            // ijl[2] = p only after the last point of a 3-D grid: nothing is visited after it.
+            if ijl[2] < p {
+                u.z = axis(2, ijl[2]);
+            }
+        }
+    }
+}
+
+/// Rayon tasks per thread at most. Work-stealing splits the grid only as threads run out of work,
+/// so tasks this small cost little when the threads keep pace, while a thread that finishes
+/// early (verdicts cost from a few ns, a cable too short, to µs, a tension solve) or a thread
+/// that the OS pauses leaves at most one small task unfinished for the others.
+const TASKS_PER_THREAD: usize = 16;
+
+/// Points per rayon task for `points` points on `threads` threads.
+fn task_len(points: usize, threads: usize) -> usize {
+    points
+        .div_ceil(threads.max(1) * TASKS_PER_THREAD)
+        .max(MIN_POINTS_PER_TASK)
+}
+
+/// Evaluates `f` at every grid point in parallel, in grid order.
+///
+/// The points are cut into contiguous tasks ([`task_len`]); each rayon thread clones the
+/// evaluator once, on its first task, and reuses it (warm buffers) for its later tasks, however
+/// many tasks work-stealing gives it. Each verdict depends on its point only, so the result does
+/// not depend on the number of threads nor on which thread evaluates which point.
 pub(crate) fn map_grid<T, F>(eval: &PoseEvaluator, grid: &Grid, dim: usize, f: F) -> Vec<T>
 where
-    T: Send,
+    T: Send + Copy + Default,
     F: Fn(&mut PoseEvaluator, Vector3<f64>) -> T + Sync,
 {
-    (0..grid.point_count(dim))
-        .into_par_iter()
-        .with_min_len(MIN_POINTS_PER_TASK)
-        .map_init(|| eval.clone(), |ev, idx| f(ev, grid.point(dim, idx)))
-        .collect()
+    let axes = Axes::new(grid, dim);
+    let mut out = vec![T::default(); grid.point_count(dim)];
+    let threads = rayon::current_num_threads().max(1);
+    let len = task_len(out.len(), threads);
+    // One slot per thread of the pool running the tasks; a thread only ever locks its own slot,
+    // so the lock is uncontended. `try_lock` fails only if a criterion re-enters rayon and this
+    // thread picks up another task meanwhile: that task then uses a clone of its own.
+    let evaluators: Vec<Mutex<Option<PoseEvaluator>>> =
+        (0..threads).map(|_| Mutex::new(None)).collect();
+    out.par_chunks_mut(len)
+        .enumerate()
+        .for_each(|(task, slots)| {
+            let mut run = |ev: &mut PoseEvaluator| {
+                axes.for_each_point(task * len, slots, |slot, u| *slot = f(ev, u))
+            };
+            let own = rayon::current_thread_index().unwrap_or(0) % threads;
+            match evaluators[own].try_lock() {
+                Ok(mut slot) => run(slot.get_or_insert_with(|| eval.clone())),
+                Err(_) => run(&mut eval.clone()),
+            }
+        });
+    out
 }
 
 /// Algorithm 6.2: the constant-orientation workspace at `orientation` on `grid`.
@@ -236,7 +339,7 @@ pub fn constant_orientation_workspace(
     eval.validate()?;
     let rotation = checked_orientation(motion, orientation)?;
     let feasible = map_grid(eval, grid, dim, |ev, u| {
-        ev.is_feasible(&Pose::new(u, rotation))
+        ev.is_feasible_finite_rotation(&Pose::new(u, rotation))
     });
     Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
 }
@@ -258,4 +361,46 @@ pub fn planar_workspace(
         &Rotation3::from_axis_angle(&Vector3::z_axis(), phi),
         grid,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The odometer walk of `Axes` visits exactly the points of `Grid::point` (bit for bit), in
+    /// order, from any start and over row and layer ends, in 2-D and 3-D.
+    #[test]
+    fn axes_walk_matches_grid_points() {
+        let region = Region::cuboid(Vector3::new(-1.3, 0.2, -0.7), Vector3::new(0.9, 2.1, 0.4));
+        for (m, dim) in [(1, 2), (4, 2), (7, 3), (50, 2), (6, 3)] {
+            let grid = Grid::new(m, region);
+            let axes = Axes::new(&grid, dim);
+            let n = grid.point_count(dim);
+            for (start, len) in [
+                (0, n),
+                (3, 1),
+                (m, 2),
+                (m + 1, m + 2),
+                (n - 1, 1),
+                (n / 3, n / 2),
+            ] {
+                let mut seen = vec![Vector3::repeat(f64::NAN); len];
+                axes.for_each_point(start, &mut seen, |s, u| *s = u);
+                for (k, u) in seen.iter().enumerate() {
+                    assert_eq!(*u, grid.point(dim, start + k), "m = {m}, dim = {dim}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn task_lengths_cover_the_grid_in_a_bounded_number_of_tasks() {
+        assert_eq!(task_len(2601, 2), 2601usize.div_ceil(2 * TASKS_PER_THREAD));
+        assert_eq!(task_len(10, 4), MIN_POINTS_PER_TASK);
+        assert_eq!(task_len(2601, 0), task_len(2601, 1));
+        for (points, threads) in [(2601, 1), (2601, 2), (15_625, 3), (100, 2)] {
+            let len = task_len(points, threads);
+            assert!(points.div_ceil(len) <= threads * TASKS_PER_THREAD);
+        }
+    }
 }

@@ -47,6 +47,9 @@ pub struct PoseEvaluator {
     axial_stiffness: Option<Vec<f64>>,
     /// Criterion indices, cheapest first.
     order: Vec<usize>,
+    /// How many criteria at the head of `order` need no W (the cable-length floors): W is
+    /// written only when a pose passes them.
+    wrench_free: usize,
     /// Index of the TensionFeasible criterion whose tensions the stiffness criterion uses.
     tension_source: Option<usize>,
     scratch: Scratch,
@@ -152,6 +155,10 @@ impl PoseEvaluator {
         }
         let mut order: Vec<usize> = (0..criteria.len()).collect();
         order.sort_by_key(|&k| (criteria[k].cost(), k));
+        let wrench_free = order
+            .iter()
+            .take_while(|&&k| matches!(criteria[k], Criterion::MinCableLength(_)))
+            .count();
         let solvers = criteria
             .iter()
             .map(|c| match c {
@@ -183,6 +190,7 @@ impl PoseEvaluator {
             criteria,
             axial_stiffness: None,
             order,
+            wrench_free,
             tension_source: needs_tensions.then_some(tension_source).flatten(),
             scratch,
         })
@@ -269,12 +277,26 @@ impl PoseEvaluator {
                 value: v,
             });
         }
+        self.evaluate(pose)
+    }
+
+    /// [`PoseEvaluator::is_feasible`] for a pose whose rotation is known to be finite (grids
+    /// check their orientation once, with `checked_orientation`, not at every point).
+    #[inline]
+    pub(crate) fn is_feasible_finite_rotation(&mut self, pose: &Pose) -> bool {
+        debug_assert!(pose.rotation.matrix().iter().all(|v| v.is_finite()));
+        self.evaluate(pose).unwrap_or(false)
+    }
+
+    /// Eq. (6.23): every criterion, cheapest first; the first failure ends the test.
+    fn evaluate(&mut self, pose: &Pose) -> Result<bool, WorkspaceError> {
         let Self {
             robot,
             bounds,
             criteria,
             axial_stiffness,
             order,
+            wrench_free,
             tension_source,
             scratch,
         } = self;
@@ -283,9 +305,11 @@ impl PoseEvaluator {
             Err(KinematicsError::DegenerateCable { .. }) => return Ok(false),
             Err(e) => return Err(e.into()),
         }
-        scratch.kin.write_wrench_matrix(&mut scratch.w);
         scratch.tensions_valid = false;
-        for &k in order.iter() {
+        for (position, &k) in order.iter().enumerate() {
+            if position == *wrench_free {
+                scratch.kin.write_wrench_matrix(&mut scratch.w);
+            }
             let ok = match &criteria[k] {
                 Criterion::MinCableLength(l_min) => scratch.kin.min_length() >= *l_min,
                 Criterion::MinJacobianDeterminant(d_min) => {
