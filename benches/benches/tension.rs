@@ -1,18 +1,19 @@
 //! Tension distribution: per-pose cost of each method on 1000 feasible poses of the 8-cable
 //! spatial robot (`ipanema_like_8`, t ∈ [1, 1000] N, 10 kg platform under gravity), and of the
 //! closed form (Algorithm 6.1) on the thesis' planar 4-cable robot, and of the exact solution
-//! (6.12) on the thesis' planar 3-cable robot (the workspace-grid hot path). Each iteration
+//! (6.12) on the thesis' planar 3-cable robot (the workspace-grid hot path), and of the dense
+//! active-set path (redundancy 5) against Clarabel on an 8-cable planar robot. Each iteration
 //! solves all poses; criterion's throughput gives the per-pose cost.
 
 use cdpr_benches::{ipanema_like_8, spatial_poses};
 use cdpr_kinematics::reference_robots::thesis_four_cable;
-use cdpr_kinematics::{Pose, PoseKinematics};
+use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
 use cdpr_tension::{
-    Method, SotdaSettings, SotdaVariant, StiffnessData, TensionBounds, TensionProblem,
-    TensionSolver,
+    Method, Objective, SotdaSettings, SotdaVariant, StiffnessData, TensionBounds, TensionProblem,
+    TensionSolver, interior_point,
 };
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Vector3};
 use std::hint::black_box;
 
 struct Pose8 {
@@ -155,5 +156,79 @@ fn bench_planar_exact(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench_spatial, bench_planar, bench_planar_exact);
+/// A planar robot with 8 cables (redundancy 5): two cables from each corner of a 4 m × 2 m frame,
+/// crossed onto the corners of a 0.2 m × 0.1 m platform.
+fn planar_eight_cable() -> Robot {
+    let mut cables = Vec::new();
+    for (x, y) in [(2.0f64, 1.0f64), (-2.0, 1.0), (-2.0, -1.0), (2.0, -1.0)] {
+        for (px, py) in [
+            (0.1f64.copysign(x), 0.05f64.copysign(-y)),
+            (0.1f64.copysign(-x), 0.05f64.copysign(y)),
+        ] {
+            cables.push(Cable {
+                frame: Vector3::new(x, y, 0.0),
+                platform: Vector3::new(px, py, 0.0),
+            });
+        }
+    }
+    Robot::new(MotionPattern::Planar, cables).expect("valid robot")
+}
+
+/// l2 and l1 at r = 5 on 121 poses of the 8-cable planar robot (all feasible), by the dense
+/// active-set path of `TensionSolver` and by Clarabel (`interior_point`, the former path).
+fn bench_planar_redundant(c: &mut Criterion) {
+    let robot = planar_eight_cable();
+    let we = DVector::from_vec(vec![0.0, -50.0, 0.5]);
+    let b = TensionBounds::uniform(8, 5.0, 200.0).unwrap();
+    let mut ws = Vec::new();
+    for i in 0..=10 {
+        for j in 0..=10 {
+            let pose = Pose::planar(-1.0 + 0.2 * i as f64, -0.5 + 0.1 * j as f64, 0.05);
+            ws.push(robot.inverse_kinematics(&pose).unwrap().wrench_matrix());
+        }
+    }
+    for w in &ws {
+        let p = TensionProblem::new(w, &we, &b);
+        assert!(TensionSolver::new(Method::L2).is_feasible(&p).unwrap());
+    }
+    let mut g = c.benchmark_group("tension_planar_8_cable");
+    g.throughput(Throughput::Elements(ws.len() as u64));
+    for (name, method, objective) in [
+        ("l2", Method::L2, Objective::L2),
+        ("l1", Method::L1, Objective::L1),
+    ] {
+        let mut solver = TensionSolver::new(method);
+        let mut t = DVector::zeros(8);
+        g.bench_function(name, |bch| {
+            bch.iter(|| {
+                let mut ok = 0;
+                for w in &ws {
+                    let p = TensionProblem::new(w, &we, &b);
+                    ok += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+                }
+                black_box(ok)
+            })
+        });
+        assert_eq!(solver.clarabel_fallbacks(), 0);
+        g.bench_function(format!("{name}_clarabel"), |bch| {
+            bch.iter(|| {
+                let mut ok = 0;
+                for w in &ws {
+                    let p = TensionProblem::new(w, &we, &b);
+                    ok += interior_point(&p, objective).unwrap().is_ok() as usize;
+                }
+                black_box(ok)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_spatial,
+    bench_planar,
+    bench_planar_exact,
+    bench_planar_redundant
+);
 criterion_main!(benches);

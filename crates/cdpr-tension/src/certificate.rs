@@ -155,7 +155,7 @@ fn equilibrium_any(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (f64, f
 }
 
 /// Snaps `t` onto its bounds where it violates them by at most the tolerance (as
-/// [`snap_to_bounds`]) and certifies it ([`certify`]) in one pass: `Ok(residual)` exactly when
+/// `snap_to_bounds`, a test helper) and certifies it ([`certify`]) in one pass: `Ok(residual)` exactly when
 /// `certify` of the snapped tensions is valid. After snapping, a tension is either inside
 /// [t_min, t_max] or violates a bound by more than the tolerance, so the bound test needs no
 /// division; the full [`certify`] runs only to describe a failure.
@@ -166,6 +166,49 @@ pub(crate) fn snap_and_certify(
     bounds: &TensionBounds,
     t: &mut [f64],
 ) -> Result<f64, Certificate> {
+    let inside = snap_all(bounds, t);
+    let (residual, scale) = equilibrium_any(w, w_ext, t);
+    if inside && residual <= EQUILIBRIUM_TOLERANCE * scale {
+        Ok(residual)
+    } else {
+        Err(certify_cold(w, w_ext, bounds, t))
+    }
+}
+
+/// [`snap_and_certify`] for a DOF = M known at compile time (W is M × t.len()): the same
+/// snapping, the same sums in the same order, the same verdict.
+#[inline(always)]
+pub(crate) fn snap_and_certify_fixed<const M: usize>(
+    w: &DMatrix<f64>,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+    t: &mut [f64],
+) -> Result<f64, Certificate> {
+    debug_assert_eq!(w.nrows(), M);
+    let inside = snap_all(bounds, t);
+    let (residual, scale) = equilibrium::<M>(w.as_slice(), w_ext.as_slice(), t);
+    if inside && residual <= EQUILIBRIUM_TOLERANCE * scale {
+        Ok(residual)
+    } else {
+        Err(certify_cold(w, w_ext, bounds, t))
+    }
+}
+
+/// [`certify`] off the hot path (it only describes a failure).
+#[cold]
+#[inline(never)]
+fn certify_cold(
+    w: &DMatrix<f64>,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+    t: &[f64],
+) -> Certificate {
+    certify(w, w_ext, bounds, t)
+}
+
+/// Snaps every tension within the tolerance of a bound onto it; false if one stays outside.
+#[inline(always)]
+fn snap_all(bounds: &TensionBounds, t: &mut [f64]) -> bool {
     let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
     let mut inside = true;
     for ((ti, &l), &h) in t.iter_mut().zip(lo).zip(hi) {
@@ -173,12 +216,7 @@ pub(crate) fn snap_and_certify(
             inside &= snap_one(l, h, ti);
         }
     }
-    let (residual, scale) = equilibrium_any(w, w_ext, t);
-    if inside && residual <= EQUILIBRIUM_TOLERANCE * scale {
-        Ok(residual)
-    } else {
-        Err(certify(w, w_ext, bounds, t))
-    }
+    inside
 }
 
 /// Snaps one tension outside [lo, hi] (or NaN) onto the bound it violates by at most the

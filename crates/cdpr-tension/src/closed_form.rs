@@ -142,7 +142,12 @@ impl ClosedForm {
         &mut self,
         problem: &TensionProblem,
     ) -> Result<(), Infeasibility> {
-        let s = param_small::<M>(problem)?;
+        let mut s = Small::default();
+        param_small::<M>(
+            problem.wrench_matrix.as_slice(),
+            problem.external_wrench.as_slice(),
+            &mut s,
+        )?;
         let n = M + 1;
         self.m_vec.clear();
         self.m_vec.extend_from_slice(&s.m[..n]);
@@ -279,7 +284,7 @@ impl ClosedForm {
             });
         }
         self.parametrise(problem)?;
-        interval_of(&self.m_vec, &self.n_vec, None, problem).map(|iv| (iv.lo, iv.hi))
+        interval_of(&self.m_vec, &self.n_vec, problem).map(|iv| (iv.lo, iv.hi))
     }
 
     /// Minimum (or maximum) ‖t‖₁ = Σ t_i over the interval, comparing both ends (Alg. 6.1).
@@ -305,13 +310,13 @@ impl ClosedForm {
             });
         }
         self.parametrise(problem)?;
-        let iv = interval_of(&self.m_vec, &self.n_vec, None, problem)?;
+        let iv = interval_of(&self.m_vec, &self.n_vec, problem)?;
         write_end(&self.m_vec, &self.n_vec, &iv, maximize, t)
     }
 }
 
 /// t = M + N t^B of a small problem (DOF = M ≤ 3, n = M + 1), padded to 4 cables.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 struct Small {
     m: [f64; 4],
     n: [f64; 4],
@@ -321,24 +326,34 @@ struct Small {
     free: usize,
 }
 
-/// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs).
+/// Eq. (6.16) for DOF ≤ 3 by signed minors and Cramer's rule (see the module docs), into `out`
+/// (an out-parameter: returning the 104-byte struct inside a `Result` costs a copy on the hot
+/// path). `ws` is W column-major (M × (M + 1)), `we` is w_ext.
 #[inline(always)]
-fn param_small<const M: usize>(problem: &TensionProblem) -> Result<Small, Infeasibility> {
-    let (m, n) = (M, M + 1);
-    let ws = problem.wrench_matrix.as_slice();
-    // Columns of W (zero-padded to 3 rows) and −w_ext as column 4.
+fn param_small<const M: usize>(
+    ws: &[f64],
+    we: &[f64],
+    out: &mut Small,
+) -> Result<(), Infeasibility> {
+    let n = M + 1;
+    let (ws, we) = (&ws[..M * (M + 1)], &we[..M]);
+    // Columns of W (zero-padded to 3 rows) and −w_ext as column 4, read element by element.
     let mut cols = [[0.0f64; 3]; 5];
     let mut row_norm = [0.0f64; 3];
-    for (col, w) in cols.iter_mut().zip(ws.chunks_exact(m)) {
-        col[..m].copy_from_slice(&w[..m]);
-        for (r, v) in row_norm.iter_mut().zip(w) {
-            *r += v * v;
+    for (j, col) in cols.iter_mut().enumerate().take(n) {
+        for k in 0..M {
+            let v = ws[j * M + k];
+            col[k] = v;
+            row_norm[k] += v * v;
         }
+    }
+    for k in 0..M {
+        cols[4][k] = -we[k];
     }
     // Π ‖row_k‖².
     let mut rows2 = 1.0;
     let mut zero_row = false;
-    for &r in &row_norm[..m] {
+    for &r in &row_norm[..M] {
         zero_row |= r == 0.0;
         rows2 *= r;
     }
@@ -346,9 +361,6 @@ fn param_small<const M: usize>(problem: &TensionProblem) -> Result<Small, Infeas
         return Err(Infeasibility::SingularPose {
             condition: f64::INFINITY,
         });
-    }
-    for (c, w) in cols[4].iter_mut().zip(problem.external_wrench.as_slice()) {
-        *c = -w;
     }
     // Signed maximal minors: W d = 0. `others[j]`: the columns other than j, in order.
     const OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
@@ -362,31 +374,33 @@ fn param_small<const M: usize>(problem: &TensionProblem) -> Result<Small, Infeas
         d[j] = if j % 2 == 0 { det } else { -det };
         dn += det * det;
     }
-    let mut free = 0;
-    for j in 1..n {
-        if d[j].abs() > d[free].abs() * (1.0 + 1e-12) {
-            free = j;
-        }
+    // The basis of largest |det A| (ties to the first), by selects rather than branches.
+    let (mut free, mut best, mut d_free) = (0, d[0].abs(), d[0]);
+    for (j, &dj) in d[..n].iter().enumerate() {
+        let better = dj.abs() > best * (1.0 + 1e-12);
+        free = if better { j } else { free };
+        best = if better { dj.abs() } else { best };
+        d_free = if better { dj } else { d_free };
     }
     // Hadamard ratio √(dn / rows2) ≥ SINGULARITY_RATIO, tested without the square root.
-    if !(d[free] != 0.0 && dn >= SINGULARITY_RATIO * SINGULARITY_RATIO * rows2) {
+    if !(d_free != 0.0 && dn >= SINGULARITY_RATIO * SINGULARITY_RATIO * rows2) {
         let ratio = (dn / rows2).sqrt().min(1.0);
         return Err(Infeasibility::SingularPose {
             condition: 1.0 / ratio,
         });
     }
-    let inv_free = 1.0 / d[free];
-    let mut out = Small {
-        m: [0.0; 4],
-        n: [0.0; 4],
-        inv_n: [0.0; 4],
-        free,
-    };
-    for (v, dj) in out.inv_n.iter_mut().zip(&d).take(n) {
-        *v = d[free] / dj;
-    }
-    for (nj, dj) in out.n.iter_mut().zip(&d).take(n) {
+    let inv_free = 1.0 / d_free;
+    out.free = free;
+    for (((inv_n, nj), mj), &dj) in out
+        .inv_n
+        .iter_mut()
+        .zip(&mut out.n)
+        .zip(&mut out.m)
+        .zip(&d[..n])
+    {
+        *inv_n = d_free / dj;
         *nj = dj * inv_free;
+        *mj = 0.0;
     }
     // M_A = A⁻¹ (−w_ext) by Cramer's rule; A = the columns other than `free`, in order,
     // det A = (−1)^free d_free.
@@ -400,22 +414,83 @@ fn param_small<const M: usize>(problem: &TensionProblem) -> Result<Small, Infeas
     if M >= 3 {
         out.m[o[2]] = det_small::<M>(&cols[o[0]], &cols[o[1]], rhs) * inv_a;
     }
-    Ok(out)
+    Ok(())
 }
 
-/// Algorithm 6.1 + the choice of the end for DOF ≤ 3, on the stack.
+/// Algorithm 6.1 + the choice of the end for DOF = M ≤ 3, on the stack: the same answer as
+/// [`interval_of`] + [`write_end`], written with selects instead of data-dependent branches
+/// (the ends and the cables defining them are tracked by index).
 #[inline(always)]
-fn solve_small<const M: usize>(
+pub(crate) fn solve_small<const M: usize>(
     problem: &TensionProblem,
     maximize: bool,
     t: &mut [f64],
 ) -> Result<(), Infeasibility> {
-    let s = param_small::<M>(problem)?;
     let n = M + 1;
-    let iv = interval_of(&s.m[..n], &s.n[..n], Some(&s.inv_n[..n]), problem)?;
-    write_end(&s.m[..n], &s.n[..n], &iv, maximize, t)
+    let mut s = Small::default();
+    param_small::<M>(
+        problem.wrench_matrix.as_slice(),
+        problem.external_wrench.as_slice(),
+        &mut s,
+    )?;
+    let tmin = &problem.bounds.min().as_slice()[..n];
+    let tmax = &problem.bounds.max().as_slice()[..n];
+    let t = &mut t[..n];
+    // Eq. (6.18) per cable; `n` (out of range) marks "no defining cable".
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    let (mut i_lo, mut b_lo, mut i_hi, mut b_hi) = (n, 0.0, n, 0.0);
+    let mut slope = 0.0;
+    for i in 0..n {
+        let (mi, ni, tl, th) = (s.m[i], s.n[i], tmin[i], tmax[i]);
+        slope += ni;
+        if ni.abs() <= 1e-14 {
+            // t_i does not depend on t^B: it must satisfy its bounds by itself.
+            if bound_violation(tl, th, mi) > 1e-12 {
+                return Err(Infeasibility::NoFeasibleTension);
+            }
+            continue;
+        }
+        let a = (tl - mi) * s.inv_n[i];
+        let b = (th - mi) * s.inv_n[i]; // ±∞ for an infinite t_max
+        let pos = ni > 0.0;
+        let (l, bl) = if pos { (a, tl) } else { (b, th) };
+        let (h, bh) = if pos { (b, th) } else { (a, tl) };
+        let up = l > lo;
+        lo = if up { l } else { lo };
+        i_lo = if up { i } else { i_lo };
+        b_lo = if up { bl } else { b_lo };
+        let down = h < hi;
+        hi = if down { h } else { hi };
+        i_hi = if down { i } else { i_hi };
+        b_hi = if down { bh } else { b_hi };
+    }
+    if lo > hi {
+        // Empty, unless only by rounding (see `interval_of`).
+        let mid = 0.5 * (lo + hi);
+        let worst = (0..n)
+            .map(|i| bound_violation(tmin[i], tmax[i], s.m[i] + s.n[i] * mid))
+            .fold(f64::NEG_INFINITY, f64::max);
+        if worst > 1e-12 {
+            return Err(Infeasibility::NoFeasibleTension);
+        }
+        (lo, hi, i_lo, i_hi) = (mid, mid, n, n);
+    }
+    if maximize && !hi.is_finite() {
+        return Err(Infeasibility::Unbounded {
+            method: "closed-form",
+        });
+    }
+    let take_hi = hi.is_finite() && if maximize { slope > 0.0 } else { slope < 0.0 };
+    let (tb, at, bound) = if take_hi {
+        (hi, i_hi, b_hi)
+    } else {
+        (lo, i_lo, b_lo)
+    };
+    for (i, ti) in t.iter_mut().enumerate() {
+        *ti = if i == at { bound } else { s.m[i] + s.n[i] * tb };
+    }
+    Ok(())
 }
-
 /// A feasible interval [lo, hi] of t^B with the cables whose bounds define its ends.
 #[derive(Debug, Clone, Copy)]
 struct Interval {
@@ -428,12 +503,7 @@ struct Interval {
 
 /// Algorithm 6.1: intersect the intervals of t^B allowed by each cable's bounds (eq. (6.18)).
 #[inline(always)]
-fn interval_of(
-    m: &[f64],
-    n: &[f64],
-    inv_n: Option<&[f64]>,
-    problem: &TensionProblem,
-) -> Result<Interval, Infeasibility> {
+fn interval_of(m: &[f64], n: &[f64], problem: &TensionProblem) -> Result<Interval, Infeasibility> {
     let (tmin, tmax) = (
         problem.bounds.min().as_slice(),
         problem.bounds.max().as_slice(),
@@ -448,10 +518,7 @@ fn interval_of(
             }
             continue;
         }
-        let inv = match inv_n {
-            Some(v) => v[i],
-            None => 1.0 / ni,
-        };
+        let inv = 1.0 / ni;
         let a = (tl - mi) * inv;
         let b = (th - mi) * inv; // ±∞ for an infinite t_max
         let ((l, bl), (h, bh)) = if ni > 0.0 {
@@ -679,7 +746,7 @@ mod tests {
                 let mut cf = ClosedForm::default();
                 let mut slow = vec![0.0; n];
                 let rs = cf.parametrise_general(&p).and_then(|()| {
-                    let iv = interval_of(&cf.m_vec, &cf.n_vec, None, &p)?;
+                    let iv = interval_of(&cf.m_vec, &cf.n_vec, &p)?;
                     write_end(&cf.m_vec, &cf.n_vec, &iv, maximize, &mut slow)
                 });
                 assert_eq!(rf.is_ok(), rs.is_ok(), "case {case}: {rf:?} vs {rs:?}");

@@ -37,7 +37,7 @@ pub(crate) type P2 = [f64; 2];
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Region {
     pub verts: Vec<P2>,
-    /// `edges[j]`: index into `lines` of the line carrying the edge verts[j] → verts[j + 1]
+    /// `edges[j]`: index into `lines` of the line carrying the edge `verts[j]` → `verts[j + 1]`
     /// ([`NO_LINE`] when unknown; then the edge is interpolated).
     edges: Vec<u32>,
     /// Lines a·λ = b of the box and of the clipping half-planes.

@@ -8,11 +8,18 @@
 //! ```
 //!
 //! i.e. t = t_m + N λ with the smallest λ. The *improved* variant (Pott 2014) repairs
-//! infeasible answers: the cable with the largest relative bound violation is saturated at that
-//! bound, its force is moved into the wrench (w' = w_ext + w_i t_i) and the closed form is
-//! recomputed for the remaining cables, until all remaining tensions are within their bounds
-//! (feasible) or fewer than DOF cables remain (the method gives up: [`Infeasibility::Inconclusive`],
-//! the feasible set may still be non-empty; it is a fast heuristic, not a complete solver).
+//! infeasible answers: the cable with the largest violation of its limits (in force units,
+//! max(t_min,i − t_i, t_i − t_max,i); ties to the lower index) is saturated at that limit, its
+//! force is moved into the wrench (w' = w_ext + w_i t_i), and the closed form is recomputed for
+//! the remaining cables from their own mean tensions, while at least DOF cables remain (with
+//! exactly DOF the system is square and solved exactly); the method stops when all remaining
+//! tensions are within their bounds (feasible) or when a violation remains with only DOF cables
+//! left ([`Infeasibility::Inconclusive`]: the feasible set may still be non-empty; it is a fast
+//! heuristic, not a complete solver). A violation means more than the certificate's tolerance
+//! (10⁻⁹ relative). This is the iteration of Pott (2014) as also implemented in CASPR
+//! (`id_cf_icfm`, absolute violation, 10⁻⁶ absolute tolerance); cdpyr instead saturates the
+//! violating cable of largest |t_i|. `tests/improved_closed_form.rs` compares this
+//! implementation with a direct transcription of the iteration (pseudo-inverse per step).
 //! Needs finite t_max. Each step solves one DOF × DOF Cholesky system on reused buffers.
 //!
 //! ## References
@@ -113,11 +120,14 @@ impl ImprovedClosedForm {
                     t[i] -= s;
                 }
             }
-            // Worst violation among the free cables.
-            let (mut worst, mut wv) = (n, crate::certificate::BOUND_TOLERANCE);
+            // The free cable with the largest violation of its limits, in force units (Pott
+            // 2014); a tension counts as violating beyond the certificate's relative tolerance.
+            let (mut worst, mut wv) = (n, 0.0);
             for i in 0..n {
-                if self.active[i] {
-                    let v = bound_violation(lo[i], hi[i], t[i]);
+                if self.active[i]
+                    && bound_violation(lo[i], hi[i], t[i]) > crate::certificate::BOUND_TOLERANCE
+                {
+                    let v = (lo[i] - t[i]).max(t[i] - hi[i]);
                     if v > wv {
                         (worst, wv) = (i, v);
                     }

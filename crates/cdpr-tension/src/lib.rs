@@ -15,16 +15,18 @@
 //! | `exact` | n = DOF: t = −W⁻¹ w_ext (6.12) | [`minimum_norm`] |
 //! | `pinv` | t = −W⁺ w_ext (6.14), bounds checked | [`minimum_norm`] |
 //! | `closed-form` | Algorithm 6.1, r = 1, min ‖t‖₁ | [`closed_form`] |
-//! | `l1`, `l1-max` | min / max Σ t (6.19) | [`linear_program`] |
-//! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] |
-//! | `linf` | min max t | [`linear_program`] |
+//! | `l1`, `l1-max` | min / max Σ t (6.19) | [`linear_program`] (r ≥ 3: active-set LP) |
+//! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] (r ≥ 3 l2: Goldfarb–Idnani) |
+//! | `linf` | min max t | [`linear_program`] (r ≥ 3: active-set LP) |
 //! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
 //! | `sotda` | stiffness-oriented, r = 2 (seed 002) | [`sotda`] |
 //!
 //! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
 //! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible
-//! λ-sets. r = n − DOF is the redundancy.
+//! λ-sets. r = n − DOF is the redundancy. For r ≥ 3 dense active-set solvers work on the same
+//! parametrisation (see the [`solver`] module docs); Clarabel ([`interior_point()`]) is their
+//! numerical fallback and the oracle of the tests.
 //!
 //! ```
 //! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -56,6 +58,7 @@
 //! assert!(t1.iter().all(|&t| (5.0..=100.0).contains(&t)));
 //! ```
 
+mod active_set;
 pub mod barycenter;
 mod bounds;
 pub mod certificate;

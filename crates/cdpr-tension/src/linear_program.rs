@@ -9,12 +9,13 @@
 //! For redundancy r ≤ 2 we solve them exactly on the feasible interval / polygon in λ-space:
 //! Σ t_i = Σ t0_i + (Nᵀ 1)·λ is linear, so its optimum is at a vertex; max_i t_i is convex and
 //! piecewise linear, minimised by bisection on the level s (clip the polygon with t_i ≤ s until
-//! the bracket is below 10⁻¹⁴ relative). For r ≥ 3 the interior-point solver Clarabel solves the
-//! LP in tension space (allocating).
+//! the bracket is below 10⁻¹⁴ relative). For r ≥ 3 the dense active-set LP (phase 1, then the
+//! simplex method in inequality form with Bland's rule) solves it in λ-space without allocating
+//! (module `active_set`).
 //!
 //! ## References
 //! - Seed 000 (thesis ch. 6), §6.3.3, eq. (6.19).
-//! - Goulart & Chen (2024), *Clarabel: an interior-point solver for conic programs*.
+//! - Bland, R. G. (1977), *New finite pivoting rules for the simplex method*.
 
 use crate::feasible_polygon::{P2, Region};
 use crate::null_space::NullSpace;

@@ -2,23 +2,35 @@
 //!
 //! [`TensionSolver`] holds a [`Method`] and every scratch buffer the methods need, so that
 //! repeated calls (workspace grids, trajectories) do not allocate: [`TensionSolver::is_feasible`]
-//! allocates nothing after the first call for a given problem size, except on the
-//! interior-point path (redundancy ≥ 3 for l1, l1-max, l2, linf; l2-max at r ≥ 3 enumerates
-//! vertices with allocation). Clone one solver per thread.
+//! and [`TensionSolver::solve_into`] allocate nothing after the first call for a given problem
+//! size, except for l2-max at r ≥ 3 (vertex enumeration) and a Clarabel fallback. Clone one
+//! solver per thread.
 //!
 //! Every candidate passes [`crate::certify`] before it is returned as feasible.
 //!
 //! | method | r = 0 | r = 1 | r = 2 | r ≥ 3 |
 //! |---|---|---|---|---|
-//! | exact | QR | – | – | – |
+//! | exact | QR (n ≤ 3: adjugate) | – | – | – |
 //! | pinv | QR | QR | QR | QR |
-//! | closed-form | – | Alg. 6.1 | – | – |
-//! | l1, l1-max, l2, l2-max, linf | point | interval | polygon | Clarabel (l2-max: vertices) |
+//! | closed-form | – | Alg. 6.1 (DOF ≤ 3: minors, lean path) | – | – |
+//! | l1, l1-max, linf | point | interval | polygon | active-set LP (Bland), from the l2 optimum |
+//! | l2 | point | interval | polygon | Goldfarb–Idnani dual active set |
+//! | l2-max | point | interval | polygon | vertex enumeration |
 //! | improved-closed-form | Pott 2014 | ← | ← | ← |
 //! | barycenter, sotda | – | – | polygon | – |
+//!
+//! The r ≥ 3 active-set solvers (private module `active_set`, on the null-space
+//! parametrisation) fall back to Clarabel ([`crate::interior_point()`]) only on a
+//! numerical failure (iteration cap, dependent working set, an answer that fails the
+//! certificate, or a dual-method infeasibility that phase 1 does not confirm); such fallbacks
+//! are counted by [`TensionSolver::clarabel_fallbacks`], and a Clarabel failure then names both
+//! reasons in [`Infeasibility::SolverFailure`]. Measured per solve (`cargo bench -p cdpr-benches
+//! --bench tension -- tension_planar_8_cable`, 8-cable planar robot, r = 5, shared machine):
+//! l2 1.6–2.4 µs vs 64–80 µs with Clarabel (≈ 30×), l1 3.3–3.8 µs vs 68–77 µs (≈ 20×).
 
-use crate::certificate::snap_and_certify;
-use crate::closed_form::ClosedForm;
+use crate::active_set::{ActiveSet, DenseEnd};
+use crate::certificate::{Certificate, snap_and_certify, snap_and_certify_fixed};
+use crate::closed_form::{self, ClosedForm};
 use crate::feasible_polygon::Region;
 use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
@@ -32,6 +44,39 @@ use crate::{
     barycenter, quadratic_program,
 };
 use nalgebra::DVector;
+
+/// Algorithm 6.1 for DOF = M ≤ 3 and n = M + 1, then the certificate (fixed sizes throughout).
+#[inline(always)]
+fn closed_form_small<const M: usize>(
+    p: &TensionProblem,
+    t: &mut [f64],
+) -> Result<f64, Infeasibility> {
+    closed_form::solve_small::<M>(p, false, t)?;
+    snap_and_certify_fixed::<M>(p.wrench_matrix, p.external_wrench, p.bounds, t)
+        .map_err(certificate_failed)
+}
+
+/// `dst.copy_from_slice(src)`, element by element for up to 4 cables (a dynamic-length copy is
+/// a `memcpy` call, ~1 % of the ~80 ns closed-form solve).
+#[inline(always)]
+fn copy_tensions(dst: &mut [f64], src: &[f64]) {
+    if src.len() <= 4 {
+        for (d, s) in dst.iter_mut().zip(src) {
+            *d = *s;
+        }
+    } else {
+        dst.copy_from_slice(src);
+    }
+}
+
+/// The reason for a candidate that failed the certificate.
+#[cold]
+fn certificate_failed(c: Certificate) -> Infeasibility {
+    Infeasibility::CertificateFailed {
+        residual: c.residual,
+        bound_violation: c.bound_violation,
+    }
+}
 
 /// A tension distribution method with reusable buffers. `Clone + Send`.
 ///
@@ -55,6 +100,8 @@ pub struct TensionSolver {
     closed: ClosedForm,
     icf: ImprovedClosedForm,
     sotda: Sotda,
+    dense: ActiveSet,
+    fallbacks: u64,
     t: Vec<f64>,
 }
 
@@ -69,6 +116,8 @@ impl TensionSolver {
             closed: ClosedForm::default(),
             icf: ImprovedClosedForm::default(),
             sotda: Sotda::default(),
+            dense: ActiveSet::default(),
+            fallbacks: 0,
             t: Vec::new(),
         }
     }
@@ -89,6 +138,12 @@ impl TensionSolver {
     /// The SOTDA settings (used only by [`Method::Sotda`]).
     pub fn sotda_settings(&self) -> &SotdaSettings {
         &self.settings
+    }
+
+    /// How many solves of this solver fell back from the dense active-set path (redundancy
+    /// r ≥ 3, see the module docs) to Clarabel after a numerical failure.
+    pub fn clarabel_fallbacks(&self) -> u64 {
+        self.fallbacks
     }
 
     /// Solves `problem`. Errors only on bad input; infeasibility is an outcome.
@@ -122,7 +177,7 @@ impl TensionSolver {
             if tensions.len() != self.t.len() {
                 *tensions = DVector::zeros(self.t.len());
             }
-            tensions.as_mut_slice().copy_from_slice(&self.t);
+            copy_tensions(tensions.as_mut_slice(), &self.t);
         }
         Ok(out)
     }
@@ -131,6 +186,29 @@ impl TensionSolver {
     fn run(&mut self, p: &TensionProblem) -> Result<Result<f64, Infeasibility>, TensionError> {
         validate(p)?;
         let (m, n) = p.wrench_matrix.shape();
+        // Lean path of Algorithm 6.1 for DOF ≤ 3 (the thesis' planar 4-cable robot): fixed-size
+        // solve and certificate, no dispatch (the same answer as the general path).
+        if self.method == Method::ClosedForm && n == m + 1 && m <= 3 {
+            if self.t.len() != n {
+                self.t.resize(n, 0.0);
+            }
+            return Ok(match m {
+                1 => closed_form_small::<1>(p, &mut self.t),
+                2 => closed_form_small::<2>(p, &mut self.t),
+                _ => closed_form_small::<3>(p, &mut self.t),
+            });
+        }
+        self.run_general(p, m, n)
+    }
+
+    /// Every method and size other than the lean closed-form path of [`Self::run`].
+    #[inline(never)]
+    fn run_general(
+        &mut self,
+        p: &TensionProblem,
+        m: usize,
+        n: usize,
+    ) -> Result<Result<f64, Infeasibility>, TensionError> {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
         }
@@ -160,13 +238,31 @@ impl TensionSolver {
             return Ok(Err(reason));
         }
         Ok(
-            snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).map_err(
-                |c| Infeasibility::CertificateFailed {
-                    residual: c.residual,
-                    bound_violation: c.bound_violation,
-                },
-            ),
+            snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t)
+                .map_err(certificate_failed),
         )
+    }
+
+    /// Clarabel after a numerical failure of the dense active-set path (`why`), counted in
+    /// [`Self::clarabel_fallbacks`]; a Clarabel failure reports both reasons.
+    #[cold]
+    fn clarabel_fallback(
+        &mut self,
+        p: &TensionProblem,
+        objective: Objective,
+        why: &'static str,
+    ) -> Result<Result<(), Infeasibility>, TensionError> {
+        self.fallbacks += 1;
+        Ok(match interior_point(p, objective)? {
+            Ok(t) => {
+                self.t.copy_from_slice(t.as_slice());
+                Ok(())
+            }
+            Err(Infeasibility::SolverFailure { detail }) => Err(Infeasibility::SolverFailure {
+                detail: format!("dense active set: {why}; clarabel fallback: {detail}"),
+            }),
+            Err(reason) => Err(reason),
+        })
     }
 
     #[cold]
@@ -225,7 +321,32 @@ impl TensionSolver {
                     Method::L2 => Objective::L2,
                     _ => Objective::Linf,
                 };
-                interior_point(p, objective)?.map(|t| self.t.copy_from_slice(t.as_slice()))
+                if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
+                    return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                let why = match self.dense.solve(
+                    &self.ns,
+                    p.bounds,
+                    objective,
+                    method.name(),
+                    &mut self.t,
+                ) {
+                    DenseEnd::Infeasible(reason) => return Ok(Err(reason)),
+                    DenseEnd::Solved => {
+                        // Certified here so that a numerical failure can still fall back.
+                        match snap_and_certify(
+                            p.wrench_matrix,
+                            p.external_wrench,
+                            p.bounds,
+                            &mut self.t,
+                        ) {
+                            Ok(_) => return Ok(Ok(())),
+                            Err(_) => "dense answer failed the certificate",
+                        }
+                    }
+                    DenseEnd::Failed(why) => why,
+                };
+                self.clarabel_fallback(p, objective, why)?
             }
             Method::L2Max if r > 2 => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {

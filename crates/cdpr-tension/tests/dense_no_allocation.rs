@@ -1,0 +1,89 @@
+//! The dense active-set path (redundancy ≥ 3) does not allocate after its first call for a
+//! problem size: counted with a global allocator wrapper.
+
+use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
+use nalgebra::{DMatrix, DVector, Vector3};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+struct Counting;
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// An 8-cable planar robot (r = 5): two cables from each frame corner, crossed.
+fn robot() -> Robot {
+    let mut cables = Vec::new();
+    for (x, y) in [(2.0f64, 1.0f64), (-2.0, 1.0), (-2.0, -1.0), (2.0, -1.0)] {
+        for (px, py) in [
+            (0.1f64.copysign(x), 0.05f64.copysign(-y)),
+            (0.1f64.copysign(-x), 0.05f64.copysign(y)),
+        ] {
+            cables.push(Cable {
+                frame: Vector3::new(x, y, 0.0),
+                platform: Vector3::new(px, py, 0.0),
+            });
+        }
+    }
+    Robot::new(MotionPattern::Planar, cables).unwrap()
+}
+
+// One test function: the counter is global, tests in parallel would disturb each other.
+#[test]
+fn dense_path_does_not_allocate() {
+    let robot = robot();
+    let ws: Vec<DMatrix<f64>> = (0..50)
+        .map(|k| {
+            let pose = Pose::planar(-1.0 + 0.04 * k as f64, 0.3 - 0.012 * k as f64, 0.05);
+            robot.inverse_kinematics(&pose).unwrap().wrench_matrix()
+        })
+        .collect();
+    // A feasible load, and one no tensions can hold (an infeasible verdict must not allocate).
+    let loads = [
+        DVector::from_vec(vec![0.0, -50.0, 0.5]),
+        DVector::from_vec(vec![0.0, -5000.0, 0.0]),
+    ];
+    let b = TensionBounds::uniform(8, 5.0, 200.0).unwrap();
+    for method in [Method::L1, Method::L1Max, Method::L2, Method::Linf] {
+        let mut solver = TensionSolver::new(method);
+        let mut t = DVector::zeros(8);
+        let mut run = |solver: &mut TensionSolver| {
+            let mut feasible = 0;
+            for we in &loads {
+                for w in &ws {
+                    let p = TensionProblem::new(w, we, &b);
+                    feasible += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+                    feasible += solver.is_feasible(&p).unwrap() as usize;
+                }
+            }
+            feasible
+        };
+        run(&mut solver);
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        let feasible = run(&mut solver);
+        let allocations = ALLOCATIONS.load(Ordering::SeqCst) - before;
+        assert_eq!(allocations, 0, "{method}");
+        assert_eq!(
+            feasible,
+            2 * ws.len(),
+            "{method}: the first load is feasible, the second not"
+        );
+        assert_eq!(solver.clarabel_fallbacks(), 0, "{method}");
+    }
+}
