@@ -77,6 +77,13 @@ fuzz_target!(|data: &[u8]| {
         );
         return;
     };
+    if std::env::var_os("CDPR_FUZZ_DEBUG").is_some() {
+        // Replaying an artifact: show the decoded input.
+        eprintln!(
+            "W = {:?}\nw_ext = {:?}\nbounds = {bounds:?}",
+            case.w, case.w_ext
+        );
+    }
     for method in Method::ALL {
         if method == Method::Sotda {
             continue;

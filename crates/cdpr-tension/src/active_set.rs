@@ -557,6 +557,11 @@ impl ActiveSet {
                     break;
                 }
             }
+            if enter == self.rows {
+                // Cannot happen with finite data (the row giving amin is in the band); with
+                // non-finite round-off, report a numerical failure rather than index past the end.
+                return LpEnd::Dependent;
+            }
             for (xj, pj) in self.x.iter_mut().zip(&self.p) {
                 *xj += amin * pj;
             }
@@ -624,7 +629,9 @@ impl ActiveSet {
                 for pos in 0..k {
                     if self.y[pos] > 1e-12 {
                         let ratio = self.u[pos] / self.y[pos];
-                        if ratio < t1 || (ratio == t1 && self.work[pos] < self.work[l]) {
+                        // (l < k: a ratio that overflowed to +∞ ties with "no partial step"
+                        // and must not be compared with a working row that does not exist.)
+                        if ratio < t1 || (l < k && ratio == t1 && self.work[pos] < self.work[l]) {
                             (t1, l) = (ratio, pos);
                         }
                     }
