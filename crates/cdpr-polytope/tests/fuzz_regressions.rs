@@ -15,7 +15,23 @@ use cdpr_polytope::{
     hyperplane_shifting, isotropic_force, isotropic_wrench_radius, krut_vertex_projection,
 };
 use cdpr_tension::TensionBounds;
-use nalgebra::{dmatrix, dvector};
+use nalgebra::{DMatrix, dmatrix, dvector};
+
+/// Both AWS methods give the exact isotropic wrench radius (computed outside this code) within
+/// 10⁻⁶ relative.
+fn both_methods_give(w: &DMatrix<f64>, b: &TensionBounds, exact: f64) {
+    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(w, b).unwrap());
+    assert!(
+        (hs - exact).abs() <= 1e-6 * exact.abs(),
+        "hyperplane shifting {hs} vs exact {exact}"
+    );
+    let krut =
+        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(w, b).unwrap());
+    assert!(
+        (krut - exact).abs() <= 1e-6 * exact.abs(),
+        "Krut {krut} vs exact {exact}"
+    );
+}
 
 /// Zero-width tension box (t_min = t_max = 0 for every cable): the AWS is the single point {0}.
 /// Hyperplane shifting describes it correctly (w ≤ 0 and −w ≤ 0).
@@ -113,18 +129,7 @@ fn krut_keeps_thin_facets() {
         ],
     )
     .unwrap();
-    let exact = -3_441_234.398_963_446_3;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -3_441_234.398_963_446_3);
 }
 
 /// The hyperplane-shifting half of the finding above, not ignored: it must keep passing.
@@ -189,18 +194,7 @@ fn krut_keeps_facet_of_two_small_generators() {
         vec![26.016169, 2216.2, 3.936169, 0.002, 0.002, 0.002],
     )
     .unwrap();
-    let exact = -1_051_985.991_830_551_3;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -1_051_985.991_830_551_3);
 }
 
 /// Fuzz finding (crash-2eb492e9…): cable 4 has t_min = t_max (a zero generator), and the origin
@@ -351,18 +345,7 @@ fn krut_duplicate_column_with_tiny_range() {
         vec![732.85, 25843.3876, 2197.021964, 1.6996640000000003],
     )
     .unwrap();
-    let exact = -50_072_706.449_046_71;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -50_072_706.449_046_71);
 }
 
 /// The clearest case of the Krut precision finding (crash-12c18d59…), and its likely root cause:
@@ -413,18 +396,7 @@ fn krut_keeps_facets_of_a_far_away_polytope() {
         ],
     )
     .unwrap();
-    let exact = -113_332.730_486_091_21;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -113_332.730_486_091_21);
 }
 
 /// Fuzz finding (crash-d711426e…, minor): `isotropic_force(&available_wrench_set(W), m)` and
@@ -712,18 +684,7 @@ fn krut_parallelotope_4_dof() {
         vec![3.6496000000000004, 20.0728, 3.6496000000000004, 29814.8248],
     )
     .unwrap();
-    let exact = 28_227.055_303_195_54;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, 28_227.055_303_195_54);
 }
 
 /// Second, larger case of the soundness finding (crash-b4bfd27a…): 9 cables, four of them
@@ -810,18 +771,7 @@ fn krut_antiparallel_generators_cancel() {
         vec![42662.0, 42662.0, 42766.0, 38566.0, 42662.0, 42662.0],
     )
     .unwrap();
-    let exact = -1_146_869_005.598_414;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -1_146_869_005.598_414);
 }
 
 /// Fuzz finding (crash-39409e54…, session 2): W has condition number 1.5·10⁷ (singular values
@@ -843,18 +793,7 @@ fn krut_ill_conditioned_w() {
         vec![0.002, 64225.0, 64250.0, 64250.0],
     )
     .unwrap();
-    let exact = -590_754_502.875_848_2;
-    let hs = isotropic_wrench_radius(&hyperplane_shifting::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (hs - exact).abs() <= 1e-6 * exact.abs(),
-        "hyperplane shifting {hs}"
-    );
-    let krut =
-        isotropic_wrench_radius(&krut_vertex_projection::available_wrench_set(&w, &b).unwrap());
-    assert!(
-        (krut - exact).abs() <= 1e-6 * exact.abs(),
-        "Krut {krut} vs exact {exact}"
-    );
+    both_methods_give(&w, &b, -590_754_502.875_848_2);
 }
 
 /// Fuzz finding (timeout-6d91f0c0…, session 2; the "timeout" was the backtrace of a failed
