@@ -245,7 +245,7 @@ pub(crate) fn for_each_pair<F: FnMut(&[f64], f64, f64) -> usize>(
     let mut f = f;
     let mut tally = dispatch(m, bounded, ws, tmin, tmax, wmax, has_fixed, &mut f);
     if has_fixed && !tally.proper && tally.overflow.is_none() {
-        tally = dispatch(m, bounded, ws, tmin, tmax, wmax, false, &mut f);
+        tally = flat_pass(m, bounded, ws, tmin, tmax, wmax, &mut f);
     }
     if let Some(value) = tally.overflow {
         return Err(PolytopeError::Overflow { value });
@@ -287,6 +287,22 @@ fn dispatch<F: FnMut(&[f64], f64, f64) -> usize>(
         (5, false) => engine::<5, false, F>(ws, tmin, tmax, wmax, g, f),
         (_, false) => engine::<MAX_DOF, false, F>(ws, tmin, tmax, wmax, g, f),
     }
+}
+
+/// The second pass over all columns for a flat AWS (rare: kept out of line so that the hot
+/// path holds one copy of the engine per dimension).
+#[cold]
+#[inline(never)]
+fn flat_pass<F: FnMut(&[f64], f64, f64) -> usize>(
+    m: usize,
+    bounded: bool,
+    ws: &[f64],
+    tmin: &[f64],
+    tmax: &[f64],
+    wmax: f64,
+    f: &mut F,
+) -> Tally {
+    dispatch(m, bounded, ws, tmin, tmax, wmax, false, f)
 }
 
 /// What one enumeration found.
