@@ -44,6 +44,9 @@ use nalgebra::{DMatrix, DVector};
 
 /// Relative pivot below which a subset of columns counts as linearly dependent.
 const PIVOT_TOL: f64 = 1e-10;
+/// Smallest pivot (columns scaled to max|W_ij| = 1) for which a subset's own columns are left
+/// out of the support sum (their |c · w_j| is then pure round-off, ~10⁻¹² max|W_ij|).
+const WELL_CONDITIONED_PIVOT: f64 = 1e-3;
 /// Relative |c·w_j| below which column j counts as lying in the hyperplane (exact zero).
 const IN_PLANE_TOL: f64 = 1e-13;
 /// Relative |c·w_j| a column must exceed to prove W has a direction off the hyperplane.
@@ -354,6 +357,8 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
     let mut red = [[0.0f64; M]; M];
     let mut inv = [0.0f64; M];
     let mut piv = [0usize; M];
+    // min_pivot[l]: the smallest pivot of levels < l (columns scaled to max|W_ij| = 1).
+    let mut min_pivot = [1.0f64; M];
     // used[l]: bit mask of the pivot components of levels < l.
     let mut used = [0u32; 8];
     let mut valid = 0usize; // leading levels reduced and independent for the current idx
@@ -397,6 +402,7 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
             }
             red[l] = r;
             piv[l] = best;
+            min_pivot[l + 1] = min_pivot[l].min(best_abs);
             inv[l] = 1.0 / r[best];
             used[l + 1] = mask | (1 << best);
         }
@@ -428,6 +434,9 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
                 // orthogonal to them only approximately: leaving them out would make the
                 // half-space cut off box corners. The off-plane test looks at the other columns
                 // (generators with a range, on the first pass) only.
+                // With every pivot ≥ 10⁻³ (scaled columns), |c · w_j| of an own column is below
+                // ~10⁻¹² max|W_ij|, far under the 10⁻⁹ tolerance of membership: skip the dot.
+                let sum_own = min_pivot[k] < WELL_CONDITIONED_PIVOT;
                 let (mut dp, mut dm, mut off) = (0.0f64, 0.0f64, 0.0f64);
                 let (mut unbounded_p, mut unbounded_m) = (false, false);
                 let mut in_subset = 0usize;
@@ -435,6 +444,9 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
                     let own = in_subset < k && idx[in_subset] == j;
                     if own {
                         in_subset += 1;
+                        if !sum_own {
+                            continue;
+                        }
                     }
                     let col = &ws[j * M..j * M + M];
                     let mut p = 0.0;
