@@ -10,9 +10,9 @@
 //!     d₋(c) = Σ_j max(−c·w_j t_min,j , −c·w_j t_max,j)    facet −c·w ≤ d₋
 //! ```
 //!
-//! (the sums run over all n columns; in exact arithmetic the columns of S contribute zero, and
-//! summing them anyway keeps the half-space supporting when c from an ill-conditioned subset is
-//! orthogonal to them only up to round-off). d₊(c) is exactly the support function of the AWS in
+//! (the sums run over all n columns; in exact arithmetic the columns of S contribute zero; they
+//! are summed anyway when S is ill-conditioned, a pivot below 10⁻³, so that the half-space stays
+//! supporting when c is orthogonal to them only up to round-off). d₊(c) is exactly the support function of the AWS in
 //! direction c, so every half-space produced is a supporting one. The facets of the zonotope are
 //! spanned by its *generators* w_j (t_max,j − t_min,j): a cable with t_min = t_max only
 //! translates the set, so subsets are drawn from the other cables, and when those span the
@@ -325,7 +325,8 @@ struct Tally {
 /// scaled by 1/max|W_ij| (so that the elimination neither overflows nor underflows) and reduced
 /// by the rows above it, `piv[l]` its pivot component and `inv[l]` the pivot's reciprocal. Rows
 /// of a prefix shared with the previous subset are kept. The offsets d± then need one dot
-/// product per column. `generators_only`: cables with t_min = t_max neither enter a subset nor
+/// product per column outside the subset (and inside it too for an ill-conditioned subset).
+/// `generators_only`: cables with t_min = t_max neither enter a subset nor
 /// count as off the hyperplane.
 #[inline(always)]
 fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usize>(

@@ -5,21 +5,30 @@ use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations made by this thread: other threads (the test harness, tests running in
+    /// parallel) must not count.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// This thread's allocation count so far.
+fn allocations_so_far() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -75,9 +84,9 @@ fn dense_path_does_not_allocate() {
             feasible
         };
         run(&mut solver);
-        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        let before = allocations_so_far();
         let feasible = run(&mut solver);
-        let allocations = ALLOCATIONS.load(Ordering::SeqCst) - before;
+        let allocations = allocations_so_far() - before;
         assert_eq!(allocations, 0, "{method}");
         assert_eq!(
             feasible,

@@ -8,21 +8,30 @@ use cdpr_workspace::{Criterion, PoseEvaluator};
 use common::*;
 use nalgebra::{DVector, Rotation3, Vector3};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations made by this thread: other threads (the test harness, tests running in
+    /// parallel) must not count.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+/// This thread's allocation count so far.
+fn allocations_so_far() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
         unsafe { System.alloc(layout) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
         unsafe { System.realloc(ptr, layout, new_size) }
     }
 }
@@ -36,11 +45,11 @@ fn allocations(eval: &mut PoseEvaluator, poses: &[Pose]) -> (usize, usize) {
     for p in poses {
         eval.is_feasible(p);
     }
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations_so_far();
     for p in poses {
         feasible += eval.is_feasible(p) as usize;
     }
-    (ALLOCATIONS.load(Ordering::SeqCst) - before, feasible)
+    (allocations_so_far() - before, feasible)
 }
 
 fn planar_poses(phi: f64) -> Vec<Pose> {
