@@ -629,16 +629,20 @@ mod tests {
         Some((at(lo), at(hi)))
     }
 
-    #[test]
-    fn small_fast_path_agrees_with_elimination() {
-        // Deterministic pseudo-random problems for DOF 1, 2, 3 (n = DOF + 1).
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
+    /// Deterministic pseudo-random numbers in [−1, 1) (xorshift64 from `state`).
+    fn uniform_stream(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        }
+    }
+
+    #[test]
+    fn small_fast_path_agrees_with_elimination() {
+        // Deterministic pseudo-random problems for DOF 1, 2, 3 (n = DOF + 1).
+        let mut rnd = uniform_stream(0x9e37_79b9_7f4a_7c15u64);
         let mut compared = 0;
         for case in 0..600 {
             let m = 1 + case % 3;
@@ -724,13 +728,7 @@ mod tests {
     /// bound) gives the general path's tensions, for min and max Σ t.
     #[test]
     fn small_solve_agrees_with_general_solve() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = uniform_stream(0x2545_f491_4f6c_dd1du64);
         let mut compared = 0;
         for case in 0..900 {
             let m = 1 + case % 3;
