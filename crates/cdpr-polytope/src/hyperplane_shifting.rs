@@ -381,10 +381,10 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
             for i in 0..l {
                 let p = piv[i];
                 let factor = r[p] * inv[i];
-                for (x, y) in r.iter_mut().zip(red[i].iter()) {
-                    *x -= factor * y;
+                // r[p] becomes exactly 0; selected rather than stored at index p (see below).
+                for (j, (x, y)) in r.iter_mut().zip(red[i].iter()).enumerate() {
+                    *x = if j == p { 0.0 } else { *x - factor * y };
                 }
-                r[p] = 0.0;
             }
             let mask = used[l];
             let mut best = 0usize;
@@ -411,14 +411,24 @@ fn engine<const M: usize, const BOUNDED: bool, F: FnMut(&[f64], f64, f64) -> usi
             valid = k;
             // Null vector: the free component (the one never pivoted) set to 1, back substitution.
             // c[piv[i]] is still 0 when row i is summed, so the sum may run over all components.
+            // Components are written by comparison, not by a computed index: a store at a
+            // run-time index followed by a vector load of c stalls store forwarding.
+            let free = (!used[k]).trailing_zeros() as usize;
             let mut c = [0.0f64; M];
-            c[(!used[k]).trailing_zeros() as usize] = 1.0;
+            for (j, x) in c.iter_mut().enumerate() {
+                *x = if j == free { 1.0 } else { 0.0 };
+            }
             for i in (0..k).rev() {
                 let mut s = 0.0;
                 for j in 0..M {
                     s += red[i][j] * c[j];
                 }
-                c[piv[i]] = -s * inv[i];
+                let value = -s * inv[i];
+                for (j, x) in c.iter_mut().enumerate() {
+                    if j == piv[i] {
+                        *x = value;
+                    }
+                }
             }
             let mut norm2 = 0.0;
             for x in c {
