@@ -2,9 +2,13 @@
 //!
 //! Seed 001 §III computes the operational force polytope {W t : t_min ≤ t ≤ t_max} (W = Jₘᵀ) by
 //! projecting the 2ⁿ vertices of the tension box onto the range of W and keeping, among all
-//! hyperplanes through DOF projected vertices, those with every projected vertex on one side:
+//! hyperplanes through DOF projected vertices, those with every projected vertex on one side
+//! (here n is the number of cables and DOF the wrench-space dimension; the seed writes m for the
+//! motors and n for the DOF):
 //!
-//! 1. SVD W = U [S 0] Vᵀ and the 2ⁿ box vertices τ_vertex (eq. (3));
+//! 1. SVD W = U [S 0] Vᵀ and the 2ⁿ box vertices τ_vertex of the box (3). The seed text breaks
+//!    off before Step 1 (its eqs. (4)–(7) are missing); this step is reconstructed from Steps 2–3,
+//!    which name "the SVD joint base" V and the factors U, S;
 //! 2. τ_s = Vᵀ τ_vertex, eq. (8);
 //! 3. τ_r = P τ_s, the first DOF components, eq. (9);
 //! 4. for each of the C(2ⁿ, DOF) choices of DOF projected vertices, the hyperplane through them,

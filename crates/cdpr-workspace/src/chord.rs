@@ -455,7 +455,8 @@ impl Walker<'_> {
     }
 
     /// Bisection on the segment from feasible `a` to infeasible `b`: the feasible end once
-    /// ‖a − b‖ ≤ ε^u (eq. (6.26) for a ray).
+    /// ‖a − b‖ ≤ ε^u (problem (6.26) along a ray, solved by bisection with the stopping rule of
+    /// Algorithm 6.3).
     fn bisect_segment(&mut self, mut a: Vector2<f64>, mut b: Vector2<f64>) -> Vector2<f64> {
         while (b - a).norm() > self.settings.tolerance {
             let m = (a + b) * 0.5;

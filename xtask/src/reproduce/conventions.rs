@@ -292,14 +292,23 @@ impl Conventions {
             .collect();
         let i = best(&det_candidates);
         let det = dets[i];
+        let (abs, none) = (&det_candidates[0], &det_candidates[3]);
+        let tie = if abs.matches == none.matches && abs.points_off == none.points_off {
+            " The published areas cannot tell |det J| ≥ D_min from no determinant criterion at all \
+             (identical matches and distance). The criterion is kept because the thesis states it; this choice \
+             is not confirmed by the data."
+        } else {
+            ""
+        };
         evidence.push(Evidence {
             question: "Sign of det J in eq. (6.24), 3 cables, D_min = 10⁻³",
             chosen: det_candidates[i].label.clone(),
-            note: "Ties are broken by the total distance in grid points, then in favour of the \
-                   earlier candidate. The signed reading in printed (counter-clockwise) order \
-                   rejects almost every published workspace, so the thesis' det J ≥ D_min is read \
-                   as |det J| ≥ D_min."
-                .into(),
+            note: format!(
+                "Ties are broken by the total distance in grid points, then in favour of the \
+                 earlier candidate. The signed reading in printed (counter-clockwise) order \
+                 rejects almost every published workspace, so the thesis' det J ≥ D_min is read \
+                 as |det J| ≥ D_min.{tie}"
+            ),
             candidates: det_candidates,
         });
 

@@ -101,6 +101,32 @@ pub fn separation_violation(betas: &[f64], min_separation: f64) -> f64 {
         .sum()
 }
 
+/// The cyclic order of the anchors around the frame: the cable indices sorted by β mod 2π
+/// (ties by index), rotated so that cable 0 comes first. Two designs with the same cyclic order
+/// have the same cable topology: cable i runs to ā^i from between the same two neighbours.
+pub fn cyclic_order(betas: &[f64]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..betas.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (x, y) = (betas[a].rem_euclid(TAU), betas[b].rem_euclid(TAU));
+        x.total_cmp(&y).then(a.cmp(&b))
+    });
+    if let Some(first) = order.iter().position(|&i| i == 0) {
+        order.rotate_left(first);
+    }
+    order
+}
+
+/// Whether two designs place the anchors in the same [`cyclic_order`].
+///
+/// No continuous path that keeps eq. (6.29) satisfied changes the cyclic order (an anchor would
+/// have to pass one of its two constrained neighbours), so the published optima all keep the
+/// order of their starts. A jump that changes it makes cables cross, and eq. (6.29) then
+/// constrains pairs that are no longer neighbours while the new neighbours may coincide: the
+/// optimisers reject such designs.
+pub fn same_cyclic_order(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && cyclic_order(a) == cyclic_order(b)
+}
+
 /// One constraint of eq. (6.29) linearised at a design: s_ij(d + δ) ≈ value + δ_j σ − δ_i σ,
 /// exact while the short way round does not switch sides (σ = +1 if the short way from β^i to
 /// β^j is counter-clockwise, −1 otherwise).
@@ -178,6 +204,27 @@ mod tests {
     }
 
     #[test]
+    fn cyclic_order_of_hand_picked_designs() {
+        // Table 6.5 run 1 optimum: increasing angles, order 0, 1, 2.
+        assert_eq!(cyclic_order(&[0.7676, 3.430, 3.605]), vec![0, 1, 2]);
+        // Anchors 2 and 3 swapped: cable 3 now lies between cables 1 and 2.
+        assert_eq!(cyclic_order(&[0.1598, 3.698, 2.3573]), vec![0, 2, 1]);
+        // Angles are taken mod 2π: −0.3 is 5.98, after 3.0.
+        assert_eq!(cyclic_order(&[1.0, 3.0, -0.3]), vec![0, 1, 2]);
+        assert_eq!(cyclic_order(&[-0.3, 1.0, 3.0]), vec![0, 1, 2]);
+        // A rigid rotation past 2π keeps the order.
+        assert!(same_cyclic_order(&[0.1, 2.0, 4.0], &[2.5, 4.4, 6.4]));
+        assert!(!same_cyclic_order(&[0.1, 2.0, 4.0], &[0.1, 4.0, 2.0]));
+        // Table 6.8 run 1 start vs an optimum with β⁴ < β³.
+        assert!(!same_cyclic_order(
+            &[0.8205, 2.338, 4.595, 4.769],
+            &[0.8205, 2.338, 4.769, 4.595]
+        ));
+        assert!(!same_cyclic_order(&[0.1, 2.0], &[0.1, 2.0, 3.0]));
+        assert!(cyclic_order(&[]).is_empty());
+    }
+
+    #[test]
     fn robot_from_design_validates() {
         let p = thesis_platform(3).unwrap();
         assert!(matches!(
@@ -211,6 +258,23 @@ mod tests {
             let (s, co) = beta.sin_cos();
             prop_assert!((c[0] * s - c[1] * co).abs() < 1e-12);
             prop_assert!(c[0] * co + c[1] * s > 0.0);
+        }
+
+        #[test]
+        fn small_feasible_steps_keep_the_cyclic_order(
+            first in -7.0..7.0f64,
+            gaps in proptest::collection::vec(0.2..2.0f64, 1..5),
+            step in proptest::collection::vec(-0.09..0.09f64, 6),
+        ) {
+            // Anchors ≥ 0.2 apart (the wrap gap too) moved by < 0.1 each cannot pass each other.
+            let mut d = vec![first];
+            for g in &gaps { d.push(d.last().unwrap() + g); }
+            prop_assume!(TAU - (d[d.len() - 1] - d[0]) >= 0.2);
+            let moved: Vec<f64> = d.iter().zip(&step).map(|(b, s)| b + s).collect();
+            prop_assert!(same_cyclic_order(&d, &moved));
+            // Order is invariant under a rigid rotation by any angle.
+            let rotated: Vec<f64> = d.iter().map(|b| b + 10.0 * step[0]).collect();
+            prop_assert!(same_cyclic_order(&d, &rotated));
         }
 
         #[test]

@@ -119,7 +119,7 @@ pub fn maximise<O: Objective + ?Sized>(
     settings: &DynamicQSettings,
 ) -> SynthesisResult {
     let n = start.len();
-    let mut merit = Merit::new(objective, min_separation, penalty);
+    let mut merit = Merit::new(objective, start, min_separation, penalty);
     let mut projector = Projector::default();
     let mut probe = Vec::with_capacity(n);
 

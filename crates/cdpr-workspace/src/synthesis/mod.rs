@@ -24,6 +24,15 @@
 //! β_min = 10°) is thus pulled to feasibility within the move limit. The compass search uses the
 //! exact ℓ1 penalty −A + μ Σ max(0, β_min − s_ij) with a large μ ([`SynthesisSettings::penalty`]).
 //!
+//! **Cable order.** Both optimisers keep the start's [`cyclic_order`] of the anchors: a design
+//! with another order is inadmissible. Eq. (6.29) constrains the pairs (i, i+1) and (n, 1) by
+//! index, "the angle between consecutive cable attachment points", which are the neighbours
+//! around the frame only while the order is kept. No continuous path satisfying eq. (6.29)
+//! changes the order, so a gradient method such as Dynamic-Q never does; a compass poll or a
+//! restart offset could jump an anchor past its neighbour, making cables cross and leaving the
+//! new neighbours unconstrained. Such polls and offsets are rejected. To explore another
+//! topology, start from a design in that order.
+//!
 //! ```
 //! use cdpr_workspace::synthesis::{synthesise, Method, SynthesisSettings};
 //! // A smooth stand-in for the area: maximal at β = [0.5, 2.5, 4.5].
@@ -48,7 +57,10 @@ pub mod objective;
 mod projection;
 
 pub use compass_search::CompassSettings;
-pub use design::{frame_anchor, robot_from_design, separation_violation, thesis_platform};
+pub use design::{
+    cyclic_order, frame_anchor, robot_from_design, same_cyclic_order, separation_violation,
+    thesis_platform,
+};
 pub use dynamic_q::DynamicQSettings;
 pub use objective::{DextrousArea, Objective};
 

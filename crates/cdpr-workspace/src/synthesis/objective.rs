@@ -147,6 +147,8 @@ impl Objective for DextrousArea {
 /// the exact penalty of eq. (6.29): φ(**d**) = −A(**d**) + μ Σ max(0, β_min − s_ij) (minimised).
 pub(crate) struct Merit<'a, O: ?Sized> {
     objective: &'a mut O,
+    /// Cyclic order of the start: designs with another order are inadmissible (φ = +∞).
+    order: Vec<usize>,
     min_separation: f64,
     penalty: f64,
     memo: HashMap<Vec<u64>, f64>,
@@ -155,9 +157,10 @@ pub(crate) struct Merit<'a, O: ?Sized> {
 }
 
 impl<'a, O: Objective + ?Sized> Merit<'a, O> {
-    pub fn new(objective: &'a mut O, min_separation: f64, penalty: f64) -> Self {
+    pub fn new(objective: &'a mut O, start: &[f64], min_separation: f64, penalty: f64) -> Self {
         Self {
             objective,
+            order: super::design::cyclic_order(start),
             min_separation,
             penalty,
             memo: HashMap::new(),
@@ -178,8 +181,17 @@ impl<'a, O: Objective + ?Sized> Merit<'a, O> {
         a
     }
 
-    /// φ(**d**) for an already computed area.
+    /// Whether `design` keeps the start's cyclic order of anchors (see
+    /// [`super::design::same_cyclic_order`]).
+    pub fn admissible(&self, design: &[f64]) -> bool {
+        super::design::cyclic_order(design) == self.order
+    }
+
+    /// φ(**d**) for an already computed area; +∞ for a design that is not [`Self::admissible`].
     pub fn merit(&self, design: &[f64], area: f64) -> f64 {
+        if !self.admissible(design) {
+            return f64::INFINITY;
+        }
         -area + self.penalty * super::design::separation_violation(design, self.min_separation)
     }
 }

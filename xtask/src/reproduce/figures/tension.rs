@@ -332,11 +332,13 @@ fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
             "Constrained ℓ2 tensions t1–t4 along x = 0.54, y ∈ [−0.2, 0.05] (2501 samples, \
              0.1 mm apart), 4-cable manipulator with c = [±1, ±0.1], Table 6.1 platform, load L1, \
              φ = 0, t ∈ [5, 100]. The thesis draws t3 and t4 jumping at y = 0, on the workspace \
-             boundary. In our model the section leaves the workspace at y = {:.2} mm (every \
-             sample beyond is reported infeasible, drawn as a gap) and the \"jump\" is a steep \
-             rise of t3, t4 within the last centimetre before it: {} steps flagged as \
+             boundary. In our model the section leaves the workspace between the samples \
+             y = {:.2} mm (last feasible) and y = {:.2} mm (every sample beyond is reported \
+             infeasible, drawn as a gap; bisection gives y_b ≈ −0.85 mm) and the \"jump\" is a \
+             steep rise of t3, t4 within the last centimetre before it: {} steps flagged as \
              discontinuities, all within {:.1} mm of the boundary. At a plotting step coarser \
              than a millimetre this is the thesis' jump.",
+            y[first_out - 1] * 1e3,
             y[first_out] * 1e3,
             flagged.len(),
             flagged
@@ -426,7 +428,10 @@ fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
                  points) and where only the constrained ℓ2 tensions are ({l2_only} more points, \
                  purple). As in the thesis, the ℓ2 workspace is much larger and contains the \
                  minimum-norm one (checked at every point), and the minimum-norm workspace \
-                 shrinks fastest with φ; black squares: frame anchors."
+                 shrinks fastest with φ; black squares: frame anchors. The thesis computed this \
+                 figure with the chord method (§6.3.2); a fine grid shows the same sets, and both \
+                 tension methods at every point. The test `tests/minimum_norm_vs_l2.rs` counts the \
+                 points of a coarser grid over the anchors' box [−1, 1] × [−0.15, 0.15] only."
             ),
         });
     }
