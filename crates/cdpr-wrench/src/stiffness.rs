@@ -13,7 +13,8 @@
 //!   K_a = Σ (t_i / l_i) H_i P_i H_iᵀ − t_i [0 0; 0 û_i b̂_i]   (seed 002 eq. (4), active part)
 //! ```
 //!
-//! This is seed 002's eq. (4) rewritten with b̂ᵀ = −b̂; we derived it independently from the
+//! This is seed 002's eq. (4) rewritten with b̂ᵀ = −b̂; `tests/stiffness_printed_eq4.rs` checks it
+//! against the printed blocks assembled literally. We derived it independently from the
 //! restoring wrench of elastic cables (see `docs/algorithms.md`) and the property test
 //! `tests/stiffness_finite_difference.rs` checks it against the finite-difference derivative of
 //! that wrench: the printed formula and the physics agree. K is not symmetric when cables are
