@@ -96,7 +96,7 @@ fuzz_target!(|data: &[u8]| {
     let alt: bool = u.arbitrary().unwrap_or(false);
     let motion = motion_for(case.dof, alt);
     let own_w: bool = u.arbitrary().unwrap_or(false);
-    let full: bool = u.arbitrary().unwrap_or(false);
+    let variant: u8 = u.arbitrary().unwrap_or(0);
     let mut num = Numbers::new(&mut u);
     let Ok(Some((_robot, kin, robot_w))) = decode_robot(&mut num, motion, n) else {
         return;
@@ -117,10 +117,10 @@ fuzz_target!(|data: &[u8]| {
             b @ 0..=250 => f64::from(b) / 250.0,
             _ => num.any().unwrap_or(2.0),
         },
-        variant: if full {
-            SotdaVariant::Full
-        } else {
-            SotdaVariant::Corners
+        variant: match variant % 3 {
+            0 => SotdaVariant::Corners,
+            1 => SotdaVariant::Vertices,
+            _ => SotdaVariant::Full,
         },
         perturbation: None,
     };

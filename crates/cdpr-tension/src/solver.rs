@@ -394,7 +394,7 @@ impl TensionSolver {
                     Method::Sotda => {
                         let s = p.stiffness.as_ref().ok_or(TensionError::MissingStiffness)?;
                         self.sotda
-                            .solve_on_region(&self.settings, s, ns, region, t)?
+                            .solve_on_region(&self.settings, s, ns, region, p.bounds, t)?
                     }
                     _ => unreachable!("all other methods are dispatched above"),
                 }

@@ -17,9 +17,17 @@
 //! - [`SotdaVariant::Full`]: evaluate a 24 × 24 grid over the polygon's bounding box (points
 //!   inside), its vertices, edge midpoints and centroid, then refine the best point by a
 //!   projected pattern search down to 10⁻⁹ of the polygon size.
-//! - [`SotdaVariant::Corners`]: the paper's real-time variant, evaluating only the polygon's
-//!   vertices (assumptions (i)–(ii) of §3: the stiffest tensions have one cable at t_max and a
-//!   second at a bound).
+//! - [`SotdaVariant::Corners`] (default): the paper's real-time variant. §3 assumes that
+//!   (i) the robot is stiffest when at least one cable tension reaches t_max and (ii) a second
+//!   cable is at t_min or t_max, i.e. the optimum is a corner of the polygon with a cable at
+//!   t_max ("a maximum of 16 sets for an 8-cable CDPR"). So only the vertices where some cable
+//!   is at its t_max are evaluated (tolerance τ_i = 10⁻⁹ (t_max,i − t_min,i) + 10⁻¹² s, s the
+//!   data scale, see `UpperBoundTest`); vertices with both active cables at t_min are skipped.
+//!   If no vertex qualifies (no finite t_max is ever reached), or K is singular at all that do,
+//!   every vertex is evaluated instead: the paper takes "the best of the computed ones", and an
+//!   empty candidate set would compute none.
+//! - [`SotdaVariant::Vertices`]: every vertex of the polygon (including t_min–t_min corners), a
+//!   superset of the corner candidates, so never a larger displacement than `Corners`.
 //!
 //! Finally the intermediate solution (Fig. 2): t = t_bary + ν (t_opt − t_bary), ν ∈ [0, 1], which
 //! stays in the polygon by convexity.
@@ -31,7 +39,7 @@
 use crate::feasible_polygon::{P2, Region};
 use crate::linear_program::write_tensions;
 use crate::null_space::NullSpace;
-use crate::{Infeasibility, StiffnessData, TensionError};
+use crate::{Infeasibility, StiffnessData, TensionBounds, TensionError};
 use nalgebra::{DMatrix, DVector, Vector3};
 
 /// Which points of the feasible polygon SOTDA evaluates.
@@ -39,9 +47,12 @@ use nalgebra::{DMatrix, DVector, Vector3};
 pub enum SotdaVariant {
     /// Dense search plus local refinement over the whole polygon.
     Full,
-    /// The polygon's vertices only (seed 002's real-time variant).
+    /// Seed 002's real-time variant: the polygon's vertices at which some cable is at its
+    /// t_max (§3 assumptions (i)–(ii)); all vertices if there is none.
     #[default]
     Corners,
+    /// Every vertex of the polygon (also those with both active cables at t_min).
+    Vertices,
 }
 
 /// Settings of [`crate::Method::Sotda`].
@@ -52,7 +63,7 @@ pub struct SotdaSettings {
     pub direction: Vector3<f64>,
     /// ν ∈ [0, 1]: 0 gives the barycentre, 1 the stiffness-oriented optimum (Fig. 2).
     pub nu: f64,
-    /// Full search or corners only.
+    /// Full search, every vertex, or the paper's corners (default).
     pub variant: SotdaVariant,
     /// δw_e (length DOF); `None`: the external wrench (see the module docs).
     pub perturbation: Option<DVector<f64>>,
@@ -208,6 +219,7 @@ impl Sotda {
         stiffness: &StiffnessData,
         ns: &NullSpace,
         region: &Region,
+        bounds: &TensionBounds,
         t: &mut [f64],
     ) -> Result<Result<(), Infeasibility>, TensionError> {
         if region.is_unbounded() {
@@ -216,11 +228,29 @@ impl Sotda {
         let centroid = region.centroid();
         let mut best = region.verts[0];
         let mut fb = f64::INFINITY;
+        // Corners: only the vertices with a cable at t_max (§3 assumptions (i)–(ii)); if that
+        // leaves no candidate with a finite displacement, every vertex (see the module docs).
+        let filtered = settings.variant == SotdaVariant::Corners;
+        let tol = filtered.then(|| UpperBoundTest::new(ns, bounds));
         for j in 0..region.verts.len() {
             let v = region.verts[j];
+            if let Some(tol) = &tol
+                && !tol.some_cable_at_max(ns, bounds, v)
+            {
+                continue;
+            }
             let f = self.at(ns, stiffness, v)?;
             if f < fb {
                 (best, fb) = (v, f);
+            }
+        }
+        if filtered && !fb.is_finite() {
+            for j in 0..region.verts.len() {
+                let v = region.verts[j];
+                let f = self.at(ns, stiffness, v)?;
+                if f < fb {
+                    (best, fb) = (v, f);
+                }
             }
         }
         if settings.variant == SotdaVariant::Full {
@@ -314,6 +344,48 @@ impl Sotda {
         ];
         write_tensions(ns, l, t);
         Ok(Ok(()))
+    }
+}
+
+/// The test "cable i is at its upper bound" of seed 002 §3 assumption (i), applied to the
+/// vertices of the clipped polygon: t_i(λ) ≥ t_max,i − τ_i with
+///
+/// ```text
+///   τ_i = 10⁻⁹ (t_max,i − t_min,i) + 10⁻¹² s,   s = max(1, |t0_j|, |t_min,j|, finite |t_max,j|)
+/// ```
+///
+/// A vertex on the line t_i = t_max,i carries only round-off (≈ ε s, s the data scale, the
+/// same as the polygon builder's) in t_i = t0_i + N_i λ; a vertex off that line is (generically)
+/// a finite distance away. Cables with an infinite t_max never qualify.
+struct UpperBoundTest {
+    abs: f64,
+}
+
+impl UpperBoundTest {
+    /// Relative part of τ_i (fraction of the tension range).
+    const REL: f64 = 1e-9;
+    /// Absolute part of τ_i (fraction of the data scale s).
+    const ABS: f64 = 1e-12;
+
+    fn new(ns: &NullSpace, bounds: &TensionBounds) -> Self {
+        let (lo, hi) = (bounds.min(), bounds.max());
+        let mut s: f64 = 1.0;
+        for i in 0..ns.n {
+            s = s.max(ns.t0[i].abs()).max(lo[i].abs());
+            if hi[i].is_finite() {
+                s = s.max(hi[i].abs());
+            }
+        }
+        Self { abs: Self::ABS * s }
+    }
+
+    /// Whether some cable's tension at λ = `l` is at its t_max (within τ_i).
+    fn some_cable_at_max(&self, ns: &NullSpace, bounds: &TensionBounds, l: P2) -> bool {
+        let (lo, hi) = (bounds.min(), bounds.max());
+        (0..ns.n).any(|i| {
+            hi[i].is_finite()
+                && ns.tension2(i, l) >= hi[i] - (Self::REL * (hi[i] - lo[i]) + self.abs)
+        })
     }
 }
 

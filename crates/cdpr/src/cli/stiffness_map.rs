@@ -50,8 +50,8 @@ pub struct Args {
     /// Number of ν values in [0, 1] for the intermediate-solution curve.
     #[arg(long, default_value_t = 21)]
     nu_samples: usize,
-    /// Use SOTDA's real-time variant (polygon corners only) for the optimum instead of the full
-    /// search (grid + pattern search).
+    /// Use SOTDA's real-time variant (only the polygon corners with a cable at t_max) for the
+    /// optimum instead of the full search (grid + pattern search).
     #[arg(long)]
     corners: bool,
     /// Heat map of the displacement over the polygon (.svg or .png).
