@@ -1,6 +1,9 @@
 //! Plots render with the bundled font to SVG and PNG, and refuse unknown extensions.
 
-use cdpr::plot::{HeatMap, LinePlot, PlotError, Series, save};
+use cdpr::plot::{ForcePolygonPlot, HeatMap, LinePlot, PlotError, Series, save};
+use cdpr::polytope::{hyperplane_shifting::available_wrench_set, largest_inscribed_ellipse};
+use cdpr::tension::TensionBounds;
+use nalgebra::DMatrix;
 
 fn heat_map() -> HeatMap {
     let n = 41;
@@ -57,4 +60,48 @@ fn unknown_extension_is_an_error() {
         save(&heat_map(), dir.path().join("map.pdf")),
         Err(PlotError::UnknownFormat(_))
     ));
+}
+
+/// W = [2 −2 0 0; 0 0 1 −1], t ∈ [0, 1]: the force polygon is the box [−2, 2] × [−1, 1], so the
+/// centred circle has radius 1 and touches exactly the two facets y = ±1, and the largest
+/// centred ellipse has semi-axes 2 and 1 (derived by hand).
+#[test]
+fn force_polygon_of_a_box_by_hand() {
+    let w = DMatrix::from_row_slice(2, 4, &[2.0, -2.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0]);
+    let bounds = TensionBounds::uniform(4, 0.0, 1.0).unwrap();
+    let aws = available_wrench_set(&w, &bounds).unwrap();
+    let ellipse = largest_inscribed_ellipse(&aws).unwrap().unwrap();
+    let fig = ForcePolygonPlot::operational(&aws, Some(&ellipse)).unwrap();
+    assert_eq!(fig.polygon.len(), 4);
+    for &(x, y) in &fig.polygon {
+        assert!((x.abs() - 2.0).abs() < 1e-9 && (y.abs() - 1.0).abs() < 1e-9);
+    }
+    let (r, _) = fig.circle.clone().unwrap();
+    assert!((r - 1.0).abs() < 1e-12);
+    let edges = &fig.highlighted_edges.0;
+    assert_eq!(edges.len(), 2);
+    for (a, b) in edges {
+        assert!((a.1.abs() - 1.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9);
+        assert!((a.0 - b.0).abs() > 3.9);
+    }
+    let (b, _) = fig.ellipse.clone().unwrap();
+    assert!((b[0][0] - 2.0).abs() < 1e-5 && (b[1][1] - 1.0).abs() < 1e-5);
+    assert!(b[0][1].abs() < 1e-5);
+    let dir = tempfile::tempdir().unwrap();
+    save(&fig, dir.path().join("box.png")).unwrap();
+    assert!(std::fs::metadata(dir.path().join("box.png")).unwrap().len() > 5000);
+    // Cables pulling along (1, 0), (0, 1), (1, 1) only, t ∈ [0.1, 1]: every force has
+    // f_x, f_y ≥ 0.2 > 0, the origin is outside, so no circle and no touching facet.
+    let w = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 1.0, 0.0, 1.0, 1.0]);
+    let aws = available_wrench_set(&w, &TensionBounds::uniform(3, 0.1, 1.0).unwrap()).unwrap();
+    let fig = ForcePolygonPlot::operational(&aws, None).unwrap();
+    assert!(fig.circle.is_none() && fig.highlighted_edges.0.is_empty());
+    // A 3-D wrench set has no force polygon.
+    let w = DMatrix::from_row_slice(
+        3,
+        4,
+        &[1.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0, -1.0, 1.0, 1.0, 1.0, 1.0],
+    );
+    let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 0.0, 1.0).unwrap()).unwrap();
+    assert!(ForcePolygonPlot::operational(&aws, None).is_none());
 }

@@ -115,6 +115,56 @@ fn grid_heat_map_is_written() {
     assert!(f(&v["stats"]["max"]) > 0.0);
 }
 
+/// `--pose --plot` draws seed 001 Fig. 4 (force polygon, centred circle and ellipse) for point2
+/// robots, in PNG and SVG, without changing the JSON; other robots get a clear error.
+#[test]
+fn force_polygon_plot_is_written_for_point2_robots_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let k3 = robot("krut-3.toml");
+    for ext in ["png", "svg"] {
+        let file = dir.path().join(format!("polygon.{ext}"));
+        let v = json(&[
+            "isotropic",
+            &k3,
+            "--pose",
+            "300,-200",
+            "--plot",
+            file.to_str().unwrap(),
+            "--json",
+        ]);
+        assert!(
+            v.get("ellipse").is_none(),
+            "--plot must not add JSON fields"
+        );
+        assert!(f(&v["isotropic_force"]) > 0.0);
+        assert!(std::fs::metadata(&file).unwrap().len() > 5000, "{ext}");
+    }
+    let svg = std::fs::read_to_string(dir.path().join("polygon.svg")).unwrap();
+    for text in [
+        "available force polygon",
+        "largest centred circle",
+        "largest centred ellipse",
+        "touching the circle",
+    ] {
+        assert!(svg.contains(text), "{text} missing from the SVG");
+    }
+    let out = cdpr()
+        .args([
+            "isotropic",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "0,0,0",
+            "--plot",
+            dir.path().join("planar.png").to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("point2") && err.contains("planar"), "{err}");
+    assert!(!dir.path().join("planar.png").exists());
+}
+
 /// krut-4 at the centre: facets at 450 N with normals at 30°, 120°, 210°, 300°. A box of
 /// external forces x ∈ [90, 110], y = 0 must be balanced by pulling towards −x: the facet with
 /// normal (cos 210°, sin 210°) limits, margin 450 − 110·cos 30° = 354.737 N.

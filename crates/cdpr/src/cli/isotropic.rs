@@ -3,7 +3,7 @@
 use super::{CliError, Numbers, load_robot, pose, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
-use cdpr::plot::HeatMap;
+use cdpr::plot::{ForcePolygonPlot, HeatMap};
 use cdpr::polytope::{
     InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force,
     isotropic_wrench_radius, largest_inscribed_ellipse,
@@ -25,7 +25,9 @@ use std::path::PathBuf;
 /// {moment = 0} of the available wrench set (JSON `definition` says which). `wrench_radius` is
 /// the ball in the full wrench space (forces and moments mixed, unit-dependent).
 ///
-/// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--json]`.
+/// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--plot polygon.png] [--json]`;
+/// for point2 robots `--plot` draws the available force polygon with the largest centred circle
+/// and ellipse and the facet the circle touches (seed 001 Fig. 4).
 /// A map: `cdpr isotropic ROBOT.toml --grid 100 [--box ...] [--orientation PHI] [--z Z]
 /// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (seed 001 Figs. 9–10; white
 /// where the index is negative).
@@ -69,8 +71,11 @@ pub struct Args {
     /// Grid: height z of the slice for 3-D robots (default: middle of the frame anchors).
     #[arg(long, allow_hyphen_values = true, requires = "grid")]
     z: Option<f64>,
-    /// Grid: write the heat map (.png or .svg); white where the index is negative.
-    #[arg(long, requires = "grid")]
+    /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.
+    /// Pose (point2 robots only): the available force polygon with the largest centred circle
+    /// (radius = the index) and ellipse, the origin and the facet the circle touches
+    /// (seed 001 Fig. 4).
+    #[arg(long)]
     plot: Option<PathBuf>,
     /// Pose: also the largest-area centred ellipse inside the force polygon (seed 001 §IV-C;
     /// point2 robots only): semi-axes, angle of the major axis, area.
@@ -125,16 +130,37 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         )
         .into());
     }
+    if args.plot.is_some() && motion != MotionPattern::Point2 {
+        return Err(format!(
+            "--plot with --pose draws the 2-D force polygon and needs a point2 robot; this robot \
+             is {} (use --grid --plot for a map of the index)",
+            motion.name()
+        )
+        .into());
+    }
     let p = pose(robot, q)?;
     let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
     let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds)?;
     let force = isotropic_force(&aws, motion)?;
     let radius = isotropic_wrench_radius(&aws);
-    let ellipse = if args.ellipse {
+    let ellipse = if args.ellipse || args.plot.is_some() {
         Some(largest_inscribed_ellipse(&aws)?)
     } else {
         None
     };
+    if let Some(path) = &args.plot {
+        let mut fig = ForcePolygonPlot::operational(&aws, ellipse.flatten().as_ref())
+            .ok_or("the force polygon is unbounded (an infinite t_max): nothing to draw")?;
+        fig.title = format!(
+            "{}: available force polygon at ({})",
+            robot.name,
+            q.iter()
+                .map(|v| format!("{v}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        cdpr::plot::save(&fig, path)?;
+    }
     if args.json {
         let mut v = json!({
             "robot": robot.name,
@@ -145,7 +171,7 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
             "facets": aws.facets().len(),
             "vertices": aws.vertices().map(|v| v.iter().map(|p| p.as_slice().to_vec()).collect::<Vec<_>>()),
         });
-        if let Some(e) = &ellipse {
+        if let (true, Some(e)) = (args.ellipse, &ellipse) {
             v["ellipse"] = ellipse_json(e);
         }
         return print_json(&v);
@@ -158,7 +184,7 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
     if force < 0.0 {
         println!("the origin is outside the available wrench set: even a zero load cannot be held");
     }
-    match &ellipse {
+    match ellipse.as_ref().filter(|_| args.ellipse) {
         Some(Some(e)) => println!(
             "largest centred ellipse: semi-axes {:.6}, {:.6}; major axis at {:.4}° ; area {:.6}",
             e.semi_axes[0],
@@ -168,6 +194,9 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         ),
         Some(None) => println!("largest centred ellipse: none (the origin is not strictly inside)"),
         None => {}
+    }
+    if let Some(p) = &args.plot {
+        println!("force polygon written to {}", p.display());
     }
     Ok(())
 }

@@ -3,11 +3,13 @@
 //! SVG or PNG figures (chosen by the file extension) drawn with `plotters` and a bundled font
 //! (DejaVu Sans), so no system library is needed. Each figure type implements [`Figure`].
 
+mod force_polygon;
 mod heat_map;
 mod lines;
 mod panels;
 mod workspace;
 
+pub use force_polygon::{ForcePolygonPlot, Segment};
 pub use heat_map::HeatMap;
 pub use lines::{LinePlot, Series};
 pub use panels::Panels;

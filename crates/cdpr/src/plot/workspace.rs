@@ -29,6 +29,9 @@ pub struct WorkspacePlot {
     pub notes: Vec<String>,
     /// The frame outline (e.g. the 2 × 2 square), drawn thin.
     pub frame: Vec<(f64, f64)>,
+    /// Extra open polylines drawn as chained (dash-dot) lines, e.g. the section line of
+    /// seed 000 Fig. 6.6(a); they count in the view's extent.
+    pub chained_lines: Vec<Vec<(f64, f64)>>,
 }
 
 const FILL: RGBColor = RGBColor(158, 202, 225);
@@ -50,7 +53,8 @@ impl Figure for WorkspacePlot {
             .iter()
             .chain(self.frame.iter())
             .chain(self.boundaries.iter().flatten())
-            .chain(self.feasible_points.iter());
+            .chain(self.feasible_points.iter())
+            .chain(self.chained_lines.iter().flatten());
         let (mut x0, mut x1, mut y0, mut y1) = (-1.0f64, 1.0f64, -1.0f64, 1.0f64);
         for &(x, y) in pts {
             x0 = x0.min(x);
@@ -121,6 +125,16 @@ impl Figure for WorkspacePlot {
                 BOUNDARY.stroke_width(2),
             )))?;
         }
+        // Chained lines: dash (4 % of the view), gap, dot, gap, in data units (equal scales).
+        let period = 0.08 * half;
+        for line in &self.chained_lines {
+            let pieces = chain_pattern(line, [0.5 * period, 0.2 * period, 0.1 * period]);
+            chart.draw_series(
+                pieces
+                    .into_iter()
+                    .map(|p| PathElement::new(p, RGBColor(200, 30, 30).stroke_width(2))),
+            )?;
+        }
         for &(a, b) in &self.cables {
             chart.draw_series(std::iter::once(PathElement::new(
                 vec![a, b],
@@ -147,6 +161,43 @@ impl Figure for WorkspacePlot {
         }))?;
         Ok(())
     }
+}
+
+/// Splits a polyline into the drawn pieces of a dash–gap–dot–gap pattern with lengths
+/// [dash, gap, dot].
+fn chain_pattern(line: &[(f64, f64)], [dash, gap, dot]: [f64; 3]) -> Vec<Vec<(f64, f64)>> {
+    let pattern = [(dash, true), (gap, false), (dot, true), (gap, false)];
+    let mut out = Vec::new();
+    if !(dash > 0.0 && gap > 0.0 && dot > 0.0) {
+        return out;
+    }
+    let (mut k, mut left) = (0, pattern[0].0);
+    let mut current: Vec<(f64, f64)> = line.first().copied().into_iter().collect();
+    for w in line.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let len = (b.0 - a.0).hypot(b.1 - a.1);
+        let mut s = 0.0;
+        while len - s > left {
+            s += left;
+            let p = (a.0 + (b.0 - a.0) * s / len, a.1 + (b.1 - a.1) * s / len);
+            if pattern[k].1 {
+                current.push(p);
+                out.push(std::mem::take(&mut current));
+            } else {
+                current = vec![p];
+            }
+            k = (k + 1) % pattern.len();
+            left = pattern[k].0;
+        }
+        left -= len - s;
+        if pattern[k].1 {
+            current.push(b);
+        }
+    }
+    if pattern[k].1 && current.len() > 1 {
+        out.push(current);
+    }
+    out
 }
 
 /// Shoelace signed area (positive counter-clockwise).
@@ -200,5 +251,28 @@ impl WorkspacePlot {
             self.platform = pts;
         }
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::chain_pattern;
+
+    /// Dash 0.5, gap 0.2, dot 0.1 along a 1.25-long polyline with a corner at x = 0.6: drawn
+    /// pieces [0, 0.5], [0.7, 0.8] and [1.0, 1.25] of arc length (the corner falls in a gap).
+    #[test]
+    fn chained_line_pieces_by_hand() {
+        let line = [(0.0, 0.0), (0.6, 0.0), (0.6, 0.65)];
+        let pieces = chain_pattern(&line, [0.5, 0.2, 0.1]);
+        let close = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).abs() + (p.1 - q.1).abs() < 1e-12;
+        assert_eq!(pieces.len(), 3, "{pieces:?}");
+        assert!(close(pieces[0][0], (0.0, 0.0)) && close(pieces[0][1], (0.5, 0.0)));
+        assert_eq!(pieces[1].len(), 2);
+        assert!(close(pieces[1][0], (0.6, 0.1)) && close(pieces[1][1], (0.6, 0.2)));
+        assert!(close(pieces[2][0], (0.6, 0.4)) && close(pieces[2][1], (0.6, 0.65)));
+        // A dash across the corner keeps the corner point.
+        let pieces = chain_pattern(&line, [1.0, 0.1, 0.1]);
+        assert_eq!(pieces[0], vec![(0.0, 0.0), (0.6, 0.0), (0.6, 0.4)]);
+        assert!(chain_pattern(&line, [0.0, 0.1, 0.1]).is_empty());
     }
 }

@@ -1,12 +1,17 @@
-//! Figures of the polytope area: seed 001 Fig. 9 (maximum isotropic force of the 3-motor
-//! point robot over the plane) and Fig. 10 (4, 5 and 6 motors regularly spaced on a circle),
-//! from `examples/robots/krut-{3,4,5,6}.toml` (motors at 1000 mm, tensions in [50, 500] N).
+//! Figures of the polytope area: seed 001 Fig. 4 (the operational force polygon of the 3-motor
+//! point robot with its largest centred circle and ellipse), Fig. 9 (maximum isotropic force of
+//! the 3-motor robot over the plane) and Fig. 10 (4, 5 and 6 motors regularly spaced on a
+//! circle), from `examples/robots/krut-{3,4,5,6}.toml` (motors at 1000 mm, tensions in
+//! [50, 500] N).
 
 use super::Figure;
 use cdpr::RobotDescription;
 use cdpr::kinematics::Pose;
-use cdpr::plot::{HeatMap, save};
-use cdpr::polytope::IsotropicForce;
+use cdpr::plot::{ForcePolygonPlot, HeatMap, Panels, save};
+use cdpr::polytope::{
+    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force,
+    largest_inscribed_ellipse,
+};
 use std::path::Path;
 
 /// Grid intervals per side: 121 × 121 poses over [−1000, 1000]² mm.
@@ -20,7 +25,157 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         .parent()
         .and_then(Path::parent)
         .ok_or("figures directory must be <root>/docs/figures")?;
-    render(root, dir)
+    let mut out = vec![seed001_fig4(root, dir)?];
+    out.extend(render(root, dir)?);
+    Ok(out)
+}
+
+/// The off-centre pose of Fig. 4 (mm): inside the workspace, where the polygon is far from
+/// centred on the origin.
+const FIG4_POSE: (f64, f64) = (300.0, -200.0);
+
+/// One pose of Fig. 4: the figure panel, the index f_min (eq. 19), the ellipse and the panel's
+/// caption text.
+fn fig4_panel(
+    robot: &RobotDescription,
+    (x, y): (f64, f64),
+) -> Result<(ForcePolygonPlot, String), String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let motion = robot.robot.motion();
+    let w = robot
+        .robot
+        .inverse_kinematics(&Pose::point(x, y, 0.0))
+        .map_err(|e| err(&e))?
+        .wrench_matrix();
+    let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds).map_err(|e| err(&e))?;
+    let f_min = isotropic_force(&aws, motion).map_err(|e| err(&e))?;
+    let ellipse: InscribedEllipse = largest_inscribed_ellipse(&aws)
+        .map_err(|e| err(&e))?
+        .ok_or(format!(
+            "({x}, {y}): the origin is outside the force polygon"
+        ))?;
+    // Independent checks: every vertex is W t for some admissible t (the polygon is the image of
+    // the tension box, so each vertex must be reached by a box corner), the ellipse lies inside
+    // every facet, and its area is at least the circle's (the circle is a candidate ellipse).
+    let vertices = aws.vertices().ok_or("unbounded force polygon")?;
+    let n = robot.robot.cables().len();
+    for v in vertices {
+        let hit = (0..1usize << n).any(|mask| {
+            let t = nalgebra::DVector::from_fn(n, |i, _| {
+                if mask >> i & 1 == 1 {
+                    robot.bounds.max()[i]
+                } else {
+                    robot.bounds.min()[i]
+                }
+            });
+            (&w * t - v).norm() < 1e-6 * v.norm().max(1.0)
+        });
+        if !hit {
+            return Err(format!(
+                "({x}, {y}): vertex {v} is not the image of a box corner"
+            ));
+        }
+    }
+    for f in aws.facets() {
+        let nrm = nalgebra::Vector2::new(f.normal[0], f.normal[1]);
+        if ellipse.support(&nrm) > f.offset * (1.0 + 1e-6) {
+            return Err(format!("({x}, {y}): the ellipse crosses a facet"));
+        }
+    }
+    if ellipse.area() < std::f64::consts::PI * f_min * f_min * (1.0 - 1e-6) {
+        return Err(format!(
+            "({x}, {y}): the ellipse is smaller than the circle"
+        ));
+    }
+    let mut fig = ForcePolygonPlot::operational(&aws, Some(&ellipse))
+        .ok_or("the force polygon of a point2 robot must be 2-D")?;
+    // Outward normals of the highlighted edges (the direction from the origin to each edge's
+    // line), in [0°, 360°), and the facets the ellipse touches (support ≥ (1 − 10⁻⁵) d_k).
+    let mut normals: Vec<f64> = fig
+        .highlighted_edges
+        .0
+        .iter()
+        .map(|&((ax, ay), (bx, by))| {
+            let (nx, ny) = (by - ay, ax - bx);
+            let s = if nx * ax + ny * ay >= 0.0 { 1.0 } else { -1.0 };
+            (s * ny).atan2(s * nx).to_degrees().rem_euclid(360.0)
+        })
+        .collect();
+    normals.sort_by(f64::total_cmp);
+    let touching: Vec<String> = normals
+        .iter()
+        .map(|a| format!("{}°", (a.round() as i64) % 360))
+        .collect();
+    let ellipse_contacts = aws
+        .facets()
+        .iter()
+        .filter(|f| {
+            let nrm = nalgebra::Vector2::new(f.normal[0], f.normal[1]);
+            ellipse.support(&nrm) >= f.offset * (1.0 - 1e-5)
+        })
+        .count();
+    fig.title = if x == 0.0 && y == 0.0 {
+        "centre (0, 0) mm".into()
+    } else {
+        format!("off-centre ({x}, {y}) mm")
+    };
+    let [a, b] = ellipse.semi_axes;
+    let text = format!(
+        "at ({x}, {y}) mm the polygon has {} vertices, f_min = {f_min:.1} N, the circle touches \
+         {} facet(s) (outward normals {}), and the ellipse has semi-axes {a:.1} and {b:.1} N{}",
+        vertices.len(),
+        touching.len(),
+        touching.join(", "),
+        if a - b <= 1e-6 * a {
+            " (the circle itself)".to_string()
+        } else {
+            format!(
+                ", major axis at {:.1}°, area {:.2}× the circle's, touching {ellipse_contacts} \
+                 facets",
+                ellipse.angle.to_degrees(),
+                ellipse.area() / (std::f64::consts::PI * f_min * f_min)
+            )
+        }
+    );
+    Ok((fig, text))
+}
+
+/// Seed 001 Fig. 4: the available force polygon of krut-3 at the centre and off-centre.
+fn seed001_fig4(root: &Path, out: &Path) -> Result<Figure, String> {
+    let robot = RobotDescription::load(root.join("examples/robots/krut-3.toml"))
+        .map_err(|e| e.to_string())?;
+    let (centre, c_text) = fig4_panel(&robot, (0.0, 0.0))?;
+    let (off, o_text) = fig4_panel(&robot, FIG4_POSE)?;
+    let fig = Panels {
+        title: "Seed 001 Fig. 4: available force polygon {W t : 50 ≤ t ≤ 500 N} of the 3-motor \
+                robot (krut-3), largest centred circle and ellipse"
+            .into(),
+        columns: 2,
+        panel_size: (1050, 820),
+        panels: vec![centre, off],
+    };
+    let file = "seed001_fig4_force_polygon.png";
+    save(&fig, out.join(file)).map_err(|e| e.to_string())?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 001 Fig. 4".into(),
+        caption: format!(
+            "The paper sketches the admissible operational force polygon (n = 2) with a circle \
+             (radius: the largest force the machine can resist in every direction) and an \
+             ellipse (the largest-area centred ellipse, §IV-C). Ours is computed for seed 001's \
+             3-motor point robot (examples/robots/krut-3.toml: motors at 1000 mm, 30°, 150°, \
+             270°, t ∈ [50, 500] N) at the centre and at an off-centre pose of our choice: the \
+             polygon {{W t}} from its vertices (hyperplane shifting; every vertex checked to be \
+             the image of a tension-box corner), the origin-centred circle of radius f_min \
+             (eq. 19), the facet(s) at distance f_min highlighted, and the largest centred \
+             ellipse (a second-order cone program; checked inside every facet and no smaller \
+             than the circle). The polygon is the set of forces the cables apply; the loads the \
+             platform can resist are its mirror image −{{W t}}, with the same circle and \
+             ellipse. Centre: {c_text}. Off-centre: {o_text}. As the paper notes, the ellipse \
+             says little once the polygon is not centred on the origin: off-centre it becomes a \
+             long thin ellipse squeezed against the facets nearest the origin."
+        ),
+    })
 }
 
 /// The map of one robot: (values row-major x fastest, centre value, max, fraction ≥ 0).
@@ -185,5 +340,26 @@ mod tests {
         if keep.is_none() {
             std::fs::remove_dir_all(&out).ok();
         }
+    }
+
+    /// Fig. 4: at the centre the polygon is the regular hexagon of apothem 225·√3 ≈ 389.7 N
+    /// (hand-derived, see `render`), all six facets touch the circle and the ellipse is that
+    /// circle; off-centre a single facet limits.
+    #[test]
+    fn seed001_fig4_is_written_with_the_hand_derived_centre() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        let out = std::env::temp_dir().join(format!("cdpr-fig4-{}", std::process::id()));
+        std::fs::create_dir_all(&out).unwrap();
+        let fig = seed001_fig4(root, &out).unwrap();
+        assert!(std::fs::metadata(out.join(&fig.file)).unwrap().len() > 10_000);
+        let c = &fig.caption;
+        assert!(
+            c.contains("f_min = 389.7 N, the circle touches 6 facet(s)"),
+            "{c}"
+        );
+        assert!(c.contains("0°, 60°, 120°, 180°, 240°, 300°"), "{c}");
+        assert!(c.contains("(the circle itself)"), "{c}");
+        assert!(c.contains("the circle touches 1 facet(s)"), "{c}");
+        std::fs::remove_dir_all(&out).ok();
     }
 }

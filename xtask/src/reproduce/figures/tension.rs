@@ -1,15 +1,18 @@
-//! Figures of the tension area: seed 002 Figs. 4 and 5 (stiffness-oriented tension distribution
-//! on our ROWC-like robot) and seed 000 Figs. 6.3 (minimum norm vs constrained ℓ2 workspaces) and
-//! 6.6(b) (tensions along a section through the workspace).
+//! Figures of the tension area: seed 002 Figs. 2, 4 and 5 (stiffness-oriented tension
+//! distribution on our ROWC-like robot) and seed 000 Figs. 6.3 (minimum norm vs constrained ℓ2
+//! workspaces) and 6.6 ((a) the workspace with a section line, (b) tensions along the section).
 
 use super::Figure;
 use cdpr::RobotDescription;
-use cdpr::plot::{HeatMap, LinePlot, Series, save};
+use cdpr::plot::{ForcePolygonPlot, HeatMap, LinePlot, Series, WorkspacePlot, save};
 use cdpr_kinematics::{Cable, MotionPattern, Path as PosePath, Pose, Robot, Sampling};
 use cdpr_tension::profile::{TensionProfile, tension_profile};
 use cdpr_tension::{
     FeasiblePolygon, Method, SotdaSettings, SotdaVariant, StiffnessData, TensionBounds,
     TensionOutcome, TensionProblem, TensionSolver, sotda_displacement,
+};
+use cdpr_workspace::{
+    ChordSettings, Criterion, Grid, PoseEvaluator, Region, chord_workspace, planar_workspace,
 };
 use nalgebra::{DVector, Vector2, Vector3};
 use std::path::Path;
@@ -33,7 +36,9 @@ fn saved(fig: &impl cdpr::plot::Figure, dir: &Path, file: &str) -> Result<(), St
     save(fig, dir.join(file)).map_err(|e| e.to_string())
 }
 
-/// The seed-002 study at X0 with the 50 N lateral load: (heat-map figure, ν-curve figure).
+/// The seed-002 study at X0 with the 50 N lateral load: Fig. 2 (the feasible polygon with the
+/// barycentre, the intermediate solution and the stiffness-oriented one), Fig. 4 left (heat
+/// map) and right (ν curve).
 fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let pose = Pose::from_coordinates(MotionPattern::Spatial, &[1.5, 0.35, 0.59, 0.0, 0.0, 0.0])
@@ -80,6 +85,7 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
     let lo = Vector2::new(lo_v[0], lo_v[1]);
     let (d_bary, d_opt) = (disp(&t_bary), disp(&t_opt));
     let reduction = 100.0 * (d_bary - d_opt) / d_bary;
+    let fig2 = seed002_fig2(dir, &problem, &polygon, &settings, &disp)?;
     // Grid over the polygon's bounding box.
     const G: usize = 70;
     let (mut a, mut b) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -147,6 +153,10 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
                  along y plus the 5 kg platform's weight, E·S = 60 000 N, t ∈ [10, 200] N";
     Ok(vec![
         Figure {
+            caption: format!("{} Setting: {setup}.", fig2.caption),
+            ..fig2
+        },
+        Figure {
             file: "seed002_fig4_left.png".into(),
             source: "Seed 002 Fig. 4 (left)".into(),
             caption: format!(
@@ -172,6 +182,166 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
             ),
         },
     ])
+}
+
+/// λ of tensions t on the polygon's plane: Nᵀ (t − t0) (N orthonormal).
+fn lambda_of(polygon: &FeasiblePolygon, t: &DVector<f64>) -> Vector2<f64> {
+    let l = polygon.null_space.transpose() * (t - &polygon.particular);
+    Vector2::new(l[0], l[1])
+}
+
+/// Seed 002 Fig. 2: the feasible polygon in λ coordinates, its barycentre (ν = 0), the
+/// stiffness-oriented solution (ν = 1) and the intermediate solution ν = 0.5, each from the
+/// SOTDA solver with `settings` and that ν; `disp` gives |δp_y| (mm) of a tension vector.
+fn seed002_fig2(
+    dir: &Path,
+    problem: &TensionProblem,
+    polygon: &FeasiblePolygon,
+    settings: &SotdaSettings,
+    disp: &dyn Fn(&DVector<f64>) -> f64,
+) -> Result<Figure, String> {
+    let solve = |nu: f64, variant: SotdaVariant| -> Result<DVector<f64>, String> {
+        let mut solver = TensionSolver::sotda(SotdaSettings {
+            nu,
+            variant,
+            ..settings.clone()
+        });
+        match solver.solve(problem).map_err(|e| e.to_string())? {
+            TensionOutcome::Feasible(s) => Ok(s.tensions),
+            TensionOutcome::Infeasible(r) => Err(format!("sotda ν = {nu} at X0: {r}")),
+        }
+    };
+    let t_bary = solve(0.0, settings.variant)?;
+    let t_is = solve(0.5, settings.variant)?;
+    let t_so = solve(1.0, settings.variant)?;
+    // The paper's real-time variant (Algorithm 1 under assumptions (i)–(ii): polygon corners
+    // with a cable at t_max), for comparison.
+    let t_corner = solve(1.0, SotdaVariant::Corners)?;
+    let (lb, li, lo, lc) = (
+        lambda_of(polygon, &t_bary),
+        lambda_of(polygon, &t_is),
+        lambda_of(polygon, &t_so),
+        lambda_of(polygon, &t_corner),
+    );
+    // Independent checks: ν = 0 is the polygon's area centroid, every point is feasible, and
+    // the intermediate solution is the midpoint of the segment (eq. of Fig. 2, convexity).
+    let scale = polygon
+        .vertices
+        .iter()
+        .map(|v| v.norm())
+        .fold(1.0, f64::max);
+    if (lb - polygon.barycenter_lambda()).norm() > 1e-9 * scale {
+        return Err(format!("ν = 0 gives {lb}, not the barycentre"));
+    }
+    if (li - (lb + lo) * 0.5).norm() > 1e-9 * scale {
+        return Err(format!("ν = 0.5 gives {li}, not the midpoint of G–SO"));
+    }
+    for (name, l) in [("G", lb), ("IS", li), ("SO", lo), ("corner SO", lc)] {
+        if !polygon.contains(&l, problem.bounds) {
+            return Err(format!("{name} = {l} is outside the feasible polygon"));
+        }
+    }
+    let pt = |l: Vector2<f64>| (l.x, l.y);
+    let at_max = |t: &DVector<f64>| -> Vec<String> {
+        (0..t.len())
+            .filter(|&i| problem.bounds.max()[i] - t[i] < 1e-6 * problem.bounds.max()[i])
+            .map(|i| format!("t{}", i + 1))
+            .collect()
+    };
+    let corner_same = (lc - lo).norm() < 1e-6 * scale;
+    let mut points = vec![
+        (
+            pt(lb),
+            format!("barycentre G (ν = 0)\n|δp_y| = {:.3} mm", disp(&t_bary)),
+        ),
+        (
+            pt(li),
+            format!("intermediate IS (ν = 0.5)\n|δp_y| = {:.3} mm", disp(&t_is)),
+        ),
+        (
+            pt(lo),
+            format!(
+                "stiffness-oriented SO (ν = 1,\nfull search) |δp_y| = {:.3} mm",
+                disp(&t_so)
+            ),
+        ),
+    ];
+    if !corner_same {
+        points.push((
+            pt(lc),
+            format!(
+                "SO of the corner variant\n(Alg. 1 real-time) {:.3} mm",
+                disp(&t_corner)
+            ),
+        ));
+    }
+    let fig = ForcePolygonPlot {
+        title: "Seed 002 Fig. 2: rowc-like-8 at X0, 50 N along y: intermediate solution in the \
+                feasible polygon"
+            .into(),
+        labels: ("λ1 (N)".into(), "λ2 (N)".into()),
+        notes: vec![
+            format!(
+                "feasible polygon t = t0 + N λ, t ∈ [10, 200] N: {} vertices, area {:.1} N²",
+                polygon.vertices.len(),
+                polygon.area()
+            ),
+            format!(
+                "IS(ν) = G + ν (SO − G); SO has {} at t_max",
+                at_max(&t_so).join(", ")
+            ),
+        ],
+        polygon: polygon.vertices.iter().map(|v| (v.x, v.y)).collect(),
+        polygon_label: "feasible polygon A⁻¹(Λ)".into(),
+        segments: vec![(
+            (pt(lb), pt(lo)),
+            "intermediate solutions\nIS(ν), 0 ≤ ν ≤ 1".into(),
+        )],
+        points,
+        ..ForcePolygonPlot::default()
+    };
+    let file = "seed002_fig2.png";
+    saved(&fig, dir, file)?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 002 Fig. 2".into(),
+        caption: format!(
+            "The paper sketches the intermediate solution IS = G + ν (SO − G) between the \
+             feasible polygon's barycentre G and the stiffness-oriented solution SO, which keeps \
+             a margin to the polygon's edges. Ours is computed: the feasible polygon of eq. (6) \
+             in λ coordinates ({} vertices, area {:.1} N²), and the SOTDA solver's output for \
+             ν = 0 (G = ({:.2}, {:.2}) N, equal to the polygon's area centroid), ν = 0.5 \
+             (IS = ({:.2}, {:.2}) N, checked to be the midpoint of G–SO) and ν = 1 \
+             (SO = ({:.2}, {:.2}) N, full search of the polygon, δw_e = the 50 N load, \
+             minimising |δp_y|), with |δp_y| = {:.3}, {:.3} and {:.3} mm. SO lies on the \
+             polygon's boundary with {} at t_max. {}",
+            polygon.vertices.len(),
+            polygon.area(),
+            lb.x,
+            lb.y,
+            li.x,
+            li.y,
+            lo.x,
+            lo.y,
+            disp(&t_bary),
+            disp(&t_is),
+            disp(&t_so),
+            at_max(&t_so).join(", "),
+            if corner_same {
+                "The paper's real-time corner variant (Algorithm 1, assumptions (i)–(ii)) \
+                 picks the same point."
+                    .to_string()
+            } else {
+                format!(
+                    "The paper's real-time corner variant (Algorithm 1, assumptions (i)–(ii)) \
+                     picks the vertex ({:.2}, {:.2}) N instead (|δp_y| = {:.3} mm), also drawn.",
+                    lc.x,
+                    lc.y,
+                    disp(&t_corner)
+                )
+            }
+        ),
+    })
 }
 
 fn profile_plot(title: String, profile: &TensionProfile, t_min: f64, t_max: f64) -> LinePlot {
@@ -291,7 +461,8 @@ fn thesis_platform(c: f64) -> Result<Robot, String> {
     .map_err(|e| e.to_string())
 }
 
-/// Seed 000 Fig. 6.6(b): ℓ2 tensions along x = 0.54, c = [±1, ±0.1], L1, φ = 0.
+/// Seed 000 Fig. 6.6: (a) the workspace with the section x = 0.54 and (b) the ℓ2 tensions
+/// along it, c = [±1, ±0.1], L1, φ = 0.
 fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
     let robot = thesis_platform(0.1)?;
     let bounds = TensionBounds::uniform(4, 5.0, 100.0).map_err(|e| e.to_string())?;
@@ -325,11 +496,14 @@ fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
         }
     }
     saved(&plot, dir, "seed000_fig6_6b.png")?;
-    Ok(vec![Figure {
-        file: "seed000_fig6_6b.png".into(),
-        source: "Seed 000 Fig. 6.6(b)".into(),
-        caption: format!(
-            "Constrained ℓ2 tensions t1–t4 along x = 0.54, y ∈ [−0.2, 0.05] (2501 samples, \
+    let fig_a = seed000_fig66a(dir, &robot, &bounds, &l1, (y[first_out - 1], y[first_out]))?;
+    Ok(vec![
+        fig_a,
+        Figure {
+            file: "seed000_fig6_6b.png".into(),
+            source: "Seed 000 Fig. 6.6(b)".into(),
+            caption: format!(
+                "Constrained ℓ2 tensions t1–t4 along x = 0.54, y ∈ [−0.2, 0.05] (2501 samples, \
              0.1 mm apart), 4-cable manipulator with c = [±1, ±0.1], Table 6.1 platform, load L1, \
              φ = 0, t ∈ [5, 100]. The thesis draws t3 and t4 jumping at y = 0, on the workspace \
              boundary. In our model the section leaves the workspace between the samples \
@@ -338,15 +512,164 @@ fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
              steep rise of t3, t4 within the last centimetre before it: {} steps flagged as \
              discontinuities, all within {:.1} mm of the boundary. At a plotting step coarser \
              than a millimetre this is the thesis' jump.",
-            y[first_out - 1] * 1e3,
-            y[first_out] * 1e3,
-            flagged.len(),
-            flagged
+                y[first_out - 1] * 1e3,
+                y[first_out] * 1e3,
+                flagged.len(),
+                flagged
+                    .iter()
+                    .map(|&k| (y[first_out] - y[k]).abs() * 1e3)
+                    .fold(0.0, f64::max)
+            ),
+        },
+    ])
+}
+
+/// The section line of Fig. 6.6.
+const SECTION_X: f64 = 0.54;
+
+/// Seed 000 Fig. 6.6(a): the φ = 0 workspace of the c = [±1, ±0.1] manipulator under L1
+/// (constrained ℓ2 tensions in `bounds`, l_min = 0.1) by the chord method, checked against a fine
+/// grid, with the section x = 0.54 of Fig. 6.6(b) as a chained line. `profile_exit` brackets
+/// where the 6.6(b) profile leaves the workspace (last feasible y, first infeasible y).
+fn seed000_fig66a(
+    dir: &Path,
+    robot: &Robot,
+    bounds: &TensionBounds,
+    l1: &DVector<f64>,
+    profile_exit: (f64, f64),
+) -> Result<Figure, String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let eval = PoseEvaluator::new(
+        robot.clone(),
+        bounds.clone(),
+        vec![
+            Criterion::TensionFeasible {
+                method: Method::L2,
+                wrench: l1.clone(),
+            },
+            Criterion::MinCableLength(0.1),
+        ],
+    )
+    .map_err(|e| err(&e))?;
+    // The 2 × 2 frame as search region (the anchors' bounding box, y ∈ [−0.1, 0.1], would cut
+    // the workspace, which hangs below the anchors under L1).
+    let region = Region::planar(-1.0, 1.0, -1.0, 1.0);
+    const CHORD: f64 = 0.02;
+    let settings = ChordSettings {
+        chord: CHORD,
+        seed_resolution: 100,
+        ..ChordSettings::default()
+    };
+    let ws = chord_workspace(&eval, 0.0, &region, &settings).map_err(|e| err(&e))?;
+    const M: usize = 400;
+    let grid = planar_workspace(&eval, 0.0, &Grid::new(M, region)).map_err(|e| err(&e))?;
+    if ws.area <= 0.0 {
+        return Err("fig 6.6(a): empty workspace".into());
+    }
+    let diff = 100.0 * (grid.area - ws.area).abs() / ws.area;
+    if diff > 3.0 {
+        return Err(format!(
+            "fig 6.6(a): chord area {} and grid area {} differ by {diff:.1} %",
+            ws.area, grid.area
+        ));
+    }
+    // Where the chord boundaries cross the section line.
+    let mut crossings: Vec<f64> = ws
+        .boundaries
+        .iter()
+        .flat_map(|b| {
+            let n = b.vertices.len();
+            (0..n).filter_map(move |k| {
+                let (p, q) = (b.vertices[k], b.vertices[(k + 1) % n]);
+                ((p[0] - SECTION_X) * (q[0] - SECTION_X) < 0.0)
+                    .then(|| p[1] + (q[1] - p[1]) * (SECTION_X - p[0]) / (q[0] - p[0]))
+            })
+        })
+        .collect();
+    crossings.sort_by(f64::total_cmp);
+    let top = crossings
+        .iter()
+        .copied()
+        .filter(|&y| y > -0.1)
+        .fold(f64::NEG_INFINITY, f64::max);
+    // The 6.6(b) bracket is 0.1 mm wide; the chord's crossing is a chord of the boundary, so it
+    // may lie up to a few tenths of a millimetre inside.
+    if !(top > profile_exit.0 - 2e-3 && top < profile_exit.1 + 2e-3) {
+        return Err(format!(
+            "fig 6.6(a): the boundary crosses x = {SECTION_X} at y = {top}, the profile leaves \
+             between {} and {}",
+            profile_exit.0, profile_exit.1
+        ));
+    }
+    let regions = ws
+        .boundaries
+        .iter()
+        .filter(|b| b.signed_area() > 0.0)
+        .count();
+    // Platform drawn at a pose inside the workspace, clear of the section line.
+    let pose = (0.0, -0.25);
+    if !ws.contains([pose.0, pose.1]) {
+        return Err("fig 6.6(a): the drawn pose is outside the workspace".into());
+    }
+    let fig = WorkspacePlot {
+        title: "Seed 000 Fig. 6.6(a): c = [±1, ±0.1], L1, φ = 0, constrained ℓ2, t ∈ [5, 100]"
+            .into(),
+        notes: vec![
+            format!(
+                "chord method d = {CHORD}: A = {:.4}, {regions} region(s); grid m = {M}: A = {:.4}",
+                ws.area, grid.area
+            ),
+            format!(
+                "chained line: section x = {SECTION_X} (Fig. 6.6(b)); crosses the boundary at y = {}",
+                crossings
+                    .iter()
+                    .map(|y| format!("{y:.5}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+        ],
+        boundaries: ws
+            .boundaries
+            .iter()
+            .map(|b| b.vertices.iter().map(|v| (v[0], v[1])).collect())
+            .collect(),
+        fill_boundaries: true,
+        frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+        chained_lines: vec![vec![(SECTION_X, -1.0), (SECTION_X, 1.0)]],
+        ..WorkspacePlot::default()
+    }
+    .with_robot(robot, &Pose::planar(pose.0, pose.1, 0.0));
+    let file = "seed000_fig6_6a.png";
+    saved(&fig, dir, file)?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 000 Fig. 6.6(a)".into(),
+        caption: format!(
+            "The φ = 0 constant-orientation workspace under load L1 (f_y = −10) of the 4-cable \
+             manipulator with c¹ = [1, 0.1], c² = [−1, 0.1], c³ = [−1, −0.1], c⁴ = [1, −0.1] and \
+             the Table 6.1 platform, constrained ℓ2 tensions (eq. 6.17) in [5, 100], cable \
+             length ≥ 0.1, searched over the 2 × 2 frame (filled; black squares: anchors; the \
+             cables and platform drawn at ({}, {})). Boundary by the chord method, \
+             d = {CHORD}, ε^u = 10⁻⁸, walks seeded from a 100 × 100 grid: area {:.4} in \
+             {regions} region(s); a {}-point grid (m = {M}) gives {:.4} ({diff:.2} % apart). The \
+             chained line is the section x = {SECTION_X} of Fig. 6.6(b); the chord boundary \
+             crosses it at y = {}, and the upper crossing agrees with where the 6.6(b) profile \
+             leaves the workspace (between y = {:.2} and {:.2} mm), the boundary on which t3 and \
+             t4 jump in the thesis.",
+            pose.0,
+            pose.1,
+            ws.area,
+            (M + 1) * (M + 1),
+            grid.area,
+            crossings
                 .iter()
-                .map(|&k| (y[first_out] - y[k]).abs() * 1e3)
-                .fold(0.0, f64::max)
+                .map(|y| format!("{y:.5}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            profile_exit.0 * 1e3,
+            profile_exit.1 * 1e3
         ),
-    }])
+    })
 }
 
 /// Seed 000 Fig. 6.3: constant-orientation workspaces with pinv (minimum norm) vs ℓ2 tensions.
@@ -440,6 +763,39 @@ fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
 
 #[cfg(test)]
 mod tests {
+    use cdpr::RobotDescription;
+
+    /// Figs. 6.6(a) and 2 are written; 6.6(a)'s own checks (chord vs grid area within 3 %,
+    /// the boundary crossing x = 0.54 where the 6.6(b) profile leaves the workspace) and
+    /// Fig. 2's (ν = 0 is the centroid, ν = 0.5 the midpoint, all points feasible) pass.
+    #[test]
+    fn seed000_fig66_and_seed002_fig2_are_written() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let dir = std::env::temp_dir().join(format!("cdpr-fig66-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let figs = super::seed000_fig66(&dir).unwrap();
+        assert_eq!(figs[0].file, "seed000_fig6_6a.png");
+        assert!(
+            figs[0].caption.contains("1 region(s)"),
+            "{}",
+            figs[0].caption
+        );
+        let rowc = RobotDescription::load(root.join("examples/robots/rowc-like-8.toml")).unwrap();
+        let figs = super::seed002_fig4(&dir, &rowc).unwrap();
+        assert_eq!(figs[0].file, "seed002_fig2.png");
+        for f in [
+            "seed000_fig6_6a.png",
+            "seed000_fig6_6b.png",
+            "seed002_fig2.png",
+        ] {
+            assert!(
+                std::fs::metadata(dir.join(f)).unwrap().len() > 10_000,
+                "{f}"
+            );
+        }
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
     /// Writes this area's figures into target/figures-tension for inspection (not part of CI).
     #[test]
     #[ignore]
