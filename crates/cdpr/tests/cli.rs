@@ -193,6 +193,56 @@ fn tension_json_contract_and_infeasible_is_success() {
     ]);
     assert_eq!(v["feasible"], true);
     assert!(v["displacement"].as_f64().unwrap() > 0.0);
+    assert_eq!(v["sotda_search"], "corners");
+    // The three searches are nested (corners ⊂ vertices ⊂ full): the displacement never grows.
+    let sotda = |extra: &[&str]| {
+        let mut args = vec![
+            "tension".to_string(),
+            robot("ipanema-like-8.toml"),
+            "--pose".into(),
+            "0,0,1,0,0,0".into(),
+            "--wrench".into(),
+            "0,50,0,0,0,0".into(),
+            "--method".into(),
+            "sotda".into(),
+            "--json".into(),
+        ];
+        args.extend(extra.iter().map(|s| s.to_string()));
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let v = run(&args);
+        (
+            v["displacement"].as_f64().unwrap(),
+            v["sotda_search"].as_str().unwrap().to_string(),
+        )
+    };
+    let (corners, name_c) = sotda(&[]);
+    let (vertices, name_v) = sotda(&["--sotda-search", "vertices"]);
+    let (full, name_f) = sotda(&["--sotda-search", "full"]);
+    let (full_alias, name_a) = sotda(&["--full"]);
+    assert_eq!((name_c.as_str(), name_v.as_str()), ("corners", "vertices"));
+    assert_eq!((name_f.as_str(), name_a.as_str()), ("full", "full"));
+    assert!(
+        vertices <= corners * (1.0 + 1e-12),
+        "{vertices} > {corners}"
+    );
+    assert!(full <= vertices * (1.0 + 1e-9), "{full} > {vertices}");
+    assert_eq!(full, full_alias);
+    // --full and --sotda-search together are refused.
+    let out = cdpr()
+        .args([
+            "tension",
+            &robot("ipanema-like-8.toml"),
+            "--pose",
+            "0,0,1,0,0,0",
+            "--method",
+            "sotda",
+            "--full",
+            "--sotda-search",
+            "vertices",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
 }
 
 #[test]

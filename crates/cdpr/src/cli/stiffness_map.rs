@@ -1,6 +1,6 @@
 //! `cdpr stiffness-map`: the stiffness-oriented study of seed 002 at one pose (Fig. 4).
 
-use super::tension::sotda_settings;
+use super::tension::{SotdaSearch, sotda_settings};
 use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json, wrench};
 use cdpr::plot::HeatMap;
 use cdpr::tension::{
@@ -87,7 +87,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
     let w = kin.wrench_matrix();
-    let mut settings = sotda_settings(args.direction.as_deref(), 1.0, !args.corners)?;
+    let mut settings = sotda_settings(
+        args.direction.as_deref(),
+        1.0,
+        if args.corners {
+            SotdaSearch::Corners
+        } else {
+            SotdaSearch::Full
+        },
+    )?;
     if w_e.amax() > 0.0 {
         settings.perturbation = Some(w_e.clone());
     }

@@ -21,7 +21,7 @@ use std::path::PathBuf;
 /// "infeasible" comes with its reason and exit code 0.
 ///
 /// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
-/// `polygon` for barycenter and sotda; `displacement` for sotda.
+/// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML).
@@ -41,7 +41,12 @@ pub struct Args {
     /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
     #[arg(long, default_value_t = 1.0)]
     nu: f64,
-    /// SOTDA: search the whole polygon instead of its corners (the paper's real-time variant).
+    /// SOTDA: which points of the feasible polygon are evaluated. corners: seed 002's real-time
+    /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
+    /// the whole polygon refined by a pattern search.
+    #[arg(long, value_enum, default_value = "corners", conflicts_with = "full")]
+    sotda_search: SotdaSearch,
+    /// SOTDA: search the whole polygon (same as --sotda-search full).
     #[arg(long)]
     full: bool,
     /// Write one JSON object on stdout.
@@ -49,11 +54,38 @@ pub struct Args {
     json: bool,
 }
 
+/// `--sotda-search`: the points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum SotdaSearch {
+    /// Seed 002's real-time variant: the vertices with a cable at t_max.
+    Corners,
+    /// Every vertex of the polygon.
+    Vertices,
+    /// A grid over the whole polygon refined by a pattern search.
+    Full,
+}
+
+impl SotdaSearch {
+    /// The command-line spelling (JSON `sotda_search`).
+    pub fn name(self) -> &'static str {
+        match self {
+            SotdaSearch::Corners => "corners",
+            SotdaSearch::Vertices => "vertices",
+            SotdaSearch::Full => "full",
+        }
+    }
+
+    /// The search chosen by `--sotda-search` and the older `--full` switch.
+    pub fn from_args(search: SotdaSearch, full: bool) -> Self {
+        if full { SotdaSearch::Full } else { search }
+    }
+}
+
 /// SOTDA settings from the command line (shared with the trajectory command).
 pub fn sotda_settings(
     direction: Option<&[f64]>,
     nu: f64,
-    full: bool,
+    search: SotdaSearch,
 ) -> Result<SotdaSettings, CliError> {
     let mut s = SotdaSettings {
         nu,
@@ -66,10 +98,10 @@ pub fn sotda_settings(
             k => return Err(format!("--direction needs 2 or 3 numbers, got {k}").into()),
         };
     }
-    s.variant = if full {
-        SotdaVariant::Full
-    } else {
-        SotdaVariant::Corners
+    s.variant = match search {
+        SotdaSearch::Corners => SotdaVariant::Corners,
+        SotdaSearch::Vertices => SotdaVariant::Vertices,
+        SotdaSearch::Full => SotdaVariant::Full,
     };
     s.validate()?;
     Ok(s)
@@ -113,7 +145,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         TensionSolver::sotda(sotda_settings(
             args.direction.as_deref(),
             args.nu,
-            args.full,
+            SotdaSearch::from_args(args.sotda_search, args.full),
         )?)
     } else {
         TensionSolver::new(args.method)
@@ -148,6 +180,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         if args.method == Method::Sotda {
             v["displacement"] = json!(displacement);
             v["nu"] = json!(args.nu);
+            v["sotda_search"] = json!(SotdaSearch::from_args(args.sotda_search, args.full).name());
         }
         print_json(&v)
     } else {

@@ -12,7 +12,7 @@
 //!
 //! Between waypoints the wrench is interpolated linearly in the path parameter s.
 
-use super::tension::sotda_settings;
+use super::tension::{SotdaSearch, sotda_settings};
 use super::{CliError, Numbers, load_robot, pose, print_json, wrench};
 use cdpr::kinematics::{Path, PathSample, Pose, Sampling};
 use cdpr::plot::{LinePlot, Series};
@@ -80,7 +80,12 @@ pub struct Args {
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
-    /// SOTDA: search the whole polygon instead of its corners.
+    /// SOTDA: which points of the feasible polygon are evaluated. corners: seed 002's real-time
+    /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
+    /// the whole polygon refined by a pattern search.
+    #[arg(long, value_enum, default_value = "corners", conflicts_with = "full")]
+    sotda_search: SotdaSearch,
+    /// SOTDA: search the whole polygon (same as --sotda-search full).
     #[arg(long)]
     full: bool,
     /// A step is flagged as a discontinuity when its jump exceeds this many median jumps.
@@ -203,7 +208,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         TensionSolver::sotda(sotda_settings(
             args.direction.as_deref(),
             args.nu,
-            args.full,
+            SotdaSearch::from_args(args.sotda_search, args.full),
         )?)
     } else {
         TensionSolver::new(args.method)
