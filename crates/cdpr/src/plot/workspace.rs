@@ -32,6 +32,8 @@ pub struct WorkspacePlot {
     /// Extra open polylines drawn as chained (dash-dot) lines, e.g. the section line of
     /// seed 000 Fig. 6.6(a); they count in the view's extent.
     pub chained_lines: Vec<Vec<(f64, f64)>>,
+    /// Points marked with a red ring, e.g. the bifurcation points of a chord boundary.
+    pub markers: Vec<(f64, f64)>,
 }
 
 const FILL: RGBColor = RGBColor(158, 202, 225);
@@ -150,6 +152,11 @@ impl Figure for WorkspacePlot {
             )))?;
             chart.draw_series(std::iter::once(PathElement::new(p, BLACK.stroke_width(1))))?;
         }
+        chart.draw_series(
+            self.markers
+                .iter()
+                .map(|&p| Circle::new(p, 6, RGBColor(200, 30, 30).stroke_width(2))),
+        )?;
         chart.draw_series(self.anchors.iter().enumerate().map(|(i, &(x, y))| {
             EmptyElement::at((x, y))
                 + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())

@@ -136,7 +136,134 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
             max_rel_diff(&chord4, &grid4)
         ),
     });
+    out.push(bifurcation_figure(dir, &r3.robot)?);
     Ok(out)
+}
+
+/// φ and the coarse chord d of Fig. 6.7.
+const FIG67_PHI: f64 = 0.05;
+const FIG67_CHORD: f64 = 0.2;
+
+/// The workspaces of Fig. 6.7: [reference (d = 0.005), chords of d only, chords refined].
+fn bifurcation_cases(robot: &Robot) -> Result<[ChordWorkspace; 3], String> {
+    let eval = evaluator(robot, 3, 0)?;
+    let region = Region::frame_bounding_box(robot);
+    let levels = ChordSettings::default().refinement_levels;
+    let run = |chord: f64, refinement_levels: u32| {
+        let settings = ChordSettings {
+            chord,
+            refinement_levels,
+            ..ChordSettings::default()
+        };
+        chord_workspace(&eval, FIG67_PHI, &region, &settings).map_err(|e| e.to_string())
+    };
+    Ok([
+        run(0.005, levels)?,
+        run(FIG67_CHORD, 0)?,
+        run(FIG67_CHORD, levels)?,
+    ])
+}
+
+/// Seed 000 Fig. 6.7: why the chord method needs its bifurcation-point procedure. The 3-cable
+/// workspace under L1 at φ = 0.05 by chords of d = 0.1 (twice the thesis' d, so that the effect
+/// shows), (a) without refinement and (b) with the chord halved near sharp turns (Appendix C,
+/// reconstructed: `ChordSettings::refinement_levels`), against a fine reference (d = 0.005).
+fn bifurcation_figure(dir: &Path, robot: &Robot) -> Result<Figure, String> {
+    let [reference, plain, refined] = bifurcation_cases(robot)?;
+    let outline = |w: &ChordWorkspace| -> Vec<Vec<(f64, f64)>> {
+        w.boundaries
+            .iter()
+            .map(|b| b.vertices.iter().map(|v| (v[0], v[1])).collect())
+            .collect()
+    };
+    let closed = |w: &ChordWorkspace| -> Vec<Vec<(f64, f64)>> {
+        outline(w)
+            .into_iter()
+            .map(|mut b| {
+                if let Some(&first) = b.first() {
+                    b.push(first);
+                }
+                b
+            })
+            .collect()
+    };
+    let bifurcations: Vec<(f64, f64)> = refined
+        .boundaries
+        .iter()
+        .flat_map(|b| {
+            b.bifurcations
+                .iter()
+                .map(|&i| (b.vertices[i][0], b.vertices[i][1]))
+        })
+        .collect();
+    let error = |w: &ChordWorkspace| 100.0 * (w.area - reference.area).abs() / reference.area;
+    let vertices =
+        |w: &ChordWorkspace| w.boundaries.iter().map(|b| b.vertices.len()).sum::<usize>();
+    let panel = |title: &str, w: &ChordWorkspace, markers: Vec<(f64, f64)>| {
+        WorkspacePlot {
+            title: title.into(),
+            boundaries: outline(w),
+            fill_boundaries: true,
+            chained_lines: closed(&reference),
+            markers,
+            notes: vec![format!(
+                "A = {:.4} ({:.2} % off the reference {:.4}), {} region(s), {} chord points, \
+                 {} evaluations",
+                w.area,
+                error(w),
+                reference.area,
+                w.boundaries.len(),
+                vertices(w),
+                w.evaluations
+            )],
+            frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+            ..WorkspacePlot::default()
+        }
+        .with_robot(robot, &Pose::planar(0.0, 0.0, FIG67_PHI))
+    };
+    let fig = Panels {
+        title:
+            "Fig. 6.7: bifurcation points and the chord method (3 cables, L1, φ = 0.05, d = 0.2)"
+                .into(),
+        columns: 2,
+        panel_size: (620, 660),
+        panels: vec![
+            panel("(a) chords of d only", &plain, Vec::new()),
+            panel(
+                "(b) chord halved near turns; bifurcation points (rings)",
+                &refined,
+                bifurcations.clone(),
+            ),
+        ],
+    };
+    let file = "seed000_fig6_7_bifurcation_points.png";
+    save(&fig, dir.join(file)).map_err(|e| e.to_string())?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 000 Fig. 6.7".into(),
+        caption: format!(
+            "The chord method maps the boundary with chords of fixed length d, so a boundary \
+             corner (a bifurcation point, where two constraints meet) is cut off (thesis \
+             Fig. 6.7(a)). 3-cable TDPM, load L1, φ = 0.05, exact tensions, |det J| ≥ 10⁻³, \
+             l_min = 0.1, d = 0.2 (four times the thesis' 0.05, to make the effect visible); chained \
+             line: a fine reference boundary (d = 0.005, A = {:.4}, {} regions). (a) Chords of d \
+             only: A = {:.4}, {:.2} % off, {} region(s) ({} walk(s) abandoned: a region thinner \
+             than the chord cannot be followed). (b) With our reconstruction of the thesis' bifurcation \
+             procedure (its Appendix C is not in the seed): the chord is halved, down to d/2⁶, \
+             where the boundary turns by more than 0.3 rad, and the vertex that remains at the \
+             finest chord is reported as a bifurcation point: A = {:.4}, {:.2} % off, {} \
+             bifurcation point(s) marked.",
+            reference.area,
+            reference.boundaries.len(),
+            plain.area,
+            error(&plain),
+            plain.boundaries.len(),
+            plain.abandoned,
+            refined.area,
+            error(&refined),
+            bifurcations.len()
+        ),
+    })
 }
 
 /// The evaluator of Figs. 6.4–6.9 for load index `l`.
@@ -312,6 +439,29 @@ fn max_rel_diff(c: &[ChordWorkspace], g: &[GridWorkspace]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    /// Fig. 6.7's claim: the refinement recovers the corners the plain chords cut off.
+    #[test]
+    fn bifurcation_refinement_recovers_the_corners() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+        let r3 = cdpr::RobotDescription::load(root.join("examples/robots/tdpm-3.toml")).unwrap();
+        let [reference, plain, refined] = super::bifurcation_cases(&r3.robot).unwrap();
+        let err = |a: f64| (a - reference.area).abs() / reference.area;
+        assert!(
+            err(refined.area) < 0.01,
+            "{} vs {}",
+            refined.area,
+            reference.area
+        );
+        assert!(err(plain.area) > 5.0 * err(refined.area));
+        let corners: usize = refined
+            .boundaries
+            .iter()
+            .map(|b| b.bifurcations.len())
+            .sum();
+        assert!(corners >= 4, "{corners} bifurcation points");
+        assert_eq!(reference.boundaries.len(), 2);
+    }
+
     /// Writes the figures into docs/figures (run with `cargo test -p xtask --release
     /// figures_workspace -- --ignored --nocapture` and look at them).
     #[test]
