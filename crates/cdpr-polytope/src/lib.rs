@@ -15,7 +15,7 @@
 //! | module | method |
 //! |---|---|
 //! | [`hyperplane_shifting`] | AWS facets for any n (Bouchard et al. 2008; Gouttefarde & Krut 2010) |
-//! | [`krut_vertex_projection`] | AWS by seed 001's steps 1–6, eqs. (8)–(18), n ≤ 10 |
+//! | [`krut_vertex_projection`] | AWS by seed 001's steps 1–6, eqs. (8)–(18), n ≤ 10; its candidate hyperplanes (Fig. 8) |
 //! | [`isotropic_force`](mod@isotropic_force) | maximum isotropic force, eq. (19), signed |
 //! | [`capacity_margin`](mod@capacity_margin) | capacity margin (Guay et al. 2014) |
 //! | [`ellipse`] | largest-area centred ellipse (seed 001 §IV-C) |

@@ -4,8 +4,8 @@
 use cdpr_kinematics::strategies::{arb_pose, arb_robot, arb_robot_and_pose};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use cdpr_polytope::{
-    AvailableWrenchSet, CapacityMargin, CapacityMarginEvaluator, PolytopeError, RequiredWrenchSet,
-    capacity_margin, hyperplane_shifting, isotropic_force, isotropic_force_of,
+    AvailableWrenchSet, CapacityMargin, CapacityMarginEvaluator, Facet, PolytopeError,
+    RequiredWrenchSet, capacity_margin, hyperplane_shifting, isotropic_force, isotropic_force_of,
     isotropic_wrench_radius, krut_vertex_projection, largest_inscribed_ellipse, limiting_facet,
 };
 use cdpr_tension::TensionBounds;
@@ -328,6 +328,61 @@ proptest! {
             let nearest = corners.iter().map(|c| (c - v).norm()).fold(f64::INFINITY, f64::min);
             prop_assert!(nearest <= tol, "vertex {:?} is {} from every corner", v.as_slice(), nearest);
         }
+    }
+
+    /// Krut's candidate listing (seed 001 Fig. 8) against brute force over the 2ⁿ corner
+    /// images W τ: C(2ⁿ, DOF) candidates; each hyperplane passes through its vertices' images;
+    /// each border has every image inside and is a facet found by hyperplane shifting, any other
+    /// hyperplane is not; the borders are exactly `available_wrench_set`'s supporting
+    /// half-spaces (DOF 2 with n ≤ 6, DOF 3 with n ≤ 5).
+    #[test]
+    fn candidate_hyperplanes_against_brute_force(
+        (robot, pose, b) in prop_oneof![
+            arb_robot(MotionPattern::Point2, 2..=6).prop_flat_map(|r| (Just(r), arb_pose(MotionPattern::Point2))),
+            arb_robot(MotionPattern::Point3, 3..=5).prop_flat_map(|r| (Just(r), arb_pose(MotionPattern::Point3))),
+        ].prop_flat_map(|(r, p)| { let n = r.cable_count(); (Just(r), Just(p), arb_bounds(n)) })
+    ) {
+        let w = wrench(&robot, &pose);
+        prop_assume!(condition(&w) < 1e6);
+        let (dof, n) = w.shape();
+        let candidates = krut_vertex_projection::candidate_hyperplanes(&w, &b).unwrap();
+        let binomial = (0..dof).fold(1.0, |c, k| c * ((1usize << n) - k) as f64 / (k + 1) as f64);
+        prop_assert_eq!(candidates.len() as f64, binomial);
+        let tol = 1e-8 * b.max().max() * n as f64;
+        let image = |bits: usize| {
+            &w * DVector::from_fn(n, |j, _| if (bits >> j) & 1 == 1 { b.max()[j] } else { b.min()[j] })
+        };
+        let images: Vec<DVector<f64>> = (0..1usize << n).map(image).collect();
+        let hs = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+        let is_facet = |f: &Facet| {
+            hs.facets().iter().any(|g| (&g.normal - &f.normal).amax() < 1e-6 && (g.offset - f.offset).abs() <= tol)
+        };
+        let mut borders = Vec::new();
+        for c in &candidates {
+            prop_assert_eq!(c.vertices.len(), dof);
+            let Some(f) = &c.hyperplane else {
+                prop_assert!(!c.border);
+                continue;
+            };
+            prop_assert!((f.normal.norm() - 1.0).abs() < 1e-12);
+            for &v in &c.vertices {
+                prop_assert!((f.normal.dot(&images[v]) - f.offset).abs() <= tol, "{:?}", c);
+            }
+            prop_assert_eq!(is_facet(f), c.border, "{:?}", c);
+            if c.border {
+                for x in &images {
+                    prop_assert!(f.normal.dot(x) <= f.offset + tol);
+                }
+                borders.push(f.clone());
+            }
+        }
+        let lexicographic = |a: &Facet, b: &Facet| {
+            a.normal.iter().zip(b.normal.iter()).map(|(x, y)| x.total_cmp(y)).find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal).then(a.offset.total_cmp(&b.offset))
+        };
+        borders.sort_by(lexicographic);
+        let krut = krut_vertex_projection::available_wrench_set(&w, &b).unwrap();
+        prop_assert_eq!(&borders[..], krut.supporting_halfspaces());
     }
 
     /// Capacity margin: a ball of radius 0 at the origin gives the wrench isotropy radius; a

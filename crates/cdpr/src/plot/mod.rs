@@ -7,12 +7,14 @@ mod force_polygon;
 mod heat_map;
 mod lines;
 mod panels;
+mod vertex_projection;
 mod workspace;
 
 pub use force_polygon::{ForcePolygonPlot, Segment};
 pub use heat_map::HeatMap;
 pub use lines::{LinePlot, Series};
 pub use panels::Panels;
+pub use vertex_projection::{CandidateLinesPlot, TensionBoxPlot, clip_line};
 pub use workspace::WorkspacePlot;
 
 use plotters::coord::Shift;

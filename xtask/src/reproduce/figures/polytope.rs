@@ -1,5 +1,7 @@
-//! Figures of the polytope area: seed 001 Fig. 4 (the operational force polygon of the 3-motor
-//! point robot with its largest centred circle and ellipse), Fig. 9 (maximum isotropic force of
+//! Figures of the polytope area: seed 001 Fig. 3 (the admissible joint force space, the tension
+//! box of the 3-motor robot), Fig. 4 (the operational force polygon of the 3-motor point robot
+//! with its largest centred circle and ellipse), Fig. 8 (the candidate frontiers of Krut's
+//! step 4 with the borders of test (15)), Fig. 9 (maximum isotropic force of
 //! the 3-motor robot over the plane) and Fig. 10 (4, 5 and 6 motors regularly spaced on a
 //! circle), from `examples/robots/krut-{3,4,5,6}.toml` (motors at 1000 mm, tensions in
 //! [50, 500] N).
@@ -7,9 +9,9 @@
 use super::Figure;
 use cdpr::RobotDescription;
 use cdpr::kinematics::Pose;
-use cdpr::plot::{ForcePolygonPlot, HeatMap, Panels, save};
+use cdpr::plot::{CandidateLinesPlot, ForcePolygonPlot, HeatMap, Panels, TensionBoxPlot, save};
 use cdpr::polytope::{
-    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force,
+    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force, krut_vertex_projection,
     largest_inscribed_ellipse,
 };
 use std::path::Path;
@@ -25,7 +27,8 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         .parent()
         .and_then(Path::parent)
         .ok_or("figures directory must be <root>/docs/figures")?;
-    let mut out = vec![seed001_fig4(root, dir)?];
+    let mut out = vec![seed001_fig3(root, dir)?, seed001_fig4(root, dir)?];
+    out.push(seed001_fig8(root, dir)?);
     out.extend(render(root, dir)?);
     Ok(out)
 }
@@ -174,6 +177,244 @@ fn seed001_fig4(root: &Path, out: &Path) -> Result<Figure, String> {
              ellipse. Centre: {c_text}. Off-centre: {o_text}. As the paper notes, the ellipse \
              says little once the polygon is not centred on the origin: off-centre it becomes a \
              long thin ellipse squeezed against the facets nearest the origin."
+        ),
+    })
+}
+
+/// "(t₁, t₂, t₃)" of the box vertex `bits` (bit j set: t_j = t_max,j).
+fn vertex_label(robot: &RobotDescription, bits: usize) -> String {
+    let t: Vec<String> = (0..robot.robot.cables().len())
+        .map(|j| {
+            let b = if bits >> j & 1 == 1 {
+                robot.bounds.max()
+            } else {
+                robot.bounds.min()
+            };
+            format!("{}", b[j])
+        })
+        .collect();
+    format!("({})", t.join(", "))
+}
+
+/// Seed 001 Fig. 3: the admissible joint force space {t : t_min ≤ t ≤ t_max} of krut-3.
+fn seed001_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
+    let robot = RobotDescription::load(root.join("examples/robots/krut-3.toml"))
+        .map_err(|e| e.to_string())?;
+    let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
+    if lo.len() != 3 {
+        return Err(format!("krut-3 has {} cables", lo.len()));
+    }
+    let mut fig = TensionBoxPlot::new([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
+    fig.title = "Seed 001 Fig. 3: admissible joint force space, m = 3 (krut-3)".into();
+    fig.notes = vec![
+        format!(
+            "the box t_min ≤ t ≤ t_max of eq. (3), t_j ∈ [{}, {}] N: 2³ = 8 vertices, 12 edges, \
+             6 faces",
+            lo[0], hi[0]
+        ),
+        format!(
+            "oblique orthographic view (azimuth {}°, elevation {}°); the three edges at the \
+             hidden vertex {} dashed",
+            fig.view.0,
+            fig.view.1,
+            vertex_label(&robot, 0)
+        ),
+    ];
+    let file = "seed001_fig3_tension_box.png";
+    save(&fig, out.join(file)).map_err(|e| e.to_string())?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 001 Fig. 3".into(),
+        caption: format!(
+            "The paper draws the admissible joint force space, the box (3) t_min ≤ t ≤ t_max, \
+             for m = 3 motors. Ours is the box of seed 001's 3-motor robot \
+             (examples/robots/krut-3.toml, t_j ∈ [{}, {}] N) in an oblique orthographic view \
+             (azimuth {}° from t₁ towards t₂, elevation {}°), with the three visible faces \
+             shaded, the three edges at the hidden vertex {} dashed, the 2³ = 8 vertices labelled \
+             with the bounds they take (t₁, t₂, t₃) and the axes t₁, t₂, t₃ drawn from the origin \
+             with ticks at t_min and t_max. An isometric view would put {} exactly in front of \
+             {}: the viewing direction (1, 1, 1) is also the kernel of W at the centre pose, \
+             which is why those two vertices project onto the same point in Fig. 8.",
+            lo[0],
+            hi[0],
+            fig.view.0,
+            fig.view.1,
+            vertex_label(&robot, 0),
+            vertex_label(&robot, 7),
+            vertex_label(&robot, 0),
+        ),
+    })
+}
+
+/// Seed 001 Fig. 8: the projected box vertices of krut-3 at the centre, every candidate line
+/// through two of them (Krut's step 4) and the borders of test (15).
+fn seed001_fig8(root: &Path, out: &Path) -> Result<Figure, String> {
+    let err = |e: &dyn std::fmt::Display| e.to_string();
+    let robot =
+        RobotDescription::load(root.join("examples/robots/krut-3.toml")).map_err(|e| err(&e))?;
+    let n = robot.robot.cables().len();
+    let w = robot
+        .robot
+        .inverse_kinematics(&Pose::point(0.0, 0.0, 0.0))
+        .map_err(|e| err(&e))?
+        .wrench_matrix();
+    let candidates =
+        krut_vertex_projection::candidate_hyperplanes(&w, &robot.bounds).map_err(|e| err(&e))?;
+    let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds).map_err(|e| err(&e))?;
+    // The projected vertices f = W τ of the 2ⁿ box vertices.
+    let images: Vec<(f64, f64)> = (0..1usize << n)
+        .map(|bits| {
+            let t = nalgebra::DVector::from_fn(n, |j, _| {
+                if bits >> j & 1 == 1 {
+                    robot.bounds.max()[j]
+                } else {
+                    robot.bounds.min()[j]
+                }
+            });
+            let f = &w * t;
+            (f[0], f[1])
+        })
+        .collect();
+    let size = images.iter().map(|p| p.0.hypot(p.1)).fold(0.0, f64::max);
+    let tol = 1e-9 * size.max(1.0);
+    // Independent checks: every line passes through its two points, each border has all the
+    // points on its inner side and is a facet found by hyperplane shifting, each other line has
+    // points strictly on both sides.
+    for c in &candidates {
+        let Some(f) = &c.hyperplane else { continue };
+        let side: Vec<f64> = images
+            .iter()
+            .map(|p| f.normal[0] * p.0 + f.normal[1] * p.1 - f.offset)
+            .collect();
+        if c.vertices.iter().any(|&v| side[v].abs() > tol) {
+            return Err(format!("candidate {:?} misses its vertices", c.vertices));
+        }
+        let one_sided = side.iter().all(|&x| x <= tol);
+        let facet = aws
+            .facets()
+            .iter()
+            .any(|g| (&g.normal - &f.normal).amax() < 1e-9 && (g.offset - f.offset).abs() < tol);
+        if c.border != one_sided || c.border != facet {
+            return Err(format!(
+                "candidate {:?}: border {} but one-sided {one_sided}, facet {facet}",
+                c.vertices, c.border
+            ));
+        }
+    }
+    let count = candidates.len();
+    let no_line = candidates.iter().filter(|c| c.hyperplane.is_none()).count();
+    let borders = candidates.iter().filter(|c| c.border).count();
+    // Distinct lines: candidates on the same line (normal up to sign, offset with it) merged.
+    let mut distinct: Vec<(f64, f64, f64)> = Vec::new();
+    let mut through_origin = 0;
+    for f in candidates.iter().filter_map(|c| c.hyperplane.as_ref()) {
+        let s = if f.normal[0] < -1e-12 || (f.normal[0].abs() <= 1e-12 && f.normal[1] < 0.0) {
+            -1.0
+        } else {
+            1.0
+        };
+        let key = (s * f.normal[0], s * f.normal[1], s * f.offset);
+        if f.offset.abs() <= tol {
+            through_origin += 1;
+        }
+        if !distinct.iter().any(|d| {
+            (d.0 - key.0).abs() < 1e-9 && (d.1 - key.1).abs() < 1e-9 && (d.2 - key.2).abs() < tol
+        }) {
+            distinct.push(key);
+        }
+    }
+    let origin_lines = distinct.iter().filter(|d| d.2.abs() <= tol).count();
+    let lines = count - no_line;
+    let coincident: Vec<String> = candidates
+        .iter()
+        .filter(|c| c.hyperplane.is_none())
+        .map(|c| {
+            let v: Vec<String> = c
+                .vertices
+                .iter()
+                .map(|&b| vertex_label(&robot, b))
+                .collect();
+            v.join(" and ")
+        })
+        .collect();
+    let polygon: Vec<(f64, f64)> = aws
+        .vertices()
+        .ok_or("unbounded force polygon")?
+        .iter()
+        .map(|v| (v[0], v[1]))
+        .collect();
+    let fig = CandidateLinesPlot {
+        title: "Seed 001 Fig. 8: all the possible frontiers of the force polygon (krut-3, centre)"
+            .into(),
+        labels: ("f_x (N)".into(), "f_y (N)".into()),
+        notes: vec![
+            format!(
+                "{} box vertices τ mapped to f = W τ; of the C({}, 2) = {count} pairs, \
+                 {no_line} coincide ({}) and give no line",
+                images.len(),
+                images.len(),
+                coincident.join("; ")
+            ),
+            format!(
+                "{lines} candidate lines (step 4, eqs. (10)–(14)) on {} distinct lines; \
+                 {through_origin} of them, on {origin_lines} lines, pass through the origin \
+                 (T_k singular in eq. (14))",
+                distinct.len()
+            ),
+            format!(
+                "border test (15): {borders} candidates have every point on one side: the {} \
+                 sides of the polygon",
+                aws.facets().len()
+            ),
+        ],
+        polygon_label: "available force polygon {W t}".into(),
+        polygon,
+        lines: candidates
+            .iter()
+            .filter_map(|c| {
+                let f = c.hyperplane.as_ref()?;
+                Some(((f.normal[0], f.normal[1]), f.offset, c.border))
+            })
+            .collect(),
+        line_labels: (
+            format!("candidate lines ({lines})"),
+            format!("borders ({borders}), test (15)"),
+        ),
+        points: images
+            .iter()
+            .enumerate()
+            .map(|(bits, &p)| (p, vertex_label(&robot, bits)))
+            .collect(),
+        points_label: "projected vertex W τ,\nlabelled τ = (t₁, t₂, t₃) in N".into(),
+        origin: false,
+    };
+    let file = "seed001_fig8_candidate_frontiers.png";
+    save(&fig, out.join(file)).map_err(|e| e.to_string())?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 001 Fig. 8".into(),
+        caption: format!(
+            "The paper draws every hyperplane through n = 2 of the 2^m projected box vertices \
+             τ_r (step 4, a line for n = 2): the possible frontiers, among which the border test \
+             (15) keeps the sides. Ours is for seed 001's 3-motor robot \
+             (examples/robots/krut-3.toml, t ∈ [50, 500] N) at the centre pose, drawn in the \
+             operational force plane f = W τ = U S τ_r (step 6: a linear image of the τ_r \
+             plane, so points, lines and sides correspond), as listed by \
+             `krut_vertex_projection::candidate_hyperplanes`, the code path of our Krut \
+             implementation. The {} projected vertices are labelled with their tensions; of the \
+             C({}, 2) = {count} pairs, {no_line} coincide ({}: at the centre Σ w_j = 0, so \
+             W (1, 1, 1) = 0) and give no line; the other {lines} candidate lines (thin grey, \
+             clipped to the plot; several candidates share a line: {} distinct lines) include \
+             {through_origin} on the {origin_lines} diameters through the origin, where the \
+             paper's eq. (14) has no u_k (we compute every line from vertex differences); \
+             {borders} pass the border test (15) and are highlighted: they are the {} sides of \
+             the regular hexagon of Fig. 4 (each checked to have all 8 points on its inner side \
+             and to be a facet found independently by hyperplane shifting).",
+            images.len(),
+            images.len(),
+            coincident.join("; "),
+            distinct.len(),
+            aws.facets().len(),
         ),
     })
 }
@@ -337,6 +578,42 @@ mod tests {
             assert!(std::fs::metadata(out.join(&f.file)).unwrap().len() > 10_000);
         }
         assert!(figs[3].caption.contains("3 motors 389.7 N"));
+        if keep.is_none() {
+            std::fs::remove_dir_all(&out).ok();
+        }
+    }
+
+    /// Figs. 3 and 8: written, with the hand-derived counts of the centre pose (6 hexagon
+    /// vertices ±450 w_j and 2 points at the origin: 15 + 12 + 1 pairs, 15 distinct lines).
+    #[test]
+    fn seed001_figs_3_and_8_are_written_with_the_hand_derived_counts() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
+        // POLYTOPE_FIG_DIR keeps the images for inspection.
+        let keep = std::env::var_os("POLYTOPE_FIG_DIR");
+        let out = keep.clone().map(Into::into).unwrap_or_else(|| {
+            std::env::temp_dir().join(format!("cdpr-fig38-{}", std::process::id()))
+        });
+        std::fs::create_dir_all(&out).unwrap();
+        let fig3 = seed001_fig3(root, &out).unwrap();
+        let fig8 = seed001_fig8(root, &out).unwrap();
+        for f in [&fig3, &fig8] {
+            assert!(std::fs::metadata(out.join(&f.file)).unwrap().len() > 10_000);
+        }
+        let c = &fig8.caption;
+        let coincide = "C(8, 2) = 28 pairs, 1 coincide ((50, 50, 50) and (500, 500, 500)";
+        assert!(c.contains(coincide), "{c}");
+        assert!(c.contains("the other 27 candidate lines"), "{c}");
+        assert!(
+            c.contains("15 distinct lines) include 15 on the 3 diameters"),
+            "{c}"
+        );
+        assert!(c.contains("6 pass the border test (15)"), "{c}");
+        assert!(c.contains("the 6 sides"), "{c}");
+        assert!(
+            fig3.caption.contains("t_j ∈ [50, 500] N"),
+            "{}",
+            fig3.caption
+        );
         if keep.is_none() {
             std::fs::remove_dir_all(&out).ok();
         }
