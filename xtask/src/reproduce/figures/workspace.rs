@@ -137,7 +137,81 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         ),
     });
     out.push(bifurcation_figure(dir, &r3.robot)?);
+    out.push(manipulators_figure(dir, &r3.robot, &r4.robot)?);
     Ok(out)
+}
+
+/// Seed 000 Fig. 6.2: the 3- and 4-cable manipulators of Tables 6.1 and 6.2, drawn from the
+/// robot files at one pose.
+fn manipulators_figure(dir: &Path, r3: &Robot, r4: &Robot) -> Result<Figure, String> {
+    const POSE: (f64, f64, f64) = (0.2, -0.1, 0.3);
+    let round = |x: f64| (x * 1e4).round() / 1e4 + 0.0; // + 0.0: no "-0"
+    let point = |v: &nalgebra::Vector3<f64>| format!("[{}, {}]", round(v.x), round(v.y));
+    let panel = |robot: &Robot| -> Result<WorkspacePlot, String> {
+        let pose = Pose::planar(POSE.0, POSE.1, POSE.2);
+        let kin = robot.inverse_kinematics(&pose).map_err(|e| e.to_string())?;
+        let n = robot.cable_count();
+        Ok(WorkspacePlot {
+            title: format!("{n}-cable TDPM"),
+            notes: vec![
+                format!(
+                    "frame anchors c^i: {}",
+                    robot
+                        .cables()
+                        .iter()
+                        .map(|c| point(&c.frame))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                format!(
+                    "platform attachments ā^i: {}",
+                    robot
+                        .cables()
+                        .iter()
+                        .map(|c| point(&c.platform))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                format!(
+                    "drawn at u = [{}, {}], φ_P = {} rad: cable lengths l_i = {}",
+                    POSE.0,
+                    POSE.1,
+                    POSE.2,
+                    kin.lengths()
+                        .map(|l| format!("{l:.3}"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            ],
+            markers: kin
+                .cables()
+                .iter()
+                .map(|c| (c.attachment_point.x, c.attachment_point.y))
+                .collect(),
+            frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+            ..WorkspacePlot::default()
+        }
+        .with_robot(robot, &pose))
+    };
+    let fig = Panels {
+        title: "Fig. 6.2: the planar tendon-driven manipulators (Tables 6.1, 6.2)".into(),
+        columns: 2,
+        panel_size: (620, 660),
+        panels: vec![panel(r3)?, panel(r4)?],
+    };
+    let file = "seed000_fig6_2_manipulators.png";
+    save(&fig, dir.join(file)).map_err(|e| e.to_string())?;
+    Ok(Figure {
+        file: file.into(),
+        source: "Seed 000 Fig. 6.2".into(),
+        caption: format!(
+            "The 3- and 4-cable manipulators of the thesis, drawn from examples/robots/tdpm-3.toml \
+             and tdpm-4.toml: frame anchors c^i (Table 6.2) on the 2 × 2 frame, platform \
+             attachments ā^i (Table 6.1, rings) at the pose u = [{}, {}], φ_P = {} rad, and the \
+             cables between them.",
+            POSE.0, POSE.1, POSE.2
+        ),
+    })
 }
 
 /// φ and the coarse chord d of Fig. 6.7.
