@@ -475,15 +475,20 @@ fn facet_normal(g: &[Vec6], g_norm: &[f64], q: &[f64], a: &Vec6, dof: usize) -> 
     Some(n)
 }
 
-/// The unit vector orthogonal to unit `rows` that span exactly dof − 1 dimensions, by Gaussian
-/// elimination with complete pivoting (pivots below [`PIVOT_TOL`] end the elimination); `None`
-/// if their rank is not dof − 1.
+/// The unit vector orthogonal to the first dof − 1 independent directions among unit `rows`,
+/// by Gaussian elimination with complete pivoting stopped after dof − 1 pivots (pivots below
+/// [`PIVOT_TOL`] end it earlier); `None` if the rows span fewer than dof − 1 dimensions.
+///
+/// Rows beyond the dof − 1 pivots are not tested: [`facet_normal`] passes generators already
+/// known to lie in one plane to 10⁻⁹, and a tiny generator's direction can be off that plane by
+/// more than [`PIVOT_TOL`] from round-off alone (its component along a thin singular direction
+/// of W cancels; fuzz finding `thin_facet_among_generators_of_very_different_sizes`).
 fn orthogonal_complement(rows: &mut [Vec6], dof: usize) -> Option<Vec6> {
     let k = dof - 1;
     let mut piv = [0usize; MAX_DOF];
     let mut used = [false; MAX_DOF];
     let mut rank = 0;
-    while rank < rows.len().min(dof) {
+    while rank < rows.len().min(k) {
         let (mut bi, mut bj, mut best) = (rank, 0, -1.0f64);
         for (i, row) in rows.iter().enumerate().skip(rank) {
             for (j, &x) in row.iter().enumerate().take(dof) {

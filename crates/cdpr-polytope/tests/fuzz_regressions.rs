@@ -864,3 +864,15 @@ fn krut_rejects_planes_touching_only_an_edge() {
     }
     assert_eq!(krut.facets().len(), hs.facets().len());
 }
+
+/// Fuzz finding (crash-751f46fe…, session 3): generators spanning five orders of magnitude
+/// (|w_j| from 10⁻³ to 2·10³) and a zero column. The exact facet minimum (rational oracle) is
+/// 7.2406e-7: a thin facet spanned by two tiny generators. Krut's method returned 0.0327.
+#[test]
+fn thin_facet_among_generators_of_very_different_sizes() {
+    let w = dmatrix![-0.001, 1917.8000000000002, -0.001, -0.0, 46.260000000000005, -0.001;
+                     -0.001, -0.0, -0.0, -0.0, 1917.8000000000002, -0.001;
+                     -0.0, 1917.8000000000002, -0.001, -0.0, -0.001, -0.001];
+    let b = TensionBounds::uniform(6, -0.001, 0.002).unwrap();
+    both_methods_give(&w, &b, 7.240582290327277e-07);
+}
