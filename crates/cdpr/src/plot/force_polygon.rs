@@ -8,7 +8,7 @@
 //! The axes have equal scales, so circles look round. The legend sits in a column to the right
 //! of the chart and the notes under the title, so neither covers the data.
 
-use super::{DrawResult, Figure};
+use super::{DrawResult, Figure, layout};
 use cdpr_polytope::{AvailableWrenchSet, InscribedEllipse, isotropic_wrench_radius};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -58,7 +58,6 @@ const POINTS: [RGBColor; 5] = [
     RGBColor(227, 119, 194),
 ];
 const LEGEND_WIDTH: u32 = 300;
-const NOTE_HEIGHT: u32 = 20;
 
 /// How a legend entry is drawn.
 enum Swatch {
@@ -236,7 +235,6 @@ impl Figure for ForcePolygonPlot {
     where
         DB::ErrorType: 'static,
     {
-        root.fill(&WHITE)?;
         // Extent: polygon, shapes, points, segments and the origin; equal scales.
         let mut pts: Vec<(f64, f64)> = self.polygon.clone();
         if let Some((r, _)) = &self.circle
@@ -252,39 +250,11 @@ impl Figure for ForcePolygonPlot {
         if self.origin || pts.is_empty() {
             pts.push((0.0, 0.0));
         }
-        let pts: Vec<(f64, f64)> = pts
-            .into_iter()
-            .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .collect();
-        let (mut x0, mut x1, mut y0, mut y1) = (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        );
-        for &(x, y) in &pts {
-            x0 = x0.min(x);
-            x1 = x1.max(x);
-            y0 = y0.min(y);
-            y1 = y1.max(y);
-        }
-        if !x0.is_finite() {
-            (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
-        }
+        let ((x0, x1), (y0, y1)) = layout::bounds(pts);
         let half = (0.5 * (x1 - x0).max(y1 - y0) * 1.08).max(1e-9);
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
 
-        let titled = root.titled(&self.title, ("sans-serif", 20))?;
-        let (notes, rest) = titled.split_vertically(6 + NOTE_HEIGHT * self.notes.len() as u32);
-        for (k, note) in self.notes.iter().enumerate() {
-            notes.draw(&Text::new(
-                note.clone(),
-                (14, 2 + NOTE_HEIGHT as i32 * k as i32),
-                ("sans-serif", 15).into_font(),
-            ))?;
-        }
-        let (w, _) = rest.dim_in_pixel();
-        let (body, legend) = rest.split_horizontally(w.saturating_sub(LEGEND_WIDTH));
+        let (body, legend) = layout::layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
         let mut chart = ChartBuilder::on(&body)
             .margin(12)
             .x_label_area_size(42)

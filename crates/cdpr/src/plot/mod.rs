@@ -5,6 +5,7 @@
 
 mod force_polygon;
 mod heat_map;
+mod layout;
 mod lines;
 mod panels;
 mod vertex_projection;

@@ -6,6 +6,7 @@
 //! Both keep equal scales on their two screen axes, so angles and lengths are not distorted by
 //! the image's aspect ratio; labels sit on white boxes so that lines do not cross them.
 
+use super::layout::{bounds, layout};
 use super::{DrawResult, Figure, Segment, tick};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -22,7 +23,6 @@ const FACES: [RGBColor; 3] = [
     RGBColor(235, 242, 250),
 ];
 const LEGEND_WIDTH: u32 = 330;
-const NOTE_HEIGHT: u32 = 20;
 const MARGIN: u32 = 14;
 const X_LABELS: u32 = 42;
 const Y_LABELS: u32 = 62;
@@ -75,30 +75,6 @@ fn equal_scale_ranges(
     }
     let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
     ((cx - hx, cx + hx), (cy - hy, cy + hy))
-}
-
-/// Bounding box (x range, y range) of finite points; the unit square if there is none.
-fn bounds(points: impl IntoIterator<Item = (f64, f64)>) -> ((f64, f64), (f64, f64)) {
-    let (mut x0, mut x1, mut y0, mut y1) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-    );
-    for (x, y) in points
-        .into_iter()
-        .filter(|p| p.0.is_finite() && p.1.is_finite())
-    {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if x0.is_finite() {
-        ((x0, x1), (y0, y1))
-    } else {
-        ((0.0, 1.0), (0.0, 1.0))
-    }
 }
 
 /// Draws `label` next to the point `at` (data coordinates of `area`) on a white box, offset by
@@ -223,31 +199,6 @@ where
     Ok(())
 }
 
-/// Title, notes under it, and the remaining area split into a body and a legend column.
-type Layout<DB> = (DrawingArea<DB, Shift>, DrawingArea<DB, Shift>);
-
-fn layout<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    title: &str,
-    notes: &[String],
-) -> Result<Layout<DB>, Box<dyn std::error::Error>>
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE)?;
-    let titled = root.titled(title, ("sans-serif", 20))?;
-    let (top, rest) = titled.split_vertically(6 + NOTE_HEIGHT * notes.len() as u32);
-    for (k, note) in notes.iter().enumerate() {
-        top.draw(&Text::new(
-            note.clone(),
-            (14, 2 + NOTE_HEIGHT as i32 * k as i32),
-            ("sans-serif", 15).into_font(),
-        ))?;
-    }
-    let (w, _) = rest.dim_in_pixel();
-    Ok(rest.split_horizontally(w.saturating_sub(LEGEND_WIDTH)))
-}
-
 /// Seed 001 Fig. 8: candidate frontiers `normal · p = offset` through pairs of projected box
 /// vertices, clipped to the plot, thin and grey, the borders of test (15) thick; the labelled
 /// points (the projected vertices) and the polygon they bound.
@@ -307,7 +258,7 @@ impl Figure for CandidateLinesPlot {
     where
         DB::ErrorType: 'static,
     {
-        let (body, legend_area) = layout(root, &self.title, &self.notes)?;
+        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
         let mut extent: Vec<(f64, f64)> = self.points.iter().map(|p| p.0).collect();
         extent.extend(&self.polygon);
         if self.origin {
@@ -474,7 +425,7 @@ impl Figure for TensionBoxPlot {
     where
         DB::ErrorType: 'static,
     {
-        let (body, legend_area) = layout(root, &self.title, &self.notes)?;
+        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
         let axis_tip = |j: usize| {
             let mut t = [0.0; 3];
             t[j] = self.axis_end(j);
