@@ -22,6 +22,7 @@ fn planar(c: &[[f64; 2]], a: &[[f64; 2]]) -> Robot {
         .map(|(c, a)| Cable {
             frame: Vector3::new(c[0], c[1], 0.0),
             platform: Vector3::new(a[0], a[1], 0.0),
+            pulley: None,
         })
         .collect();
     Robot::new(MotionPattern::Planar, cables).unwrap()

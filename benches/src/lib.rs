@@ -36,6 +36,7 @@ pub fn krut_three_motor() -> Robot {
         Cable {
             frame: Vector3::new(1000.0 * a.cos(), 1000.0 * a.sin(), 0.0),
             platform: Vector3::zeros(),
+            pulley: None,
         }
     };
     Robot::new(

@@ -214,7 +214,11 @@ pub fn decode_robot(
                 platform[k] = num.finite()? * 0.1;
             }
         }
-        cables.push(Cable { frame, platform });
+        cables.push(Cable {
+            frame,
+            platform,
+            pulley: None,
+        });
     }
     let Ok(robot) = Robot::new(motion, cables) else {
         return Ok(None);

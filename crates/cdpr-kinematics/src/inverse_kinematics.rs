@@ -83,7 +83,7 @@ impl Robot {
     /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
     /// use nalgebra::Vector3;
     /// let robot = Robot::new(MotionPattern::Planar, vec![
-    ///     Cable { frame: Vector3::new(1.0, 0.5, 0.0), platform: Vector3::new(0.1, 0.1, 0.0) },
+    ///     Cable { frame: Vector3::new(1.0, 0.5, 0.0), platform: Vector3::new(0.1, 0.1, 0.0), pulley: None },
     /// ]).unwrap();
     /// let kin = robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
     /// assert!((kin.cables()[0].length - (0.81f64 + 0.16).sqrt()).abs() < 1e-15);
@@ -145,6 +145,7 @@ mod tests {
             vec![Cable {
                 frame: Vector3::new(0.5, 0.5, 0.0),
                 platform: Vector3::zeros(),
+                pulley: None,
             }],
         )
         .unwrap();
@@ -166,6 +167,7 @@ mod tests {
             vec![Cable {
                 frame: Vector3::new(1.0, 1.0, 0.0),
                 platform: Vector3::new(0.1, 0.0, 0.0),
+                pulley: None,
             }],
         )
         .unwrap();

@@ -45,6 +45,7 @@ pub fn thesis_manipulator(anchors: &[[f64; 2]]) -> Robot {
         .map(|(c, a)| Cable {
             frame: Vector3::new(c[0], c[1], 0.0),
             platform: a,
+            pulley: None,
         })
         .collect();
     Robot::new(MotionPattern::Planar, cables).expect("finite anchors")
@@ -69,6 +70,7 @@ pub fn krut_point_robot(n: usize, radius: f64, first_deg: f64) -> Robot {
             Cable {
                 frame: Vector3::new(radius * a.cos(), radius * a.sin(), 0.0),
                 platform: Vector3::zeros(),
+                pulley: None,
             }
         })
         .collect();
@@ -85,6 +87,7 @@ pub fn ipanema_like_8() -> Robot {
             cables.push(Cable {
                 frame: Vector3::new(x, y, z),
                 platform: Vector3::new(0.1f64.copysign(x), 0.1f64.copysign(y), pz),
+                pulley: None,
             });
         }
     }

@@ -5,15 +5,32 @@
 //! (platform coordinates). Seed 000 Fig. 6.1 and Tables 6.1–6.2; seed 002 §2 calls them A_i, B_i.
 
 use crate::{KinematicsError, MotionPattern};
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
+
+/// A swivel pulley at a cable's frame anchor (Pott, *Cable-Driven Parallel Robots*, Springer
+/// 2018; the WireCenter `.wcrfx` model): it swivels about the axis through the frame anchor
+/// **a** along the third column of Q, and the cable wraps it before leaving tangentially
+/// towards the platform attachment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Pulley {
+    /// Radius ρ (m), > 0.
+    pub radius: f64,
+    /// Pulley frame Q in base coordinates: its first column is the zero of the swivel angle,
+    /// its third column the swivel axis. Used as written (not re-orthonormalised).
+    pub orientation: Matrix3<f64>,
+}
 
 /// One cable: where it leaves the frame and where it is attached to the platform.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Cable {
-    /// Frame anchor **c**^i in base coordinates (z = 0 for 2-D motion patterns).
+    /// Frame anchor **c**^i in base coordinates (z = 0 for 2-D motion patterns); with a pulley,
+    /// the point **a** on its swivel axis.
     pub frame: Vector3<f64>,
     /// Platform attachment **ā**^i in platform coordinates (zero for point motion patterns).
     pub platform: Vector3<f64>,
+    /// The swivel pulley that guides the cable at the frame, if any (`None`: a straight cable
+    /// from the frame anchor).
+    pub pulley: Option<Pulley>,
 }
 
 impl Cable {
@@ -35,7 +52,11 @@ impl Cable {
                 platform,
             )?
         };
-        Ok(Self { frame, platform })
+        Ok(Self {
+            frame,
+            platform,
+            pulley: None,
+        })
     }
 }
 
@@ -67,7 +88,7 @@ fn to_vector(
 /// ```
 /// use cdpr_kinematics::{Cable, MotionPattern, Robot};
 /// use nalgebra::Vector3;
-/// let cable = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let cable = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros(), pulley: None };
 /// let robot = Robot::new(MotionPattern::Point2, vec![cable(1.0, 0.0), cable(-0.5, 0.8), cable(-0.5, -0.8)]).unwrap();
 /// assert_eq!(robot.cable_count(), 3);
 /// assert_eq!(robot.redundancy(), 1);
@@ -208,6 +229,7 @@ mod tests {
         let bad = Cable {
             frame: Vector3::new(f64::NAN, 0.0, 0.0),
             platform: Vector3::zeros(),
+            pulley: None,
         };
         assert!(matches!(
             Robot::new(MotionPattern::Planar, vec![bad]),
@@ -216,6 +238,7 @@ mod tests {
         let z = Cable {
             frame: Vector3::new(1.0, 0.0, 1.0),
             platform: Vector3::zeros(),
+            pulley: None,
         };
         assert!(matches!(
             Robot::new(MotionPattern::Planar, vec![z]),
@@ -224,6 +247,7 @@ mod tests {
         let att = Cable {
             frame: Vector3::new(1.0, 0.0, 0.0),
             platform: Vector3::new(0.1, 0.0, 0.0),
+            pulley: None,
         };
         assert!(matches!(
             Robot::new(MotionPattern::Point2, vec![att]),
@@ -237,6 +261,7 @@ mod tests {
         let c = Cable {
             frame: Vector3::new(1.0, 0.0, 0.0),
             platform: Vector3::zeros(),
+            pulley: None,
         };
         let r = Robot::new(MotionPattern::Point2, vec![c, c]).unwrap();
         assert_eq!(r.duplicate_cables(), vec![(0, 1)]);

@@ -39,6 +39,7 @@ fn arb_cable(motion: MotionPattern) -> impl Strategy<Value = Cable> {
             } else {
                 Vector3::zeros()
             },
+            pulley: None,
         })
 }
 

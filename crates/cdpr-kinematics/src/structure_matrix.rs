@@ -48,8 +48,8 @@ impl PoseKinematics {
     /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
     /// use nalgebra::Vector3;
     /// let robot = Robot::new(MotionPattern::Point2, vec![
-    ///     Cable { frame: Vector3::new(2.0, 0.0, 0.0), platform: Vector3::zeros() },
-    ///     Cable { frame: Vector3::new(0.0, 3.0, 0.0), platform: Vector3::zeros() },
+    ///     Cable { frame: Vector3::new(2.0, 0.0, 0.0), platform: Vector3::zeros(), pulley: None },
+    ///     Cable { frame: Vector3::new(0.0, 3.0, 0.0), platform: Vector3::zeros(), pulley: None },
     /// ]).unwrap();
     /// let w = robot.inverse_kinematics(&Pose::point(0.0, 0.0, 0.0)).unwrap().wrench_matrix();
     /// assert_eq!(w[(0, 0)], 1.0);

@@ -139,6 +139,7 @@ fn rotate_robot(robot: &Robot, pose: &Pose, r: &Rotation3<f64>) -> (Robot, Pose)
         .map(|c| Cable {
             frame: r * c.frame,
             platform: c.platform,
+            pulley: None,
         })
         .collect();
     (
@@ -549,6 +550,7 @@ fn rank_deficient_poses_are_reported_not_crashed_on() {
         .map(|i| Cable {
             frame: Vector3::new(if i % 2 == 0 { 2.0 } else { -2.0 }, 0.0, 0.0),
             platform: Vector3::zeros(),
+            pulley: None,
         })
         .collect();
     let robot = Robot::new(MotionPattern::Spatial, cables).unwrap();

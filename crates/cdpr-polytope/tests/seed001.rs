@@ -21,6 +21,7 @@ fn robot(angles_deg: &[f64]) -> Robot {
                 0.0,
             ),
             platform: Vector3::zeros(),
+            pulley: None,
         })
         .collect();
     Robot::new(MotionPattern::Point2, cables).unwrap()

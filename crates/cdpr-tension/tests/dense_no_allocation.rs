@@ -47,6 +47,7 @@ fn robot() -> Robot {
             cables.push(Cable {
                 frame: Vector3::new(x, y, 0.0),
                 platform: Vector3::new(px, py, 0.0),
+                pulley: None,
             });
         }
     }

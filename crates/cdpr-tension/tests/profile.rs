@@ -13,6 +13,7 @@ fn eight_cable() -> Robot {
             cables.push(Cable {
                 frame: Vector3::new(x, y, z),
                 platform: Vector3::new(0.1f64.copysign(x), 0.1f64.copysign(y), pz),
+                pulley: None,
             });
         }
     }
@@ -82,6 +83,7 @@ fn fig_6_6_section_shows_the_jump() {
     let c = |f: [f64; 2], a: [f64; 2]| Cable {
         frame: Vector3::new(f[0], f[1], 0.0),
         platform: Vector3::new(a[0], a[1], 0.0),
+        pulley: None,
     };
     let robot = Robot::new(
         MotionPattern::Planar,

@@ -19,6 +19,7 @@ fn eight_cable() -> Robot {
                 cables.push(Cable {
                     frame: Vector3::new(2.0 * sx, 1.5 * sy, sz),
                     platform: Vector3::new(0.1 * sx, 0.1 * sy, 0.1 * sz),
+                    pulley: None,
                 });
             }
         }
@@ -232,6 +233,7 @@ fn corners_skip_the_t_min_t_min_vertex() {
             .map(|f| Cable {
                 frame: Vector3::new(f[0], f[1], 0.0),
                 platform: Vector3::zeros(),
+                pulley: None,
             })
             .collect(),
     )

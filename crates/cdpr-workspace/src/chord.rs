@@ -270,7 +270,7 @@ impl ChordWorkspace {
 /// use cdpr_workspace::{chord_workspace, ChordSettings, Criterion, PoseEvaluator, Region};
 /// use cdpr_tension::TensionBounds;
 /// use nalgebra::Vector3;
-/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros(), pulley: None };
 /// let robot = Robot::new(MotionPattern::Point2, vec![c(1.0, 1.0), c(-1.0, 1.0), c(0.0, -1.0)]).unwrap();
 /// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(3, 0.0, 1.0).unwrap(),
 ///                               vec![Criterion::WrenchClosure]).unwrap();

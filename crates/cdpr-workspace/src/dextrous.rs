@@ -118,7 +118,7 @@ pub struct DextrousWorkspace {
 /// use cdpr_tension::TensionBounds;
 /// use nalgebra::Vector3;
 /// let s = 0.1 / 2f64.sqrt();
-/// let c = |x: f64, y: f64, a: f64, b: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::new(a, b, 0.0) };
+/// let c = |x: f64, y: f64, a: f64, b: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::new(a, b, 0.0), pulley: None };
 /// let robot = Robot::new(MotionPattern::Planar, vec![
 ///     c(1.0, 0.5, s, s), c(-1.0, 0.5, -s, s), c(-1.0, -0.5, -0.1, -0.1), c(1.0, -0.5, 0.1, -0.1),
 /// ]).unwrap();

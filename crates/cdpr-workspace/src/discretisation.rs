@@ -319,7 +319,7 @@ where
 /// use cdpr_workspace::{constant_orientation_workspace, Criterion, Grid, PoseEvaluator, Region};
 /// use cdpr_tension::TensionBounds;
 /// use nalgebra::{Rotation3, Vector3};
-/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros(), pulley: None };
 /// let robot = Robot::new(MotionPattern::Point2, vec![c(1.0, 1.0), c(-1.0, 1.0), c(0.0, -1.0)]).unwrap();
 /// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(3, 0.0, 1.0).unwrap(),
 ///                               vec![Criterion::WrenchClosure]).unwrap();

@@ -25,7 +25,7 @@ use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 /// use cdpr_tension::{Method, TensionBounds};
 /// use cdpr_workspace::{Criterion, PoseEvaluator};
 /// use nalgebra::{DVector, Vector3};
-/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+/// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros(), pulley: None };
 /// let robot = Robot::new(MotionPattern::Point2, vec![c(1.0, 1.0), c(-1.0, 1.0), c(0.0, -1.0)]).unwrap();
 /// let mut eval = PoseEvaluator::new(
 ///     robot,

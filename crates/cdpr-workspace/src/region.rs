@@ -27,7 +27,7 @@ impl Region {
     /// use cdpr_kinematics::{Cable, MotionPattern, Robot};
     /// use cdpr_workspace::Region;
     /// use nalgebra::Vector3;
-    /// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros() };
+    /// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 0.0), platform: Vector3::zeros(), pulley: None };
     /// let robot = Robot::new(MotionPattern::Point2, vec![c(1.0, 0.5), c(-1.0, 0.5), c(0.0, -1.0)]).unwrap();
     /// let r = Region::frame_bounding_box(&robot);
     /// assert_eq!((r.min.x, r.max.x, r.min.y, r.max.y), (-1.0, 1.0, -1.0, 0.5));

@@ -19,6 +19,7 @@ fn point_robot(anchors: &[[f64; 2]]) -> Robot {
             .map(|a| Cable {
                 frame: Vector3::new(a[0], a[1], 0.0),
                 platform: Vector3::zeros(),
+                pulley: None,
             })
             .collect(),
     )

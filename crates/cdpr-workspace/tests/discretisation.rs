@@ -65,6 +65,7 @@ fn sphere_volume_on_a_3d_grid() {
     let c = |x: f64, y: f64, z: f64| Cable {
         frame: Vector3::new(x, y, z),
         platform: Vector3::zeros(),
+        pulley: None,
     };
     let robot = Robot::new(
         MotionPattern::Point3,

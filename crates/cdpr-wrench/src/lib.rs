@@ -10,10 +10,10 @@
 //! use nalgebra::Vector3;
 //!
 //! let robot = Robot::new(MotionPattern::Point3, vec![
-//!     Cable { frame: Vector3::new(1.0, 0.0, 1.0), platform: Vector3::zeros() },
-//!     Cable { frame: Vector3::new(-1.0, 0.0, 1.0), platform: Vector3::zeros() },
-//!     Cable { frame: Vector3::new(0.0, 1.0, 1.0), platform: Vector3::zeros() },
-//!     Cable { frame: Vector3::new(0.0, -1.0, 1.0), platform: Vector3::zeros() },
+//!     Cable { frame: Vector3::new(1.0, 0.0, 1.0), platform: Vector3::zeros(), pulley: None },
+//!     Cable { frame: Vector3::new(-1.0, 0.0, 1.0), platform: Vector3::zeros(), pulley: None },
+//!     Cable { frame: Vector3::new(0.0, 1.0, 1.0), platform: Vector3::zeros(), pulley: None },
+//!     Cable { frame: Vector3::new(0.0, -1.0, 1.0), platform: Vector3::zeros(), pulley: None },
 //! ]).unwrap();
 //! let pose = Pose::point(0.0, 0.0, 0.0);
 //! let gravity = Platform { mass: 1.0, ..Platform::default() }.gravity_wrench(MotionPattern::Point3, &pose);

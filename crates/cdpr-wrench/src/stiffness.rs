@@ -102,8 +102,8 @@ fn restrict(motion: MotionPattern, m: &Matrix6<f64>, out: &mut DMatrix<f64>) {
 /// use nalgebra::Vector3;
 /// // Two opposed horizontal cables of length 1 on a point: K_xx = 2 E S / l, K_yy = 2 t / l.
 /// let robot = Robot::new(MotionPattern::Point2, vec![
-///     Cable { frame: Vector3::new(1.0, 0.0, 0.0), platform: Vector3::zeros() },
-///     Cable { frame: Vector3::new(-1.0, 0.0, 0.0), platform: Vector3::zeros() },
+///     Cable { frame: Vector3::new(1.0, 0.0, 0.0), platform: Vector3::zeros(), pulley: None },
+///     Cable { frame: Vector3::new(-1.0, 0.0, 0.0), platform: Vector3::zeros(), pulley: None },
 /// ]).unwrap();
 /// let kin = robot.inverse_kinematics(&Pose::point(0.0, 0.0, 0.0)).unwrap();
 /// let k = stiffness_matrix(&kin, &[10.0, 10.0], &[1000.0, 1000.0]).unwrap();
@@ -166,6 +166,7 @@ mod tests {
         let c = |f: [f64; 2], a: [f64; 2]| Cable {
             frame: Vector3::new(f[0], f[1], 0.0),
             platform: Vector3::new(a[0], a[1], 0.0),
+            pulley: None,
         };
         let cables = vec![
             c([1.0, 1.0], [0.1, 0.1]),
@@ -200,6 +201,7 @@ mod tests {
             vec![Cable {
                 frame: Vector3::new(1.0, 0.0, 0.0),
                 platform: Vector3::zeros(),
+                pulley: None,
             }],
         )
         .unwrap();

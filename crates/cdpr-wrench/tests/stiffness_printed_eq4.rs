@@ -81,6 +81,7 @@ fn single_cable_by_hand() {
         vec![Cable {
             frame: Vector3::new(2.0, 1.0, 0.0),
             platform: Vector3::new(0.0, 1.0, 0.0),
+            pulley: None,
         }],
     )
     .unwrap();

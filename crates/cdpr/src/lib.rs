@@ -23,11 +23,11 @@
 //! ```
 
 pub mod plot;
-mod robot_file;
 
+pub use cdpr_io as io;
+pub use cdpr_io::{Limits, RobotDescription, RobotFileError};
 pub use cdpr_kinematics as kinematics;
 pub use cdpr_polytope as polytope;
 pub use cdpr_tension as tension;
 pub use cdpr_workspace as workspace;
 pub use cdpr_wrench as wrench;
-pub use robot_file::{Limits, RobotDescription, RobotFileError};

@@ -21,6 +21,7 @@ pub fn four_cable(h: f64) -> Robot {
             .map(|i| Cable {
                 frame: Vector3::new(c[i][0], c[i][1], 0.0),
                 platform: Vector3::new(a[i][0], a[i][1], 0.0),
+                pulley: None,
             })
             .collect(),
     )

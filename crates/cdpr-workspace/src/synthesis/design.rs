@@ -57,6 +57,7 @@ pub fn robot_from_design(betas: &[f64], platform: &[[f64; 2]]) -> Result<Robot, 
             Cable {
                 frame: Vector3::new(c[0], c[1], 0.0),
                 platform: Vector3::new(a[0], a[1], 0.0),
+                pulley: None,
             }
         })
         .collect();

@@ -19,6 +19,7 @@ fn cable(c: [f64; 2], a: [f64; 2]) -> Cable {
     Cable {
         frame: Vector3::new(c[0], c[1], 0.0),
         platform: Vector3::new(a[0], a[1], 0.0),
+        pulley: None,
     }
 }
 
@@ -93,6 +94,7 @@ pub fn shape_eval(inside: impl Fn(f64, f64) -> bool + Send + Sync + 'static) -> 
     let c = |x: f64, y: f64| Cable {
         frame: Vector3::new(x, y, 0.0),
         platform: Vector3::zeros(),
+        pulley: None,
     };
     let robot = Robot::new(
         MotionPattern::Point2,
@@ -130,6 +132,7 @@ pub fn eight_cable_spatial() -> Robot {
                 cables.push(Cable {
                     frame: Vector3::new(sx, sy, sz),
                     platform: platform * 0.1,
+                    pulley: None,
                 });
             }
         }

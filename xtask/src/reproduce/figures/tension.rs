@@ -448,6 +448,7 @@ fn thesis_platform(c: f64) -> Result<Robot, String> {
     let cable = |f: [f64; 2], a: [f64; 2]| Cable {
         frame: Vector3::new(f[0], f[1], 0.0),
         platform: Vector3::new(a[0], a[1], 0.0),
+        pulley: None,
     };
     Robot::new(
         MotionPattern::Planar,

@@ -298,7 +298,11 @@ impl RobotDescription {
                 }
                 (None, false) => Vector3::zeros(),
             };
-            cables.push(Cable { frame, platform });
+            cables.push(Cable {
+                frame,
+                platform,
+                pulley: None,
+            });
             let lo = c
                 .min
                 .as_ref()
