@@ -219,7 +219,7 @@ impl RobotDescription {
     /// Parses and validates robot-file text; `file` names it in error messages.
     ///
     /// ```
-    /// use cdpr::RobotDescription;
+    /// use cdpr_io::RobotDescription;
     /// let text = r#"
     /// motion = "point2"
     /// [tension]
