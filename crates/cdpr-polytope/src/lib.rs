@@ -36,7 +36,8 @@
 //! let motor = |deg: f64| Cable {
 //!     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
 //!     platform: Vector3::zeros(),
-//!, pulley: None };
+//!     pulley: None,
+//! };
 //! let robot = Robot::new(MotionPattern::Point2, vec![motor(30.0), motor(150.0), motor(270.0)])?;
 //! let bounds = TensionBounds::uniform(3, 50.0, 500.0)?;
 //! let w = robot.inverse_kinematics(&Pose::point(0.0, 0.0, 0.0))?.wrench_matrix();

@@ -36,7 +36,8 @@
 //! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
 //!     frame: Vector3::new(c[0], c[1], 0.0),
 //!     platform: Vector3::new(a[0], a[1], 0.0),
-//!, pulley: None };
+//!     pulley: None,
+//! };
 //! let robot = Robot::new(MotionPattern::Planar, vec![
 //!     cable([1.0, 0.5], [s, s]),
 //!     cable([-1.0, 0.5], [-s, s]),
