@@ -159,20 +159,126 @@ impl Region {
                 self.edges.extend_from_slice(&[0, 1, 2, 3]);
             }
         }
-        for i in 0..n {
-            let a = ns.row2(i);
-            let t0 = ns.t0[i];
-            // t0 + a·λ ≥ t_min  ⇔  a·λ ≥ t_min − t0
-            let tol = 1e-12 * lo[i].abs().max(1.0);
-            if !self.clip(a, lo[i] - t0, tol) {
-                return false;
-            }
-            if hi[i].is_finite() {
-                let tol = 1e-12 * hi[i].abs().max(1.0);
-                if !self.clip([-a[0], -a[1]], t0 - hi[i], tol) {
+        // Two-sided constraints first, fixed cables (t_min = t_max) as one line each: while
+        // the region is still the (possibly 10⁶ times too large) initial box, its vertices carry
+        // an absolute error ε·R, and a strip narrower than that, clipped one side at a time,
+        // would be lost (a soak finding: a fixed cable next to an infinite t_max).
+        for pass in 0..2 {
+            for i in 0..n {
+                if hi[i].is_finite() != (pass == 0) {
+                    continue;
+                }
+                let a = ns.row2(i);
+                let t0 = ns.t0[i];
+                let tol_lo = self.tolerance(lo[i]);
+                if hi[i] == lo[i] {
+                    // t0 + a·λ = t_min
+                    if !self.clip_line(a, lo[i] - t0, tol_lo) {
+                        return false;
+                    }
+                    continue;
+                }
+                // t0 + a·λ ≥ t_min  ⇔  a·λ ≥ t_min − t0
+                if !self.clip(a, lo[i] - t0, tol_lo) {
                     return false;
                 }
+                if hi[i].is_finite() {
+                    let tol = self.tolerance(hi[i]);
+                    if !self.clip([-a[0], -a[1]], t0 - hi[i], tol) {
+                        return false;
+                    }
+                }
             }
+        }
+        true
+    }
+
+    /// Clipping tolerance for a bound: 10⁻¹⁰ relative to the bound (a tenth of the certificate's
+    /// bound tolerance, so a vertex kept by it still passes [`crate::certify`] after snapping) or
+    /// the rounding of t0 = −W⁺ w_ext at the data scale, whichever is larger. A kept vertex is
+    /// only a candidate: every answer is certified afterwards.
+    #[inline]
+    fn tolerance(&self, bound: f64) -> f64 {
+        (1e-10 * bound.abs().max(1.0)).max(1e-14 * self.scale)
+    }
+
+    /// Keeps the part of the region on the line a·λ = b (within `tol`): a fixed cable
+    /// (t_min = t_max). The result is a segment, a point, or empty (false). The crossing points
+    /// are intersections with the edges' lines (as in [`Self::clip`]), so they carry no error
+    /// from the size of the region.
+    pub fn clip_line(&mut self, a: P2, b: f64, tol: f64) -> bool {
+        if self.verts.is_empty() {
+            return false;
+        }
+        if a[0].abs() + a[1].abs() < 1e-14 {
+            if b.abs() <= tol {
+                return true;
+            }
+            self.verts.clear();
+            self.edges.clear();
+            return false;
+        }
+        let k = self.verts.len();
+        if self.verts.iter().all(|&p| (dot(a, p) - b).abs() <= tol) {
+            return true;
+        }
+        if self.edges.len() != k {
+            self.edges.clear();
+            self.edges.resize(k, NO_LINE);
+        }
+        let line = self.lines.len() as u32;
+        self.lines.push((a, b));
+        // Direction along the line; the segment runs between the extreme crossing points.
+        let dir = [-a[1], a[0]];
+        let (mut lo, mut hi): (Option<P2>, Option<P2>) = (None, None);
+        let mut keep = |x: P2| {
+            let s = dot(dir, x);
+            if lo.is_none_or(|l| s < dot(dir, l)) {
+                lo = Some(x);
+            }
+            if hi.is_none_or(|h| s > dot(dir, h)) {
+                hi = Some(x);
+            }
+        };
+        let mut dq = dot(a, self.verts[0]) - b;
+        let edges = if k == 1 { 0 } else { k };
+        if k == 1 && dq.abs() <= tol {
+            keep(self.verts[0]);
+        }
+        for j in 0..edges {
+            let p = self.verts[j];
+            let q = self.verts[(j + 1) % k];
+            let dp = dq;
+            dq = dot(a, q) - b;
+            if dp.abs() <= tol {
+                keep(p);
+                continue;
+            }
+            if (dp > tol && dq < -tol) || (dp < -tol && dq > tol) {
+                let e = self.edges[j];
+                let exact = if e == NO_LINE {
+                    None
+                } else {
+                    let (el, eb) = self.lines[e as usize];
+                    intersect(el, eb, a, b)
+                };
+                let x = exact.unwrap_or_else(|| {
+                    let s = (dp / (dp - dq)).clamp(0.0, 1.0);
+                    [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]
+                });
+                keep(x);
+            }
+        }
+        self.verts.clear();
+        self.edges.clear();
+        let (Some(lo), Some(hi)) = (lo, hi) else {
+            return false;
+        };
+        self.verts.push(lo);
+        self.edges.push(line);
+        if !close(lo, hi, self.scale) {
+            self.verts.push(hi);
+            self.edges.push(line);
         }
         true
     }

@@ -253,4 +253,41 @@ proptest! {
             }
         }
     }
+
+    /// Fixed cables (t_min = t_max, issue 13): cable `fixed` is fixed at its tension in a
+    /// known feasible t_r, and cable `open` gets t_max = ∞. The set is non-empty, so every
+    /// complete minimiser (l1, l2, linf; barycenter at r = 2) must answer feasible, certified.
+    #[test]
+    fn fixed_cables_keep_feasible_problems_feasible(
+        (robot, pose) in arb_robot_and_pose(0..=3),
+        frac in prop::collection::vec(0.0f64..1.0, 12),
+        fixed in 0usize..12,
+        open in prop::option::of(0usize..12),
+    ) {
+        let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+        let (m, n) = w.shape();
+        let (fixed, open) = (fixed % n, open.map(|o| o % n).filter(|&o| o != fixed));
+        let lo: Vec<f64> = (0..n).map(|i| 1.0 + 4.0 * frac[i]).collect();
+        let mut hi: Vec<f64> = lo.iter().map(|l| l + 500.0).collect();
+        let tr = DVector::from_fn(n, |i, _| lo[i] + frac[(i + 5) % 12] * 500.0);
+        let mut lo = lo;
+        lo[fixed] = tr[fixed];
+        hi[fixed] = tr[fixed];
+        if let Some(o) = open { hi[o] = f64::INFINITY; }
+        let we = -(&w * &tr);
+        let _ = m;
+        let b = TensionBounds::new(lo, hi).unwrap();
+        let p = TensionProblem::new(&w, &we, &b);
+        let mut methods = vec![Method::L1, Method::L2, Method::Linf];
+        if n == m { methods.push(Method::Exact); }
+        if p.redundancy() == 2 { methods.push(Method::Barycenter); }
+        for method in methods {
+            let out = solve(method, &p);
+            if let Some(cdpr_tension::Infeasibility::SingularPose { .. }) = out.infeasibility() {
+                continue;
+            }
+            prop_assert!(out.is_feasible(), "{}: {:?}", method, out);
+            check(&p, out.tensions().unwrap());
+        }
+    }
 }
