@@ -127,7 +127,8 @@ pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
 /// let motor = |deg: f64| Cable {
 ///     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
 ///     platform: Vector3::zeros(),
-///, pulley: None };
+///     pulley: None,
+/// };
 /// let robot = Robot::new(MotionPattern::Point2, vec![motor(30.0), motor(150.0), motor(270.0)]).unwrap();
 /// let bounds = TensionBounds::uniform(3, 50.0, 500.0).unwrap();
 /// let mut index = IsotropicForce::new(&robot, &bounds).unwrap();

@@ -36,7 +36,8 @@
 //! let motor = |deg: f64| Cable {
 //!     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
 //!     platform: Vector3::zeros(),
-//!, pulley: None };
+//!     pulley: None,
+//! };
 //! let robot = Robot::new(MotionPattern::Point2, vec![motor(30.0), motor(150.0), motor(270.0)])?;
 //! let bounds = TensionBounds::uniform(3, 50.0, 500.0)?;
 //! let w = robot.inverse_kinematics(&Pose::point(0.0, 0.0, 0.0))?.wrench_matrix();
@@ -64,6 +65,10 @@ mod input;
 pub mod isotropic_force;
 pub mod krut_vertex_projection;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_polytope::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use available_wrench_set::{AvailableWrenchSet, Facet};
 pub use capacity_margin::{
     CapacityMargin, CapacityMarginEvaluator, RequiredWrenchSet, capacity_margin, limiting_facet,

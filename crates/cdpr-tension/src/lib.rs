@@ -38,7 +38,8 @@
 //! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
 //!     frame: Vector3::new(c[0], c[1], 0.0),
 //!     platform: Vector3::new(a[0], a[1], 0.0),
-//!, pulley: None };
+//!     pulley: None,
+//! };
 //! let robot = Robot::new(MotionPattern::Planar, vec![
 //!     cable([1.0, 0.5], [s, s]),
 //!     cable([-1.0, 0.5], [-s, s]),
@@ -77,6 +78,10 @@ pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};
 pub use closed_form::{FeasibleInterval, feasible_interval};
