@@ -471,3 +471,21 @@ fn all_feasible_3d_grid_volume_is_the_box_volume() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("volume 0.048000 m³ (cells:"), "{text}");
 }
+
+/// Issue 13 §1: 3 anchors at least 3 rad apart need 9 rad > 2π: rejected before any work,
+/// naming the option and the largest possible value.
+#[test]
+fn synthesize_rejects_an_impossible_min_separation() {
+    let err = fails(&[
+        "synthesize",
+        &robot("tdpm-3.toml"),
+        "--orientations",
+        "-0.1:0.1:3",
+        "--start",
+        "0.8,2.4,4.7",
+        "--min-separation",
+        "3",
+    ]);
+    assert!(err.contains("--min-separation"), "{err}");
+    assert!(err.contains("2π/3 = 2.0944 rad"), "{err}");
+}
