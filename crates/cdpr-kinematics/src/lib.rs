@@ -9,16 +9,12 @@
 //! sign convention **W t + w_ext = 0**.
 //!
 //! ```
+//! use cdpr_kinematics::nalgebra::Vector2; // the nalgebra of this crate, re-exported
 //! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
-//! use nalgebra::Vector3;
 //!
 //! // The thesis' 3-cable planar manipulator (Tables 6.1, 6.2).
 //! let s = 0.1 / 2f64.sqrt();
-//! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
-//!     frame: Vector3::new(c[0], c[1], 0.0),
-//!     platform: Vector3::new(a[0], a[1], 0.0),
-//!     pulley: None,
-//! };
+//! let cable = |c: [f64; 2], a: [f64; 2]| Cable::planar(Vector2::from(c), Vector2::from(a));
 //! let robot = Robot::new(MotionPattern::Planar, vec![
 //!     cable([1.0, 1.0], [s, s]),
 //!     cable([-1.0, 1.0], [-s, s]),
@@ -45,6 +41,10 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use error::KinematicsError;
 pub use inverse_kinematics::{CableState, PoseKinematics};
 pub use motion::MotionPattern;

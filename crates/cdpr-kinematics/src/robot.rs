@@ -5,7 +5,7 @@
 //! (platform coordinates). Seed 000 Fig. 6.1 and Tables 6.1–6.2; seed 002 §2 calls them A_i, B_i.
 
 use crate::{KinematicsError, MotionPattern};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Vector2, Vector3};
 
 /// A swivel pulley at a cable's frame anchor (Pott, *Cable-Driven Parallel Robots*, Springer
 /// 2018; the WireCenter `.wcrfx` model): it swivels about the axis through the frame anchor
@@ -57,6 +57,65 @@ impl Cable {
             platform,
             pulley: None,
         })
+    }
+}
+
+/// Constructors per motion pattern: a planar or point2 robot is built from 2-vectors in the
+/// plane z = 0 (seed 000 Table 6.1 gives its anchors that way).
+///
+/// ```
+/// use cdpr_kinematics::nalgebra::Vector2;
+/// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+/// // Seed 000's 4-cable planar robot: frame corners, platform attachments of Table 6.1.
+/// let cables = vec![
+///     Cable::planar(Vector2::new(-1.0, -1.0), Vector2::new(-0.1, -0.05)),
+///     Cable::planar(Vector2::new(1.0, -1.0), Vector2::new(0.1, -0.05)),
+///     Cable::planar(Vector2::new(1.0, 1.0), Vector2::new(0.1, 0.05)),
+///     Cable::planar(Vector2::new(-1.0, 1.0), Vector2::new(-0.1, 0.05)),
+/// ];
+/// let robot = Robot::new(MotionPattern::Planar, cables).unwrap();
+/// let kin = robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
+/// let l1 = kin.lengths().next().unwrap();
+/// assert!((l1 - (0.9f64.powi(2) + 0.95f64.powi(2)).sqrt()).abs() < 1e-12);
+///
+/// // A point-mass robot needs only the frame anchors.
+/// let point = Robot::new(
+///     MotionPattern::Point2,
+///     vec![Cable::point2(Vector2::new(0.0, 1.0)), Cable::point2(Vector2::new(-1.0, -1.0)),
+///          Cable::point2(Vector2::new(1.0, -1.0))],
+/// )
+/// .unwrap();
+/// assert_eq!(point.cable_count(), 3);
+/// ```
+impl Cable {
+    /// A straight cable (no pulley) from frame anchor **c** (base coordinates, m) to platform
+    /// attachment **ā** (platform coordinates, m), for any motion pattern.
+    pub fn new(frame: Vector3<f64>, platform: Vector3<f64>) -> Self {
+        Self {
+            frame,
+            platform,
+            pulley: None,
+        }
+    }
+
+    /// A cable of a `planar` robot: anchor and attachment in the plane z = 0 (m).
+    pub fn planar(frame: Vector2<f64>, platform: Vector2<f64>) -> Self {
+        Self::new(frame.push(0.0), platform.push(0.0))
+    }
+
+    /// A cable of a `point2` robot (a point mass in the plane): its frame anchor (m).
+    pub fn point2(frame: Vector2<f64>) -> Self {
+        Self::new(frame.push(0.0), Vector3::zeros())
+    }
+
+    /// A cable of a `point3` robot (a point mass in space): its frame anchor (m).
+    pub fn point3(frame: Vector3<f64>) -> Self {
+        Self::new(frame, Vector3::zeros())
+    }
+
+    /// A cable of a `spatial` robot (6 DOF): anchor and attachment (m), as [`Cable::new`].
+    pub fn spatial(frame: Vector3<f64>, platform: Vector3<f64>) -> Self {
+        Self::new(frame, platform)
     }
 }
 

@@ -78,6 +78,10 @@ pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};
 pub use closed_form::{FeasibleInterval, feasible_interval};

@@ -7,7 +7,10 @@ use std::fmt;
 use std::str::FromStr;
 
 /// A tension distribution method (see the crate documentation for the table of methods).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+///
+/// `Display`, `Debug` and [`Method::name`] all give the command-line name (`closed-form`), so a
+/// method prints the same in a log, a report and on the command line.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
     /// n = DOF: t = −W⁻¹ w_ext (seed 000 eq. (6.12)).
     Exact,
@@ -67,6 +70,43 @@ impl Method {
     }
 }
 
+impl Method {
+    /// One line saying what the method computes and when it applies (the `--method` list of
+    /// `cdpr tension --help`). n cables, DOF degrees of freedom, redundancy r = n − DOF.
+    pub fn summary(self) -> &'static str {
+        match self {
+            Self::Exact => "t = −W⁻¹ w_ext, the only solution when n = DOF (thesis eq. 6.12)",
+            Self::Pinv => {
+                "minimum-norm t = −W⁺ w_ext, bounds only checked afterwards (thesis eq. 6.14)"
+            }
+            Self::ClosedForm => {
+                "minimum ‖t‖₁ in bounds in closed form, redundancy r = 1 (thesis Algorithm 6.1)"
+            }
+            Self::L1 => "minimum ‖t‖₁ in bounds, a linear program, any r (thesis eq. 6.19)",
+            Self::L1Max => "maximum ‖t‖₁ in bounds, a linear program, any r",
+            Self::L2 => "minimum ‖t‖₂ in bounds, a quadratic program, any r (thesis eq. 6.17)",
+            Self::L2Max => "maximum ‖t‖₂ in bounds, over the vertices of the feasible set, any r",
+            Self::Linf => "minimum largest tension max_i t_i in bounds, a linear program, any r",
+            Self::ImprovedClosedForm => {
+                "mean tension plus minimum-norm correction, saturating cables (Pott 2014), any r"
+            }
+            Self::Barycenter => {
+                "centroid of the feasible polygon, r = 2 (Lamaury & Gouttefarde 2013)"
+            }
+            Self::Sotda => {
+                "stiffness-oriented distribution on the feasible polygon, r = 2, needs \
+                 axial_stiffness (Picard, Caro, Plestan & Claveau 2020, Algorithm 1)"
+            }
+        }
+    }
+}
+
+impl fmt::Debug for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 impl fmt::Display for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -92,6 +132,9 @@ mod tests {
         for m in Method::ALL {
             assert_eq!(m.name().parse::<Method>().unwrap(), m);
             assert_eq!(m.to_string(), m.name());
+            assert_eq!(format!("{m:?}"), m.name());
+            assert_eq!(format!("{m:?}"), format!("{m}"));
+            assert!(!m.summary().is_empty());
         }
         assert!(matches!(
             "l3".parse::<Method>(),

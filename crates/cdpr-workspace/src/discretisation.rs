@@ -3,8 +3,19 @@
 //! The constant-orientation workspace on a regular grid: (m+1)² points
 //! u^ij = [x_min + (i/m)(x_max − x_min), y_min + (j/m)(y_max − y_min)] (Algorithm 6.2 step 3),
 //! each tested against the criteria (step 4). Robots moving in space (`point3`, `spatial`) use
-//! the 3-D grid of (m+1)³ points. The area (volume) estimate is the number of feasible points
-//! times the cell area (Δx/m)(Δy/m) (times Δz/m).
+//! the 3-D grid of (m+1)³ points. Two estimates of the area (volume) are given
+//! ([`VolumeConvention`]):
+//!
+//! - **points** (the thesis' convention, [`GridWorkspace::area`]): the number of feasible points
+//!   times the cell area (Δx/m)(Δy/m) (times Δz/m). The published areas of Tables 6.5–6.10 are
+//!   multiples of the cell area, so this is the estimate that reproduces them; but (m+1)² points
+//!   of (Δx/m)(Δy/m) cover (1 + 1/m)² times the box, so a fully feasible box reports more than
+//!   its own area.
+//! - **cells** ([`GridWorkspace::clipped_area`]): each point stands for the cell of side Δx/m
+//!   centred on it, clipped to the box: a point on a face of the box counts ½ along that axis,
+//!   on an edge ¼, at a corner of a square ¼ (of a cube ⅛). The weights sum to m² (m³), so the
+//!   estimate never exceeds the box and equals it when every point is feasible (the trapezoid
+//!   rule on the indicator function).
 //!
 //! Points are evaluated in parallel with rayon, in contiguous tasks, with one [`PoseEvaluator`]
 //! clone per thread; each point's verdict depends on that point only, so the result is the same
@@ -114,8 +125,67 @@ pub struct GridWorkspace {
     pub total_points: usize,
     /// Area (volume in 3-D) represented by one point: Π_k (max_k − min_k)/m.
     pub cell_area: f64,
-    /// Estimated workspace area (volume in 3-D): `feasible_points × cell_area`.
+    /// Estimated workspace area (volume in 3-D) in the thesis' convention (points):
+    /// `feasible_points × cell_area`. Can exceed the box by up to a factor (1 + 1/m)^dim.
     pub area: f64,
+    /// Estimated workspace area (volume in 3-D) in the cells convention: each feasible point
+    /// counts for its cell clipped to the box (module docs); at most the box's measure.
+    pub clipped_area: f64,
+}
+
+/// How a grid turns feasible points into an area (volume): see the module documentation.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum VolumeConvention {
+    /// Each point stands for its cell clipped to the box ([`GridWorkspace::clipped_area`]):
+    /// never more than the box. The default for grids a user chooses.
+    #[default]
+    Cells,
+    /// Feasible points × cell area ([`GridWorkspace::area`]): the thesis' convention, which its
+    /// published areas (Tables 6.5–6.10) follow.
+    Points,
+}
+
+impl VolumeConvention {
+    /// The name used on the command line and in JSON (`cells`, `points`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Cells => "cells",
+            Self::Points => "points",
+        }
+    }
+
+    /// One line for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Self::Cells => {
+                "cells: each feasible point counts for its grid cell clipped to the box \
+                 (never more than the box)"
+            }
+            Self::Points => {
+                "points: feasible points × cell area (the thesis' convention, Algorithm 6.2; \
+                 can exceed the box by up to (1 + 1/m)^dim)"
+            }
+        }
+    }
+}
+
+impl std::str::FromStr for VolumeConvention {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "cells" => Ok(Self::Cells),
+            "points" => Ok(Self::Points),
+            _ => Err(format!(
+                "unknown volume convention `{s}` (expected `cells` or `points`)"
+            )),
+        }
+    }
+}
+
+impl std::fmt::Display for VolumeConvention {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 impl GridWorkspace {
@@ -123,6 +193,26 @@ impl GridWorkspace {
     pub fn from_verdicts(grid: Grid, dim: usize, feasible: Vec<bool>) -> Self {
         let feasible_points = feasible.iter().filter(|&&f| f).count();
         let cell_area = grid.cell_measure(dim);
+        // Clipped cells: weight 2^−(number of grid indices at 0 or m), summed in integers
+        // scaled by 2^dim (exact for any grid size a machine can hold).
+        let p = grid.points_per_axis();
+        let m = grid.resolution;
+        let halves = |mut idx: usize| {
+            let mut k = 0;
+            for _ in 0..dim {
+                let i = idx % p;
+                k += usize::from(i == 0 || i == m);
+                idx /= p;
+            }
+            k
+        };
+        let scaled: u128 = feasible
+            .iter()
+            .enumerate()
+            .filter(|&(_, &f)| f)
+            .map(|(idx, _)| 1u128 << (dim - halves(idx)))
+            .sum();
+        let clipped_area = scaled as f64 / (1u128 << dim) as f64 * cell_area;
         Self {
             grid,
             dim,
@@ -131,6 +221,15 @@ impl GridWorkspace {
             feasible_points,
             cell_area,
             area: feasible_points as f64 * cell_area,
+            clipped_area,
+        }
+    }
+
+    /// The area (volume) in the given convention.
+    pub fn measure(&self, convention: VolumeConvention) -> f64 {
+        match convention {
+            VolumeConvention::Cells => self.clipped_area,
+            VolumeConvention::Points => self.area,
         }
     }
 
@@ -366,6 +465,40 @@ pub fn planar_workspace(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 13 §1: a 3-D grid with every point feasible reported 27.78 m³ in a 24 m³ box
+    /// (21³ points × 24/20³). In the cells convention it is the box, exactly; a lone corner
+    /// point is ⅛ cell, an edge point ¼, a face point ½, an interior point 1.
+    #[test]
+    fn clipped_cells_never_exceed_the_box() {
+        let region = Region::cuboid(Vector3::new(-2.0, -1.5, 0.0), Vector3::new(2.0, 1.5, 2.0));
+        let grid = Grid::new(20, region);
+        let ws = GridWorkspace::from_verdicts(grid, 3, vec![true; 21 * 21 * 21]);
+        assert!((ws.area - 9261.0 * 24.0 / 8000.0).abs() < 1e-9, "{}", ws.area);
+        assert!(ws.area > 27.7);
+        assert_eq!(ws.clipped_area, 24.0);
+        assert_eq!(ws.measure(VolumeConvention::Cells), 24.0);
+        assert_eq!(ws.measure(VolumeConvention::Points), ws.area);
+        let one = |idx: usize| {
+            let mut f = vec![false; 21 * 21 * 21];
+            f[idx] = true;
+            GridWorkspace::from_verdicts(grid, 3, f).clipped_area / ws.cell_area
+        };
+        assert_eq!(one(0), 0.125);
+        assert_eq!(one(5), 0.25); // on the edge y = z = min
+        assert_eq!(one(5 + 21 * 5), 0.5); // on the face z = min
+        assert_eq!(one(5 + 21 * 5 + 441 * 5), 1.0);
+        assert_eq!(one(20 + 21 * 20 + 441 * 20), 0.125);
+        // 2-D: the whole square is the square; the thesis' count is (1 + 1/m)² of it.
+        let grid = Grid::new(50, Region::planar(-1.0, 1.0, -1.0, 1.0));
+        let ws = GridWorkspace::from_verdicts(grid, 2, vec![true; 51 * 51]);
+        assert!((ws.clipped_area - 4.0).abs() < 1e-12);
+        assert!((ws.area - 51.0 * 51.0 * 0.0016).abs() < 1e-12);
+        let none = GridWorkspace::from_verdicts(grid, 2, vec![false; 51 * 51]);
+        assert_eq!(none.clipped_area, 0.0);
+        assert_eq!("points".parse::<VolumeConvention>(), Ok(VolumeConvention::Points));
+        assert!("volume".parse::<VolumeConvention>().is_err());
+    }
 
     /// The odometer walk of `Axes` visits exactly the points of `Grid::point` (bit for bit), in
     /// order, from any start and over row and layer ends, in 2-D and 3-D.

@@ -79,13 +79,19 @@ mod region;
 pub mod synthesis;
 pub mod wrench_closure;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use chord::{ChordSettings, ChordWorkspace, InteriorPoint, Polygon, chord_workspace};
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use dextrous::{
     CentralCheck, DextrousWorkspace, OrientationRange, dextrous_workspace,
     dextrous_workspace_about_axis, dextrous_workspace_over, euler_box,
 };
-pub use discretisation::{Grid, GridWorkspace, constant_orientation_workspace, planar_workspace};
+pub use discretisation::{
+    Grid, GridWorkspace, VolumeConvention, constant_orientation_workspace, planar_workspace,
+};
 pub use error::WorkspaceError;
 pub use evaluator::PoseEvaluator;
 pub use region::Region;

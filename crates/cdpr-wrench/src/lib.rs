@@ -27,6 +27,10 @@ mod error;
 mod external_wrench;
 mod stiffness;
 
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_wrench::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use error::WrenchError;
 pub use external_wrench::{Platform, STANDARD_GRAVITY, wrench_from_slice};
 pub use stiffness::{

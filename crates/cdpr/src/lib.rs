@@ -25,6 +25,8 @@
 pub mod plot;
 
 pub use cdpr_io as io;
+/// The nalgebra of the whole stack (`cdpr::nalgebra::Vector3`): no need to pin its version.
+pub use nalgebra;
 pub use cdpr_io::{Limits, RobotDescription, RobotFileError};
 pub use cdpr_kinematics as kinematics;
 pub use cdpr_polytope as polytope;

@@ -150,3 +150,30 @@ fn missing_file_is_an_io_error() {
     assert!(matches!(e, RobotFileError::Io { .. }));
     assert!(e.to_string().contains("/nonexistent/robot.toml"));
 }
+
+/// Issue 13 §6: every crate re-exports the nalgebra of its API, one and the same version, so a
+/// user pins none; a planar robot is built from 2-vectors.
+#[test]
+fn every_crate_re_exports_one_nalgebra() {
+    use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+    let v: cdpr_kinematics::nalgebra::Vector2<f64> = cdpr_wrench::nalgebra::Vector2::new(1.0, 0.5);
+    let a: cdpr_tension::nalgebra::Vector2<f64> = cdpr_polytope::nalgebra::Vector2::new(0.1, 0.0);
+    let _: cdpr_workspace::nalgebra::Vector2<f64> = cdpr_io::nalgebra::Vector2::zeros();
+    let _: cdpr::nalgebra::Vector2<f64> = v;
+    let robot = Robot::new(
+        MotionPattern::Planar,
+        vec![
+            Cable::planar(v, a),
+            Cable::planar(-v, -a),
+            Cable::planar(cdpr::nalgebra::Vector2::new(0.0, -1.0), a),
+        ],
+    )
+    .unwrap();
+    let kin = robot
+        .inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0))
+        .unwrap();
+    // Cable 1 from (0.1, 0) to (1, 0.5): length √(0.81 + 0.25).
+    let l1 = kin.lengths().next().unwrap();
+    assert!((l1 - (0.81f64 + 0.25).sqrt()).abs() < 1e-12);
+    assert_eq!(Cable::point2(v).frame, cdpr::nalgebra::Vector3::new(1.0, 0.5, 0.0));
+}

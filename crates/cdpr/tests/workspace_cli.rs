@@ -74,7 +74,11 @@ fn grid_json_has_the_contract_fields_and_matches_the_library() {
     // Alg. 6.2 step 2: the anchors' bounding box [−1, 1]², cell (2/50)².
     assert!((f(&v["cell_area"]) - 0.0016).abs() < 1e-15);
     let n = v["feasible_points"].as_u64().unwrap() as usize;
-    assert!((f(&v["area"]) - n as f64 * 0.0016).abs() < 1e-12);
+    // Default: cells clipped to the box; the thesis' count is beside it.
+    assert_eq!(v["volume_convention"], "cells");
+    assert_eq!(v["area"], v["area_cells"]);
+    assert!((f(&v["area_points"]) - n as f64 * 0.0016).abs() < 1e-12);
+    assert!(f(&v["area"]) <= f(&v["area_points"]));
     assert_eq!(v["criteria"][1], "length:0.1");
     assert_eq!(v["criteria"][2], "det:0.001");
     // The same workspace from the library (the CLI evaluates the grid with its own progress loop).
@@ -202,6 +206,7 @@ fn spatial_grid_reports_volume() {
     assert_eq!(v["volume"], v["area"]);
     // Frame box 4 × 3 × 2 split into 4³ cells.
     assert!((f(&v["cell_area"]) - 24.0 / 64.0).abs() < 1e-12);
+    assert!(f(&v["volume"]) <= 24.0);
     let err = fails(&[
         "workspace",
         &robot("ipanema-like-8.toml"),
@@ -228,10 +233,16 @@ fn dextrous_reproduces_table_6_8_run_1() {
         "closed-form",
         "--box",
         "-1,1,-1,1",
+        "--volume-convention",
+        "points",
         "--json",
     ]);
     assert_eq!(v["feasible_points"], 690);
+    assert_eq!(v["volume_convention"], "points");
     assert!((f(&v["area"]) - 1.1040).abs() < 1e-12);
+    assert_eq!(v["area_points"], v["area"]);
+    // The cells convention counts boundary points for part of their cell: never more.
+    assert!(f(&v["area_cells"]) <= 1.1040 + 1e-12);
     assert_eq!(v["angles"].as_array().unwrap().len(), 21);
     let cc = &v["central_check"];
     assert!(cc["holds"].is_boolean());
@@ -410,4 +421,71 @@ fn bad_input_exits_2() {
     let v = json(&["workspace", &r3, "--wrench", "0,-1000,0", "--json"]);
     assert_eq!(v["feasible_points"], 0);
     assert_eq!(f(&v["area"]), 0.0);
+}
+
+/// Issue 13 §1: a 3-D grid with every point feasible reported 27.78 m³ in a 24 m³ box. With the
+/// default cells convention the volume is the box's (wrench closure of a point3 robot holds
+/// inside its anchors' hull; the box is a small cube inside it), the thesis' count is larger
+/// and is still available with --volume-convention points.
+#[test]
+fn all_feasible_3d_grid_volume_is_the_box_volume() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("point3.toml");
+    std::fs::write(
+        &file,
+        "name = \"cube\"\nmotion = \"point3\"\n[tension]\nmin = 0.0\nmax = 1.0\n\
+         [[cables]]\nframe = [-2, -2, -2]\n[[cables]]\nframe = [2, -2, -2]\n\
+         [[cables]]\nframe = [0, 2, -2]\n[[cables]]\nframe = [0, 0, 3]\n",
+    )
+    .unwrap();
+    let file = file.display().to_string();
+    let run = |conv: &str| {
+        json(&[
+            "workspace",
+            &file,
+            "--criteria",
+            "wrench-closure",
+            "--box",
+            "-0.2,0.2,-0.3,0.3,-0.1,0.1",
+            "--grid",
+            "20",
+            "--volume-convention",
+            conv,
+            "--json",
+        ])
+    };
+    let v = run("cells");
+    assert_eq!(v["feasible_points"], 21 * 21 * 21);
+    let box_volume = 0.4 * 0.6 * 0.2;
+    assert!((f(&v["volume"]) - box_volume).abs() < 1e-12, "{}", v["volume"]);
+    assert_eq!(v["volume_convention"], "cells");
+    let p = run("points");
+    assert_eq!(p["volume_convention"], "points");
+    assert!((f(&p["volume"]) - 9261.0 / 8000.0 * box_volume).abs() < 1e-12);
+    let out = cdpr()
+        .args(["workspace", &file, "--criteria", "wrench-closure", "--box"])
+        .arg("-0.2,0.2,-0.3,0.3,-0.1,0.1")
+        .args(["--grid", "4"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("volume 0.048000 m³ (cells:"), "{text}");
+}
+
+/// Issue 13 §1: 3 anchors at least 3 rad apart need 9 rad > 2π: rejected before any work,
+/// naming the option and the largest possible value.
+#[test]
+fn synthesize_rejects_an_impossible_min_separation() {
+    let err = fails(&[
+        "synthesize",
+        &robot("tdpm-3.toml"),
+        "--orientations",
+        "-0.1:0.1:3",
+        "--start",
+        "0.8,2.4,4.7",
+        "--min-separation",
+        "3",
+    ]);
+    assert!(err.contains("--min-separation"), "{err}");
+    assert!(err.contains("2π/3 = 2.0944 rad"), "{err}");
 }

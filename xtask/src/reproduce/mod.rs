@@ -33,15 +33,15 @@ pub fn run(root: &Path) -> Result<(), String> {
     let out = root.join("target/reproduce");
     std::fs::create_dir_all(&out).map_err(|e| format!("creating {}: {e}", out.display()))?;
     let json = out.join("tables.json");
-    std::fs::write(&json, report::json(&rows, &conventions, total))
+    std::fs::write(&json, report::json(&rows, &conventions, total, settle_time))
         .map_err(|e| format!("writing {}: {e}", json.display()))?;
     let md = root.join("docs/reproduction.md");
-    let mut doc = report::markdown(&rows, &conventions, total, settle_time);
+    let mut doc = report::markdown(&rows, &conventions);
     doc.push_str(&figures::markdown(&figures));
     std::fs::write(&md, doc).map_err(|e| format!("writing {}: {e}", md.display()))?;
     eprintln!("{}", report::summary(&rows));
     eprintln!(
-        "wrote {} and {} in {total:.1} s",
+        "wrote {} and {} in {total:.1} s (of which {settle_time:.1} s settling conventions)",
         md.display(),
         json.display()
     );

@@ -100,6 +100,21 @@ pub enum SynthesisError {
         /// What is required.
         reason: &'static str,
     },
+    /// n anchors at least β_min apart need n · β_min ≤ 2π (the n gaps around the circle sum
+    /// to 2π): no design satisfies the constraint.
+    #[error(
+        "a minimum separation of {min_separation} rad between {cables} anchors is impossible: \
+         {cables} × {min_separation} = {:.4} rad exceeds a full turn (2π = 6.2832 rad); \
+         β_min must be at most 2π/{cables} = {:.4} rad",
+        *cables as f64 * min_separation,
+        std::f64::consts::TAU / *cables as f64
+    )]
+    ImpossibleSeparation {
+        /// Number of anchors n.
+        cables: usize,
+        /// β_min (rad).
+        min_separation: f64,
+    },
     /// The robot built from the design is invalid.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
@@ -169,6 +184,20 @@ impl SynthesisSettings {
     }
 }
 
+impl SynthesisSettings {
+    /// Whether `cables` anchors can be β_min apart: n · β_min ≤ 2π (a design with every gap at
+    /// β_min exists exactly then).
+    pub fn check_feasible_separation(&self, cables: usize) -> Result<(), SynthesisError> {
+        if cables as f64 * self.min_separation > std::f64::consts::TAU * (1.0 + 1e-12) {
+            return Err(SynthesisError::ImpossibleSeparation {
+                cables,
+                min_separation: self.min_separation,
+            });
+        }
+        Ok(())
+    }
+}
+
 pub(crate) fn invalid(name: &'static str, value: f64, reason: &'static str) -> SynthesisError {
     SynthesisError::InvalidSetting {
         name,
@@ -228,6 +257,7 @@ pub fn synthesise<O: Objective + ?Sized>(
 ) -> Result<SynthesisResult, SynthesisError> {
     settings.validate()?;
     design::check_design(start)?;
+    settings.check_feasible_separation(start.len())?;
     match settings.method {
         Method::DynamicQ => Ok(dynamic_q::maximise(
             objective,
@@ -325,6 +355,31 @@ mod tests {
         bad(|s| s.dynamic_q.max_gradient_evaluations = 0);
         bad(|s| s.compass.min_step = 1.0);
         bad(|s| s.compass.restart_radius = -1.0);
+    }
+
+    /// Issue 13 §1: 3 anchors 3 rad apart would need 9 rad > 2π; 3 anchors 2π/3 apart fit.
+    #[test]
+    fn synthesise_rejects_an_impossible_separation() {
+        let mut f = bowl(&[0.5, 2.5, 4.5]);
+        let s = SynthesisSettings {
+            min_separation: 3.0,
+            ..SynthesisSettings::default()
+        };
+        assert_eq!(
+            synthesise(&mut f, &[0.5, 2.5, 4.5], &s).unwrap_err(),
+            SynthesisError::ImpossibleSeparation {
+                cables: 3,
+                min_separation: 3.0
+            }
+        );
+        let msg = s.check_feasible_separation(3).unwrap_err().to_string();
+        assert!(msg.contains("9.0000 rad") && msg.contains("2.0944 rad"), "{msg}");
+        let s = SynthesisSettings {
+            min_separation: std::f64::consts::TAU / 3.0,
+            ..SynthesisSettings::default()
+        };
+        assert!(s.check_feasible_separation(3).is_ok());
+        assert!(s.check_feasible_separation(4).is_err());
     }
 
     #[test]

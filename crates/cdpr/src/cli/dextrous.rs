@@ -1,12 +1,12 @@
 //! `cdpr dextrous`: the dextrous workspace over a range of orientations (seed 000 eq. 6.28).
 
 use super::workspace::{
-    CriteriaArgs, CriteriaSetup, box_json, default_method, dextrous, draw_pose, progress, region,
-    resolution, rotation, save_plot, workspace_plot,
+    CriteriaArgs, CriteriaSetup, box_json, default_method, dextrous, draw_pose, measure_json,
+    progress, region, resolution, rotation, save_plot, workspace_plot,
 };
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::kinematics::MotionPattern;
-use cdpr::workspace::{Grid, OrientationRange};
+use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
 use nalgebra::{Rotation3, Unit, Vector3};
 use serde_json::json;
 use std::path::PathBuf;
@@ -29,9 +29,14 @@ axis z). Point robots have no orientation: the result is the constant-orientatio
 The criteria and the load are those of `cdpr workspace` (see its help); the platform's gravity
 is evaluated at each orientation.
 
-JSON: `area` (the dextrous area A_d; in space also `volume`, same number), `feasible_points`,
-`total_points`, `cell_area`, `central_check` {`holds`, `violations`, `extremes_points`},
-`angles`, `resolution`, `box`, `criteria`.";
+The area counts each feasible point's grid cell clipped to the box (--volume-convention cells,
+the default: never more than the box) or feasible points × cell area (--volume-convention
+points: the thesis' convention, which reproduces its published A_d of Tables 6.5–6.10).
+
+JSON: `area` (the dextrous area A_d, m²; in space also `volume`, m³, same number) in the
+convention `volume_convention` (\"cells\" or \"points\"), `area_cells` and `area_points` (both),
+`feasible_points`, `total_points`, `cell_area` (m² or m³), `central_check` {`holds`,
+`violations`, `extremes_points`}, `angles` (rad), `resolution`, `box` (m), `criteria`.";
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
@@ -62,6 +67,12 @@ pub struct Args {
         value_name = "XMIN,XMAX,YMIN,YMAX"
     )]
     area: Option<Numbers>,
+    /// How feasible points become an area (volume): `cells` (default) counts each point's grid
+    /// cell clipped to the box, so a fully feasible box reports exactly its own area; `points`
+    /// is the thesis' feasible points × cell area (Algorithm 6.2), which its published areas
+    /// follow and which can exceed the box by up to (1 + 1/M)^dim.
+    #[arg(long, default_value = "cells", value_name = "cells|points")]
+    volume_convention: VolumeConvention,
     /// Pose at which the robot is drawn (default: centre of the box, central orientation).
     #[arg(long, allow_hyphen_values = true, requires = "plot")]
     draw_pose: Option<Numbers>,
@@ -149,7 +160,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let dex = dextrous(&setup, &desc, robot, &base, &axis, &range, &grid, &bar)?;
     let ws = &dex.workspace;
     let check = dex.central_check;
-    let what = if dim == 2 { "area" } else { "volume" };
+    let (what, unit) = if dim == 2 {
+        ("area", "m²")
+    } else {
+        ("volume", "m³")
+    };
+    let conv = args.volume_convention;
     if let Some(path) = &args.plot {
         let central = match motion {
             MotionPattern::Point2 | MotionPattern::Point3 => Rotation3::identity(),
@@ -166,8 +182,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 desc.name, range.min, range.max, range.slices
             ),
             vec![format!(
-                "dextrous {what} {:.4} ({} of {} points, m = {m}); §6.5 check {}",
-                ws.area,
+                "dextrous {what} {:.4} {unit} ({} of {} points, m = {m}, {conv} convention); §6.5 \
+                 check {}",
+                ws.measure(conv),
                 ws.feasible_points,
                 ws.total_points,
                 if check.holds { "holds" } else { "fails" }
@@ -185,7 +202,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "box": box_json(&region, dim),
             "resolution": m,
             "dimension": dim,
-            "area": ws.area,
             "feasible_points": ws.feasible_points,
             "total_points": ws.total_points,
             "cell_area": ws.cell_area,
@@ -195,9 +211,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 "extremes_points": check.extremes_points,
             },
         });
-        if dim == 3 {
-            v["volume"] = json!(ws.area);
-        }
+        measure_json(&mut v, ws, conv);
         return print_json(&v);
     }
     println!(
@@ -210,13 +224,18 @@ pub fn run(args: Args) -> Result<(), CliError> {
         method.name()
     );
     println!(
-        "grid m = {m} over {}: {} of {} points feasible at every orientation, cell {what} {:.6e}",
+        "grid m = {m} over {} m: {} of {} points feasible at every orientation, cell {what} \
+         {:.6e} {unit}",
         box_json(&region, dim),
         ws.feasible_points,
         ws.total_points,
         ws.cell_area
     );
-    println!("dextrous {what} {:.6}", ws.area);
+    println!(
+        "dextrous {what} {:.6} {unit} ({})",
+        ws.measure(conv),
+        conv.describe()
+    );
     println!(
         "§6.5 check (central orientation contains the two extremes' intersection): {} ({} violating \
          of {} points feasible at both extremes)",

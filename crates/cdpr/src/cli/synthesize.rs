@@ -13,7 +13,7 @@ use cdpr::workspace::synthesis::{
     Method as Optimizer, SynthesisSettings, Termination, frame_anchor, robot_from_design,
     separation_violation, synthesise,
 };
-use cdpr::workspace::{Grid, OrientationRange};
+use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
 use indicatif::ProgressBar;
 use nalgebra::{Rotation3, Vector3};
 use serde_json::json;
@@ -44,7 +44,11 @@ constant in d (grid noise), hence the optimisers:
 Thesis settings (Tables 6.5–6.10): 3 cables --orientations -0.1:0.1:3 --grid 100, 4 cables
 --orientations -0.2:0.2:21 --grid 50; loads L1 0,-10,0; L2 5,-10,0; L3 5,-10,1.
 
-JSON: `design` (optimised angles, rad), `area` (its A_d), `evaluations` {`function`,
+A_d is counted as the thesis does (feasible points × cell area, JSON `volume_convention`
+\"points\"), so that its published areas are reproduced; `cdpr dextrous --volume-convention
+points` gives the same number for a design.
+
+JSON: `design` (optimised angles, rad), `area` (its A_d, m²), `evaluations` {`function`,
 `gradient`}, `start`, `start_area`, `termination` (\"converged\" or \"budget\"), `anchors`
 (optimised frame points), `constraint_violation`, `iterations`, `feasible_points`,
 `total_points`, `cell_area`, `central_check`.";
@@ -188,6 +192,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     settings.dynamic_q.move_limit = args.move_limit;
     settings.dynamic_q.fd_interval = args.fd_interval.unwrap_or(if n <= 3 { 0.05 } else { 0.1 });
     settings.validate()?;
+    settings
+        .check_feasible_separation(n)
+        .map_err(|e| format!("--min-separation: {e}"))?;
     // Bad input (a non-finite angle, an invalid criterion) is reported here, not hidden as −∞.
     let start_ws = problem.dextrous(&args.start)?;
     let bar = if std::io::stderr().is_terminal() {
@@ -263,6 +270,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "feasible_points": best.workspace.feasible_points,
             "total_points": best.workspace.total_points,
             "cell_area": best.workspace.cell_area,
+            "volume_convention": VolumeConvention::Points.name(),
             "central_check": {
                 "holds": best.central_check.holds,
                 "violations": best.central_check.violations,
@@ -287,6 +295,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         method.name(),
         args.optimizer,
         settings.min_separation
+    );
+    println!(
+        "A_d in m², {}",
+        VolumeConvention::Points.describe()
     );
     println!(
         "start    d0 = [{}]  A_d = {:.6}",

@@ -10,7 +10,7 @@ use cdpr::polytope::RequiredWrenchSet;
 use cdpr::tension::Method;
 use cdpr::workspace::{
     CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, PoseEvaluator,
-    Region, chord_workspace,
+    Region, VolumeConvention, chord_workspace,
 };
 use indicatif::ProgressBar;
 use nalgebra::{DVector, Rotation3, Unit, Vector3};
@@ -26,9 +26,12 @@ orientation (seed 000 eq. 6.23).
 
 Methods (--boundary):
   grid  (default) Algorithm 6.2: test the (M+1)² points of a regular grid (M intervals per
-        side) over --box (default: the bounding box of the frame anchors, Alg. 6.2 step 2);
-        area = feasible points × cell area. Robots moving in space (point3, spatial) use the
-        (M+1)³ points of a 3-D grid; `volume` is then given and `area` is the same number.
+        side) over --box (default: the bounding box of the frame anchors, Alg. 6.2 step 2).
+        The area counts each feasible point's cell clipped to the box (--volume-convention
+        cells, the default: never more than the box) or feasible points × cell area
+        (--volume-convention points, the thesis' convention). Robots moving in space (point3,
+        spatial) use the (M+1)³ points of a 3-D grid; `volume` is then given and `area` is the
+        same number (m³).
   chord the chord method (§6.4.3, Alg. 6.3): closed boundary polygons with vertices on the
         boundary (to 1e-8) a chord length --chord apart, every region and hole (seeded by a
         coarse grid of --grid M), corners refined; area = sum of the polygons' signed areas.
@@ -47,8 +50,10 @@ gives min_cable_length / min_jacobian_det):
 
 The external wrench w_ext is --wrench plus the platform's gravity from the robot file.
 
-JSON (grid): `area`, `feasible_points`, `total_points`, `cell_area`, `resolution`, `box`,
-`orientation`, `external_wrench`, `criteria`, `method`; 3-D grids add `volume` (= `area`).
+JSON (grid): `area` (m², in the convention `volume_convention`: \"cells\" or \"points\"),
+`area_cells`, `area_points` (both conventions), `feasible_points`, `total_points`, `cell_area`
+(m² or m³), `resolution`, `box` (m), `orientation` (rad), `external_wrench` (N, N·m),
+`criteria`, `method`; 3-D grids add `volume` (m³, = `area`).
 JSON (chord): `area`, `boundaries` (closed polygons [[x, y], …]: counter-clockwise around
 regions, clockwise around holes), `signed_areas`, `bifurcations` (corner points per polygon),
 `abandoned`, `evaluations`, `chord`.
@@ -88,6 +93,12 @@ pub struct Args {
         value_name = "XMIN,XMAX,YMIN,YMAX"
     )]
     area: Option<Numbers>,
+    /// How feasible points become an area (volume): `cells` (default) counts each point's grid
+    /// cell clipped to the box, so a fully feasible box reports exactly its own area; `points`
+    /// is the thesis' feasible points × cell area (Algorithm 6.2), which its published areas
+    /// follow and which can exceed the box by up to (1 + 1/M)^dim.
+    #[arg(long, default_value = "cells", value_name = "cells|points")]
+    volume_convention: VolumeConvention,
     /// Pose at which the robot is drawn in the plot (motion-pattern coordinates); default the
     /// centre of the box at --orientation.
     #[arg(long, allow_hyphen_values = true, requires = "plot")]
@@ -667,6 +678,18 @@ pub fn save_plot(fig: &WorkspacePlot, path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The grid's area (volume) fields: `area` in `convention`, both conventions, and its name.
+pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvention) {
+    let a = ws.measure(convention);
+    v["area"] = json!(a);
+    v["area_cells"] = json!(ws.clipped_area);
+    v["area_points"] = json!(ws.area);
+    v["volume_convention"] = json!(convention.name());
+    if ws.dim == 3 {
+        v["volume"] = json!(a);
+    }
+}
+
 /// Box as JSON numbers.
 pub fn box_json(r: &Region, dim: usize) -> Value {
     if dim == 2 {
@@ -803,7 +826,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let grid = Grid::new(m, region);
         let bar = progress(grid.point_count(dim).div_ceil(grid.points_per_axis()));
         let ws = grid_workspace(&eval, &rot, &grid, &bar)?;
-        let what = if dim == 2 { "area" } else { "volume" };
+        let (what, unit) = if dim == 2 {
+            ("area", "m²")
+        } else {
+            ("volume", "m³")
+        };
         if let (Some(path), Some(pose)) = (&args.plot, &pose) {
             let fig = workspace_plot(
                 robot,
@@ -815,10 +842,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     desc.name, orientation
                 ),
                 vec![format!(
-                    "{what} {:.4} ({} of {} points, m = {m}); {}",
-                    ws.area,
+                    "{what} {:.4} {unit} ({} of {} points, m = {m}, {} convention); {}",
+                    ws.measure(args.volume_convention),
                     ws.feasible_points,
                     ws.total_points,
+                    args.volume_convention,
                     setup.labels().join(", ")
                 )],
             );
@@ -835,14 +863,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 "box": box_json(&region, dim),
                 "resolution": m,
                 "dimension": dim,
-                "area": ws.area,
                 "feasible_points": ws.feasible_points,
                 "total_points": ws.total_points,
                 "cell_area": ws.cell_area,
             });
-            if dim == 3 {
-                v["volume"] = json!(ws.area);
-            }
+            measure_json(&mut v, &ws, args.volume_convention);
             return print_json(&v);
         }
         println!(
@@ -857,13 +882,17 @@ pub fn run(args: Args) -> Result<(), CliError> {
             method.name()
         );
         println!(
-            "grid m = {m} over {}: {} of {} points feasible, cell {what} {:.6e}",
+            "grid m = {m} over {} m: {} of {} points feasible, cell {what} {:.6e} {unit}",
             box_json(&region, dim),
             ws.feasible_points,
             ws.total_points,
             ws.cell_area
         );
-        println!("{what} {:.6}", ws.area);
+        println!(
+            "{what} {:.6} {unit} ({})",
+            ws.measure(args.volume_convention),
+            args.volume_convention.describe()
+        );
     }
     if let Some(p) = &args.plot {
         println!("plot written to {}", p.display());
