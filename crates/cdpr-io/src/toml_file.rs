@@ -15,6 +15,12 @@
 //! mass = 0.0
 //! centre_of_mass = [0.0, 0.0]
 //! gravity = [0.0, -9.80665]             # default: -z in space, -y in the plane
+//! shape = { box = [0.2, 0.2, 0.1] }     # spatial only, optional: the platform as a convex
+//!                                       # polyhedron (platform coordinates, m), for the
+//!                                       # interference criterion; one of
+//!                                       #   { box = [lx, ly, lz], centre = [x, y, z] } (centre optional)
+//!                                       #   { vertices = [[x, y, z], ...] }  (their convex hull)
+//!                                       #   "attachments"  (hull of the cables' platform attachments)
 //! [[cables]]
 //! frame = [1.0, 0.5]                    # anchor on the fixed frame, base coordinates (2 or 3 numbers)
 //! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
@@ -23,7 +29,7 @@
 //!
 //! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
 
-use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Robot};
+use cdpr_kinematics::{Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Robot};
 use cdpr_tension::TensionBounds;
 use cdpr_wrench::Platform;
 use nalgebra::Vector3;
@@ -93,6 +99,9 @@ pub struct RobotDescription {
     pub platform: Platform,
     /// Per-cable E·S (N), if every cable gives `axial_stiffness`.
     pub axial_stiffness: Option<Vec<f64>>,
+    /// The platform as a convex polyhedron in platform coordinates (`[platform] shape`), for
+    /// the cable–platform interference test.
+    pub platform_shape: Option<ConvexPolyhedron>,
     /// Non-fatal remarks (e.g. duplicate cables).
     pub warnings: Vec<String>,
 }
@@ -129,6 +138,24 @@ struct RawPlatform {
     #[serde(alias = "center_of_mass")]
     centre_of_mass: Option<Spanned<Vec<f64>>>,
     gravity: Option<Spanned<Vec<f64>>>,
+    shape: Option<Spanned<RawShape>>,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum RawShape {
+    Named(String),
+    Table(RawShapeTable),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawShapeTable {
+    #[serde(rename = "box")]
+    cuboid: Option<Vec<f64>>,
+    #[serde(alias = "center")]
+    centre: Option<Vec<f64>>,
+    vertices: Option<Vec<Vec<f64>>>,
 }
 
 #[derive(Deserialize)]
@@ -399,6 +426,10 @@ impl RobotDescription {
                 platform.gravity = ctx.vector(g, "platform.gravity", dim, motion)?;
             }
         }
+        let platform_shape = match raw.platform.as_ref().and_then(|p| p.shape.as_ref()) {
+            None => None,
+            Some(shape) => Some(platform_shape(&ctx, shape, &robot, &mut warnings)?),
+        };
         let bounds = TensionBounds::new(mins, maxs)
             .map_err(|e| ctx.invalid(raw.tension.span(), "tension", e.to_string()))?;
         Ok(Self {
@@ -413,7 +444,83 @@ impl RobotDescription {
             limits,
             platform,
             axial_stiffness,
+            platform_shape,
             warnings,
         })
     }
+}
+
+/// `[platform] shape`: a box, the hull of given vertices, or the hull of the attachments.
+fn platform_shape(
+    ctx: &Ctx<'_>,
+    shape: &Spanned<RawShape>,
+    robot: &Robot,
+    warnings: &mut Vec<String>,
+) -> Result<ConvexPolyhedron, RobotFileError> {
+    let key = "platform.shape";
+    let bad = |m: String| ctx.invalid(shape.span(), key, m);
+    if robot.motion() != MotionPattern::Spatial {
+        return Err(bad(format!(
+            "a platform shape is a convex polyhedron in space: `spatial` robots only, this one is \
+             `{}`",
+            robot.motion()
+        )));
+    }
+    let triple = |v: &[f64], what: &str| -> Result<nalgebra::Vector3<f64>, RobotFileError> {
+        match v {
+            [x, y, z] if v.iter().all(|a| a.is_finite()) => Ok(nalgebra::Vector3::new(*x, *y, *z)),
+            [_, _, _] => Err(bad(format!("{what}: not finite numbers"))),
+            _ => Err(bad(format!("{what} needs 3 numbers, got {}", v.len()))),
+        }
+    };
+    let hull = match shape.get_ref() {
+        RawShape::Named(n) if n == "attachments" => {
+            let points: Vec<_> = robot.cables().iter().map(|c| c.platform).collect();
+            ConvexPolyhedron::from_points(&points)
+        }
+        RawShape::Named(n) => {
+            return Err(bad(format!(
+                "unknown shape `{n}` (expected \"attachments\", {{ box = [lx, ly, lz] }} or \
+                 {{ vertices = [[x, y, z], ...] }})"
+            )));
+        }
+        RawShape::Table(t) => match (&t.cuboid, &t.vertices) {
+            (Some(b), None) => {
+                let centre = match &t.centre {
+                    Some(c) => triple(c, "centre")?,
+                    None => nalgebra::Vector3::zeros(),
+                };
+                ConvexPolyhedron::cuboid(triple(b, "box")?, centre)
+            }
+            (None, Some(vs)) => {
+                if t.centre.is_some() {
+                    return Err(bad("`centre` goes with `box`, not with `vertices`".into()));
+                }
+                let points = vs
+                    .iter()
+                    .enumerate()
+                    .map(|(k, v)| triple(v, &format!("vertex {}", k + 1)))
+                    .collect::<Result<Vec<_>, _>>()?;
+                ConvexPolyhedron::from_points(&points)
+            }
+            _ => {
+                return Err(bad(
+                    "give exactly one of `box = [lx, ly, lz]` or `vertices = [[x, y, z], ...]`"
+                        .into(),
+                ));
+            }
+        },
+    }
+    .map_err(|e| bad(e.to_string()))?;
+    let tol = 1e-9 * hull.size();
+    for (i, c) in robot.cables().iter().enumerate() {
+        if hull.depth(&c.platform) > tol {
+            warnings.push(format!(
+                "cable {}'s platform attachment lies inside the platform shape: the cable always \
+                 passes through the platform (attachments belong on its surface)",
+                i + 1
+            ));
+        }
+    }
+    Ok(hull)
 }

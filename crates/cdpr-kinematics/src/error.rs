@@ -39,6 +39,12 @@ pub enum KinematicsError {
         /// The length found.
         length: f64,
     },
+    /// A platform shape without volume (fewer than 4 points, coplanar points, a zero side).
+    #[error("degenerate platform shape: {reason}")]
+    DegenerateShape {
+        /// What is wrong.
+        reason: String,
+    },
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]
     UnknownMotion(String),

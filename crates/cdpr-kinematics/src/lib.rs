@@ -31,6 +31,7 @@
 //! and poses) that every crate of the stack tests with.
 
 mod error;
+pub mod interference;
 mod inverse_kinematics;
 mod motion;
 mod path;
@@ -46,6 +47,10 @@ mod structure_matrix;
 /// nalgebra version your own project pins.
 pub use nalgebra;
 pub use error::KinematicsError;
+pub use interference::{
+    ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
+    closest_cables, min_cable_distance, platform_interference, segment_distance,
+};
 pub use inverse_kinematics::{CableState, PoseKinematics};
 pub use motion::MotionPattern;
 pub use path::{Path, PathSample, Sampling};

@@ -11,10 +11,13 @@
 //! - Seed 002, eqs. (3)–(4): stiffness K = Kp + Ka.
 //! - Seed 001, eq. (19): maximum isotropic force. Guay, Cardou, Cruz-Ruiz, Caro (2014): capacity
 //!   margin.
+//! - Perreault, Cardou, Gosselin & Otis (2010), "Geometric determination of the
+//!   interference-free constant-orientation workspace of parallel cable-driven mechanisms",
+//!   ASME J. Mechanisms Robotics 2(3): cable–cable and cable–platform interference.
 //! - Gouttefarde & Gosselin (2006), "Analysis of the wrench-closure workspace of planar parallel
 //!   cable-driven mechanisms", IEEE T-RO 22(3): W positively spans R^DOF.
 
-use cdpr_kinematics::{Pose, PoseKinematics};
+use cdpr_kinematics::{ConvexPolyhedron, Pose, PoseKinematics};
 use cdpr_polytope::RequiredWrenchSet;
 use cdpr_tension::Method;
 use nalgebra::{DMatrix, DVector};
@@ -67,6 +70,17 @@ pub enum Criterion {
         /// Floor on λ_min((K + Kᵀ)/2).
         min_eigenvalue: f64,
     },
+    /// No interference (Perreault et al. 2010; `cdpr_kinematics::interference`): every pair of
+    /// cables (free segments) at least `min_distance` apart (m; with 0, the cables must not
+    /// touch: distance > 10⁻¹² × the robot's size), pairs sharing an anchor or attachment left
+    /// out; and, with a `platform` shape (convex polyhedron in platform coordinates), no cable
+    /// passes through the platform's interior.
+    Interference {
+        /// Clearance D between cables (m), ≥ 0.
+        min_distance: f64,
+        /// The platform, if its shape is known.
+        platform: Option<Arc<ConvexPolyhedron>>,
+    },
     /// A user-supplied test (e.g. a collision check). It must be deterministic.
     Custom(CustomCriterion),
 }
@@ -82,6 +96,7 @@ impl Criterion {
             Self::CapacityMargin { .. } => "capacity-margin",
             Self::IsotropicForce { .. } => "isotropic-force",
             Self::Stiffness { .. } => "stiffness",
+            Self::Interference { .. } => "interference",
             Self::Custom(c) => c.name,
         }
     }
@@ -91,7 +106,7 @@ impl Criterion {
         match self {
             Self::MinCableLength(_) => 0,
             Self::MinJacobianDeterminant(_) => 1,
-            Self::Custom(_) => 2,
+            Self::Custom(_) | Self::Interference { .. } => 2,
             Self::WrenchClosure => 3,
             Self::TensionFeasible { .. } => 4,
             Self::CapacityMargin { .. } | Self::IsotropicForce { .. } => 5,

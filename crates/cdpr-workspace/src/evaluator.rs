@@ -147,6 +147,15 @@ impl PoseEvaluator {
                         });
                     }
                 }
+                Criterion::Interference { min_distance, .. } => {
+                    if !min_distance.is_finite() || *min_distance < 0.0 {
+                        return Err(WorkspaceError::InvalidSetting {
+                            what: "cable clearance D of the interference criterion (m)",
+                            value: *min_distance,
+                            expected: "finite and ≥ 0",
+                        });
+                    }
+                }
                 Criterion::WrenchClosure | Criterion::Custom(_) => {}
             }
         }
@@ -321,6 +330,22 @@ impl PoseEvaluator {
                     kinematics: &scratch.kin,
                     wrench_matrix: &scratch.w,
                 }),
+                Criterion::Interference {
+                    min_distance,
+                    platform,
+                } => {
+                    let touching = 1e-12 * robot.length_scale().max(pose.position.norm());
+                    cdpr_kinematics::min_cable_distance(&scratch.kin) >= min_distance.max(touching)
+                        && platform.as_deref().is_none_or(|shape| {
+                            cdpr_kinematics::platform_interference(
+                                &scratch.kin,
+                                shape,
+                                &pose.position,
+                                &pose.rotation,
+                            )
+                            .is_none()
+                        })
+                }
                 Criterion::WrenchClosure => scratch
                     .closure
                     .as_mut()

@@ -9,7 +9,12 @@ use std::path::PathBuf;
 /// Prints each cable's length l_i and unit vector (from the platform attachment towards the frame
 /// anchor), and the DOF × n wrench matrix W with W t + w_ext = 0.
 /// JSON fields: `lengths`, `unit_vectors` (one array per cable), `wrench_matrix` (one array per
-/// row of W), `attachment_points`, `jacobian_determinant` (n = DOF only).
+/// row of W), `attachment_points`, `jacobian_determinant` (n = DOF only), `closest_cables`
+/// (the two cables, 1-based, whose straight segments come closest; pairs sharing an anchor or
+/// attachment are left out; null if none), `closest_distance` (their distance, m),
+/// `closest_points` (the closest point on each, m), and with a `[platform] shape` in the robot
+/// file `platform_interference` (null, or the cable, 1-based, that passes deepest through the
+/// platform and its `penetration` in m).
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML).
@@ -30,6 +35,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let w = kin.wrench_matrix();
     let dim = robot.robot.motion().space_dim();
     let vec_of = |v: &nalgebra::Vector3<f64>| v.iter().take(dim).copied().collect::<Vec<f64>>();
+    let closest = cdpr::kinematics::closest_cables(&kin);
+    let through = robot.platform_shape.as_ref().map(|shape| {
+        cdpr::kinematics::platform_interference(&kin, shape, &pose.position, &pose.rotation)
+    });
     if args.json {
         print_json(&json!({
             "robot": robot.name,
@@ -40,6 +49,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "attachment_points": kin.cables().iter().map(|c| vec_of(&c.attachment_point)).collect::<Vec<_>>(),
             "wrench_matrix": matrix_rows(&w),
             "jacobian_determinant": kin.jacobian_determinant(),
+            "closest_cables": closest.map(|c| [c.cables.0 + 1, c.cables.1 + 1]),
+            "closest_distance": closest.map(|c| c.distance),
+            "closest_points": closest.map(|c| [vec_of(&c.points.0), vec_of(&c.points.1)]),
+            "platform_interference": match through {
+                None => json!(null),
+                Some(None) => json!({ "cable": null, "penetration": 0.0 }),
+                Some(Some(p)) => json!({ "cable": p.cable + 1, "penetration": p.penetration }),
+            },
         }))
     } else {
         println!(
@@ -59,6 +76,24 @@ pub fn run(args: Args) -> Result<(), CliError> {
         print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
         if let Some(d) = kin.jacobian_determinant() {
             println!("det J = {d:.6e}");
+        }
+        match closest {
+            Some(c) => println!(
+                "closest cables: {} and {}, {:.6} m apart",
+                c.cables.0 + 1,
+                c.cables.1 + 1,
+                c.distance
+            ),
+            None => println!("closest cables: none (every pair shares an anchor or attachment)"),
+        }
+        match through {
+            None => {}
+            Some(None) => println!("platform: no cable passes through it"),
+            Some(Some(p)) => println!(
+                "platform: cable {} passes through it, {:.6} m deep",
+                p.cable + 1,
+                p.penetration
+            ),
         }
         Ok(())
     }

@@ -47,6 +47,9 @@ gives min_cable_length / min_jacobian_det):
   isotropic:F     maximum isotropic force ≥ F (seed 001; force at zero moment if rotating)
   stiffness:K     smallest eigenvalue of sym(K), K = Kp + Ka (seed 002), ≥ K; needs
                   axial_stiffness in the robot file and the tension criterion
+  interference[:D] every two cables at least D apart (m, default 0: they must not touch;
+                  cables sharing an anchor or attachment are left out), and no cable through
+                  the platform when the robot file gives `[platform] shape`
 
 The external wrench w_ext is --wrench plus the platform's gravity from the robot file.
 
@@ -126,7 +129,7 @@ pub struct CriteriaArgs {
     #[arg(long)]
     pub method: Option<Method>,
     /// Comma list of criteria that must all hold: tension, length[:L], det[:D], wrench-closure,
-    /// capacity[:M], isotropic:F, stiffness:K (see the command's help). Default: tension, plus
+    /// capacity[:M], isotropic:F, stiffness:K, interference[:D] (see the command's help). Default: tension, plus
     /// length and det when the robot file gives their limits.
     #[arg(long, value_name = "LIST")]
     pub criteria: Option<String>,
@@ -153,6 +156,8 @@ pub enum Spec {
     Isotropic(f64),
     /// λ_min(sym K) ≥ the value.
     Stiffness(f64),
+    /// Cables at least the value apart (m), none through the platform shape.
+    Interference(f64),
 }
 
 impl Spec {
@@ -166,6 +171,7 @@ impl Spec {
             Spec::Capacity(m) => format!("capacity:{m}"),
             Spec::Isotropic(f) => format!("isotropic:{f}"),
             Spec::Stiffness(k) => format!("stiffness:{k}"),
+            Spec::Interference(d) => format!("interference:{d}"),
         }
     }
 }
@@ -246,6 +252,16 @@ impl CriteriaSetup {
                             Spec::Capacity(v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0))
                         }
                         ("isotropic", Some(v)) => Spec::Isotropic(number(token, v)?),
+                        ("interference", v) => {
+                            let d = v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0);
+                            if d < 0.0 {
+                                return Err(format!(
+                                    "--criteria: `{token}`: the clearance D (m) must be ≥ 0"
+                                )
+                                .into());
+                            }
+                            Spec::Interference(d)
+                        }
                         ("stiffness", Some(v)) => Spec::Stiffness(number(token, v)?),
                         ("isotropic" | "stiffness", None) => {
                             return Err(
@@ -256,7 +272,7 @@ impl CriteriaSetup {
                             return Err(format!(
                                 "--criteria: unknown criterion `{token}` (known: tension, \
                                  length[:L], det[:D], wrench-closure, capacity[:M], \
-                                 isotropic:F, stiffness:K)"
+                                 isotropic:F, stiffness:K, interference[:D])"
                             )
                             .into());
                         }
@@ -361,6 +377,10 @@ impl CriteriaSetup {
                     },
                     Spec::Isotropic(f) => Criterion::IsotropicForce { min: *f },
                     Spec::Stiffness(k) => Criterion::Stiffness { min_eigenvalue: *k },
+                    Spec::Interference(d) => Criterion::Interference {
+                        min_distance: *d,
+                        platform: desc.platform_shape.clone().map(std::sync::Arc::new),
+                    },
                 })
             })
             .collect::<Result<Vec<_>, CliError>>()?;
