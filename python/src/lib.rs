@@ -11,8 +11,11 @@
 
 mod arrays;
 mod kinematics;
+mod polytope;
 mod robot;
 mod tension;
+mod trajectory;
+mod workspace;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -136,6 +139,11 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::Robot>()?;
     m.add_class::<kinematics::KinematicsResult>()?;
     m.add_class::<tension::TensionResult>()?;
+    m.add_class::<polytope::CapacityResult>()?;
+    m.add_class::<polytope::IsotropicResult>()?;
+    m.add_class::<polytope::StiffnessResult>()?;
+    m.add_class::<workspace::WorkspaceResult>()?;
+    m.add_class::<trajectory::TrajectoryResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
     m.add("METHODS", tension::method_names())?;
     Ok(())

@@ -413,6 +413,155 @@ impl Robot {
         )
     }
 
+    /// Forward kinematics: the pose at which the cables have the given lengths.
+    ///
+    /// Not available yet: the solver is being written in ``cdpr-kinematics`` (issue 14); this
+    /// method raises ``NotImplementedError`` until it lands.
+    #[pyo3(signature = (lengths, guess=None))]
+    fn forward_kinematics(
+        &self,
+        lengths: &Bound<'_, PyAny>,
+        guess: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let _ = (lengths, guess);
+        Err(pyo3::exceptions::PyNotImplementedError::new_err(
+            "forward_kinematics is not available yet: the forward-kinematics solver of \
+             cdpr-kinematics (issue 14) has not landed in this build",
+        ))
+    }
+
+    /// Capacity margin (Guay et al. 2014) of a required wrench set at one pose or a batch.
+    ///
+    /// The required set is centred on ``wrenches`` (``(DOF,)`` or ``(N, DOF)``, default zero)
+    /// plus the platform's gravity: a point, a box (``wrench_box``: DOF half-widths) or a ball
+    /// (``wrench_ball``: radius), as ``cdpr capacity`` takes them.
+    #[pyo3(signature = (poses, wrenches=None, *, wrench_box=None, wrench_ball=None))]
+    fn capacity_margin(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        wrenches: Option<&Bound<'_, PyAny>>,
+        wrench_box: Option<Vec<f64>>,
+        wrench_ball: Option<f64>,
+    ) -> PyResult<crate::polytope::CapacityResult> {
+        crate::polytope::capacity_margin(self, py, poses, wrenches, wrench_box, wrench_ball)
+    }
+
+    /// Maximum isotropic force (Krut, Company & Pierrot 2004) at one pose or a batch: the
+    /// largest force the platform resists in every direction with tensions in bounds.
+    fn isotropic_force(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+    ) -> PyResult<crate::polytope::IsotropicResult> {
+        crate::polytope::isotropic(self, py, poses)
+    }
+
+    /// Stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)) at one
+    /// pose or a batch, under ``tensions`` (``(n,)`` for every pose or ``(N, n)``, N).
+    /// ``axial_stiffness`` (E·S, N; scalar or ``(n,)``) overrides the robot's.
+    #[pyo3(signature = (poses, tensions, axial_stiffness=None))]
+    fn stiffness(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        tensions: &Bound<'_, PyAny>,
+        axial_stiffness: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<crate::polytope::StiffnessResult> {
+        crate::polytope::stiffness(self, py, poses, tensions, axial_stiffness)
+    }
+
+    /// Constant-orientation workspace (seed 000 Algorithm 6.2 on a grid, or the chord method).
+    ///
+    /// ``resolution`` M: M intervals per side (default 50 in the plane, 20 in space);
+    /// ``box``: (xmin, xmax, ymin, ymax[, zmin, zmax]), default the frame anchors' bounding
+    /// box; ``orientation``: φ (planar) or (rx, ry, rz) (spatial); ``criteria``: a list (or a
+    /// comma string) of ``tension``, ``length[:L]``, ``det[:D]``, ``wrench-closure``,
+    /// ``capacity[:M]``, ``isotropic:F``, ``stiffness:K`` (default: tension, plus length and det
+    /// when the robot has those limits); ``method``: tension method (default exact when
+    /// n = DOF, else l2); ``wrench``: w_e (gravity is added); ``wrench_box``: half-widths of
+    /// the capacity criterion's box; ``boundary``: ``"grid"`` or ``"chord"`` (planar robots,
+    /// chord length ``chord``). The grid runs in parallel with the GIL released.
+    #[pyo3(signature = (resolution=None, r#box=None, orientation=None, criteria=None, method=None,
+        wrench=None, wrench_box=None, boundary="grid", chord=0.05))]
+    #[allow(clippy::too_many_arguments)]
+    fn workspace(
+        &self,
+        py: Python<'_>,
+        resolution: Option<usize>,
+        r#box: Option<Vec<f64>>,
+        orientation: Option<&Bound<'_, PyAny>>,
+        criteria: Option<&Bound<'_, PyAny>>,
+        method: Option<&str>,
+        wrench: Option<Vec<f64>>,
+        wrench_box: Option<Vec<f64>>,
+        boundary: &str,
+        chord: f64,
+    ) -> PyResult<crate::workspace::WorkspaceResult> {
+        let orientation = orientation
+            .map(|o| match o.extract::<f64>() {
+                Ok(phi) => Ok(vec![phi]),
+                Err(_) => o.extract::<Vec<f64>>(),
+            })
+            .transpose()?;
+        let criteria = criteria
+            .map(|c| match c.extract::<String>() {
+                Ok(s) => Ok(vec![s]),
+                Err(_) => c.extract::<Vec<String>>(),
+            })
+            .transpose()?;
+        crate::workspace::workspace(
+            self,
+            py,
+            resolution,
+            r#box,
+            orientation,
+            criteria,
+            method,
+            wrench,
+            wrench_box,
+            boundary,
+            chord,
+        )
+    }
+
+    /// Tensions along a path (the ``cdpr trajectory`` command): ``waypoints`` (K ≥ 2, DOF) is a
+    /// polyline sampled by ``samples`` (evenly in s; default 101) or ``step`` (largest pose
+    /// distance between samples); ``wrenches``: w_e, ``(DOF,)`` or one per waypoint
+    /// ``(K, DOF)`` interpolated linearly in s (gravity is added); ``method`` and the SOTDA
+    /// options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity when its jump
+    /// exceeds this many median jumps.
+    #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
+        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn trajectory(
+        &self,
+        py: Python<'_>,
+        waypoints: &Bound<'_, PyAny>,
+        samples: Option<usize>,
+        step: Option<f64>,
+        wrenches: Option<&Bound<'_, PyAny>>,
+        method: &str,
+        direction: Option<Vec<f64>>,
+        nu: f64,
+        sotda_search: &str,
+        jump_ratio: f64,
+    ) -> PyResult<crate::trajectory::TrajectoryResult> {
+        crate::trajectory::trajectory(
+            self,
+            py,
+            waypoints,
+            samples,
+            step,
+            wrenches,
+            method,
+            direction,
+            nu,
+            sotda_search,
+            jump_ratio,
+        )
+    }
+
     fn __repr__(&self) -> String {
         format!(
             "Robot(name={:?}, motion={:?}, n_cables={}, dof={})",
