@@ -1,0 +1,146 @@
+//! # Arrays at the boundary
+//!
+//! numpy in (any array-like: converted to contiguous float64 only when it is not one already)
+//! and numpy out (owned buffers handed to numpy without a copy), with the shape checks and
+//! messages every method shares.
+
+use crate::value_error;
+use numpy::ndarray::{ArrayD, IxDyn};
+use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use pyo3::prelude::*;
+use pyo3::sync::PyOnceLock;
+use pyo3::types::PyDict;
+use std::borrow::Cow;
+
+/// A float64 array borrowed from Python (or converted from a list or another dtype).
+pub struct FloatArray<'py> {
+    array: PyReadonlyArrayDyn<'py, f64>,
+}
+
+static AS_FLOAT: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
+
+impl<'py> FloatArray<'py> {
+    /// Borrows `obj` if it is a float64 ndarray, else converts it with `numpy.asarray`.
+    pub fn new(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Self> {
+        if let Ok(array) = obj.extract::<PyReadonlyArrayDyn<'py, f64>>() {
+            return Ok(Self { array });
+        }
+        let py = obj.py();
+        let asarray = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
+            Ok(py.import("numpy")?.getattr("asarray")?.unbind())
+        })?;
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("dtype", "float64")?;
+        let converted = asarray
+            .bind(py)
+            .call((obj,), Some(&kwargs))
+            .map_err(|e| value_error(format!("{what}: not an array of numbers ({e})")))?;
+        let array = converted
+            .extract::<PyReadonlyArrayDyn<'py, f64>>()
+            .map_err(|e| value_error(format!("{what}: {e}")))?;
+        Ok(Self { array })
+    }
+
+    /// The shape.
+    pub fn shape(&self) -> &[usize] {
+        self.array.shape()
+    }
+
+    /// The elements in C order (borrowed when the array is C-contiguous).
+    pub fn data(&self) -> Cow<'_, [f64]> {
+        match self.array.as_slice() {
+            Ok(s) => Cow::Borrowed(s),
+            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
+        }
+    }
+
+    /// Errors unless every element is finite.
+    pub fn check_finite(&self, what: &str) -> PyResult<()> {
+        let data = self.data();
+        match data.iter().position(|v| !v.is_finite()) {
+            Some(k) => Err(value_error(format!(
+                "{what}: element {} is {} (every value must be finite)",
+                unravel(self.shape(), k),
+                data[k]
+            ))),
+            None => Ok(()),
+        }
+    }
+}
+
+/// `[i, j, …]` of the flat C-order index `k` in `shape`.
+fn unravel(shape: &[usize], mut k: usize) -> String {
+    let mut idx = vec![0; shape.len()];
+    for (d, &n) in shape.iter().enumerate().rev() {
+        if n > 0 {
+            idx[d] = k % n;
+            k /= n;
+        }
+    }
+    format!("{idx:?}")
+}
+
+/// Rows of `width` numbers: `(N, width)` (a batch) or `(width,)` (one row, `single`).
+pub struct Rows<'py> {
+    pub array: FloatArray<'py>,
+    pub count: usize,
+    pub single: bool,
+}
+
+impl<'py> Rows<'py> {
+    /// Reads `obj` as rows of `width`, checking shape and finiteness; `hint` says what a row is.
+    pub fn new(obj: &Bound<'py, PyAny>, width: usize, what: &str, hint: &str) -> PyResult<Self> {
+        let array = FloatArray::new(obj, what)?;
+        let (count, single) = match array.shape() {
+            [w] if *w == width => (1, true),
+            [n, w] if *w == width => (*n, false),
+            s => {
+                return Err(value_error(format!(
+                    "{what}: expected shape (N, {width}) or ({width},) ({hint}), got {}",
+                    shape_string(s)
+                )));
+            }
+        };
+        array.check_finite(what)?;
+        Ok(Self {
+            array,
+            count,
+            single,
+        })
+    }
+}
+
+/// `(a, b)` as Python prints a shape.
+pub fn shape_string(s: &[usize]) -> String {
+    match s {
+        [a] => format!("({a},)"),
+        _ => format!(
+            "({})",
+            s.iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    }
+}
+
+/// A numpy array of `shape` owning `data` (C order), without a copy.
+pub fn to_numpy<'py, T: numpy::Element>(
+    py: Python<'py>,
+    shape: &[usize],
+    data: Vec<T>,
+) -> Bound<'py, PyArrayDyn<T>> {
+    ArrayD::from_shape_vec(IxDyn(shape), data)
+        .expect("buffer length matches the shape")
+        .into_pyarray(py)
+}
+
+/// `shape` with the leading batch axis of length `count`, dropped for a single row.
+pub fn batch_shape(single: bool, count: usize, rest: &[usize]) -> Vec<usize> {
+    let mut s = Vec::with_capacity(rest.len() + 1);
+    if !single {
+        s.push(count);
+    }
+    s.extend_from_slice(rest);
+    s
+}

@@ -1,0 +1,99 @@
+//! # Inverse kinematics over a batch
+//!
+//! Per pose, every cable's length l_i, unit vector ℓ^i / l_i and attachment point, and the
+//! DOF × n wrench matrix W with W t + w_ext = 0 (seed 000 eqs. (6.2)–(6.4), (6.11); the
+//! `cdpr kinematics` command at one pose).
+
+use crate::arrays::{Rows, batch_shape, to_numpy};
+use crate::robot::Robot;
+use crate::{map_poses, row, run_batch, value_error};
+use cdpr_kinematics::{Pose, PoseKinematics};
+use nalgebra::DMatrix;
+use numpy::PyArrayDyn;
+use pyo3::prelude::*;
+
+/// The inverse kinematics of a batch of poses.
+///
+/// ``lengths`` (N, n) in m; ``unit_vectors`` (N, n, 3): unit vector of each cable from its
+/// platform attachment towards its frame anchor (z = 0 for planar robots);
+/// ``wrench_matrix`` (N, DOF, n): W with W t + w_ext = 0; ``attachment_points`` (N, n, 3):
+/// attachments in base coordinates (m). One pose in gives the same without the leading axis.
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct KinematicsResult {
+    pub lengths: Py<PyArrayDyn<f64>>,
+    pub unit_vectors: Py<PyArrayDyn<f64>>,
+    pub wrench_matrix: Py<PyArrayDyn<f64>>,
+    pub attachment_points: Py<PyArrayDyn<f64>>,
+}
+
+#[pymethods]
+impl KinematicsResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "KinematicsResult(lengths.shape={:?})",
+            numpy::PyUntypedArrayMethods::shape(self.lengths.bind(py))
+        )
+    }
+}
+
+/// Parses pose k (already checked finite) for `robot`.
+pub fn pose_at(robot: &Robot, q: &[f64], k: usize) -> Result<Pose, String> {
+    Pose::from_coordinates(robot.motion_pattern(), q).map_err(|e| format!("poses[{k}]: {e}"))
+}
+
+pub fn inverse_kinematics(
+    robot: &Robot,
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+) -> PyResult<KinematicsResult> {
+    let geo = robot.geometry();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let widths = [n, 3 * n, dof * n, 3 * n];
+    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            &mut outs,
+            || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, n)),
+            |(kin, w), k, j, blocks| {
+                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
+                geo.update_kinematics(&pose, kin)
+                    .map_err(|e| format!("poses[{k}]: {e}"))?;
+                kin.write_wrench_matrix(w);
+                let [l, u, wm, a] = blocks else {
+                    unreachable!("four outputs")
+                };
+                let (l, u) = (row(l, j, n), row(u, j, 3 * n));
+                for (i, c) in kin.cables().iter().enumerate() {
+                    l[i] = c.length;
+                    u[3 * i..3 * i + 3].copy_from_slice(c.unit.as_slice());
+                }
+                let a = row(a, j, 3 * n);
+                for (i, c) in kin.cables().iter().enumerate() {
+                    a[3 * i..3 * i + 3].copy_from_slice(c.attachment_point.as_slice());
+                }
+                let wm = row(wm, j, dof * n);
+                for r in 0..dof {
+                    for c in 0..n {
+                        wm[r * n + c] = w[(r, c)];
+                    }
+                }
+                Ok::<(), String>(())
+            },
+        )
+        .map_err(value_error)
+    })?;
+    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    let mut outs = outs.into_iter();
+    let mut next = |rest: &[usize]| to_numpy(py, &shape(rest), outs.next().unwrap()).unbind();
+    Ok(KinematicsResult {
+        lengths: next(&[n]),
+        unit_vectors: next(&[n, 3]),
+        wrench_matrix: next(&[dof, n]),
+        attachment_points: next(&[n, 3]),
+    })
+}

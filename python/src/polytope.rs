@@ -1,0 +1,307 @@
+//! # Wrench-set indices and stiffness over a batch
+//!
+//! Per pose: the capacity margin of a required wrench set (Guay et al. 2014; the `cdpr capacity`
+//! command), the maximum isotropic force (Krut, Company & Pierrot 2004; `cdpr isotropic`), both
+//! from the available wrench set {W t : t_min ≤ t ≤ t_max} by hyperplane shifting, and the
+//! stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020 eqs. (3)–(4);
+//! `cdpr stiffness`).
+
+use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::kinematics::pose_at;
+use crate::robot::Robot;
+use crate::tension::read_wrenches;
+use crate::{map_poses, row, run_batch, value_error};
+use cdpr_kinematics::PoseKinematics;
+use cdpr_polytope::hyperplane_shifting::available_wrench_set;
+use cdpr_polytope::{RequiredWrenchSet, isotropic_force, isotropic_wrench_radius, limiting_facet};
+use nalgebra::{DMatrix, DVector};
+use numpy::PyArrayDyn;
+use pyo3::prelude::*;
+
+/// Wraps a per-pose error with the pose index.
+fn at<E: std::fmt::Display>(k: usize) -> impl Fn(E) -> String {
+    move |e| format!("poses[{k}]: {e}")
+}
+
+/// Capacity margins of a batch.
+///
+/// ``capacity_margin`` (N,): min over the facets of the available wrench set of the distance
+/// left around the required set (wrench units: N, N·m); positive iff every required wrench can
+/// be balanced with tensions in bounds; ``inf`` when the set has no facet. ``feasible`` (N,)
+/// bool: margin ≥ 0. ``limiting_facet`` (N,) int: index of the facet reached first (−1 if
+/// none). One pose in gives scalars.
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct CapacityResult {
+    pub capacity_margin: Py<PyAny>,
+    pub feasible: Py<PyAny>,
+    pub limiting_facet: Py<PyAny>,
+}
+
+/// Maximum isotropic force of a batch.
+///
+/// ``isotropic_force`` (N,): radius of the largest force ball centred at the origin inside the
+/// available force set (N); for planar and spatial robots the force at zero moment; negative
+/// when the origin is outside. ``wrench_radius`` (N,): the ball in the full wrench space.
+/// ``definition``: what the index means for this motion pattern.
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct IsotropicResult {
+    pub isotropic_force: Py<PyAny>,
+    pub wrench_radius: Py<PyAny>,
+    pub definition: String,
+}
+
+/// Stiffness matrices of a batch: ``stiffness`` K = Kp + Ka, ``passive`` Kp (cable elasticity,
+/// k_i = E·S / l_i) and ``active`` Ka (tension-dependent), each (N, DOF, DOF) (N/m, N, N·m/rad).
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct StiffnessResult {
+    pub stiffness: Py<PyArrayDyn<f64>>,
+    pub passive: Py<PyArrayDyn<f64>>,
+    pub active: Py<PyArrayDyn<f64>>,
+}
+
+/// A scalar per pose: a Python float (one pose) or a (N,) array.
+fn per_pose<'py>(py: Python<'py>, single: bool, v: Vec<f64>) -> PyResult<Py<PyAny>> {
+    Ok(if single {
+        v[0].into_pyobject(py)?.into_any().unbind()
+    } else {
+        let n = v.len();
+        to_numpy(py, &[n], v).into_any().unbind()
+    })
+}
+
+#[allow(clippy::too_many_arguments)]
+pub fn capacity_margin(
+    robot: &Robot,
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+    wrenches: Option<&Bound<'_, PyAny>>,
+    wrench_box: Option<Vec<f64>>,
+    wrench_ball: Option<f64>,
+) -> PyResult<CapacityResult> {
+    let geo = robot.geometry();
+    let (dof, motion) = (geo.dof(), geo.motion());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let warr = wrenches
+        .map(|w| FloatArray::new(w, "wrenches"))
+        .transpose()?;
+    let wr = read_wrenches(&warr, count, rows.single, dof)?;
+    if let Some(h) = &wrench_box
+        && h.len() != dof
+    {
+        return Err(value_error(format!(
+            "wrench_box needs {dof} half-widths (one per wrench component), got {}",
+            h.len()
+        )));
+    }
+    if wrench_box.is_some() && wrench_ball.is_some() {
+        return Err(value_error("give wrench_box or wrench_ball, not both"));
+    }
+    let desc = &robot.desc;
+    let widths = [1, 1];
+    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            &mut outs,
+            || PoseKinematics::for_robot(geo),
+            |kin, k, j, blocks| {
+                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
+                let centre = DVector::from_column_slice(wr.at(k))
+                    + desc.platform.gravity_wrench(motion, &pose);
+                let required = match (&wrench_box, wrench_ball) {
+                    (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
+                    (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
+                    (None, None) => RequiredWrenchSet::point(centre),
+                }
+                .map_err(|e| e.to_string())?;
+                geo.update_kinematics(&pose, kin).map_err(at(k))?;
+                let w = kin.wrench_matrix();
+                let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
+                let limit = limiting_facet(&aws, &required).map_err(at(k))?;
+                let [m, f] = blocks else {
+                    unreachable!("two outputs")
+                };
+                m[j] = limit.map_or(f64::INFINITY, |(_, m)| m);
+                f[j] = limit.map_or(-1.0, |(i, _)| i as f64);
+                Ok::<(), String>(())
+            },
+        )
+        .map_err(value_error)
+    })?;
+    let margin = outs.remove(0);
+    let facet = outs.remove(0);
+    let feasible: Vec<bool> = margin.iter().map(|&m| m >= 0.0).collect();
+    let facet: Vec<i64> = facet.iter().map(|&f| f as i64).collect();
+    Ok(CapacityResult {
+        feasible: if rows.single {
+            feasible[0]
+                .into_pyobject(py)?
+                .to_owned()
+                .into_any()
+                .unbind()
+        } else {
+            to_numpy(py, &[count], feasible).into_any().unbind()
+        },
+        limiting_facet: if rows.single {
+            facet[0].into_pyobject(py)?.into_any().unbind()
+        } else {
+            to_numpy(py, &[count], facet).into_any().unbind()
+        },
+        capacity_margin: per_pose(py, rows.single, margin)?,
+    })
+}
+
+/// What the isotropic force means for a motion pattern (as `cdpr isotropic` says).
+fn definition(robot: &Robot) -> &'static str {
+    if robot.motion_pattern().has_orientation() {
+        "force at zero moment: radius of the largest force ball centred at the origin inside the \
+         moment = 0 slice of the available wrench set {W t : t_min <= t <= t_max}; negative when \
+         the origin is outside"
+    } else {
+        "radius of the largest force ball centred at the origin inside the available force \
+         polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, eq. 19); negative \
+         when the origin is outside"
+    }
+}
+
+pub fn isotropic(
+    robot: &Robot,
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+) -> PyResult<IsotropicResult> {
+    let geo = robot.geometry();
+    let (dof, motion) = (geo.dof(), geo.motion());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let desc = &robot.desc;
+    let widths = [1, 1];
+    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            &mut outs,
+            || PoseKinematics::for_robot(geo),
+            |kin, k, j, blocks| {
+                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
+                geo.update_kinematics(&pose, kin).map_err(at(k))?;
+                let w = kin.wrench_matrix();
+                let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
+                let [f, r] = blocks else {
+                    unreachable!("two outputs")
+                };
+                f[j] = isotropic_force(&aws, motion).map_err(at(k))?;
+                r[j] = isotropic_wrench_radius(&aws);
+                Ok::<(), String>(())
+            },
+        )
+        .map_err(value_error)
+    })?;
+    let radius = outs.pop().unwrap();
+    let force = outs.pop().unwrap();
+    Ok(IsotropicResult {
+        isotropic_force: per_pose(py, rows.single, force)?,
+        wrench_radius: per_pose(py, rows.single, radius)?,
+        definition: definition(robot).into(),
+    })
+}
+
+pub fn stiffness(
+    robot: &Robot,
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+    tensions: &Bound<'_, PyAny>,
+    axial_stiffness: Option<&Bound<'_, PyAny>>,
+) -> PyResult<StiffnessResult> {
+    let geo = robot.geometry();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let t = FloatArray::new(tensions, "tensions")?;
+    let per_pose_t = match t.shape() {
+        [m] if *m == n => false,
+        [c, m] if *m == n && *c == count && !rows.single => true,
+        s => {
+            return Err(value_error(format!(
+                "tensions: expected shape ({n},) or ({count}, {n}) (one tension per cable, N), \
+                 got {}",
+                shape_string(s)
+            )));
+        }
+    };
+    t.check_finite("tensions")?;
+    let tdata = t.data();
+    let es: Vec<f64> = match axial_stiffness {
+        Some(obj) => {
+            let v = if let Ok(x) = obj.extract::<f64>() {
+                vec![x; n]
+            } else {
+                let a = FloatArray::new(obj, "axial_stiffness")?;
+                if a.shape() != [n] {
+                    return Err(value_error(format!(
+                        "axial_stiffness: expected a number or shape ({n},), got {}",
+                        shape_string(a.shape())
+                    )));
+                }
+                a.data().into_owned()
+            };
+            if let Some(x) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+                return Err(value_error(format!(
+                    "axial_stiffness: {x} must be a finite number > 0"
+                )));
+            }
+            v
+        }
+        None => robot.desc.axial_stiffness.clone().ok_or_else(|| {
+            value_error(
+                "no axial stiffness: give `axial_stiffness` on every cable of the robot file, \
+                 or axial_stiffness=",
+            )
+        })?,
+    };
+    let widths = [dof * dof; 3];
+    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            &mut outs,
+            || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, dof)),
+            |(kin, km), k, j, blocks| {
+                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
+                geo.update_kinematics(&pose, kin).map_err(at(k))?;
+                let tk = if per_pose_t {
+                    &tdata[k * n..(k + 1) * n]
+                } else {
+                    &tdata[..n]
+                };
+                cdpr_wrench::write_stiffness_matrix(kin, tk, &es, km).map_err(at(k))?;
+                let kp = cdpr_wrench::passive_stiffness(kin, &es).map_err(at(k))?;
+                let ka = cdpr_wrench::active_stiffness(kin, tk).map_err(at(k))?;
+                for (out, m) in blocks.iter_mut().zip([&*km, &kp, &ka]) {
+                    let out = row(out, j, dof * dof);
+                    for r in 0..dof {
+                        for c in 0..dof {
+                            out[r * dof + c] = m[(r, c)];
+                        }
+                    }
+                }
+                Ok::<(), String>(())
+            },
+        )
+        .map_err(value_error)
+    })?;
+    let shape = batch_shape(rows.single, count, &[dof, dof]);
+    let mut outs = outs.into_iter();
+    let mut next = || to_numpy(py, &shape, outs.next().unwrap()).unbind();
+    Ok(StiffnessResult {
+        stiffness: next(),
+        passive: next(),
+        active: next(),
+    })
+}

@@ -1,0 +1,625 @@
+//! # Robot
+//!
+//! The Python `cdpr.Robot`: everything a robot file describes (geometry, tension bounds,
+//! limits, platform mass, axial stiffness), loaded from a file through `cdpr-io` or built from
+//! anchor arrays. Its analysis methods live in the modules named after them.
+
+use crate::arrays::{FloatArray, shape_string, to_numpy};
+use crate::value_error;
+use cdpr_io::{Limits, RobotDescription};
+use cdpr_kinematics::{Cable, MotionPattern, Robot as Geometry};
+use cdpr_tension::TensionBounds;
+use cdpr_wrench::{Platform, STANDARD_GRAVITY};
+use nalgebra::Vector3;
+use numpy::PyArrayDyn;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyTuple};
+use std::sync::Arc;
+
+/// A cable-driven parallel robot: geometry, tension bounds, workspace limits and platform mass.
+///
+/// Build one with :meth:`Robot.load` (a robot file) or :meth:`Robot.from_anchors` (arrays).
+/// Poses are rows of motion-pattern coordinates: ``(x, y)`` for ``point2``, ``(x, y, φ)`` for
+/// ``planar``, ``(x, y, z)`` for ``point3``, ``(x, y, z, rx, ry, rz)`` (XYZ Euler angles, rad)
+/// for ``spatial``. Every analysis method takes one pose, shape ``(DOF,)``, or a batch,
+/// shape ``(N, DOF)``; batches run in parallel with the GIL released.
+#[pyclass(module = "cdpr", frozen)]
+pub struct Robot {
+    pub desc: Arc<RobotDescription>,
+}
+
+impl Robot {
+    pub fn geometry(&self) -> &Geometry {
+        &self.desc.robot
+    }
+
+    pub fn motion_pattern(&self) -> MotionPattern {
+        self.desc.robot.motion()
+    }
+
+    /// Pose-coordinate hint for error messages.
+    pub fn pose_hint(&self) -> &'static str {
+        match self.motion_pattern() {
+            MotionPattern::Point2 => "poses (x, y) of a point2 robot",
+            MotionPattern::Planar => "poses (x, y, φ) of a planar robot",
+            MotionPattern::Point3 => "poses (x, y, z) of a point3 robot",
+            MotionPattern::Spatial => "poses (x, y, z, rx, ry, rz) of a spatial robot",
+        }
+    }
+}
+
+/// A per-cable value: a scalar or an array of length n.
+fn per_cable(obj: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<Vec<f64>> {
+    if let Ok(v) = obj.extract::<f64>() {
+        return Ok(vec![v; n]);
+    }
+    let a = FloatArray::new(obj, what)?;
+    match a.shape() {
+        [m] if *m == n => Ok(a.data().into_owned()),
+        s => Err(value_error(format!(
+            "{what}: expected a number or an array of shape ({n},) (one per cable), got {}",
+            shape_string(s)
+        ))),
+    }
+}
+
+/// An optional 2- or 3-vector for the robot's space.
+fn space_vector(
+    obj: Option<&Bound<'_, PyAny>>,
+    dim: usize,
+    what: &str,
+) -> PyResult<Option<Vector3<f64>>> {
+    let Some(obj) = obj else { return Ok(None) };
+    let a = FloatArray::new(obj, what)?;
+    if a.shape() != [dim] {
+        return Err(value_error(format!(
+            "{what}: expected shape ({dim},), got {}",
+            shape_string(a.shape())
+        )));
+    }
+    a.check_finite(what)?;
+    let d = a.data();
+    Ok(Some(Vector3::new(
+        d[0],
+        d[1],
+        if dim == 3 { d[2] } else { 0.0 },
+    )))
+}
+
+/// Rows of anchor coordinates, (n, dim).
+fn anchors(obj: &Bound<'_, PyAny>, dim: usize, what: &str) -> PyResult<(usize, Vec<f64>)> {
+    let a = FloatArray::new(obj, what)?;
+    match a.shape() {
+        [n, d] if *d == dim && *n > 0 => {
+            a.check_finite(what)?;
+            Ok((*n, a.data().into_owned()))
+        }
+        s => Err(value_error(format!(
+            "{what}: expected shape (n, {dim}) with n ≥ 1, got {}",
+            shape_string(s)
+        ))),
+    }
+}
+
+#[pymethods]
+impl Robot {
+    /// Loads a robot file (the cdpr TOML format; see ``docs/getting-started.md``).
+    ///
+    /// Raises ``ValueError`` naming the file, line and key of the first problem.
+    #[staticmethod]
+    fn load(path: std::path::PathBuf) -> PyResult<Self> {
+        let desc = RobotDescription::load(&path).map_err(value_error)?;
+        Ok(Self {
+            desc: Arc::new(desc),
+        })
+    }
+
+    /// A robot from arrays.
+    ///
+    /// ``motion``: ``"point2"``, ``"planar"``, ``"point3"`` or ``"spatial"``. ``frame``: anchors
+    /// on the fixed frame, shape ``(n, 2)`` or ``(n, 3)`` (base coordinates, m). ``platform``:
+    /// attachments in platform coordinates, same shape (omit for point robots). ``t_min``,
+    /// ``t_max``: tension bounds (N), scalars or arrays of shape ``(n,)`` (default 0 and
+    /// infinity). ``mass`` (kg),
+    /// ``centre_of_mass`` (platform coordinates, m) and ``gravity`` (m/s², default −z in space,
+    /// −y in the plane) give the gravity wrench added to every load. ``axial_stiffness``: E·S
+    /// per cable (N), a scalar or ``(n,)``, for stiffness and SOTDA.
+    #[staticmethod]
+    #[pyo3(signature = (motion, frame, platform=None, t_min=None, t_max=None, *, mass=0.0,
+        centre_of_mass=None, gravity=None, axial_stiffness=None, min_cable_length=None,
+        min_jacobian_det=None, name="robot".to_string()))]
+    #[allow(clippy::too_many_arguments)]
+    fn from_anchors(
+        motion: &str,
+        frame: &Bound<'_, PyAny>,
+        platform: Option<&Bound<'_, PyAny>>,
+        t_min: Option<&Bound<'_, PyAny>>,
+        t_max: Option<&Bound<'_, PyAny>>,
+        mass: f64,
+        centre_of_mass: Option<&Bound<'_, PyAny>>,
+        gravity: Option<&Bound<'_, PyAny>>,
+        axial_stiffness: Option<&Bound<'_, PyAny>>,
+        min_cable_length: Option<f64>,
+        min_jacobian_det: Option<f64>,
+        name: String,
+    ) -> PyResult<Self> {
+        let motion: MotionPattern = motion.parse().map_err(value_error)?;
+        let dim = motion.space_dim();
+        let (n, frame) = anchors(frame, dim, "frame")?;
+        let platform = match platform {
+            Some(p) => {
+                let (m, p) = anchors(p, dim, "platform")?;
+                if m != n {
+                    return Err(value_error(format!(
+                        "platform: {m} attachments for {n} frame anchors"
+                    )));
+                }
+                p
+            }
+            None if motion.has_orientation() => {
+                return Err(value_error(format!(
+                    "platform: a `{motion}` robot needs the platform attachment of every cable"
+                )));
+            }
+            None => vec![0.0; n * dim],
+        };
+        let cables = (0..n)
+            .map(|i| {
+                Cable::from_slices(
+                    motion,
+                    i,
+                    &frame[i * dim..(i + 1) * dim],
+                    &platform[i * dim..(i + 1) * dim],
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(value_error)?;
+        let robot = Geometry::new(motion, cables).map_err(value_error)?;
+        let bounds = TensionBounds::new(
+            t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?,
+            t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?,
+        )
+        .map_err(value_error)?;
+        if !(mass.is_finite() && mass >= 0.0) {
+            return Err(value_error(format!(
+                "mass: {mass} must be a finite number ≥ 0"
+            )));
+        }
+        let mut plat = Platform {
+            mass,
+            ..Platform::default()
+        };
+        if dim == 2 {
+            plat.gravity = Vector3::new(0.0, -STANDARD_GRAVITY.z.abs(), 0.0);
+        }
+        if let Some(c) = space_vector(centre_of_mass, dim, "centre_of_mass")? {
+            plat.centre_of_mass = c;
+        }
+        if let Some(g) = space_vector(gravity, dim, "gravity")? {
+            plat.gravity = g;
+        }
+        let axial_stiffness = axial_stiffness
+            .map(|es| per_cable(es, n, "axial_stiffness"))
+            .transpose()?;
+        if let Some(es) = &axial_stiffness
+            && let Some(v) = es.iter().find(|v| !(v.is_finite() && **v > 0.0))
+        {
+            return Err(value_error(format!(
+                "axial_stiffness: {v} must be a finite number > 0"
+            )));
+        }
+        for (what, v) in [
+            ("min_cable_length", min_cable_length),
+            ("min_jacobian_det", min_jacobian_det),
+        ] {
+            if let Some(v) = v
+                && !(v.is_finite() && v >= 0.0)
+            {
+                return Err(value_error(format!(
+                    "{what}: {v} must be a finite number ≥ 0"
+                )));
+            }
+        }
+        let mut warnings = Vec::new();
+        for (i, j) in robot.duplicate_cables() {
+            warnings.push(format!(
+                "cables {} and {} are exact duplicates (same anchor and attachment)",
+                i + 1,
+                j + 1
+            ));
+        }
+        Ok(Self {
+            desc: Arc::new(RobotDescription {
+                name,
+                robot,
+                bounds,
+                limits: Limits {
+                    min_cable_length,
+                    min_jacobian_det,
+                },
+                platform: plat,
+                axial_stiffness,
+                warnings,
+            }),
+        })
+    }
+
+    /// Degrees of freedom (rows of the wrench matrix, length of a pose and of a wrench).
+    #[getter]
+    fn dof(&self) -> usize {
+        self.geometry().dof()
+    }
+
+    /// Number of cables n.
+    #[getter]
+    fn n_cables(&self) -> usize {
+        self.geometry().cable_count()
+    }
+
+    /// The motion pattern: ``"point2"``, ``"planar"``, ``"point3"`` or ``"spatial"``.
+    #[getter]
+    fn motion(&self) -> &'static str {
+        self.motion_pattern().name()
+    }
+
+    /// The robot's name (from the file, or ``name=`` of :meth:`from_anchors`).
+    #[getter]
+    fn name(&self) -> &str {
+        &self.desc.name
+    }
+
+    /// Frame anchors, shape (n, 2) or (n, 3) (base coordinates, m).
+    #[getter]
+    fn frame<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        self.cable_vectors(py, |c| c.frame)
+    }
+
+    /// Platform attachments, shape (n, 2) or (n, 3) (platform coordinates, m).
+    #[getter]
+    fn platform<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        self.cable_vectors(py, |c| c.platform)
+    }
+
+    /// Lower tension bounds t_min, shape (n,) (N).
+    #[getter]
+    fn t_min<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        let v = self.desc.bounds.min().as_slice().to_vec();
+        to_numpy(py, &[v.len()], v)
+    }
+
+    /// Upper tension bounds t_max, shape (n,) (N).
+    #[getter]
+    fn t_max<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        let v = self.desc.bounds.max().as_slice().to_vec();
+        to_numpy(py, &[v.len()], v)
+    }
+
+    /// Platform mass (kg).
+    #[getter]
+    fn mass(&self) -> f64 {
+        self.desc.platform.mass
+    }
+
+    /// Gravity vector (m/s², base coordinates), shape (2,) or (3,).
+    #[getter]
+    fn gravity<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        self.space_vector(py, self.desc.platform.gravity)
+    }
+
+    /// Centre of mass in platform coordinates (m), shape (2,) or (3,).
+    #[getter]
+    fn centre_of_mass<'py>(&self, py: Python<'py>) -> Bound<'py, PyArrayDyn<f64>> {
+        self.space_vector(py, self.desc.platform.centre_of_mass)
+    }
+
+    /// E·S per cable (N), shape (n,), or None when the robot has none.
+    #[getter]
+    fn axial_stiffness<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyArrayDyn<f64>>> {
+        self.desc
+            .axial_stiffness
+            .as_ref()
+            .map(|v| to_numpy(py, &[v.len()], v.clone()))
+    }
+
+    /// l_min of the robot file's ``[limits]`` (m), or None.
+    #[getter]
+    fn min_cable_length(&self) -> Option<f64> {
+        self.desc.limits.min_cable_length
+    }
+
+    /// D_min of the robot file's ``[limits]``, or None.
+    #[getter]
+    fn min_jacobian_det(&self) -> Option<f64> {
+        self.desc.limits.min_jacobian_det
+    }
+
+    /// Non-fatal remarks about the robot (e.g. duplicate cables).
+    #[getter]
+    fn warnings(&self) -> Vec<String> {
+        self.desc.warnings.clone()
+    }
+
+    /// The gravity wrench of the platform at each pose, shape (N, DOF) or (DOF,).
+    fn gravity_wrench<'py>(
+        &self,
+        py: Python<'py>,
+        poses: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
+        let rows =
+            crate::arrays::Rows::new(poses, self.geometry().dof(), "poses", self.pose_hint())?;
+        let dof = self.geometry().dof();
+        let data = rows.array.data();
+        let mut out = Vec::with_capacity(rows.count * dof);
+        for q in data.chunks(dof) {
+            let pose = cdpr_kinematics::Pose::from_coordinates(self.motion_pattern(), q)
+                .map_err(value_error)?;
+            out.extend_from_slice(
+                self.desc
+                    .platform
+                    .gravity_wrench(self.motion_pattern(), &pose)
+                    .as_slice(),
+            );
+        }
+        Ok(to_numpy(
+            py,
+            &crate::arrays::batch_shape(rows.single, rows.count, &[dof]),
+            out,
+        ))
+    }
+
+    /// Inverse kinematics of one pose ``(DOF,)`` or a batch ``(N, DOF)``: cable lengths, unit
+    /// vectors, attachment points and the wrench matrix W (W t + w_ext = 0).
+    ///
+    /// Raises ``ValueError`` for a wrong shape, a non-finite coordinate, or a pose where a
+    /// cable has zero length (its direction is undefined), naming the pose.
+    fn inverse_kinematics(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+    ) -> PyResult<crate::kinematics::KinematicsResult> {
+        crate::kinematics::inverse_kinematics(self, py, poses)
+    }
+
+    /// Tension distributions at one pose or a batch.
+    ///
+    /// ``wrenches``: the external wrench w_e on the platform (N, N·m), shape ``(DOF,)`` for all
+    /// poses or ``(N, DOF)``; default zero. The platform's gravity (robot file) is added, as the
+    /// ``cdpr tension`` command does. ``method``: one of ``cdpr.METHODS`` (default ``"l2"``,
+    /// the constrained minimum 2-norm, seed 000 eq. (6.17)). SOTDA options: ``direction``
+    /// (2 or 3 numbers), ``nu`` ∈ [0, 1], ``sotda_search`` (``"corners"``, ``"vertices"``,
+    /// ``"full"``). Infeasible poses are answers (NaN tensions and a reason), not errors.
+    #[pyo3(signature = (poses, wrenches=None, method="l2", *, direction=None, nu=1.0,
+        sotda_search="corners"))]
+    #[allow(clippy::too_many_arguments)]
+    fn tensions(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        wrenches: Option<&Bound<'_, PyAny>>,
+        method: &str,
+        direction: Option<Vec<f64>>,
+        nu: f64,
+        sotda_search: &str,
+    ) -> PyResult<crate::tension::TensionResult> {
+        crate::tension::tensions(
+            self,
+            py,
+            poses,
+            wrenches,
+            method,
+            direction,
+            nu,
+            sotda_search,
+        )
+    }
+
+    /// Forward kinematics: the pose at which the cables have the given lengths.
+    ///
+    /// Not available yet: the solver is being written in ``cdpr-kinematics`` (issue 14); this
+    /// method raises ``NotImplementedError`` until it lands.
+    #[pyo3(signature = (lengths, guess=None))]
+    fn forward_kinematics(
+        &self,
+        lengths: &Bound<'_, PyAny>,
+        guess: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let _ = (lengths, guess);
+        Err(pyo3::exceptions::PyNotImplementedError::new_err(
+            "forward_kinematics is not available yet: the forward-kinematics solver of \
+             cdpr-kinematics (issue 14) has not landed in this build",
+        ))
+    }
+
+    /// Capacity margin (Guay et al. 2014) of a required wrench set at one pose or a batch.
+    ///
+    /// The required set is centred on ``wrenches`` (``(DOF,)`` or ``(N, DOF)``, default zero)
+    /// plus the platform's gravity: a point, a box (``wrench_box``: DOF half-widths) or a ball
+    /// (``wrench_ball``: radius), as ``cdpr capacity`` takes them.
+    #[pyo3(signature = (poses, wrenches=None, *, wrench_box=None, wrench_ball=None))]
+    fn capacity_margin(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        wrenches: Option<&Bound<'_, PyAny>>,
+        wrench_box: Option<Vec<f64>>,
+        wrench_ball: Option<f64>,
+    ) -> PyResult<crate::polytope::CapacityResult> {
+        crate::polytope::capacity_margin(self, py, poses, wrenches, wrench_box, wrench_ball)
+    }
+
+    /// Maximum isotropic force (Krut, Company & Pierrot 2004) at one pose or a batch: the
+    /// largest force the platform resists in every direction with tensions in bounds.
+    fn isotropic_force(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+    ) -> PyResult<crate::polytope::IsotropicResult> {
+        crate::polytope::isotropic(self, py, poses)
+    }
+
+    /// Stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)) at one
+    /// pose or a batch, under ``tensions`` (``(n,)`` for every pose or ``(N, n)``, N).
+    /// ``axial_stiffness`` (E·S, N; scalar or ``(n,)``) overrides the robot's.
+    #[pyo3(signature = (poses, tensions, axial_stiffness=None))]
+    fn stiffness(
+        &self,
+        py: Python<'_>,
+        poses: &Bound<'_, PyAny>,
+        tensions: &Bound<'_, PyAny>,
+        axial_stiffness: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<crate::polytope::StiffnessResult> {
+        crate::polytope::stiffness(self, py, poses, tensions, axial_stiffness)
+    }
+
+    /// Constant-orientation workspace (seed 000 Algorithm 6.2 on a grid, or the chord method).
+    ///
+    /// ``resolution`` M: M intervals per side (default 50 in the plane, 20 in space);
+    /// ``box``: (xmin, xmax, ymin, ymax[, zmin, zmax]), default the frame anchors' bounding
+    /// box; ``orientation``: φ (planar) or (rx, ry, rz) (spatial); ``criteria``: a list (or a
+    /// comma string) of ``tension``, ``length[:L]``, ``det[:D]``, ``wrench-closure``,
+    /// ``capacity[:M]``, ``isotropic:F``, ``stiffness:K`` (default: tension, plus length and det
+    /// when the robot has those limits); ``method``: tension method (default exact when
+    /// n = DOF, else l2); ``wrench``: w_e (gravity is added); ``wrench_box``: half-widths of
+    /// the capacity criterion's box; ``boundary``: ``"grid"`` or ``"chord"`` (planar robots,
+    /// chord length ``chord``). The grid runs in parallel with the GIL released.
+    #[pyo3(signature = (resolution=None, r#box=None, orientation=None, criteria=None, method=None,
+        wrench=None, wrench_box=None, boundary="grid", chord=0.05))]
+    #[allow(clippy::too_many_arguments)]
+    fn workspace(
+        &self,
+        py: Python<'_>,
+        resolution: Option<usize>,
+        r#box: Option<Vec<f64>>,
+        orientation: Option<&Bound<'_, PyAny>>,
+        criteria: Option<&Bound<'_, PyAny>>,
+        method: Option<&str>,
+        wrench: Option<Vec<f64>>,
+        wrench_box: Option<Vec<f64>>,
+        boundary: &str,
+        chord: f64,
+    ) -> PyResult<crate::workspace::WorkspaceResult> {
+        let orientation = orientation
+            .map(|o| match o.extract::<f64>() {
+                Ok(phi) => Ok(vec![phi]),
+                Err(_) => o.extract::<Vec<f64>>(),
+            })
+            .transpose()?;
+        let criteria = criteria
+            .map(|c| match c.extract::<String>() {
+                Ok(s) => Ok(vec![s]),
+                Err(_) => c.extract::<Vec<String>>(),
+            })
+            .transpose()?;
+        crate::workspace::workspace(
+            self,
+            py,
+            resolution,
+            r#box,
+            orientation,
+            criteria,
+            method,
+            wrench,
+            wrench_box,
+            boundary,
+            chord,
+        )
+    }
+
+    /// Tensions along a path (the ``cdpr trajectory`` command): ``waypoints`` (K ≥ 2, DOF) is a
+    /// polyline sampled by ``samples`` (evenly in s; default 101) or ``step`` (largest pose
+    /// distance between samples); ``wrenches``: w_e, ``(DOF,)`` or one per waypoint
+    /// ``(K, DOF)`` interpolated linearly in s (gravity is added); ``method`` and the SOTDA
+    /// options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity when its jump
+    /// exceeds this many median jumps.
+    #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
+        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0))]
+    #[allow(clippy::too_many_arguments)]
+    fn trajectory(
+        &self,
+        py: Python<'_>,
+        waypoints: &Bound<'_, PyAny>,
+        samples: Option<usize>,
+        step: Option<f64>,
+        wrenches: Option<&Bound<'_, PyAny>>,
+        method: &str,
+        direction: Option<Vec<f64>>,
+        nu: f64,
+        sotda_search: &str,
+        jump_ratio: f64,
+    ) -> PyResult<crate::trajectory::TrajectoryResult> {
+        crate::trajectory::trajectory(
+            self,
+            py,
+            waypoints,
+            samples,
+            step,
+            wrenches,
+            method,
+            direction,
+            nu,
+            sotda_search,
+            jump_ratio,
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "Robot(name={:?}, motion={:?}, n_cables={}, dof={})",
+            self.desc.name,
+            self.motion(),
+            self.n_cables(),
+            self.dof()
+        )
+    }
+
+    /// Pickling (for process pools and Dask workers): the robot is rebuilt with
+    /// :meth:`from_anchors` from its arrays.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
+        let py = slf.py();
+        let this = slf.get();
+        if this.geometry().cables().iter().any(|c| c.pulley.is_some()) {
+            return Err(value_error(
+                "a robot with swivel pulleys cannot be pickled yet: pass its file path instead",
+            ));
+        }
+        let kwargs = PyDict::new(py);
+        kwargs.set_item("mass", this.desc.platform.mass)?;
+        kwargs.set_item("centre_of_mass", this.centre_of_mass(py))?;
+        kwargs.set_item("gravity", this.gravity(py))?;
+        kwargs.set_item("axial_stiffness", this.axial_stiffness(py))?;
+        kwargs.set_item("min_cable_length", this.min_cable_length())?;
+        kwargs.set_item("min_jacobian_det", this.min_jacobian_det())?;
+        kwargs.set_item("name", this.name())?;
+        let args = (
+            this.motion(),
+            this.frame(py),
+            this.platform(py),
+            this.t_min(py),
+            this.t_max(py),
+            kwargs,
+        );
+        let rebuild = py.import("cdpr")?.getattr("_rebuild_robot")?;
+        PyTuple::new(py, [rebuild.into_any(), args.into_pyobject(py)?.into_any()])
+    }
+}
+
+impl Robot {
+    fn space_vector<'py>(&self, py: Python<'py>, v: Vector3<f64>) -> Bound<'py, PyArrayDyn<f64>> {
+        let dim = self.motion_pattern().space_dim();
+        to_numpy(py, &[dim], v.as_slice()[..dim].to_vec())
+    }
+
+    fn cable_vectors<'py>(
+        &self,
+        py: Python<'py>,
+        f: impl Fn(&Cable) -> Vector3<f64>,
+    ) -> Bound<'py, PyArrayDyn<f64>> {
+        let dim = self.motion_pattern().space_dim();
+        let cables = self.geometry().cables();
+        let data = cables
+            .iter()
+            .flat_map(|c| f(c).as_slice()[..dim].to_vec())
+            .collect();
+        to_numpy(py, &[cables.len(), dim], data)
+    }
+}

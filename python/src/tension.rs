@@ -1,0 +1,287 @@
+//! # Tension distribution over a batch
+//!
+//! Per pose, tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max by one of the methods of
+//! `cdpr-tension` (the `cdpr tension` command at one pose). w_ext is the given wrench plus the
+//! platform's gravity at that pose (seed 002 eq. (1)). Every feasible answer is certified by
+//! the crate; an infeasible one comes with its reason.
+
+use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::kinematics::pose_at;
+use crate::robot::Robot;
+use crate::{map_poses, row, run_batch, value_error};
+use cdpr_kinematics::{MotionPattern, PoseKinematics};
+use cdpr_tension::{
+    Method, SotdaSettings, SotdaVariant, StiffnessData, TensionProblem, TensionSolver,
+};
+use nalgebra::{DMatrix, DVector, Vector3};
+use pyo3::prelude::*;
+use pyo3::types::PyList;
+use std::borrow::Cow;
+
+/// The names of the tension distribution methods (``cdpr.METHODS``).
+pub fn method_names() -> Vec<&'static str> {
+    Method::ALL.iter().map(|m| m.name()).collect()
+}
+
+/// A method from its command-line name.
+pub fn parse_method(name: &str) -> PyResult<Method> {
+    name.parse().map_err(|_| {
+        value_error(format!(
+            "method: unknown tension distribution method `{name}` (known: {})",
+            method_names().join(", ")
+        ))
+    })
+}
+
+/// The external wrenches of a batch: none (zero), one (DOF,) for every pose, or (N, DOF).
+pub struct Wrenches<'a> {
+    data: Cow<'a, [f64]>,
+    per_pose: bool,
+    dof: usize,
+}
+
+impl<'a> Wrenches<'a> {
+    pub fn at(&self, k: usize) -> &[f64] {
+        let k = if self.per_pose { k } else { 0 };
+        &self.data[k * self.dof..(k + 1) * self.dof]
+    }
+}
+
+/// Reads `wrenches` for `count` poses of a robot with `dof` DOF.
+pub fn read_wrenches<'py>(
+    arr: &'py Option<FloatArray<'py>>,
+    count: usize,
+    single: bool,
+    dof: usize,
+) -> PyResult<Wrenches<'py>> {
+    let Some(a) = arr else {
+        return Ok(Wrenches {
+            data: Cow::Owned(vec![0.0; dof]),
+            per_pose: false,
+            dof,
+        });
+    };
+    let per_pose = match a.shape() {
+        [d] if *d == dof => false,
+        [n, d] if *d == dof && *n == count && !single => true,
+        s => {
+            return Err(value_error(format!(
+                "wrenches: expected shape ({dof},) or ({count}, {dof}) (one external wrench per \
+                 pose, N and N·m), got {}",
+                shape_string(s)
+            )));
+        }
+    };
+    a.check_finite("wrenches")?;
+    Ok(Wrenches {
+        data: a.data(),
+        per_pose,
+        dof,
+    })
+}
+
+/// SOTDA settings from keyword arguments.
+pub fn sotda_settings(
+    direction: Option<Vec<f64>>,
+    nu: f64,
+    search: &str,
+) -> PyResult<SotdaSettings> {
+    let mut s = SotdaSettings {
+        nu,
+        ..SotdaSettings::default()
+    };
+    if let Some(d) = direction {
+        s.direction = match d[..] {
+            [x, y] => Vector3::new(x, y, 0.0),
+            [x, y, z] => Vector3::new(x, y, z),
+            _ => {
+                return Err(value_error(format!(
+                    "direction needs 2 or 3 numbers, got {}",
+                    d.len()
+                )));
+            }
+        };
+    }
+    s.variant = match search {
+        "corners" => SotdaVariant::Corners,
+        "vertices" => SotdaVariant::Vertices,
+        "full" => SotdaVariant::Full,
+        other => {
+            return Err(value_error(format!(
+                "sotda_search: `{other}` is not one of corners, vertices, full"
+            )));
+        }
+    };
+    s.validate().map_err(value_error)?;
+    Ok(s)
+}
+
+/// A solver for `method` (SOTDA with its settings), checking the robot has what it needs.
+pub fn solver(robot: &Robot, method: Method, sotda: SotdaSettings) -> PyResult<TensionSolver> {
+    if method == Method::Sotda {
+        if robot.desc.axial_stiffness.is_none() {
+            return Err(value_error(
+                "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot",
+            ));
+        }
+        Ok(TensionSolver::sotda(sotda))
+    } else {
+        Ok(TensionSolver::new(method))
+    }
+}
+
+/// Tension distributions of a batch.
+///
+/// ``tensions`` (N, n) in N, NaN where infeasible; ``feasible`` (N,) bool; ``residual`` (N,):
+/// ‖W t + w_ext‖∞ of the certified solution (NaN where infeasible); ``reason``: a list of N
+/// strings saying why a pose is infeasible (None where feasible); ``external_wrench`` (N, DOF):
+/// the w_ext used (given wrench plus gravity); ``method``. One pose in gives ``tensions`` (n,),
+/// ``feasible`` a bool, ``residual`` a float and ``reason`` a str or None.
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct TensionResult {
+    pub tensions: Py<PyAny>,
+    pub feasible: Py<PyAny>,
+    pub residual: Py<PyAny>,
+    pub reason: Py<PyAny>,
+    pub external_wrench: Py<PyAny>,
+    pub method: String,
+}
+
+#[pymethods]
+impl TensionResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "TensionResult(method={:?}, feasible={})",
+            self.method,
+            self.feasible.bind(py)
+        )
+    }
+}
+
+/// Per-task buffers of the tension loop.
+struct Buffers {
+    kin: PoseKinematics,
+    w: DMatrix<f64>,
+    w_ext: DVector<f64>,
+    t: DVector<f64>,
+    solver: TensionSolver,
+}
+
+#[allow(clippy::too_many_arguments)]
+pub fn tensions(
+    robot: &Robot,
+    py: Python<'_>,
+    poses: &Bound<'_, PyAny>,
+    wrenches: Option<&Bound<'_, PyAny>>,
+    method: &str,
+    direction: Option<Vec<f64>>,
+    nu: f64,
+    sotda_search: &str,
+) -> PyResult<TensionResult> {
+    let geo = robot.geometry();
+    let motion: MotionPattern = geo.motion();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let method = parse_method(method)?;
+    let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?;
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let warr = wrenches
+        .map(|w| FloatArray::new(w, "wrenches"))
+        .transpose()?;
+    let wr = read_wrenches(&warr, count, rows.single, dof)?;
+    let desc = &robot.desc;
+    let widths = [n, 1, 1, dof];
+    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let reasons = run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            &mut outs,
+            || Buffers {
+                kin: PoseKinematics::for_robot(geo),
+                w: DMatrix::zeros(dof, n),
+                w_ext: DVector::zeros(dof),
+                t: DVector::zeros(n),
+                solver: base_solver.clone(),
+            },
+            |b, k, j, blocks| {
+                let [t_out, feas, res, wext] = blocks else {
+                    unreachable!("four outputs")
+                };
+                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
+                let g = desc.platform.gravity_wrench(motion, &pose);
+                for (o, (a, g)) in b.w_ext.iter_mut().zip(wr.at(k).iter().zip(g.iter())) {
+                    *o = a + g;
+                }
+                row(wext, j, dof).copy_from_slice(b.w_ext.as_slice());
+                let infeasible = |t_out: &mut [f64], feas: &mut [f64], res: &mut [f64]| {
+                    row(t_out, j, n).fill(f64::NAN);
+                    feas[j] = 0.0;
+                    res[j] = f64::NAN;
+                };
+                if let Err(e) = geo.update_kinematics(&pose, &mut b.kin) {
+                    infeasible(t_out, feas, res);
+                    return Ok(Some(e.to_string()));
+                }
+                b.kin.write_wrench_matrix(&mut b.w);
+                let mut problem = TensionProblem::new(&b.w, &b.w_ext, &desc.bounds);
+                if let Some(es) = &desc.axial_stiffness {
+                    problem.stiffness = Some(StiffnessData {
+                        kinematics: &b.kin,
+                        axial_stiffness: es,
+                    });
+                }
+                match b
+                    .solver
+                    .solve_into(&problem, &mut b.t)
+                    .map_err(|e| format!("poses[{k}]: {e}"))?
+                {
+                    Ok(residual) => {
+                        row(t_out, j, n).copy_from_slice(b.t.as_slice());
+                        feas[j] = 1.0;
+                        res[j] = residual;
+                        Ok(None)
+                    }
+                    Err(reason) => {
+                        infeasible(t_out, feas, res);
+                        Ok(Some(reason.to_string()))
+                    }
+                }
+            },
+        )
+        .map_err(|e: String| value_error(e))
+    })?;
+    let mut outs = outs.into_iter();
+    let (t, f, r, we) = (
+        outs.next().unwrap(),
+        outs.next().unwrap(),
+        outs.next().unwrap(),
+        outs.next().unwrap(),
+    );
+    let feasible: Vec<bool> = f.iter().map(|&v| v == 1.0).collect();
+    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    Ok(if rows.single {
+        TensionResult {
+            tensions: to_numpy(py, &shape(&[n]), t).into_any().unbind(),
+            feasible: feasible[0]
+                .into_pyobject(py)?
+                .to_owned()
+                .into_any()
+                .unbind(),
+            residual: r[0].into_pyobject(py)?.into_any().unbind(),
+            reason: reasons[0].clone().into_pyobject(py)?.into_any().unbind(),
+            external_wrench: to_numpy(py, &shape(&[dof]), we).into_any().unbind(),
+            method: method.name().into(),
+        }
+    } else {
+        TensionResult {
+            tensions: to_numpy(py, &shape(&[n]), t).into_any().unbind(),
+            feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
+            residual: to_numpy(py, &[count], r).into_any().unbind(),
+            reason: PyList::new(py, reasons)?.into_any().unbind(),
+            external_wrench: to_numpy(py, &shape(&[dof]), we).into_any().unbind(),
+            method: method.name().into(),
+        }
+    })
+}

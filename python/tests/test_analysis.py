@@ -1,0 +1,150 @@
+"""Capacity margin, isotropic force, stiffness, workspace and trajectory against the CLI."""
+
+import numpy as np
+import pytest
+
+import cdpr
+from conftest import random_poses
+
+
+@pytest.mark.parametrize(
+    "name,wrench,shape",
+    [
+        ("krut-3", [0.0, -100.0], {}),
+        ("krut-4", [10.0, -50.0], {"wrench_ball": 20.0}),
+        ("tdpm-4", [0.0, -10.0, 0.0], {"wrench_box": [5.0, 5.0, 0.5]}),
+    ],
+)
+def test_capacity_margin_matches_cli(cli, robot_path, name, wrench, shape):
+    robot = cdpr.Robot.load(robot_path(name))
+    poses = random_poses(robot, 4, seed=4)
+    res = robot.capacity_margin(poses, wrench, **shape)
+    for k, q in enumerate(poses):
+        ref = cli("capacity", robot_path(name), pose=q, wrench=wrench, **shape)
+        assert res.feasible[k] == ref["feasible"]
+        assert res.capacity_margin[k] == pytest.approx(ref["capacity_margin"], rel=1e-12, abs=1e-9)
+        assert res.limiting_facet[k] == ref["limiting_facet"]["index"]
+    assert res.limiting_facet.dtype == np.int64 and res.feasible.dtype == np.bool_
+
+
+@pytest.mark.parametrize("name", ["krut-3", "tdpm-4", "ipanema-like-8"])
+def test_isotropic_force_matches_cli(cli, robot_path, name):
+    robot = cdpr.Robot.load(robot_path(name))
+    poses = random_poses(robot, 3, seed=5)
+    res = robot.isotropic_force(poses)
+    for k, q in enumerate(poses):
+        ref = cli("isotropic", robot_path(name), pose=q)
+        assert res.isotropic_force[k] == pytest.approx(ref["isotropic_force"], rel=1e-12, abs=1e-9)
+        assert res.wrench_radius[k] == pytest.approx(ref["wrench_radius"], rel=1e-12, abs=1e-9)
+        assert res.definition == ref["definition"].replace("(seed 001 eq. 19)", "(Krut, Company & Pierrot 2004, eq. 19)")
+
+
+def test_isotropic_force_of_krut_robot_is_the_published_value(robot_path):
+    # Krut, Company & Pierrot 2004, §IV-B: 225·√3 N at the centre of the 3-motor robot (the
+    # file gives the anchors to 1e-6 mm, hence the tolerance).
+    robot = cdpr.Robot.load(robot_path("krut-3"))
+    assert robot.isotropic_force([0.0, 0.0]).isotropic_force == pytest.approx(225 * 3**0.5, rel=1e-9)
+
+
+def test_stiffness_matches_cli(cli, robot_path):
+    path = robot_path("ipanema-like-8")
+    robot = cdpr.Robot.load(path)
+    poses = random_poses(robot, 3, seed=6)
+    t = robot.tensions(poses).tensions
+    res = robot.stiffness(poses, t)
+    assert res.stiffness.shape == (3, 6, 6)
+    for k, q in enumerate(poses):
+        ref = cli("stiffness", path, pose=q, tensions=t[k])
+        np.testing.assert_allclose(res.stiffness[k], ref["stiffness"], rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(res.passive[k], ref["passive"], rtol=1e-12, atol=1e-9)
+        np.testing.assert_allclose(res.active[k], ref["active"], rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(res.stiffness, res.passive + res.active, rtol=1e-12, atol=1e-9)
+    with pytest.raises(ValueError, match="no axial stiffness"):
+        cdpr.Robot.load(robot_path("tdpm-4")).stiffness([0, 0, 0], [10.0] * 4)
+
+
+@pytest.mark.parametrize(
+    "name,options",
+    [
+        ("tdpm-4", {"wrench": [0.0, -10.0, 0.0], "resolution": 20}),
+        ("tdpm-4", {"criteria": "tension,wrench-closure", "orientation": 0.1, "resolution": 15}),
+        ("krut-4", {"criteria": ["capacity:5"], "wrench_box": [10.0, 10.0], "resolution": 12}),
+        ("ipanema-like-8", {"resolution": 6}),
+    ],
+)
+def test_workspace_grid_matches_cli(cli, robot_path, name, options):
+    robot = cdpr.Robot.load(robot_path(name))
+    res = robot.workspace(**options)
+    flags = {"grid": options["resolution"]}
+    if "wrench" in options:
+        flags["wrench"] = options["wrench"]
+    if "criteria" in options:
+        c = options["criteria"]
+        flags["criteria"] = c if isinstance(c, str) else ",".join(c)
+    if "orientation" in options:
+        flags["orientation"] = [options["orientation"]]
+    if "wrench_box" in options:
+        flags["wrench_box"] = options["wrench_box"]
+    ref = cli("workspace", robot_path(name), **flags)
+    assert res.feasible_points == ref["feasible_points"]
+    assert res.total_points == ref["total_points"]
+    assert res.area == pytest.approx(ref["area"], rel=1e-12)
+    assert res.cell_area == pytest.approx(ref["cell_area"], rel=1e-12)
+    assert res.criteria == ref["criteria"] and res.method == ref["tension_method"]
+    np.testing.assert_allclose(res.external_wrench, ref["external_wrench"], atol=1e-12)
+    dim = robot.frame.shape[1]
+    assert res.feasible.shape == (options["resolution"] + 1,) * dim
+    assert res.feasible.dtype == np.bool_ and res.feasible.sum() == res.feasible_points
+    assert res.points.shape == (res.feasible_points, dim)
+    # Every feasible grid point passes the tension criterion when evaluated pose by pose.
+    if "criteria" not in options and dim == 2:
+        iy, ix = np.nonzero(res.feasible)
+        pts = np.column_stack([res.x[ix], res.y[iy], np.zeros(len(ix))])
+        assert robot.tensions(pts, options.get("wrench")).feasible.all()
+
+
+def test_workspace_chord_matches_cli(cli, robot_path):
+    path = robot_path("tdpm-4")
+    res = cdpr.Robot.load(path).workspace(boundary="chord", wrench=[0.0, -10.0, 0.0])
+    ref = cli("workspace", path, boundary="chord", wrench=[0.0, -10.0, 0.0])
+    assert res.area == pytest.approx(ref["area"], rel=1e-12)
+    assert len(res.boundaries) == len(ref["boundaries"])
+    for b, r in zip(res.boundaries, ref["boundaries"]):
+        np.testing.assert_allclose(b, r, atol=1e-12)
+
+
+def test_workspace_bad_input(robot_path):
+    robot = cdpr.Robot.load(robot_path("tdpm-4"))
+    with pytest.raises(ValueError, match="unknown criterion `tensoin`"):
+        robot.workspace(criteria="tensoin")
+    with pytest.raises(ValueError, match="box needs 4"):
+        robot.workspace(box=[0, 1])
+    with pytest.raises(ValueError, match="orientation"):
+        robot.workspace(orientation=float("nan"))
+    with pytest.raises(ValueError, match="chord"):
+        cdpr.Robot.load(robot_path("ipanema-like-8")).workspace(boundary="chord")
+
+
+def test_trajectory_matches_cli(cli, robot_path):
+    path = robot_path("ipanema-like-8")
+    robot = cdpr.Robot.load(path)
+    a, b = [-0.8, -0.5, 0.6, 0, 0, 0], [0.8, 0.5, 1.4, 0.1, 0, -0.1]
+    res = robot.trajectory([a, b], samples=21, wrenches=[0, 0, -50.0, 0, 0, 0])
+    ref = cli("trajectory", path, from_=a, to=b, samples=21, wrench=[0, 0, -50.0, 0, 0, 0])
+    np.testing.assert_allclose(res.s, ref["s"], atol=1e-15)
+    np.testing.assert_allclose(res.poses, ref["poses"], atol=1e-12)
+    for k, t in enumerate(ref["tensions"]):
+        assert res.feasible[k] == (t is not None) and res.reason[k] == ref["reasons"][k]
+        if t is not None:
+            np.testing.assert_allclose(res.tensions[k], t, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(res.max_jump, ref["max_jump"], rtol=1e-9, atol=1e-9)
+    assert res.discontinuities == ref["discontinuities"]
+    assert res.feasible_count == ref["feasible_count"]
+    with pytest.raises(ValueError, match="at least two poses"):
+        robot.trajectory([a])
+
+
+def test_forward_kinematics_says_it_is_not_there_yet(robot_path):
+    robot = cdpr.Robot.load(robot_path("tdpm-4"))
+    with pytest.raises(NotImplementedError, match="forward"):
+        robot.forward_kinematics(robot.inverse_kinematics([0, 0, 0]).lengths)
