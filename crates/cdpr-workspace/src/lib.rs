@@ -78,12 +78,15 @@ pub mod dextrous;
 pub mod discretisation;
 mod error;
 mod evaluator;
+mod mesh_files;
 mod region;
 pub mod synthesis;
 pub mod wrench_closure;
 
 pub use boundary_mesh::{BoundaryMesh, BoxFace, MeshSettings, MeshVertex, Shell, boundary_mesh};
-pub use chord::{ChordSettings, ChordWorkspace, InteriorPoint, Polygon, chord_workspace};
+pub use chord::{
+    ChordSettings, ChordWorkspace, InteriorPoint, Polygon, Section, chord_section, chord_workspace,
+};
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use dextrous::{
     CentralCheck, DextrousWorkspace, OrientationRange, dextrous_workspace,

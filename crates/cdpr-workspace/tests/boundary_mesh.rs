@@ -6,9 +6,11 @@ mod common;
 
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot, reference_robots::ipanema_like_8};
 use cdpr_tension::{Method, TensionBounds};
+use cdpr_workspace::ChordSettings;
 use cdpr_workspace::{
     BoundaryMesh, BoxFace, Criterion, CustomCriterion, Grid, MeshSettings, MeshVertex,
-    PoseEvaluator, Region, WorkspaceError, boundary_mesh, constant_orientation_workspace,
+    PoseEvaluator, Region, Section, WorkspaceError, boundary_mesh, chord_section,
+    constant_orientation_workspace,
 };
 use nalgebra::{DVector, Rotation3, Vector3};
 use proptest::prelude::*;
@@ -345,6 +347,83 @@ fn planar_robots_and_bad_settings_are_usage_errors() {
             &Rotation3::identity(),
             &Grid::new(0, cube(1.0)),
             &MeshSettings::default()
+        )
+        .is_err()
+    );
+}
+
+/// Plane sections by the chord method: a ball's section z = c is the disc of radius
+/// √(r² − c²); the half-space's section is a triangle of known area; planar robots are refused.
+#[test]
+fn plane_sections_by_the_chord_method() {
+    let ball = shape_eval(|u| (u - Vector3::new(0.1, 0.0, 0.0)).norm() < 0.7);
+    let settings = ChordSettings {
+        chord: 0.02,
+        ..ChordSettings::default()
+    };
+    for (axis, value) in [(2, 0.3), (1, -0.2), (0, 0.5)] {
+        let ws = chord_section(
+            &ball,
+            &Rotation3::identity(),
+            Section { axis, value },
+            &cube(1.0),
+            &settings,
+        )
+        .unwrap();
+        let offset = if axis == 0 { value - 0.1 } else { value };
+        let exact = std::f64::consts::PI * (0.49 - offset * offset);
+        assert_eq!(ws.boundaries.len(), 1);
+        assert!(
+            (ws.area - exact).abs() < 2e-3 * exact,
+            "{axis}: {} vs {exact}",
+            ws.area
+        );
+        // Every vertex on the sphere to ε.
+        for v in &ws.boundaries[0].vertices {
+            let p = Section { axis, value }.embed(nalgebra::Vector2::from(*v));
+            assert!(((p - Vector3::new(0.1, 0.0, 0.0)).norm() - 0.7).abs() < 1e-7);
+        }
+    }
+    // The half-space x + y + z ≤ 0.2 in [−1, 1]³ at y = 0.4: x + z ≤ c = −0.2 in [−1, 1]², the
+    // corner triangle below the line, legs c + 2 = 1.8: area 1.8²/2 = 1.62.
+    let n = Vector3::new(1.0, 1.0, 1.0);
+    let eval = half_space_robot(Vector3::new(0.2 / 3.0, 0.2 / 3.0, 0.2 / 3.0), n);
+    let ws = chord_section(
+        &eval,
+        &Rotation3::identity(),
+        Section {
+            axis: 1,
+            value: 0.4,
+        },
+        &cube(1.0),
+        &ChordSettings::default(),
+    )
+    .unwrap();
+    assert!((ws.area - 1.62).abs() < 1e-6, "{}", ws.area);
+    let planar = common::four_cable_eval(0, Method::L2);
+    assert!(matches!(
+        chord_section(
+            &planar,
+            &Rotation3::identity(),
+            Section {
+                axis: 2,
+                value: 0.0
+            },
+            &cube(1.0),
+            &ChordSettings::default()
+        ),
+        Err(WorkspaceError::NotSpatial { .. })
+    ));
+    assert!(
+        chord_section(
+            &ball,
+            &Rotation3::identity(),
+            Section {
+                axis: 2,
+                value: 1.5
+            },
+            &cube(1.0),
+            &settings
         )
         .is_err()
     );
