@@ -41,6 +41,9 @@
 //! or, if the coarse grid misses them, not at all: choose d and the seed resolution below the
 //! smallest feature of interest, as the thesis does (d = 0.03 and 0.02 for some cases).
 //!
+//! **Plane sections.** The same walk maps the section of a 3-D workspace by a plane x, y or
+//! z = c ([`chord_section`]): points of the plane are embedded in space, nothing else changes.
+//!
 //! ## References
 //! - Seed 000, §6.4.3: eqs. (6.25)–(6.27), Algorithm 6.3; §6.4.2 Algorithm 6.2 (seeding).
 //! - Du Plessis & Snyman (2001), the chord method for parallel manipulator workspaces
@@ -304,9 +307,139 @@ pub fn chord_workspace(
     eval.validate()?;
     let rotation =
         checked_orientation(motion, &Rotation3::from_axis_angle(&Vector3::z_axis(), phi))?;
+    chord_in_plane(eval, rotation, Section::PLANE_Z0, region, settings, phi)
+}
+
+/// The plane section `section` of the constant-orientation workspace of a robot moving in space
+/// (`point3`, `spatial`) at `orientation`, by the chord method within the box `region`: closed
+/// polygons in the plane's coordinates ([`Section::in_plane_axes`]), every vertex on the
+/// boundary of the section to ε^u. The 2-D analogue of [`crate::boundary_mesh()`], and an exact
+/// check of its slices. `phi` of the result is 0.
+///
+/// ```
+/// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+/// use cdpr_tension::TensionBounds;
+/// use cdpr_workspace::{chord_section, ChordSettings, Criterion, PoseEvaluator, Region, Section};
+/// use nalgebra::{Rotation3, Vector3};
+/// let c = |x: f64, y: f64, z: f64| Cable { frame: Vector3::new(x, y, z), platform: Vector3::zeros(), pulley: None };
+/// // Wrench closure of a point with four cables: the tetrahedron of the anchors.
+/// let robot = Robot::new(MotionPattern::Point3, vec![
+///     c(1.0, 1.0, 1.0), c(1.0, -1.0, -1.0), c(-1.0, 1.0, -1.0), c(-1.0, -1.0, 1.0),
+/// ]).unwrap();
+/// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(4, 0.0, 1.0).unwrap(),
+///                               vec![Criterion::WrenchClosure]).unwrap();
+/// let region = Region::cuboid(Vector3::repeat(-1.0), Vector3::repeat(1.0));
+/// let ws = chord_section(&eval, &Rotation3::identity(), Section { axis: 2, value: 0.0 },
+///                        &region, &ChordSettings::default()).unwrap();
+/// // At z = 0 the tetrahedron's section is the square |x| + |y| < 1 rotated by 45°: area 2.
+/// assert!((ws.area - 2.0).abs() < 1e-3);
+/// ```
+pub fn chord_section(
+    eval: &PoseEvaluator,
+    orientation: &Rotation3<f64>,
+    section: Section,
+    region: &Region,
+    settings: &ChordSettings,
+) -> Result<ChordWorkspace, WorkspaceError> {
+    let motion = eval.robot().motion();
+    if motion.space_dim() != 3 {
+        return Err(WorkspaceError::NotSpatial {
+            method: "a plane section",
+            motion: motion.name(),
+        });
+    }
+    region.validate(3)?;
+    section.validate(region)?;
+    settings.validate()?;
+    eval.validate()?;
+    let rotation = checked_orientation(motion, orientation)?;
+    let plane_region = section.plane_region(region);
+    chord_in_plane(eval, rotation, section, &plane_region, settings, 0.0)
+}
+
+/// A plane section `axis = value` of a 3-D box; in-plane coordinates (a, b) are the other two
+/// axes in order: (y, z) for x = c, (x, z) for y = c, (x, y) for z = c.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Section {
+    /// Axis normal to the plane (0 = x, 1 = y, 2 = z).
+    pub axis: usize,
+    /// Coordinate of the plane along that axis (m).
+    pub value: f64,
+}
+
+impl Section {
+    /// The plane z = 0 of robots moving in a plane.
+    pub const PLANE_Z0: Section = Section {
+        axis: 2,
+        value: 0.0,
+    };
+
+    /// The two in-plane axes, in order.
+    pub fn in_plane_axes(&self) -> [usize; 2] {
+        match self.axis {
+            0 => [1, 2],
+            1 => [0, 2],
+            _ => [0, 1],
+        }
+    }
+
+    /// The point of in-plane coordinates `u` in space.
+    #[inline]
+    pub fn embed(&self, u: Vector2<f64>) -> Vector3<f64> {
+        let [a, b] = self.in_plane_axes();
+        let mut p = Vector3::zeros();
+        p[a] = u.x;
+        p[b] = u.y;
+        p[self.axis.min(2)] = self.value;
+        p
+    }
+
+    /// The box's face in the plane, in in-plane coordinates (a planar [`Region`]).
+    pub fn plane_region(&self, region: &Region) -> Region {
+        let [a, b] = self.in_plane_axes();
+        Region::planar(region.min[a], region.max[a], region.min[b], region.max[b])
+    }
+
+    /// Checks axis < 3 and a finite value within the box along the axis.
+    pub fn validate(&self, region: &Region) -> Result<(), WorkspaceError> {
+        if self.axis > 2 {
+            return Err(WorkspaceError::InvalidSetting {
+                what: "section axis",
+                value: self.axis as f64,
+                expected: "0 (x), 1 (y) or 2 (z)",
+            });
+        }
+        if !self.value.is_finite() {
+            return Err(WorkspaceError::NotFinite {
+                what: "section coordinate",
+                value: self.value,
+            });
+        }
+        let (lo, hi) = (region.min[self.axis], region.max[self.axis]);
+        if !(lo..=hi).contains(&self.value) {
+            return Err(WorkspaceError::InvalidSetting {
+                what: "section coordinate",
+                value: self.value,
+                expected: "within the search box along the section's axis",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The chord method in the plane `plane`, within `region` (in-plane coordinates).
+fn chord_in_plane(
+    eval: &PoseEvaluator,
+    rotation: Rotation3<f64>,
+    plane: Section,
+    region: &Region,
+    settings: &ChordSettings,
+    phi: f64,
+) -> Result<ChordWorkspace, WorkspaceError> {
     let mut walker = Walker {
         eval: eval.clone(),
         region: *region,
+        plane,
         rotation,
         settings,
         evaluations: 0,
@@ -317,7 +450,7 @@ pub fn chord_workspace(
     let interior = match settings.interior {
         InteriorPoint::CoarseGrid => None,
         InteriorPoint::Given(p) => Some(Vector2::from(p)),
-        InteriorPoint::TensionCentering => tension_centering(eval, region, rotation)?,
+        InteriorPoint::TensionCentering => tension_centering(eval, region, plane, rotation)?,
     };
     if let Some(u0) = interior.filter(|&u| walker.inside(u)) {
         // Eq. (6.26) along s¹ = +x.
@@ -341,7 +474,7 @@ pub fn chord_workspace(
         let m = settings.seed_resolution;
         let grid = Grid::new(m, *region);
         let coarse = map_grid(eval, &grid, 2, |ev, u| {
-            ev.is_feasible_finite_rotation(&Pose::new(u, rotation))
+            ev.is_feasible_finite_rotation(&Pose::new(plane.embed(u.xy()), rotation))
         });
         walker.evaluations += coarse.len();
         let p = m + 1;
@@ -436,7 +569,10 @@ enum Step {
 /// Walks boundaries with one evaluator.
 struct Walker<'s> {
     eval: PoseEvaluator,
+    /// The search box in the plane's coordinates.
     region: Region,
+    /// The plane walked (z = 0 for robots moving in a plane).
+    plane: Section,
     rotation: Rotation3<f64>,
     settings: &'s ChordSettings,
     evaluations: usize,
@@ -445,13 +581,12 @@ struct Walker<'s> {
 impl Walker<'_> {
     /// In the region and feasible.
     fn inside(&mut self, u: Vector2<f64>) -> bool {
-        let p = Vector3::new(u.x, u.y, 0.0);
-        if !self.region.contains(&p, 2) {
+        if !self.region.contains(&Vector3::new(u.x, u.y, 0.0), 2) {
             return false;
         }
         self.evaluations += 1;
         self.eval
-            .is_feasible_finite_rotation(&Pose::new(p, self.rotation))
+            .is_feasible_finite_rotation(&Pose::new(self.plane.embed(u), self.rotation))
     }
 
     /// Bisection on the segment from feasible `a` to infeasible `b`: the feasible end once
@@ -695,6 +830,7 @@ fn wrap(a: f64) -> f64 {
 fn tension_centering(
     eval: &PoseEvaluator,
     region: &Region,
+    plane: Section,
     rotation: Rotation3<f64>,
 ) -> Result<Option<Vector2<f64>>, WorkspaceError> {
     let Some(wrench) = eval.criteria().iter().find_map(|c| match c {
@@ -710,11 +846,10 @@ fn tension_centering(
     let t_mean: DVector<f64> = (b.min() + b.max()) * 0.5;
     let robot = eval.robot().clone();
     let objective = |u: Vector2<f64>| -> f64 {
-        let p = Vector3::new(u.x, u.y, 0.0);
-        if !region.contains(&p, 2) {
+        if !region.contains(&Vector3::new(u.x, u.y, 0.0), 2) {
             return f64::INFINITY;
         }
-        let Ok(kin) = robot.inverse_kinematics(&Pose::new(p, rotation)) else {
+        let Ok(kin) = robot.inverse_kinematics(&Pose::new(plane.embed(u), rotation)) else {
             return f64::INFINITY;
         };
         let w = kin.wrench_matrix();
@@ -734,8 +869,8 @@ fn tension_centering(
     let size = 0.1 * (region.max.x - region.min.x).min(region.max.y - region.min.y);
     let u = nelder_mead(objective, centre, size, 400);
     let mut ev = eval.clone();
-    let pose = Pose::new(Vector3::new(u.x, u.y, 0.0), rotation);
-    Ok((region.contains(&pose.position, 2) && ev.check(&pose)?).then_some(u))
+    let pose = Pose::new(plane.embed(u), rotation);
+    Ok((region.contains(&Vector3::new(u.x, u.y, 0.0), 2) && ev.check(&pose)?).then_some(u))
 }
 
 /// Nelder–Mead simplex minimisation in the plane (standard coefficients 1, 2, ½, ½).

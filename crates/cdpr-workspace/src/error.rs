@@ -81,6 +81,14 @@ pub enum WorkspaceError {
         /// The robot's motion pattern.
         motion: &'static str,
     },
+    /// The method only applies to robots moving in space (`point3`, `spatial`).
+    #[error("{method} needs a robot moving in space (point3 or spatial), not `{motion}`")]
+    NotSpatial {
+        /// The method.
+        method: &'static str,
+        /// The robot's motion pattern.
+        motion: &'static str,
+    },
     /// The chord walk did not return to its first point within the allowed number of points.
     #[error("chord walk did not close after {points} boundary points")]
     ChordDidNotClose {

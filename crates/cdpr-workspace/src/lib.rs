@@ -17,6 +17,9 @@
 //!   ([`constant_orientation_workspace`], [`planar_workspace`]), parallel and deterministic.
 //! - [`chord`]: the chord method of §6.4.3 and Algorithm 6.3: boundary polygons of every region
 //!   and hole, bifurcation points, shoelace areas ([`chord_workspace`]).
+//! - [`boundary_mesh`]: the boundary of a 3-D workspace as a closed triangle mesh (marching
+//!   cubes over the grid verdicts, vertices bisected onto the boundary), its volume by the
+//!   divergence theorem ([`boundary_mesh()`]).
 //! - [`dextrous`]: eq. (6.28), the intersection over m_sl orientations, with the §6.5 check of
 //!   the two-extremes shortcut ([`dextrous_workspace`]).
 //! - [`wrench_closure`]: positive spanning of W (null-space tests, LP fallback).
@@ -69,12 +72,14 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+pub mod boundary_mesh;
 pub mod chord;
 mod criteria;
 pub mod dextrous;
 pub mod discretisation;
 mod error;
 mod evaluator;
+mod mesh_files;
 mod region;
 pub mod synthesis;
 pub mod wrench_closure;
@@ -83,7 +88,10 @@ pub mod wrench_closure;
 /// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
-pub use chord::{ChordSettings, ChordWorkspace, InteriorPoint, Polygon, chord_workspace};
+pub use boundary_mesh::{BoundaryMesh, BoxFace, MeshSettings, MeshVertex, Shell, boundary_mesh};
+pub use chord::{
+    ChordSettings, ChordWorkspace, InteriorPoint, Polygon, Section, chord_section, chord_workspace,
+};
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use dextrous::{
     CentralCheck, DextrousWorkspace, OrientationRange, dextrous_workspace,
