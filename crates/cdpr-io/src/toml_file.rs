@@ -5,6 +5,7 @@
 //! ```toml
 //! name = "tdpm-4"                       # free text
 //! motion = "planar"                     # point2 | planar | point3 | spatial
+//! home_pose = [0.0, 0.0, 0.0]           # optional: a reference pose (motion-pattern coordinates)
 //! [tension]
 //! min = 5.0                             # t_min, all cables (a cable may override with min/max keys)
 //! max = 100.0
@@ -21,18 +22,23 @@
 //!                                       #   { box = [lx, ly, lz], centre = [x, y, z] } (centre optional)
 //!                                       #   { vertices = [[x, y, z], ...] }  (their convex hull)
 //!                                       #   "attachments"  (hull of the cables' platform attachments)
+//! inertia = [[0.1, 0, 0], [0, 0.1, 0], [0, 0, 0.2]]  # optional: about the centre of mass, kg m²
 //! [[cables]]
+//! name = "cable 1"                      # optional free text (names may repeat)
 //! frame = [1.0, 0.5]                    # anchor on the fixed frame, base coordinates (2 or 3 numbers)
 //! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
 //! axial_stiffness = 60000.0             # optional E*S in N, for stiffness
+//! # optional swivel pulley at the frame anchor (spatial robots): radius (m) and the pulley frame
+//! # Q, rows as written (third column: swivel axis; first column: zero of the swivel angle)
+//! pulley = { radius = 0.05, orientation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }
 //! ```
 //!
 //! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
 
-use cdpr_kinematics::{Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Robot};
+use cdpr_kinematics::{Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Pulley, Robot};
 use cdpr_tension::TensionBounds;
 use cdpr_wrench::Platform;
-use nalgebra::Vector3;
+use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -73,6 +79,50 @@ pub enum RobotFileError {
         /// What is wrong.
         message: String,
     },
+    /// An XML element or attribute (CASPR, WireCenter) is missing, malformed or invalid.
+    #[error("{}:{line}: <{element}>{}: {message}", file.display(), attribute.as_ref().map(|a| format!(" attribute `{a}`")).unwrap_or_default())]
+    Element {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line of the element (or attribute).
+        line: usize,
+        /// The element's tag name.
+        element: String,
+        /// The attribute, if the problem is one attribute.
+        attribute: Option<String>,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file describes something cdpr does not model (multi-body robots, VSD cables, ...).
+    #[error("{}:{line}: <{element}>: not modelled by cdpr: {message}", file.display())]
+    Unsupported {
+        /// The file.
+        file: PathBuf,
+        /// 1-based line of the element.
+        line: usize,
+        /// The element's tag name.
+        element: String,
+        /// What it is and why it is not read.
+        message: String,
+    },
+    /// The file name does not say which format it is in.
+    #[error("{}: {message}", file.display())]
+    Format {
+        /// The file.
+        file: PathBuf,
+        /// What is wrong (expected extensions, missing companion file, ...).
+        message: String,
+    },
+    /// The robot cannot be written in the requested format without losing a modelled number.
+    #[error("{}: cannot write as {format}: {message}", file.display())]
+    Unrepresentable {
+        /// The file to be written.
+        file: PathBuf,
+        /// The format.
+        format: &'static str,
+        /// What the format cannot hold.
+        message: String,
+    },
 }
 
 /// Optional limits of the workspace definition (Table 6.4).
@@ -102,6 +152,15 @@ pub struct RobotDescription {
     /// The platform as a convex polyhedron in platform coordinates (`[platform] shape`), for
     /// the cable–platform interference test.
     pub platform_shape: Option<ConvexPolyhedron>,
+    /// Per-cable names as the file gives them (for display only: names may repeat, so cables are
+    /// never looked up by name).
+    pub cable_names: Vec<Option<String>>,
+    /// Platform inertia tensor about the centre of mass in platform axes (kg·m²), if the file
+    /// gives one.
+    pub inertia: Option<Matrix3<f64>>,
+    /// A reference pose in the motion pattern's coordinates, if the file gives one (CASPR's
+    /// `q_initial`, TOML `home_pose`).
+    pub home_pose: Option<Vec<f64>>,
     /// Non-fatal remarks (e.g. duplicate cables).
     pub warnings: Vec<String>,
 }
@@ -111,6 +170,7 @@ pub struct RobotDescription {
 struct RawFile {
     name: Option<String>,
     motion: Spanned<String>,
+    home_pose: Option<Spanned<Vec<f64>>>,
     tension: Spanned<RawTension>,
     limits: Option<RawLimits>,
     platform: Option<RawPlatform>,
@@ -138,6 +198,7 @@ struct RawPlatform {
     #[serde(alias = "center_of_mass")]
     centre_of_mass: Option<Spanned<Vec<f64>>>,
     gravity: Option<Spanned<Vec<f64>>>,
+    inertia: Option<Spanned<Vec<Vec<f64>>>>,
     shape: Option<Spanned<RawShape>>,
 }
 
@@ -167,6 +228,14 @@ struct RawCable {
     axial_stiffness: Option<Spanned<f64>>,
     min: Option<Spanned<f64>>,
     max: Option<Spanned<f64>>,
+    pulley: Option<Spanned<RawPulley>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawPulley {
+    radius: Spanned<f64>,
+    orientation: Spanned<Vec<Vec<f64>>>,
 }
 
 struct Ctx<'a> {
@@ -230,12 +299,25 @@ impl Ctx<'_> {
         }
         Ok(Vector3::new(x[0], x[1], if dim == 3 { x[2] } else { 0.0 }))
     }
+    fn matrix(
+        &self,
+        v: &Spanned<Vec<Vec<f64>>>,
+        key: &str,
+    ) -> Result<Matrix3<f64>, RobotFileError> {
+        let rows = v.get_ref();
+        if rows.len() != 3 || rows.iter().any(|r| r.len() != 3) {
+            return Err(self.invalid(v.span(), key, "must be 3 rows of 3 numbers"));
+        }
+        if let Some(bad) = rows.iter().flatten().find(|a| !a.is_finite()) {
+            return Err(self.invalid(v.span(), key, format!("{bad} is not a finite number")));
+        }
+        Ok(Matrix3::from_fn(|i, j| rows[i][j]))
+    }
 }
 
 impl RobotDescription {
-    /// Reads and validates a robot file.
-    pub fn load(path: impl AsRef<Path>) -> Result<Self, RobotFileError> {
-        let path = path.as_ref();
+    /// Reads and validates a cdpr TOML robot file.
+    pub(crate) fn load_toml(path: &Path) -> Result<Self, RobotFileError> {
         let text = std::fs::read_to_string(path).map_err(|source| RobotFileError::Io {
             file: path.to_path_buf(),
             source,
@@ -301,8 +383,8 @@ impl RobotDescription {
                 ),
             ));
         }
-        let (mut cables, mut mins, mut maxs, mut stiff) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut cables, mut mins, mut maxs, mut stiff, mut names) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, c) in cables_raw.iter().enumerate() {
             let key = |k: &str| format!("cables[{}].{k}", i + 1);
             let c = c.get_ref();
@@ -325,11 +407,40 @@ impl RobotDescription {
                 }
                 (None, false) => Vector3::zeros(),
             };
+            let pulley = match &c.pulley {
+                None => None,
+                Some(p) if motion != MotionPattern::Spatial => {
+                    return Err(ctx.invalid(
+                        p.span(),
+                        key("pulley"),
+                        format!(
+                            "swivel pulleys are modelled for spatial robots only, not `{motion}`"
+                        ),
+                    ));
+                }
+                Some(p) => {
+                    let p = p.get_ref();
+                    let radius = ctx.finite(&p.radius, &key("pulley.radius"))?;
+                    if radius <= 0.0 {
+                        return Err(ctx.invalid(
+                            p.radius.span(),
+                            key("pulley.radius"),
+                            format!("{radius} must be positive"),
+                        ));
+                    }
+                    let orientation = ctx.matrix(&p.orientation, &key("pulley.orientation"))?;
+                    Some(Pulley {
+                        radius,
+                        orientation,
+                    })
+                }
+            };
             cables.push(Cable {
                 frame,
                 platform,
-                pulley: None,
+                pulley,
             });
+            names.push(c.name.clone());
             let lo = c
                 .min
                 .as_ref()
@@ -368,7 +479,6 @@ impl RobotDescription {
                 }
                 stiff.push(v);
             }
-            let _ = &c.name;
         }
         if mins.iter().any(|&t| t < 0.0) {
             warnings.push(
@@ -430,6 +540,24 @@ impl RobotDescription {
             None => None,
             Some(shape) => Some(platform_shape(&ctx, shape, &robot, &mut warnings)?),
         };
+        let inertia = match raw.platform.as_ref().and_then(|p| p.inertia.as_ref()) {
+            None => None,
+            Some(m) => {
+                let i = ctx.matrix(m, "platform.inertia")?;
+                if (i - i.transpose()).amax() > 1e-12 * i.amax().max(1.0) {
+                    return Err(ctx.invalid(m.span(), "platform.inertia", "is not symmetric"));
+                }
+                Some(i)
+            }
+        };
+        let home_pose = match &raw.home_pose {
+            None => None,
+            Some(q) => {
+                cdpr_kinematics::Pose::from_coordinates(motion, q.get_ref())
+                    .map_err(|e| ctx.invalid(q.span(), "home_pose", e.to_string()))?;
+                Some(q.get_ref().clone())
+            }
+        };
         let bounds = TensionBounds::new(mins, maxs)
             .map_err(|e| ctx.invalid(raw.tension.span(), "tension", e.to_string()))?;
         Ok(Self {
@@ -445,6 +573,9 @@ impl RobotDescription {
             platform,
             axial_stiffness,
             platform_shape,
+            cable_names: names,
+            inertia,
+            home_pose,
             warnings,
         })
     }

@@ -42,10 +42,6 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
-/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
-/// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever
-/// nalgebra version your own project pins.
-pub use nalgebra;
 pub use error::KinematicsError;
 pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
@@ -53,6 +49,10 @@ pub use interference::{
 };
 pub use inverse_kinematics::{CableState, PoseKinematics};
 pub use motion::MotionPattern;
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
 pub use robot::{Cable, Pulley, Robot};

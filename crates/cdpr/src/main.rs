@@ -8,8 +8,9 @@ use std::process::ExitCode;
 
 /// Analysis and design of cable-driven parallel robots (CDPRs).
 ///
-/// Every command reads a robot file (TOML: see examples/robots/ and the `cdpr::RobotDescription`
-/// docs), prints a readable table, or one JSON object on stdout with --json, and writes a plot with
+/// Every command reads a robot file — cdpr TOML (see examples/robots/ and docs/robot-file.md), a
+/// CASPR model (NAME_cables.xml with NAME_bodies.xml beside it; --cable-set ID picks a cable set)
+/// or a WireCenter .wcrfx — prints a readable table, or one JSON object on stdout with --json, and writes a plot with
 /// --plot FILE.svg|FILE.png where it has one. Poses and wrenches are comma-separated numbers in the
 /// order of the robot's motion pattern: point2 (x,y), planar (x,y,phi), point3 (x,y,z),
 /// spatial (x,y,z,rx,ry,rz: XYZ Euler angles in radians). Negative numbers work: --pose -0.5,0.2,0.
@@ -20,6 +21,9 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// CASPR models: the <cable_set id> to read (default: the file's default_cable_set).
+    #[arg(long, global = true, value_name = "ID")]
+    cable_set: Option<String>,
 }
 
 #[derive(Subcommand)]
@@ -44,10 +48,15 @@ enum Command {
     Trajectory(cli::trajectory::Args),
     /// Platform displacement over the feasible polygon (seed 002 Fig. 4).
     StiffnessMap(cli::stiffness_map::Args),
+    /// Writes a robot file in another format: `cdpr convert IN -o OUT.toml|OUT.wcrfx`.
+    Convert(cli::convert::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let mut options = cdpr::io::LoadOptions::default();
+    options.cable_set = cli.cable_set;
+    cli::set_load_options(options);
     let result = match cli.command {
         Command::Kinematics(a) => cli::kinematics::run(a),
         Command::Stiffness(a) => cli::stiffness::run(a),
@@ -59,6 +68,7 @@ fn main() -> ExitCode {
         Command::Synthesize(a) => cli::synthesize::run(a),
         Command::Trajectory(a) => cli::trajectory::run(a),
         Command::StiffnessMap(a) => cli::stiffness_map::run(a),
+        Command::Convert(a) => cli::convert::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -175,5 +175,8 @@ fn every_crate_re_exports_one_nalgebra() {
     // Cable 1 from (0.1, 0) to (1, 0.5): length √(0.81 + 0.25).
     let l1 = kin.lengths().next().unwrap();
     assert!((l1 - (0.81f64 + 0.25).sqrt()).abs() < 1e-12);
-    assert_eq!(Cable::point2(v).frame, cdpr::nalgebra::Vector3::new(1.0, 0.5, 0.0));
+    assert_eq!(
+        Cable::point2(v).frame,
+        cdpr::nalgebra::Vector3::new(1.0, 0.5, 0.0)
+    );
 }

@@ -21,7 +21,7 @@ use std::path::PathBuf;
 /// `radius`}, `facets`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform pose (motion-pattern coordinates), e.g. --pose 0.1,-0.2,0.
     #[arg(long, allow_hyphen_values = true)]

@@ -42,7 +42,7 @@ convention `volume_convention` (\"cells\" or \"points\"), `area_cells` and `area
 #[derive(clap::Args)]
 #[command(after_long_help = LONG_HELP)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Orientation range MIN:MAX:M_SL (radians, M_SL ≥ 2 slices with endpoints), e.g.
     /// -0.1:0.1:3 (the thesis' 3-cable setting) or -0.2:0.2:21 (4 cables).

@@ -38,7 +38,7 @@ use std::path::PathBuf;
 /// `undefined`, `centre`}, `definition`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform pose (motion-pattern coordinates), e.g. --pose 0,0 (point2) or 0.1,-0.2,0
     /// (planar). Give either --pose or --grid.

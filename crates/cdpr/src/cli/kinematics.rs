@@ -17,7 +17,7 @@ use std::path::PathBuf;
 /// platform and its `penetration` in m).
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform pose, e.g. `--pose -0.5,0.2,0` for a planar robot (x, y, φ).
     #[arg(long, allow_hyphen_values = true)]

@@ -1,6 +1,7 @@
 //! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
 
 pub mod capacity;
+pub mod convert;
 pub mod dextrous;
 pub mod isotropic;
 pub mod kinematics;
@@ -12,9 +13,19 @@ pub mod trajectory;
 pub mod workspace;
 
 use cdpr::RobotDescription;
+use cdpr::io::LoadOptions;
 use cdpr::kinematics::Pose;
 use nalgebra::{DMatrix, DVector};
 use std::path::Path;
+use std::sync::OnceLock;
+
+/// Options every command applies when it loads its robot file (`--cable-set`).
+static LOAD_OPTIONS: OnceLock<LoadOptions> = OnceLock::new();
+
+/// Sets the load options once, from the global command-line flags.
+pub fn set_load_options(options: LoadOptions) {
+    let _ = LOAD_OPTIONS.set(options);
+}
 
 /// Any error a command reports (printed on stderr, exit code 2).
 pub type CliError = Box<dyn std::error::Error>;
@@ -47,9 +58,10 @@ impl std::ops::Deref for Numbers {
     }
 }
 
-/// Loads a robot file and prints its warnings on stderr.
+/// Loads a robot file (TOML, CASPR or WireCenter, by extension; `--cable-set` applied) and
+/// prints its warnings on stderr.
 pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {
-    let robot = RobotDescription::load(path)?;
+    let robot = RobotDescription::load_with(path, LOAD_OPTIONS.get_or_init(LoadOptions::default))?;
     for w in &robot.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// JSON fields: `stiffness` (rows of K), `passive` (Kp), `active` (Ka).
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform pose (motion-pattern coordinates).
     #[arg(long, allow_hyphen_values = true)]

@@ -33,7 +33,7 @@ use std::path::PathBuf;
 /// the polygon), `unit`; `feasible` false with `reason` when the polygon is empty.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML) with redundancy 2 and `axial_stiffness` on every cable.
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx with redundancy 2 and `axial_stiffness` on every cable.
     robot: PathBuf,
     /// Platform pose (motion-pattern coordinates), e.g. --pose 1.5,0.35,0.59,0,0,0.
     #[arg(long, allow_hyphen_values = true)]

@@ -57,7 +57,7 @@ JSON: `design` (optimised angles, rad), `area` (its A_d, m²), `evaluations` {`f
 #[derive(clap::Args)]
 #[command(after_long_help = LONG_HELP)]
 pub struct Args {
-    /// Robot file (TOML), planar: platform attachments, limits and gravity are used.
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx, planar: platform attachments, limits and gravity are used.
     robot: PathBuf,
     /// Orientation range MIN:MAX:M_SL of the dextrous workspace, e.g. -0.1:0.1:3.
     #[arg(long, allow_hyphen_values = true, value_name = "MIN:MAX:M_SL")]
@@ -296,10 +296,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         args.optimizer,
         settings.min_separation
     );
-    println!(
-        "A_d in m², {}",
-        VolumeConvention::Points.describe()
-    );
+    println!("A_d in m², {}", VolumeConvention::Points.describe());
     println!(
         "start    d0 = [{}]  A_d = {:.6}",
         fmt(&args.start),

@@ -24,7 +24,7 @@ use std::path::PathBuf;
 /// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform pose (motion-pattern coordinates), e.g. --pose 0.1,-0.2,0.
     #[arg(long, allow_hyphen_values = true)]

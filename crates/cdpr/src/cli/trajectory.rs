@@ -46,7 +46,7 @@ use std::path::PathBuf;
 /// `method`, `poses`, `t_min`, `t_max`.
 #[derive(clap::Args)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Start pose (motion-pattern coordinates), e.g. --from 1.2,0.35,0.59,0,0,0.
     #[arg(

@@ -69,7 +69,7 @@ outlined (3-D robots: the z-slice of the grid nearest the drawn pose).";
 #[derive(clap::Args)]
 #[command(after_long_help = LONG_HELP)]
 pub struct Args {
-    /// Robot file (TOML).
+    /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
     /// Platform orientation: φ (rad) for planar robots, rx,ry,rz (XYZ Euler angles, rad) for
     /// spatial robots; point robots have none (default 0).
