@@ -4,6 +4,7 @@ pub mod capacity;
 pub mod dextrous;
 pub mod isotropic;
 pub mod kinematics;
+pub mod orientations;
 pub mod stiffness;
 pub mod stiffness_map;
 pub mod synthesize;
