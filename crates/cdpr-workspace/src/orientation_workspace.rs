@@ -279,8 +279,10 @@ impl OrientationSet {
 impl fmt::Display for OrientationSet {
     /// The set in the syntax [`OrientationSet`]'s `FromStr` reads (degrees).
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        // Degrees rounded to 1e-9 (the radians of `-30` print as −29.999999999999996°).
+        let deg = |x: f64| (x.to_degrees() * 1e9).round() / 1e9;
         let range = |a: f64, b: f64| {
-            let (a, b) = (a.to_degrees(), b.to_degrees());
+            let (a, b) = (deg(a), deg(b));
             if a == b {
                 format!("{a}")
             } else {
@@ -303,7 +305,7 @@ impl fmt::Display for OrientationSet {
             } => write!(
                 f,
                 "tilt:{},torsion={},n={samples},azimuths={azimuths}",
-                max_tilt.to_degrees(),
+                deg(*max_tilt),
                 range(torsion.0, torsion.1)
             ),
         }
