@@ -373,16 +373,18 @@ fn task_len(points: usize, threads: usize) -> usize {
         .max(MIN_POINTS_PER_TASK)
 }
 
-/// Evaluates `f` at every grid point in parallel, in grid order.
+/// Evaluates `f` at every grid point in parallel, in grid order (`eval`: a [`PoseEvaluator`] or
+/// any per-thread state, e.g. an orientation test).
 ///
 /// The points are cut into contiguous tasks ([`task_len`]); each rayon thread clones the
 /// evaluator once, on its first task, and reuses it (warm buffers) for its later tasks, however
 /// many tasks work-stealing gives it. Each verdict depends on its point only, so the result does
 /// not depend on the number of threads nor on which thread evaluates which point.
-pub(crate) fn map_grid<T, F>(eval: &PoseEvaluator, grid: &Grid, dim: usize, f: F) -> Vec<T>
+pub(crate) fn map_grid<S, T, F>(eval: &S, grid: &Grid, dim: usize, f: F) -> Vec<T>
 where
+    S: Clone + Send + Sync,
     T: Send + Copy + Default,
-    F: Fn(&mut PoseEvaluator, Vector3<f64>) -> T + Sync,
+    F: Fn(&mut S, Vector3<f64>) -> T + Sync,
 {
     let axes = Axes::new(grid, dim);
     let mut out = vec![T::default(); grid.point_count(dim)];
@@ -391,14 +393,12 @@ where
     // One slot per thread of the pool running the tasks; a thread only ever locks its own slot,
     // so the lock is uncontended. `try_lock` fails only if a criterion re-enters rayon and this
     // thread picks up another task meanwhile: that task then uses a clone of its own.
-    let evaluators: Vec<Mutex<Option<PoseEvaluator>>> =
-        (0..threads).map(|_| Mutex::new(None)).collect();
+    let evaluators: Vec<Mutex<Option<S>>> = (0..threads).map(|_| Mutex::new(None)).collect();
     out.par_chunks_mut(len)
         .enumerate()
         .for_each(|(task, slots)| {
-            let mut run = |ev: &mut PoseEvaluator| {
-                axes.for_each_point(task * len, slots, |slot, u| *slot = f(ev, u))
-            };
+            let mut run =
+                |ev: &mut S| axes.for_each_point(task * len, slots, |slot, u| *slot = f(ev, u));
             let own = rayon::current_thread_index().unwrap_or(0) % threads;
             match evaluators[own].try_lock() {
                 Ok(mut slot) => run(slot.get_or_insert_with(|| eval.clone())),

@@ -89,6 +89,14 @@ pub enum WorkspaceError {
         /// The robot's motion pattern.
         motion: &'static str,
     },
+    /// The method only applies to `spatial` robots (six degrees of freedom, with orientation).
+    #[error("{method} needs a `spatial` robot, not `{motion}`")]
+    NotSixDof {
+        /// The method.
+        method: &'static str,
+        /// The robot's motion pattern.
+        motion: &'static str,
+    },
     /// The chord walk did not return to its first point within the allowed number of points.
     #[error("chord walk did not close after {points} boundary points")]
     ChordDidNotClose {

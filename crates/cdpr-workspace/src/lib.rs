@@ -23,6 +23,8 @@
 //! - [`dextrous`]: eq. (6.28), the intersection over m_sl orientations, with the §6.5 check of
 //!   the two-extremes shortcut ([`dextrous_workspace`]).
 //! - [`wrench_closure`]: positive spanning of W (null-space tests, LP fallback).
+//! - [`orientation_workspace`]: total-orientation, maximal and at-a-position orientation
+//!   workspaces of spatial robots over an [`OrientationSet`] (Euler box or tilt cone).
 //! - [`synthesis`]: dimensional synthesis for maximal dextrous workspace (§6.6).
 //!
 //! ```
@@ -80,6 +82,7 @@ pub mod discretisation;
 mod error;
 mod evaluator;
 mod mesh_files;
+pub mod orientation_workspace;
 mod region;
 pub mod synthesis;
 pub mod wrench_closure;
@@ -102,4 +105,9 @@ pub use discretisation::{
 };
 pub use error::WorkspaceError;
 pub use evaluator::PoseEvaluator;
+pub use orientation_workspace::{
+    LimitingOrientation, OrientationGridWorkspace, OrientationSet, OrientationSyntaxError,
+    OrientationTest, OrientationWorkspaceKind, SampledOrientation, orientation_workspace,
+    tilt_torsion_rotation,
+};
 pub use region::Region;

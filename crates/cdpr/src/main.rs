@@ -42,6 +42,8 @@ enum Command {
     Workspace(cli::workspace::Args),
     /// Dextrous workspace over a range of orientations (eq. 6.28).
     Dextrous(cli::dextrous::Args),
+    /// Orientation workspace at a position: the feasible orientations of a sampled set (spatial robots).
+    Orientations(cli::orientations::Args),
     /// Dimensional synthesis: frame anchor angles maximising the dextrous workspace (eq. 6.29).
     Synthesize(cli::synthesize::Args),
     /// Tensions along a path: profiles, infeasible samples, largest jumps.
@@ -65,6 +67,7 @@ fn main() -> ExitCode {
         Command::Capacity(a) => cli::capacity::run(a),
         Command::Workspace(a) => cli::workspace::run(a),
         Command::Dextrous(a) => cli::dextrous::run(a),
+        Command::Orientations(a) => cli::orientations::run(a),
         Command::Synthesize(a) => cli::synthesize::run(a),
         Command::Trajectory(a) => cli::trajectory::run(a),
         Command::StiffnessMap(a) => cli::stiffness_map::run(a),

@@ -5,6 +5,7 @@ pub mod convert;
 pub mod dextrous;
 pub mod isotropic;
 pub mod kinematics;
+pub mod orientations;
 pub mod stiffness;
 pub mod stiffness_map;
 pub mod synthesize;

@@ -9,8 +9,8 @@ use cdpr::plot::WorkspacePlot;
 use cdpr::polytope::RequiredWrenchSet;
 use cdpr::tension::Method;
 use cdpr::workspace::{
-    CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, PoseEvaluator,
-    Region, VolumeConvention, chord_workspace,
+    CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, OrientationSet,
+    OrientationWorkspaceKind, PoseEvaluator, Region, VolumeConvention, chord_workspace,
 };
 use indicatif::ProgressBar;
 use nalgebra::{DVector, Rotation3, Unit, Vector3};
@@ -61,13 +61,22 @@ JSON (chord): `area`, `boundaries` (closed polygons [[x, y], …]: counter-clock
 regions, clockwise around holes), `signed_areas`, `bifurcations` (corner points per polygon),
 `abandoned`, `evaluations`, `chord`.
 
+Orientation workspaces (spatial robots): --orientations SET samples a set of orientations
+(syntax below) and --kind picks the workspace: `total` (default; positions where every
+orientation of the set is feasible; the limiting orientation — the first to fail going
+outwards — is reported per boundary grid point) or `maximal` (some orientation feasible).
+JSON adds `kind`, `orientation_set`, `orientation_count`, `angle_names`,
+`limiting_orientations` ([{`point` (m, on the boundary to 1e-9 of a grid edge),
+`angles_deg`}]) and `limiting_summary` ([{`angles_deg`, `boundary_points`}], most frequent
+first). `cdpr orientations` gives the feasible orientations at one position.
+
 --plot FILE.svg|png draws the frame anchors, the cables and platform at --draw-pose (default:
 the centre of the box at the orientation), the feasible cells filled and the chord boundaries
 outlined (3-D robots: the z-slice of the grid nearest the drawn pose).";
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
-#[command(after_long_help = LONG_HELP)]
+#[command(after_long_help = format!("{LONG_HELP}\n\n{}", super::orientations::SYNTAX_HELP))]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -109,6 +118,14 @@ pub struct Args {
     /// Write the workspace figure (.svg or .png).
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Spatial robots: a sampled orientation set (degrees), e.g.
+    /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` or `tilt:20,torsion=-30..30,n=5`; the
+    /// workspace is then the total-orientation or maximal one (--kind).
+    #[arg(long, conflicts_with = "orientation")]
+    orientations: Option<OrientationSet>,
+    /// With --orientations: `total` (every orientation feasible; default) or `maximal` (some).
+    #[arg(long, value_parser = ["total", "maximal"], requires = "orientations")]
+    kind: Option<String>,
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -733,6 +750,26 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let rot = rotation(motion, args.orientation.as_deref())?;
     let region = region(robot, args.area.as_deref(), "--box")?;
     let m = resolution(args.grid, dim, 50)?;
+    if let Some(set) = &args.orientations {
+        if args.boundary != "grid" {
+            return Err("--orientations runs on the grid (--boundary grid)".into());
+        }
+        let kind = match args.kind.as_deref() {
+            Some("maximal") => OrientationWorkspaceKind::Maximal,
+            _ => OrientationWorkspaceKind::Total,
+        };
+        return super::orientations::run_workspace(
+            &desc,
+            &setup,
+            set,
+            kind,
+            &region,
+            m,
+            args.plot.as_deref(),
+            args.draw_pose.as_deref(),
+            args.json,
+        );
+    }
     let eval = setup.evaluator(&desc, robot.clone(), &rot)?;
     let w_ext = setup.external_wrench(&desc, &rot)?;
     let orientation = match (&args.orientation, motion) {
