@@ -41,13 +41,13 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
+pub use error::KinematicsError;
+pub use inverse_kinematics::{CableState, PoseKinematics};
+pub use motion::MotionPattern;
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
-pub use error::KinematicsError;
-pub use inverse_kinematics::{CableState, PoseKinematics};
-pub use motion::MotionPattern;
 pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
 pub use robot::{Cable, Pulley, Robot};

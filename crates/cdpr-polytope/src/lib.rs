@@ -65,10 +65,6 @@ mod input;
 pub mod isotropic_force;
 pub mod krut_vertex_projection;
 
-/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
-/// re-export (`cdpr_polytope::nalgebra::Vector3`) so that your types are the crate's types whatever
-/// nalgebra version your own project pins.
-pub use nalgebra;
 pub use available_wrench_set::{AvailableWrenchSet, Facet};
 pub use capacity_margin::{
     CapacityMargin, CapacityMarginEvaluator, RequiredWrenchSet, capacity_margin, limiting_facet,
@@ -76,6 +72,10 @@ pub use capacity_margin::{
 pub use ellipse::{InscribedEllipse, largest_inscribed_ellipse};
 pub use error::PolytopeError;
 pub use isotropic_force::{
-    IsotropicForce, isotropic_force, isotropic_force_of, isotropic_wrench_radius,
-    isotropic_wrench_radius_of,
+    IsotropicForce, isotropic_force, isotropic_force_of, isotropic_force_of_under_load,
+    isotropic_force_under_load, isotropic_wrench_radius, isotropic_wrench_radius_of,
 };
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_polytope::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;

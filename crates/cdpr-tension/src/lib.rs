@@ -78,10 +78,6 @@ pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
 
-/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
-/// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
-/// nalgebra version your own project pins.
-pub use nalgebra;
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};
 pub use closed_form::{FeasibleInterval, feasible_interval};
@@ -89,6 +85,10 @@ pub use error::TensionError;
 pub use feasible_polygon::FeasiblePolygon;
 pub use interior_point::{Objective, interior_point};
 pub use method::Method;
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use outcome::{Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution};
 pub use solver::TensionSolver;
 pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};

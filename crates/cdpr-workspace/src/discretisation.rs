@@ -474,7 +474,11 @@ mod tests {
         let region = Region::cuboid(Vector3::new(-2.0, -1.5, 0.0), Vector3::new(2.0, 1.5, 2.0));
         let grid = Grid::new(20, region);
         let ws = GridWorkspace::from_verdicts(grid, 3, vec![true; 21 * 21 * 21]);
-        assert!((ws.area - 9261.0 * 24.0 / 8000.0).abs() < 1e-9, "{}", ws.area);
+        assert!(
+            (ws.area - 9261.0 * 24.0 / 8000.0).abs() < 1e-9,
+            "{}",
+            ws.area
+        );
         assert!(ws.area > 27.7);
         assert_eq!(ws.clipped_area, 24.0);
         assert_eq!(ws.measure(VolumeConvention::Cells), 24.0);
@@ -496,7 +500,10 @@ mod tests {
         assert!((ws.area - 51.0 * 51.0 * 0.0016).abs() < 1e-12);
         let none = GridWorkspace::from_verdicts(grid, 2, vec![false; 51 * 51]);
         assert_eq!(none.clipped_area, 0.0);
-        assert_eq!("points".parse::<VolumeConvention>(), Ok(VolumeConvention::Points));
+        assert_eq!(
+            "points".parse::<VolumeConvention>(),
+            Ok(VolumeConvention::Points)
+        );
         assert!("volume".parse::<VolumeConvention>().is_err());
     }
 

@@ -79,10 +79,6 @@ mod region;
 pub mod synthesis;
 pub mod wrench_closure;
 
-/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
-/// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
-/// nalgebra version your own project pins.
-pub use nalgebra;
 pub use chord::{ChordSettings, ChordWorkspace, InteriorPoint, Polygon, chord_workspace};
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use dextrous::{
@@ -94,4 +90,8 @@ pub use discretisation::{
 };
 pub use error::WorkspaceError;
 pub use evaluator::PoseEvaluator;
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use region::Region;

@@ -27,12 +27,12 @@ mod error;
 mod external_wrench;
 mod stiffness;
 
+pub use error::WrenchError;
+pub use external_wrench::{Platform, STANDARD_GRAVITY, wrench_from_slice};
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_wrench::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
-pub use error::WrenchError;
-pub use external_wrench::{Platform, STANDARD_GRAVITY, wrench_from_slice};
 pub use stiffness::{
     active_stiffness, passive_stiffness, stiffness_matrix, wrench_components,
     write_stiffness_matrix,

@@ -25,11 +25,11 @@
 pub mod plot;
 
 pub use cdpr_io as io;
-/// The nalgebra of the whole stack (`cdpr::nalgebra::Vector3`): no need to pin its version.
-pub use nalgebra;
 pub use cdpr_io::{Limits, RobotDescription, RobotFileError};
 pub use cdpr_kinematics as kinematics;
 pub use cdpr_polytope as polytope;
 pub use cdpr_tension as tension;
 pub use cdpr_workspace as workspace;
 pub use cdpr_wrench as wrench;
+/// The nalgebra of the whole stack (`cdpr::nalgebra::Vector3`): no need to pin its version.
+pub use nalgebra;

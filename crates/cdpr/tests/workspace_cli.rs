@@ -457,7 +457,11 @@ fn all_feasible_3d_grid_volume_is_the_box_volume() {
     let v = run("cells");
     assert_eq!(v["feasible_points"], 21 * 21 * 21);
     let box_volume = 0.4 * 0.6 * 0.2;
-    assert!((f(&v["volume"]) - box_volume).abs() < 1e-12, "{}", v["volume"]);
+    assert!(
+        (f(&v["volume"]) - box_volume).abs() < 1e-12,
+        "{}",
+        v["volume"]
+    );
     assert_eq!(v["volume_convention"], "cells");
     let p = run("points");
     assert_eq!(p["volume_convention"], "points");

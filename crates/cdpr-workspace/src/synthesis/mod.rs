@@ -373,7 +373,10 @@ mod tests {
             }
         );
         let msg = s.check_feasible_separation(3).unwrap_err().to_string();
-        assert!(msg.contains("9.0000 rad") && msg.contains("2.0944 rad"), "{msg}");
+        assert!(
+            msg.contains("9.0000 rad") && msg.contains("2.0944 rad"),
+            "{msg}"
+        );
         let s = SynthesisSettings {
             min_separation: std::f64::consts::TAU / 3.0,
             ..SynthesisSettings::default()

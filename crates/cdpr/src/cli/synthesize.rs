@@ -296,10 +296,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         args.optimizer,
         settings.min_separation
     );
-    println!(
-        "A_d in m², {}",
-        VolumeConvention::Points.describe()
-    );
+    println!("A_d in m², {}", VolumeConvention::Points.describe());
     println!(
         "start    d0 = [{}]  A_d = {:.6}",
         fmt(&args.start),
