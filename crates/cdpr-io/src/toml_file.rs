@@ -271,6 +271,19 @@ impl Ctx<'_> {
             Err(self.invalid(v.span(), key, format!("{x} is not a finite number")))
         }
     }
+    /// A t_max: finite, or `inf` (an unlimited cable; TOML spells it `inf`).
+    fn upper_bound(&self, v: &Spanned<f64>, key: &str) -> Result<f64, RobotFileError> {
+        let x = *v.get_ref();
+        if x.is_finite() || x == f64::INFINITY {
+            Ok(x)
+        } else {
+            Err(self.invalid(
+                v.span(),
+                key,
+                format!("{x} is not a number of newtons (finite, or inf for no upper limit)"),
+            ))
+        }
+    }
     fn non_negative(&self, v: &Spanned<f64>, key: &str) -> Result<f64, RobotFileError> {
         let x = self.finite(v, key)?;
         if x >= 0.0 {
@@ -315,6 +328,39 @@ impl Ctx<'_> {
     }
 }
 
+/// The dotted key of the `key = value` line holding byte `offset` of `text`, with its table:
+/// `tension.max`, `cables[2].frame` (cables counted from 1); `None` off such a line.
+fn key_at(text: &str, offset: usize) -> Option<String> {
+    let offset = offset.min(text.len());
+    let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
+    let line = text[start..].lines().next()?;
+    let (key, _) = line.split_once('=')?;
+    let key = key.trim().trim_matches('"');
+    if key.is_empty() || key.starts_with('[') || key.starts_with('#') {
+        return None;
+    }
+    let mut table = None;
+    let mut cables = 0;
+    for l in text[..start].lines() {
+        let l = l.trim();
+        if let Some(name) = l.strip_prefix("[[").and_then(|r| r.split_once("]]")) {
+            let name = name.0.trim().to_string();
+            if name == "cables" {
+                cables += 1;
+                table = Some(format!("cables[{cables}]"));
+            } else {
+                table = Some(name);
+            }
+        } else if let Some(name) = l.strip_prefix('[').and_then(|r| r.split_once(']')) {
+            table = Some(name.0.trim().to_string());
+        }
+    }
+    Some(match table {
+        Some(t) => format!("{t}.{key}"),
+        None => key.to_string(),
+    })
+}
+
 impl RobotDescription {
     /// Reads and validates a cdpr TOML robot file.
     pub(crate) fn load_toml(path: &Path) -> Result<Self, RobotFileError> {
@@ -351,10 +397,17 @@ impl RobotDescription {
             file: file.as_ref(),
             text,
         };
-        let raw: RawFile = toml::from_str(text).map_err(|e| RobotFileError::Syntax {
-            file: ctx.file.to_path_buf(),
-            line: e.span().map(|s| ctx.line(s)).unwrap_or(0),
-            message: e.message().trim().to_string(),
+        let raw: RawFile = toml::from_str(text).map_err(|e| {
+            let message = e.message().trim().to_string();
+            match e.span().and_then(|s| key_at(text, s.start).map(|k| (s, k))) {
+                // A value of the wrong type: name its key.
+                Some((span, key)) => ctx.invalid(span, key, message),
+                None => RobotFileError::Syntax {
+                    file: ctx.file.to_path_buf(),
+                    line: e.span().map(|s| ctx.line(s)).unwrap_or(0),
+                    message,
+                },
+            }
         })?;
         let motion: MotionPattern =
             raw.motion.get_ref().parse().map_err(|e: KinematicsError| {
@@ -362,7 +415,7 @@ impl RobotDescription {
             })?;
         let dim = motion.space_dim();
         let t_min = ctx.finite(&raw.tension.get_ref().min, "tension.min")?;
-        let t_max = ctx.finite(&raw.tension.get_ref().max, "tension.max")?;
+        let t_max = ctx.upper_bound(&raw.tension.get_ref().max, "tension.max")?;
         if t_min > t_max {
             return Err(ctx.invalid(
                 raw.tension.get_ref().min.span(),
@@ -450,7 +503,7 @@ impl RobotDescription {
             let hi = c
                 .max
                 .as_ref()
-                .map(|v| ctx.finite(v, &key("max")))
+                .map(|v| ctx.upper_bound(v, &key("max")))
                 .transpose()?
                 .unwrap_or(t_max);
             if lo > hi {

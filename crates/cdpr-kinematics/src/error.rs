@@ -30,11 +30,11 @@ pub enum KinematicsError {
         found: usize,
     },
     /// At this pose a cable has (numerically) zero length: its direction, and so W, is undefined.
-    #[error(
-        "cable {cable} has zero length ({length:e}) at this pose: its frame anchor and platform attachment coincide"
-    )]
+    /// Cables are numbered from 1 in the message; a length that is not a finite number (a
+    /// coordinate so large that the length overflows) is said to be so, not "zero".
+    #[error("{}", degenerate_cable_message(*cable, *length))]
     DegenerateCable {
-        /// Cable index (0-based).
+        /// Cable index (0-based; the message counts from 1).
         cable: usize,
         /// The length found.
         length: f64,
@@ -48,4 +48,47 @@ pub enum KinematicsError {
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]
     UnknownMotion(String),
+}
+
+/// The message of [`KinematicsError::DegenerateCable`].
+fn degenerate_cable_message(cable: usize, length: f64) -> String {
+    let n = cable + 1;
+    if length.is_finite() {
+        format!(
+            "cable {n} has zero length ({length:e} m) at this pose: its frame anchor and platform \
+             attachment coincide"
+        )
+    } else {
+        format!(
+            "cable {n}: its length at this pose is not a finite number ({length}): a coordinate \
+             is infinite or so large (beyond about 1e150 m) that the length overflows"
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 13 §2: cables are numbered from 1; an overflowing length is not "zero length".
+    #[test]
+    fn degenerate_cable_messages_count_from_one() {
+        let zero = KinematicsError::DegenerateCable {
+            cable: 0,
+            length: 0.0,
+        };
+        assert!(
+            zero.to_string().starts_with("cable 1 has zero length"),
+            "{zero}"
+        );
+        let huge = KinematicsError::DegenerateCable {
+            cable: 2,
+            length: f64::INFINITY,
+        };
+        let msg = huge.to_string();
+        assert!(
+            msg.starts_with("cable 3:") && !msg.contains("zero"),
+            "{msg}"
+        );
+    }
 }

@@ -15,7 +15,12 @@
 //! a ball of radius ρ is still balanced, i.e. the distance from −R to the AWS boundary. A ball of
 //! radius 0 at the origin gives back the isotropic wrench radius min_k d_k.
 //!
-//! Units mix N and N·m for planar/spatial robots, as in Guay et al.
+//! A ball in the wrench space mixes N and N·m for planar/spatial robots, as in Guay et al.: its
+//! radius ρ bounds √(‖f‖² + ‖m‖²) with forces in N and moments in N·m taken as numbers (a
+//! length scale of 1 m). To keep the units apart, [`RequiredWrenchSet::force_and_moment_balls`]
+//! requires every force ‖f‖ ≤ ρ_f (N) together with every moment ‖m‖ ≤ ρ_m (N·m): the product
+//! of two balls, whose support function is h_R(−n) = −n·c + ρ_f ‖n_f‖ + ρ_m ‖n_m‖ (n_f, n_m:
+//! the force and moment parts of n).
 //!
 //! ## References
 //! - F. Guay, P. Cardou, A. L. Cruz-Ruiz, S. Caro, *Measuring how well a structure supports
@@ -42,6 +47,8 @@ pub struct RequiredWrenchSet {
     /// Centre padded to 6.
     centre_fixed: [f64; MAX_DOF],
     is_box: bool,
+    /// Force and moment balls: (force rows, ρ_f, ρ_m); `radius` is then 0.
+    split: Option<(usize, f64, f64)>,
 }
 
 impl RequiredWrenchSet {
@@ -66,7 +73,63 @@ impl RequiredWrenchSet {
             radius,
             centre_fixed,
             is_box: false,
+            split: None,
         })
+    }
+
+    /// Every external wrench w = c + (f, m) with ‖f‖ ≤ `force_radius` (N) and ‖m‖ ≤
+    /// `moment_radius` (N·m): force and moment bounded separately, in their own units. The
+    /// first `force_rows` components of a wrench are forces (2 planar, 3 spatial:
+    /// `MotionPattern::translation_dof`), the others moments; with no moment rows it is the
+    /// force ball.
+    ///
+    /// ```
+    /// use cdpr_polytope::{capacity_margin, hyperplane_shifting::available_wrench_set, RequiredWrenchSet};
+    /// use cdpr_tension::TensionBounds;
+    /// use nalgebra::{dmatrix, dvector};
+    /// // AWS = [−9, 9]³ (forces x, y and the moment about z independent): a force ball of 2 N
+    /// // with a moment range of ±3 N·m leaves min(9 − 2, 9 − 3) = 6.
+    /// let w = dmatrix![1.0, -1.0, 0.0, 0.0, 0.0, 0.0;
+    ///                  0.0, 0.0, 1.0, -1.0, 0.0, 0.0;
+    ///                  0.0, 0.0, 0.0, 0.0, 1.0, -1.0];
+    /// let aws = available_wrench_set(&w, &TensionBounds::uniform(6, 1.0, 10.0).unwrap()).unwrap();
+    /// let r = RequiredWrenchSet::force_and_moment_balls(dvector![0.0, 0.0, 0.0], 2, 2.0, 3.0).unwrap();
+    /// assert!((capacity_margin(&aws, &r).unwrap() - 6.0).abs() < 1e-12);
+    /// ```
+    pub fn force_and_moment_balls(
+        centre: DVector<f64>,
+        force_rows: usize,
+        force_radius: f64,
+        moment_radius: f64,
+    ) -> Result<Self, PolytopeError> {
+        let mut set = Self::ball(centre, 0.0)?;
+        for (what, r) in [
+            ("required force radius", force_radius),
+            ("required moment radius", moment_radius),
+        ] {
+            if !(r.is_finite() && r >= 0.0) {
+                return Err(PolytopeError::InvalidParameter {
+                    what,
+                    must: "finite and ≥ 0",
+                    value: r,
+                });
+            }
+        }
+        if force_rows == 0 || force_rows > set.dof() {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "force rows of the required wrench set",
+                expected: set.dof(),
+                found: force_rows,
+            });
+        }
+        set.split = Some((force_rows, force_radius, moment_radius));
+        Ok(set)
+    }
+
+    /// (force radius ρ_f in N, moment radius ρ_m in N·m) of
+    /// [`RequiredWrenchSet::force_and_moment_balls`], `None` otherwise.
+    pub fn force_and_moment_radii(&self) -> Option<(f64, f64)> {
+        self.split.map(|(_, f, m)| (f, m))
     }
 
     /// The box `centre_i − h_i ≤ w_ext,i ≤ centre_i + h_i` (half-widths h_i ≥ 0).
@@ -92,6 +155,7 @@ impl RequiredWrenchSet {
             radius: 0.0,
             centre_fixed,
             is_box: true,
+            split: None,
         })
     }
 
@@ -120,9 +184,9 @@ impl RequiredWrenchSet {
         self.is_box.then(|| &self.half_widths[..self.dof()])
     }
 
-    /// The ball radius, `None` for a box.
+    /// The ball radius, `None` for a box or for separate force and moment balls.
     pub fn radius(&self) -> Option<f64> {
-        (!self.is_box).then_some(self.radius)
+        (!self.is_box && self.split.is_none()).then_some(self.radius)
     }
 
     /// h_R(−n) = max_{w ∈ R} (−n · w) = −n·c + Σ_i |n_i| h_i + ρ (a box has ρ = 0, a ball
@@ -140,6 +204,10 @@ impl RequiredWrenchSet {
         for ((a, c), h) in n.iter().zip(&self.centre_fixed).zip(&self.half_widths) {
             along += a * c;
             spread += a.abs() * h;
+        }
+        if let Some((rows, rf, rm)) = self.split {
+            let norm = |v: &[f64]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            spread += rf * norm(&n[..rows]) + rm * norm(&n[rows..]);
         }
         (along, spread)
     }

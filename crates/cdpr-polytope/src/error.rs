@@ -20,7 +20,7 @@ pub enum PolytopeError {
         found: usize,
     },
     /// A NaN or infinite number where a finite one is needed.
-    #[error("{what} {index} is not a finite number ({value})")]
+    #[error("{what}: entry {} (counting from 1) is not a finite number ({value})", index + 1)]
     NotFinite {
         /// Which input.
         what: &'static str,
@@ -66,7 +66,7 @@ pub enum PolytopeError {
         max_candidates: f64,
     },
     /// This computation needs a finite t_max for every cable.
-    #[error("cable {cable} has an infinite t_max: {what} needs finite tension bounds")]
+    #[error("cable {} has an infinite t_max: {what} needs finite tension bounds", cable + 1)]
     UnboundedTension {
         /// Cable index (0-based).
         cable: usize,

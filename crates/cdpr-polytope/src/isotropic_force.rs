@@ -29,6 +29,19 @@
 //! slice empty if d_k < 0 (result −∞). [`isotropic_wrench_radius`] gives the ball in the full
 //! wrench space instead (min_k d_k with unit normals; unit-dependent, for completeness).
 //!
+//! **Under a load.** With a constant external wrench w_ext on the platform (its weight, say), the
+//! question becomes: which extra force can be added to w_ext in every direction and still be
+//! balanced? Balancing w_ext + f needs −(w_ext + f) ∈ AWS, i.e. n_k · (−w_ext − f) ≤ d_k for
+//! every facet, so the facets are shifted to d_k + n_k · w_ext and
+//!
+//! ```text
+//!     f_min(w_ext) = min_k (d_k + n_k · w_ext) / ‖n_f,k‖
+//! ```
+//!
+//! ([`isotropic_force_under_load`], [`isotropic_force_of_under_load`],
+//! [`IsotropicForce::with_load`]); w_ext = 0 gives back eq. (19). It is negative when w_ext
+//! itself cannot be balanced.
+//!
 //! ## References
 //! - S. Krut, O. Company, F. Pierrot, IROS 2004 (seed 001), §IV-A eq. (19), §IV-B.
 //! - S. Krut, O. Company, F. Pierrot, *Velocity performance indexes for parallel mechanisms with
@@ -37,9 +50,10 @@
 use crate::PolytopeError;
 use crate::available_wrench_set::AvailableWrenchSet;
 use crate::hyperplane_shifting::{HyperplaneShifting, for_each_halfspace};
+use crate::input::{MAX_DOF, check_vector};
 use cdpr_kinematics::{MotionPattern, Pose, PoseKinematics, Robot};
 use cdpr_tension::TensionBounds;
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 
 /// ‖n_f‖ below which a facet has no force part.
 const NO_FORCE_PART: f64 = 1e-12;
@@ -106,6 +120,74 @@ pub fn isotropic_force(
         .fold(f64::INFINITY, f64::min))
 }
 
+/// The isotropic force on top of a constant external wrench `w_ext` (N, N·m; e.g. the platform's
+/// weight): the largest extra force, in every direction (at zero extra moment for planar and
+/// spatial robots), that can be added to `w_ext` and still be balanced with tensions in bounds
+/// (module docs, "Under a load"). Negative when `w_ext` itself cannot be balanced.
+///
+/// ```
+/// use cdpr_kinematics::MotionPattern;
+/// use cdpr_polytope::{hyperplane_shifting::available_wrench_set, isotropic_force_under_load};
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// // AWS = [−9, 9]²; a weight of 5 N downwards leaves 4 N of force in every direction.
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+/// let f = isotropic_force_under_load(&aws, MotionPattern::Point2, &dvector![0.0, -5.0]);
+/// assert!((f.unwrap() - 4.0).abs() < 1e-12);
+/// ```
+pub fn isotropic_force_under_load(
+    aws: &AvailableWrenchSet,
+    motion: MotionPattern,
+    w_ext: &DVector<f64>,
+) -> Result<f64, PolytopeError> {
+    if aws.dof() != motion.dof() || w_ext.len() != motion.dof() {
+        return Err(PolytopeError::DimensionMismatch {
+            what: "AWS dimension and external wrench vs motion pattern DOF",
+            expected: motion.dof(),
+            found: if aws.dof() != motion.dof() {
+                aws.dof()
+            } else {
+                w_ext.len()
+            },
+        });
+    }
+    check_vector("external wrench", w_ext.as_slice(), motion.dof())?;
+    let rows = motion.translation_dof();
+    Ok(aws
+        .supporting_halfspaces()
+        .iter()
+        .map(|f| {
+            let shift = f.normal.dot(w_ext);
+            force_term(f.normal.as_slice(), f.offset + shift, rows)
+        })
+        .fold(f64::INFINITY, f64::min))
+}
+
+/// [`isotropic_force_under_load`] straight from W without building the facet list.
+pub fn isotropic_force_of_under_load(
+    motion: MotionPattern,
+    w: &DMatrix<f64>,
+    bounds: &TensionBounds,
+    w_ext: &[f64],
+) -> Result<f64, PolytopeError> {
+    if w.nrows() != motion.dof() {
+        return Err(PolytopeError::DimensionMismatch {
+            what: "rows of W vs motion pattern DOF",
+            expected: motion.dof(),
+            found: w.nrows(),
+        });
+    }
+    check_vector("external wrench", w_ext, motion.dof())?;
+    let rows = motion.translation_dof();
+    let mut r = f64::INFINITY;
+    for_each_halfspace(w, bounds, |n, d| {
+        let shift: f64 = n.iter().zip(w_ext).map(|(a, b)| a * b).sum();
+        r = r.min(force_term(n, d + shift, rows));
+    })?;
+    Ok(r)
+}
+
 /// Radius of the largest origin-centred ball in the full wrench space inside the AWS:
 /// min_k d_k (unit normals), signed. Mixes N and N·m for planar/spatial robots.
 pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
@@ -141,6 +223,8 @@ pub struct IsotropicForce {
     engine: HyperplaneShifting,
     kinematics: PoseKinematics,
     w: DMatrix<f64>,
+    /// The constant external wrench w_ext the force is added to (zero: eq. (19)), padded to 6.
+    load: [f64; MAX_DOF],
 }
 
 impl IsotropicForce {
@@ -158,7 +242,23 @@ impl IsotropicForce {
             engine: HyperplaneShifting::new(robot.dof(), bounds)?,
             kinematics: PoseKinematics::for_robot(robot),
             w: DMatrix::zeros(robot.dof(), robot.cable_count()),
+            load: [0.0; MAX_DOF],
         })
+    }
+
+    /// The same index on top of a constant external wrench `w_ext` (N, N·m; e.g. the platform's
+    /// weight): see [`isotropic_force_under_load`]. Both indices shift their facets by it.
+    pub fn with_load(mut self, w_ext: &[f64]) -> Result<Self, PolytopeError> {
+        check_vector("external wrench", w_ext, self.robot.dof())?;
+        self.load = [0.0; MAX_DOF];
+        self.load[..w_ext.len()].copy_from_slice(w_ext);
+        Ok(self)
+    }
+
+    /// n · w_ext for a normal of length DOF.
+    #[inline(always)]
+    fn shift(&self, n: &[f64]) -> f64 {
+        n.iter().zip(&self.load).map(|(a, b)| a * b).sum()
     }
 
     /// The robot.
@@ -189,6 +289,9 @@ impl IsotropicForce {
         let rows = self.robot.motion().translation_dof();
         let (mut f, mut r) = (f64::INFINITY, f64::INFINITY);
         self.engine.for_each_pair(w, |n, dp, dm| {
+            // Half-spaces n·w ≤ dp and −n·w ≤ dm, shifted by w_ext (+∞ stays +∞).
+            let s = self.shift(n);
+            let (dp, dm) = (dp + s, dm - s);
             f = f.min(pair_force_term(n, dp, dm, rows));
             r = r.min(dp).min(dm);
             2
@@ -202,8 +305,10 @@ impl IsotropicForce {
         self.update(pose)?;
         let rows = self.robot.motion().translation_dof();
         let mut f = f64::INFINITY;
+        let load = &self.load;
         self.engine.for_each_pair(&self.w, |n, dp, dm| {
-            f = f.min(pair_force_term(n, dp, dm, rows));
+            let s: f64 = n.iter().zip(load).map(|(a, b)| a * b).sum();
+            f = f.min(pair_force_term(n, dp + s, dm - s, rows));
             2
         })?;
         Ok(f)
@@ -296,6 +401,72 @@ mod tests {
             epsilon = 1e-12
         );
         assert!(isotropic_force_of(MotionPattern::Point2, &w, &b).is_err());
+    }
+
+    /// Issue 13 §1: the weight is part of the isotropic force. AWS = [−9, 9]² (t ∈ [1, 10]);
+    /// a weight of 5 N downwards: the cables can add 9 − 5 = 4 N downwards... and upwards
+    /// 9 + 5 = 14 N, sideways 9 N: the index is 4 N. Every path (facet list, streaming,
+    /// repeated-pose evaluator) agrees; a load the AWS cannot balance gives a negative index.
+    #[test]
+    fn the_load_shifts_the_isotropic_force() {
+        use nalgebra::{Vector3, dvector};
+        let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+        let b = TensionBounds::uniform(4, 1.0, 10.0).unwrap();
+        let aws = available_wrench_set(&w, &b).unwrap();
+        let g = dvector![0.0, -5.0];
+        let m = MotionPattern::Point2;
+        assert_relative_eq!(
+            isotropic_force_under_load(&aws, m, &g).unwrap(),
+            4.0,
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            isotropic_force_of_under_load(m, &w, &b, g.as_slice()).unwrap(),
+            4.0,
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            isotropic_force_under_load(&aws, m, &dvector![0.0, 0.0]).unwrap(),
+            isotropic_force(&aws, m).unwrap(),
+            epsilon = 1e-12
+        );
+        assert_relative_eq!(
+            isotropic_force_under_load(&aws, m, &dvector![12.0, 0.0]).unwrap(),
+            -3.0,
+            epsilon = 1e-12
+        );
+        // The repeated-pose evaluator: 4 cables pulling a point along ±x, ±y from far away.
+        let cable =
+            |x: f64, y: f64| cdpr_kinematics::Cable::new(Vector3::new(x, y, 0.0), Vector3::zeros());
+        let robot = Robot::new(
+            m,
+            vec![
+                cable(1e6, 0.0),
+                cable(-1e6, 0.0),
+                cable(0.0, 1e6),
+                cable(0.0, -1e6),
+            ],
+        )
+        .unwrap();
+        let pose = Pose::point(0.0, 0.0, 0.0);
+        let mut free = IsotropicForce::new(&robot, &b).unwrap();
+        let mut loaded = IsotropicForce::new(&robot, &b)
+            .unwrap()
+            .with_load(&[0.0, -5.0])
+            .unwrap();
+        assert_relative_eq!(free.force_at_pose(&pose).unwrap(), 9.0, epsilon = 1e-6);
+        assert_relative_eq!(loaded.force_at_pose(&pose).unwrap(), 4.0, epsilon = 1e-6);
+        assert_relative_eq!(
+            loaded.indices_at_pose(&pose).unwrap().0,
+            4.0,
+            epsilon = 1e-6
+        );
+        assert!(
+            IsotropicForce::new(&robot, &b)
+                .unwrap()
+                .with_load(&[f64::NAN, 0.0])
+                .is_err()
+        );
     }
 
     #[test]

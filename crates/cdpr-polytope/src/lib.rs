@@ -72,8 +72,8 @@ pub use capacity_margin::{
 pub use ellipse::{InscribedEllipse, largest_inscribed_ellipse};
 pub use error::PolytopeError;
 pub use isotropic_force::{
-    IsotropicForce, isotropic_force, isotropic_force_of, isotropic_wrench_radius,
-    isotropic_wrench_radius_of,
+    IsotropicForce, isotropic_force, isotropic_force_of, isotropic_force_of_under_load,
+    isotropic_force_under_load, isotropic_wrench_radius, isotropic_wrench_radius_of,
 };
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_polytope::nalgebra::Vector3`) so that your types are the crate's types whatever

@@ -17,7 +17,7 @@ pub enum TensionError {
         found: usize,
     },
     /// A NaN or infinite number in the input.
-    #[error("{what} {index} is not a finite number ({value})")]
+    #[error("{what}: entry {} (counting from 1) is not a finite number ({value})", index + 1)]
     NotFinite {
         /// Which input.
         what: &'static str,
@@ -27,7 +27,7 @@ pub enum TensionError {
         value: f64,
     },
     /// t_min > t_max for a cable.
-    #[error("cable {cable}: t_min = {min} exceeds t_max = {max}")]
+    #[error("cable {}: t_min = {min} N exceeds t_max = {max} N", cable + 1)]
     InvertedBounds {
         /// Cable index (0-based).
         cable: usize,

@@ -61,8 +61,32 @@ pub enum Criterion {
         /// Floor on the isotropic force (force units).
         min: f64,
     },
+    /// Maximum isotropic force on top of a constant external wrench (seed 001 eq. (19) with the
+    /// facets shifted by `wrench`, via [`cdpr_polytope::isotropic_force_of_under_load`]): the
+    /// platform, already loaded by `wrench` (its weight, say), resists an extra force of `min`
+    /// (N) in every direction (planar/spatial robots: at zero extra moment).
+    IsotropicForceUnderLoad {
+        /// Floor on the extra force (N).
+        min: f64,
+        /// The external wrench w_ext the force is added to (N, N·m), length DOF.
+        wrench: DVector<f64>,
+    },
+    /// Stiffness floor in separate units: for every small displacement δ = (δp, δθ),
+    /// δᵀ K δ ≥ k_t ‖δp‖² + k_r ‖δθ‖², i.e. sym(K) − diag(k_t I, k_r I) is positive
+    /// semidefinite (K = Kp + Ka, seed 002 eqs. (3)–(4)). The eigenvalues of that matrix mix
+    /// units but their sign does not (Sylvester's law of inertia), so `translational` (N/m) and
+    /// `rotational` (N·m/rad) keep their own units. Robots without orientation ignore
+    /// `rotational`. Tensions as for [`Criterion::Stiffness`].
+    StiffnessFloor {
+        /// k_t: translational stiffness floor (N/m).
+        translational: f64,
+        /// k_r: rotational stiffness floor (N·m/rad).
+        rotational: f64,
+    },
     /// Stiffness floor: the smallest eigenvalue of the symmetric part of K = Kp + Ka
-    /// (seed 002 eqs. (3)–(4)) is at least `min_eigenvalue` (N/m, N·m/rad mixed as K is).
+    /// (seed 002 eqs. (3)–(4)) is at least `min_eigenvalue`. For planar and spatial robots K
+    /// mixes N/m, N and N·m/rad: the floor compares them as plain SI numbers (a length scale
+    /// of 1 m); [`Criterion::StiffnessFloor`] keeps the units apart.
     /// K uses the tensions found by the first [`Criterion::TensionFeasible`] criterion of the
     /// list (which must exist) and the axial stiffness given with
     /// [`crate::PoseEvaluator::with_axial_stiffness`]. A pose without feasible tensions fails.
@@ -97,6 +121,8 @@ impl Criterion {
             Self::IsotropicForce { .. } => "isotropic-force",
             Self::Stiffness { .. } => "stiffness",
             Self::Interference { .. } => "interference",
+            Self::IsotropicForceUnderLoad { .. } => "isotropic-force-under-load",
+            Self::StiffnessFloor { .. } => "stiffness-floor",
             Self::Custom(c) => c.name,
         }
     }
@@ -109,8 +135,10 @@ impl Criterion {
             Self::Custom(_) | Self::Interference { .. } => 2,
             Self::WrenchClosure => 3,
             Self::TensionFeasible { .. } => 4,
-            Self::CapacityMargin { .. } | Self::IsotropicForce { .. } => 5,
-            Self::Stiffness { .. } => 6,
+            Self::CapacityMargin { .. }
+            | Self::IsotropicForce { .. }
+            | Self::IsotropicForceUnderLoad { .. } => 5,
+            Self::Stiffness { .. } | Self::StiffnessFloor { .. } => 6,
         }
     }
 }

@@ -14,7 +14,7 @@ use crate::criteria::square_determinant;
 use crate::wrench_closure::WrenchClosureTest;
 use crate::{Criterion, PoseContext, WorkspaceError};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
-use cdpr_polytope::{CapacityMargin, isotropic_force_of};
+use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
 use cdpr_tension::{Method, StiffnessData, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 
@@ -120,6 +120,41 @@ impl PoseEvaluator {
                         });
                     }
                     needs_tensions = true;
+                }
+                Criterion::StiffnessFloor {
+                    translational,
+                    rotational,
+                } => {
+                    for (what, v) in [
+                        ("translational stiffness floor (N/m)", translational),
+                        ("rotational stiffness floor (N·m/rad)", rotational),
+                    ] {
+                        if !v.is_finite() {
+                            return Err(WorkspaceError::NotFinite { what, value: *v });
+                        }
+                    }
+                    needs_tensions = true;
+                }
+                Criterion::IsotropicForceUnderLoad { min, wrench } => {
+                    if !min.is_finite() {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "isotropic force floor",
+                            value: *min,
+                        });
+                    }
+                    if wrench.len() != dof {
+                        return Err(WorkspaceError::DimensionMismatch {
+                            what: "external wrench of the isotropic force (one entry per DOF)",
+                            expected: dof,
+                            found: wrench.len(),
+                        });
+                    }
+                    if let Some(&v) = wrench.iter().find(|v| !v.is_finite()) {
+                        return Err(WorkspaceError::NotFinite {
+                            what: "external wrench",
+                            value: v,
+                        });
+                    }
                 }
                 Criterion::CapacityMargin {
                     required,
@@ -252,7 +287,7 @@ impl PoseEvaluator {
         if self.axial_stiffness.is_none() {
             for c in &self.criteria {
                 match c {
-                    Criterion::Stiffness { .. } => {
+                    Criterion::Stiffness { .. } | Criterion::StiffnessFloor { .. } => {
                         return Err(WorkspaceError::MissingAxialStiffness {
                             criterion: "stiffness",
                         });
@@ -363,6 +398,14 @@ impl PoseEvaluator {
                 Criterion::IsotropicForce { min } => {
                     isotropic_force_of(robot.motion(), &scratch.w, bounds)? >= *min
                 }
+                Criterion::IsotropicForceUnderLoad { min, wrench } => {
+                    isotropic_force_of_under_load(
+                        robot.motion(),
+                        &scratch.w,
+                        bounds,
+                        wrench.as_slice(),
+                    )? >= *min
+                }
                 Criterion::TensionFeasible { method, wrench } => {
                     let stiffness = match (method, axial_stiffness.as_deref()) {
                         (Method::Sotda, None) => {
@@ -410,6 +453,35 @@ impl PoseEvaluator {
                         )?;
                         let lambda_min = min_symmetric_eigenvalue(&scratch.stiffness);
                         lambda_min >= *min_eigenvalue
+                    }
+                }
+                Criterion::StiffnessFloor {
+                    translational,
+                    rotational,
+                } => {
+                    let Some(es) = axial_stiffness.as_deref() else {
+                        return Err(WorkspaceError::MissingAxialStiffness {
+                            criterion: "stiffness",
+                        });
+                    };
+                    scratch.tensions_valid && {
+                        cdpr_wrench::write_stiffness_matrix(
+                            &scratch.kin,
+                            scratch.tensions.as_slice(),
+                            es,
+                            &mut scratch.stiffness,
+                        )?;
+                        // sym(K − D) = sym(K) − D: subtract the floors on the diagonal.
+                        let rows = robot.motion().translation_dof();
+                        let k = &mut scratch.stiffness;
+                        for i in 0..k.nrows() {
+                            k[(i, i)] -= if i < rows {
+                                *translational
+                            } else {
+                                *rotational
+                            };
+                        }
+                        min_symmetric_eigenvalue(k) >= 0.0
                     }
                 }
             };

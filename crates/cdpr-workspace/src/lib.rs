@@ -87,10 +87,6 @@ mod region;
 pub mod synthesis;
 pub mod wrench_closure;
 
-/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
-/// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
-/// nalgebra version your own project pins.
-pub use nalgebra;
 pub use boundary_mesh::{BoundaryMesh, BoxFace, MeshSettings, MeshVertex, Shell, boundary_mesh};
 pub use chord::{
     ChordSettings, ChordWorkspace, InteriorPoint, Polygon, Section, chord_section, chord_workspace,
@@ -105,6 +101,10 @@ pub use discretisation::{
 };
 pub use error::WorkspaceError;
 pub use evaluator::PoseEvaluator;
+/// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
+/// re-export (`cdpr_workspace::nalgebra::Vector3`) so that your types are the crate's types whatever
+/// nalgebra version your own project pins.
+pub use nalgebra;
 pub use orientation_workspace::{
     LimitingOrientation, OrientationGridWorkspace, OrientationSet, OrientationSyntaxError,
     OrientationTest, OrientationWorkspaceKind, SampledOrientation, orientation_workspace,

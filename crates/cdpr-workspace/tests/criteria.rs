@@ -164,6 +164,82 @@ fn stiffness_floor_by_hand() {
     ));
 }
 
+/// Issue 13 §1: a stiffness floor in its own units. The point robot of `stiffness_floor_by_hand`
+/// (K = diag(2020, 2020) N/m) passes k_t = 2019.999 N/m and fails 2020.001 N/m, whatever k_r
+/// (no rotation). On the thesis' 4-cable planar robot the verdict is that of a direct test:
+/// sym(K) − diag(k_t, k_t, k_r) positive semidefinite, with K from `cdpr_wrench`.
+#[test]
+fn stiffness_floor_keeps_translational_and_rotational_units_apart() {
+    let floor = |robot: &Robot, kt: f64, kr: f64, method: Method| {
+        let n = robot.cable_count();
+        PoseEvaluator::new(
+            robot.clone(),
+            TensionBounds::uniform(n, 10.0, 100.0).unwrap(),
+            vec![
+                Criterion::StiffnessFloor {
+                    translational: kt,
+                    rotational: kr,
+                },
+                Criterion::TensionFeasible {
+                    method,
+                    wrench: DVector::zeros(robot.dof()),
+                },
+            ],
+        )
+        .unwrap()
+        .with_axial_stiffness(vec![1000.0; n])
+        .unwrap()
+    };
+    let point = point_robot(&[[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]);
+    let origin = Pose::point(0.0, 0.0, 0.0);
+    assert_eq!(
+        floor(&point, 2019.999, 1e9, Method::L2).check(&origin),
+        Ok(true)
+    );
+    assert_eq!(
+        floor(&point, 2020.001, 0.0, Method::L2).check(&origin),
+        Ok(false)
+    );
+    assert!(matches!(
+        PoseEvaluator::new(
+            point.clone(),
+            TensionBounds::uniform(4, 1.0, 10.0).unwrap(),
+            vec![Criterion::StiffnessFloor {
+                translational: f64::NAN,
+                rotational: 0.0
+            }]
+        ),
+        Err(WorkspaceError::NotFinite { .. })
+    ));
+    // Planar: the direct test, over floors on both sides of the boundary.
+    let robot = four_cable();
+    let pose = Pose::planar(0.1, -0.05, 0.05);
+    let mut with_tensions = floor(&robot, 0.0, 0.0, Method::L2);
+    let t = with_tensions
+        .tensions(&pose)
+        .unwrap()
+        .expect("feasible pose");
+    let kin = robot.inverse_kinematics(&pose).unwrap();
+    let k = cdpr_wrench::stiffness_matrix(&kin, t.as_slice(), &[1000.0; 4]).unwrap();
+    let sym = (&k + k.transpose()) * 0.5;
+    let (kt_max, kr_max) = (sym[(0, 0)].min(sym[(1, 1)]), sym[(2, 2)]);
+    let mut seen = [false; 2];
+    for i in 0..=10 {
+        for j in 0..=10 {
+            let (kt, kr) = (kt_max * i as f64 / 10.0, kr_max * j as f64 / 10.0);
+            let d = nalgebra::DMatrix::from_diagonal(&DVector::from_vec(vec![kt, kt, kr]));
+            let lambda = (&sym - d).symmetric_eigenvalues().min();
+            if lambda.abs() < 1e-9 * kt_max {
+                continue; // on the boundary: either verdict is right
+            }
+            let verdict = floor(&robot, kt, kr, Method::L2).check(&pose).unwrap();
+            assert_eq!(verdict, lambda >= 0.0, "k_t = {kt} N/m, k_r = {kr} N·m/rad");
+            seen[usize::from(verdict)] = true;
+        }
+    }
+    assert_eq!(seen, [true, true], "both verdicts met");
+}
+
 /// Criteria compose by AND: the workspace with two criteria is the intersection.
 #[test]
 fn composition_is_intersection() {

@@ -17,7 +17,7 @@ pub enum WrenchError {
         found: usize,
     },
     /// A NaN or infinite input.
-    #[error("{what} {index} is not a finite number ({value})")]
+    #[error("{what}: entry {} (counting from 1) is not a finite number ({value})", index + 1)]
     NotFinite {
         /// What was passed.
         what: &'static str,
@@ -27,7 +27,7 @@ pub enum WrenchError {
         value: f64,
     },
     /// Axial stiffness E·S must be positive.
-    #[error("cable {cable}: axial stiffness E·S = {value} must be positive")]
+    #[error("cable {}: axial stiffness E·S = {value} N must be positive", cable + 1)]
     NonPositiveStiffness {
         /// Cable index (0-based).
         cable: usize,

@@ -86,7 +86,8 @@ fn nan_and_inf() {
     let (line, key, _) =
         error_of(&GOOD.replace("platform = [-0.1, -0.1]", "platform = [nan, -0.1]"));
     assert_eq!((line, key.as_str()), (16, "cables[3].platform"));
-    let (line, key, _) = error_of(&GOOD.replace("max = 100.0", "max = inf"));
+    // `max = inf` is legal (issue 13 §2); NaN is not.
+    let (line, key, _) = error_of(&GOOD.replace("max = 100.0", "max = nan"));
     assert_eq!((line, key.as_str()), (5, "tension.max"));
 }
 
@@ -179,4 +180,29 @@ fn every_crate_re_exports_one_nalgebra() {
         Cable::point2(v).frame,
         cdpr::nalgebra::Vector3::new(1.0, 0.5, 0.0)
     );
+}
+
+/// Issue 13 §2: a value of the wrong type names its key (with the cable, counted from 1);
+/// `max = inf` is a legal t_max (an unlimited cable), for the file and for one cable.
+#[test]
+fn wrong_types_name_their_key_and_inf_is_a_legal_t_max() {
+    let (line, key, message) = error_of(&GOOD.replace("max = 100.0", "max = \"100\""));
+    assert_eq!((line, key.as_str()), (5, "tension.max"), "{message}");
+    let text = GOOD.replacen("platform = [-0.1, 0.1]", "platform = \"a\"", 1);
+    let (line, key, _) = error_of(&text);
+    assert_eq!((line, key.as_str()), (13, "cables[2].platform"));
+    let r = RobotDescription::parse(&GOOD.replace("max = 100.0", "max = inf"), "r.toml").unwrap();
+    assert!(r.bounds.max().iter().all(|t| *t == f64::INFINITY));
+    let one = GOOD.replacen(
+        "platform = [0.1, 0.1]",
+        "platform = [0.1, 0.1]\nmax = inf",
+        1,
+    );
+    let r = RobotDescription::parse(&one, "r.toml").unwrap();
+    assert_eq!(r.bounds.max()[0], f64::INFINITY);
+    assert_eq!(r.bounds.max()[1], 100.0);
+    let (_, key, _) = error_of(&GOOD.replace("max = 100.0", "max = -inf"));
+    assert_eq!(key, "tension.max");
+    let (_, key, _) = error_of(&GOOD.replace("min = 5.0", "min = inf"));
+    assert_eq!(key, "tension.min");
 }

@@ -11,12 +11,7 @@ fn betas(b: &[f64]) -> String {
 }
 
 /// The JSON document: `rows` holds one object per published design.
-pub fn json(
-    rows: &[Row],
-    conventions: &Conventions,
-    seconds: f64,
-    settle_seconds: f64,
-) -> String {
+pub fn json(rows: &[Row], conventions: &Conventions, seconds: f64, settle_seconds: f64) -> String {
     let rows: Vec<serde_json::Value> = rows
         .iter()
         .map(|r| {

@@ -1,12 +1,14 @@
 //! `cdpr isotropic`: the maximum isotropic force (seed 001 §IV) at a pose, or its map.
 
-use super::{CliError, Numbers, load_robot, pose, print_json};
+use super::{
+    CliError, Numbers, external_wrench, load_robot, num, pose, pose_text, print_json, wrench_text,
+};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::plot::{ForcePolygonPlot, HeatMap};
 use cdpr::polytope::{
-    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force,
-    isotropic_wrench_radius, largest_inscribed_ellipse,
+    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force_under_load,
+    largest_inscribed_ellipse,
 };
 use indicatif::ProgressBar;
 use nalgebra::Vector3;
@@ -20,6 +22,12 @@ use std::path::PathBuf;
 /// ball centred at the origin inside the available force polytope {W t} (eq. 19). It is signed:
 /// negative when the origin is outside the polytope (the pose cannot even hold a zero load).
 ///
+/// The platform's weight (its `mass` and `gravity` in the robot file) and --wrench are included:
+/// the index is the extra force the platform resists in every direction ON TOP OF that external
+/// wrench w_ext (as `capacity` and `workspace` add it): facets n_k · w <= d_k become
+/// n_k · w <= d_k + n_k · w_ext. A robot file without mass gives eq. (19) exactly. JSON
+/// `external_wrench` (N, N·m) says which w_ext was used.
+///
 /// For point robots (point2, point3) every wrench component is a force. For planar and spatial
 /// robots the index is the FORCE AT ZERO MOMENT: the largest force ball inside the slice
 /// {moment = 0} of the available wrench set (JSON `definition` says which). `wrench_radius` is
@@ -32,10 +40,15 @@ use std::path::PathBuf;
 /// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (seed 001 Figs. 9–10; white
 /// where the index is negative).
 ///
-/// JSON (pose): `isotropic_force`, `wrench_radius`, `definition`, `facets`, `vertices` (wrench
-/// spaces of dimension 2 and 3), `ellipse` (with --ellipse). JSON (grid): `grid` {`x`, `y`, `values`
-/// (rows along y, null where undefined)}, `stats` {`min`, `max`, `argmax`, `positive_fraction`,
-/// `undefined`, `centre`}, `definition`.
+/// The force polygon of --plot and the ellipse of --ellipse are those of the available wrench
+/// set itself (no load).
+///
+/// JSON (pose): `isotropic_force` (N), `wrench_radius` (N and N·m combined), `external_wrench`
+/// (N, N·m), `definition`, `facets`, `vertices` (of the available wrench set, N, N·m; wrench
+/// spaces of dimension 2 and 3), `ellipse` (with --ellipse: `semi_axes` N, `angle` rad,
+/// `angle_deg`, `area` N²). JSON (grid): `grid` {`x`, `y` (m), `values` (N; rows along y, null
+/// where undefined)}, `stats` {`min`, `max` (N), `argmax` (m), `positive_fraction`,
+/// `undefined`, `centre` (N)}, `external_wrench`, `definition`.
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
@@ -68,6 +81,10 @@ pub struct Args {
         requires = "grid"
     )]
     orientation: f64,
+    /// External wrench w_e on the platform (DOF numbers, N and N·m; default zero), added to the
+    /// platform's weight from the robot file.
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
     /// Grid: height z of the slice for 3-D robots (default: middle of the frame anchors).
     #[arg(long, allow_hyphen_values = true, requires = "grid")]
     z: Option<f64>,
@@ -141,8 +158,13 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
     let p = pose(robot, q)?;
     let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
     let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds)?;
-    let force = isotropic_force(&aws, motion)?;
-    let radius = isotropic_wrench_radius(&aws);
+    let w_ext = external_wrench(robot, &p, args.wrench.as_deref())?;
+    let force = isotropic_force_under_load(&aws, motion, &w_ext)?;
+    let radius = aws
+        .supporting_halfspaces()
+        .iter()
+        .map(|f| f.offset + f.normal.dot(&w_ext))
+        .fold(f64::INFINITY, f64::min);
     let ellipse = if args.ellipse || args.plot.is_some() {
         Some(largest_inscribed_ellipse(&aws)?)
     } else {
@@ -167,6 +189,7 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
             "pose": q,
             "isotropic_force": force,
             "wrench_radius": radius,
+            "external_wrench": w_ext.as_slice(),
             "definition": definition(motion),
             "facets": aws.facets().len(),
             "vertices": aws.vertices().map(|v| v.iter().map(|p| p.as_slice().to_vec()).collect::<Vec<_>>()),
@@ -176,17 +199,39 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         }
         return print_json(&v);
     }
-    println!("robot {}, pose {:?}", robot.name, q);
-    println!("maximum isotropic force: {force:.6}");
+    let forces = motion.translation_dof();
+    println!(
+        "robot {}, pose {}",
+        robot.name,
+        pose_text(q, motion.space_dim())
+    );
+    println!(
+        "external wrench w_ext {} (the platform's weight{} included)",
+        wrench_text(w_ext.as_slice(), forces),
+        if args.wrench.is_some() {
+            " and --wrench"
+        } else {
+            ""
+        }
+    );
+    println!("maximum isotropic force on top of w_ext: {force:.6} N");
     println!("  ({})", definition(motion));
-    println!("wrench-space ball radius: {radius:.6}");
+    println!(
+        "wrench-space ball radius: {radius:.6} ({})",
+        if forces == w_ext.len() {
+            "N"
+        } else {
+            "N and N·m combined, length scale 1 m"
+        }
+    );
     println!("available wrench set: {} facets", aws.facets().len());
     if force < 0.0 {
-        println!("the origin is outside the available wrench set: even a zero load cannot be held");
+        println!("w_ext is outside the set of wrenches the cables can balance: it cannot be held");
     }
     match ellipse.as_ref().filter(|_| args.ellipse) {
         Some(Some(e)) => println!(
-            "largest centred ellipse: semi-axes {:.6}, {:.6}; major axis at {:.4}° ; area {:.6}",
+            "largest centred ellipse (no load): semi-axes {:.6} N, {:.6} N; major axis at \
+             {:.4}°; area {:.6} N²",
             e.semi_axes[0],
             e.semi_axes[1],
             e.angle.to_degrees(),
@@ -238,7 +283,9 @@ fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliEr
     let ys: Vec<f64> = (0..k)
         .map(|j| y0 + (y1 - y0) * j as f64 / m as f64)
         .collect();
-    let template = IsotropicForce::new(&robot.robot, &robot.bounds)?;
+    let slice_pose = grid_pose(motion, x0, y0, z, args.orientation);
+    let w_ext = external_wrench(robot, &slice_pose, args.wrench.as_deref())?;
+    let template = IsotropicForce::new(&robot.robot, &robot.bounds)?.with_load(w_ext.as_slice())?;
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new(k as u64)
     } else {
@@ -337,6 +384,7 @@ fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliEr
         return print_json(&json!({
             "robot": robot.name,
             "definition": definition(motion),
+            "external_wrench": w_ext.as_slice(),
             "slice": slice,
             "grid": {
                 "x": xs,
@@ -355,16 +403,33 @@ fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliEr
         }));
     }
     println!(
-        "robot {}: maximum isotropic force over [{x0}, {x1}] × [{y0}, {y1}], {k} × {k} points",
-        robot.name
+        "robot {}: maximum isotropic force over [{}, {}] m × [{}, {}] m, {k} × {k} points",
+        robot.name,
+        num(x0),
+        num(x1),
+        num(y0),
+        num(y1)
+    );
+    println!(
+        "on top of w_ext {} (the platform's weight{} included)",
+        wrench_text(w_ext.as_slice(), motion.translation_dof()),
+        if args.wrench.is_some() {
+            " and --wrench"
+        } else {
+            ""
+        }
     );
     println!("  ({})", definition(motion));
     match argmax {
-        Some([x, y]) => println!("max {vmax:.6} at ({x:.6}, {y:.6}); min {vmin:.6}"),
+        Some([x, y]) => println!(
+            "max {vmax:.6} N at ({} m, {} m); min {vmin:.6} N",
+            num(x),
+            num(y)
+        ),
         None => println!("no defined value"),
     }
     if let Some(c) = centre {
-        println!("centre of the box: {c:.6}");
+        println!("centre of the box: {c:.6} N");
     }
     println!(
         "positive (pose holds every force up to the index): {:.1} % of the grid; undefined: {undefined}",

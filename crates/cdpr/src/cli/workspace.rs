@@ -44,9 +44,17 @@ gives min_cable_length / min_jacobian_det):
   det[:D]         |det J| ≥ D_min (eq. 6.24; D overrides the file), only when n = DOF
   wrench-closure  the cables positively span the wrench space (no load, no bounds)
   capacity[:M]    capacity margin ≥ M (default 0) of the box --wrench-box around w_ext
-  isotropic:F     maximum isotropic force ≥ F (seed 001; force at zero moment if rotating)
-  stiffness:K     smallest eigenvalue of sym(K), K = Kp + Ka (seed 002), ≥ K; needs
-                  axial_stiffness in the robot file and the tension criterion
+  isotropic:F     maximum isotropic force ≥ F (N) on top of w_ext (Krut, Company & Pierrot
+                  2004; force at zero moment if rotating): the platform, carrying its weight
+                  and --wrench, resists an extra F newtons in every direction
+  stiffness:KT,KR stiffness K = Kp + Ka (seed 002) at the tensions of the tension criterion:
+                  for every small displacement δ = (δp, δθ), δᵀKδ ≥ KT‖δp‖² + KR‖δθ‖², i.e.
+                  sym(K) − diag(KT·I, KR·I) positive semidefinite; KT in N/m, KR in N·m/rad
+                  (point robots: stiffness:KT). Needs axial_stiffness in the robot file and
+                  the tension criterion.
+  stiffness:K     (older form) smallest eigenvalue of sym(K) ≥ K, K's entries compared as plain
+                  SI numbers (N/m, N, N·m/rad: a length scale of 1 m); for point robots the
+                  same as stiffness:KT
   interference[:D] every two cables at least D apart (m, default 0: they must not touch;
                   cables sharing an anchor or attachment are left out), and no cable through
                   the platform when the robot file gives `[platform] shape`
@@ -145,8 +153,9 @@ pub struct CriteriaArgs {
     /// closed-form or l1 (the thesis' constrained minimum ℓ1).
     #[arg(long)]
     pub method: Option<Method>,
-    /// Comma list of criteria that must all hold: tension, length[:L], det[:D], wrench-closure,
-    /// capacity[:M], isotropic:F, stiffness:K, interference[:D] (see the command's help). Default: tension, plus
+    /// Comma list of criteria that must all hold: tension, length[:L] (m), det[:D],
+    /// wrench-closure, capacity[:M], isotropic:F (N), stiffness:KT,KR (N/m, N·m/rad) or
+    /// stiffness:K, interference[:D] (m) (see `cdpr workspace --help`). Default: tension, plus
     /// length and det when the robot file gives their limits.
     #[arg(long, value_name = "LIST")]
     pub criteria: Option<String>,
@@ -171,8 +180,10 @@ pub enum Spec {
     Capacity(f64),
     /// Isotropic force ≥ the value.
     Isotropic(f64),
-    /// λ_min(sym K) ≥ the value.
+    /// λ_min(sym K) ≥ the value (mixed units).
     Stiffness(f64),
+    /// sym(K) − diag(k_t I, k_r I) ⪰ 0: (k_t N/m, k_r N·m/rad).
+    StiffnessFloor(f64, f64),
     /// Cables at least the value apart (m), none through the platform shape.
     Interference(f64),
 }
@@ -188,6 +199,7 @@ impl Spec {
             Spec::Capacity(m) => format!("capacity:{m}"),
             Spec::Isotropic(f) => format!("isotropic:{f}"),
             Spec::Stiffness(k) => format!("stiffness:{k}"),
+            Spec::StiffnessFloor(kt, kr) => format!("stiffness:{kt},{kr}"),
             Spec::Interference(d) => format!("interference:{d}"),
         }
     }
@@ -246,8 +258,28 @@ impl CriteriaSetup {
                 s
             }
             Some(list) => {
-                let mut s = Vec::new();
+                let mut s: Vec<Spec> = Vec::new();
                 for token in list.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+                    // `stiffness:KT,KR`: a bare number after `stiffness:KT` is its KR.
+                    if let (Some(Spec::Stiffness(kt)), Ok(kr)) = (s.last(), token.parse::<f64>()) {
+                        let kt = *kt;
+                        if !kr.is_finite() {
+                            return Err(format!(
+                                "--criteria stiffness:{kt},{token}: KR must be finite (N·m/rad)"
+                            )
+                            .into());
+                        }
+                        if !desc.robot.motion().has_orientation() {
+                            return Err(format!(
+                                "--criteria stiffness:{kt},{token}: a `{}` robot does not rotate; \
+                                 give stiffness:KT (N/m) only",
+                                desc.robot.motion().name()
+                            )
+                            .into());
+                        }
+                        *s.last_mut().expect("just matched") = Spec::StiffnessFloor(kt, kr);
+                        continue;
+                    }
                     let (name, value) = match token.split_once(':') {
                         Some((n, v)) => (n, Some(v)),
                         None => (token, None),
@@ -289,7 +321,7 @@ impl CriteriaSetup {
                             return Err(format!(
                                 "--criteria: unknown criterion `{token}` (known: tension, \
                                  length[:L], det[:D], wrench-closure, capacity[:M], \
-                                 isotropic:F, stiffness:K, interference[:D])"
+                                 isotropic:F, stiffness:KT,KR, stiffness:K, interference[:D])"
                             )
                             .into());
                         }
@@ -320,7 +352,8 @@ impl CriteriaSetup {
                 Some(_) => {}
             }
         }
-        let needs_stiffness = specs.iter().any(|s| matches!(s, Spec::Stiffness(_)))
+        let stiffness_spec = |s: &Spec| matches!(s, Spec::Stiffness(_) | Spec::StiffnessFloor(..));
+        let needs_stiffness = specs.iter().any(stiffness_spec)
             || (method == Method::Sotda && specs.contains(&Spec::Tension));
         if needs_stiffness && desc.axial_stiffness.is_none() {
             return Err(
@@ -329,8 +362,7 @@ impl CriteriaSetup {
                     .into(),
             );
         }
-        if specs.iter().any(|s| matches!(s, Spec::Stiffness(_))) && !specs.contains(&Spec::Tension)
-        {
+        if specs.iter().any(stiffness_spec) && !specs.contains(&Spec::Tension) {
             return Err(
                 "--criteria stiffness:K needs the tension criterion too (K uses its tensions)"
                     .into(),
@@ -392,8 +424,15 @@ impl CriteriaSetup {
                         )?,
                         min_margin: *m,
                     },
-                    Spec::Isotropic(f) => Criterion::IsotropicForce { min: *f },
+                    Spec::Isotropic(f) => Criterion::IsotropicForceUnderLoad {
+                        min: *f,
+                        wrench: w_ext.clone(),
+                    },
                     Spec::Stiffness(k) => Criterion::Stiffness { min_eigenvalue: *k },
+                    Spec::StiffnessFloor(kt, kr) => Criterion::StiffnessFloor {
+                        translational: *kt,
+                        rotational: *kr,
+                    },
                     Spec::Interference(d) => Criterion::Interference {
                         min_distance: *d,
                         platform: desc.platform_shape.clone().map(std::sync::Arc::new),
