@@ -17,4 +17,4 @@
 mod toml_file;
 
 pub use nalgebra;
-pub use toml_file::{Limits, RobotDescription, RobotFileError};
+pub use toml_file::{Limits, RobotDescription, RobotFileError, pulley_toml};

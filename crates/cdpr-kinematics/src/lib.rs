@@ -17,7 +17,8 @@
 //! let cable = |c: [f64; 2], a: [f64; 2]| Cable {
 //!     frame: Vector3::new(c[0], c[1], 0.0),
 //!     platform: Vector3::new(a[0], a[1], 0.0),
-//!, pulley: None };
+//!     pulley: None,
+//! };
 //! let robot = Robot::new(MotionPattern::Planar, vec![
 //!     cable([1.0, 1.0], [s, s]),
 //!     cable([-1.0, 1.0], [-s, s]),
@@ -30,14 +31,23 @@
 //! assert!(kin.min_length() > 0.1);          // l_min of eq. (6.22)
 //! ```
 //!
+//! A cable may run over a swivel [`Pulley`] at the frame (Pott 2018; the WireCenter model): its
+//! length is then the arc wrapped on the pulley plus the free segment, its unit vector that of
+//! the free segment, and [`CableState`] reports the swivel and wrap angles. W keeps its form and
+//! J = Wᵀ stays the derivative of the total length, so every layer above works unchanged.
+//! [`ForwardKinematics`] goes back from measured lengths to the pose (Levenberg–Marquardt, with a
+//! certificate) for either cable model.
+//!
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
 
 mod error;
+mod forward_kinematics;
 mod inverse_kinematics;
 mod motion;
 mod path;
 mod pose;
+mod pulley;
 pub mod reference_robots;
 mod robot;
 #[cfg(feature = "proptest")]
@@ -45,8 +55,10 @@ pub mod strategies;
 mod structure_matrix;
 
 pub use error::KinematicsError;
+pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
 pub use inverse_kinematics::{CableState, PoseKinematics};
 pub use motion::MotionPattern;
 pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
+pub use pulley::PulleyDegeneracy;
 pub use robot::{Cable, Pulley, Robot};

@@ -20,12 +20,19 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// Cable model: `pulley` (each cable over its swivel pulley, Pott 2018: length = wrapped arc +
+    /// free segment; the default when the robot file gives any pulley) or `standard` (straight
+    /// cables from each `frame` point; pulleys ignored).
+    #[arg(long, global = true, value_enum, value_name = "MODEL")]
+    kinematics: Option<cli::KinematicsModel>,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// Inverse kinematics at a pose: cable lengths, unit vectors and the wrench matrix W.
     Kinematics(cli::kinematics::Args),
+    /// Forward kinematics: the platform pose from measured cable lengths, with its certificate.
+    Forward(cli::forward::Args),
     /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (seed 002 eq. (4)).
     Stiffness(cli::stiffness::Args),
     /// Cable tensions at a pose by any tension distribution method (closed form, l1, l2, SOTDA, ...).
@@ -48,8 +55,10 @@ enum Command {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    cli::set_kinematics_model(cli.kinematics);
     let result = match cli.command {
         Command::Kinematics(a) => cli::kinematics::run(a),
+        Command::Forward(a) => cli::forward::run(a),
         Command::Stiffness(a) => cli::stiffness::run(a),
         Command::Tension(a) => cli::tension::run(a),
         Command::Isotropic(a) => cli::isotropic::run(a),

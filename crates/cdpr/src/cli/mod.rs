@@ -2,6 +2,7 @@
 
 pub mod capacity;
 pub mod dextrous;
+pub mod forward;
 pub mod isotropic;
 pub mod kinematics;
 pub mod stiffness;
@@ -15,6 +16,7 @@ use cdpr::RobotDescription;
 use cdpr::kinematics::Pose;
 use nalgebra::{DMatrix, DVector};
 use std::path::Path;
+use std::sync::OnceLock;
 
 /// Any error a command reports (printed on stderr, exit code 2).
 pub type CliError = Box<dyn std::error::Error>;
@@ -47,9 +49,52 @@ impl std::ops::Deref for Numbers {
     }
 }
 
-/// Loads a robot file and prints its warnings on stderr.
+/// The cable model of `--kinematics` (a global option every command takes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum KinematicsModel {
+    /// Cables over their swivel pulleys (Pott 2018): length = wrapped arc + free segment.
+    Pulley,
+    /// Straight cables from each `frame` point; pulleys in the robot file are ignored.
+    Standard,
+}
+
+impl KinematicsModel {
+    /// The name on the command line and in JSON output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Pulley => "pulley",
+            Self::Standard => "standard",
+        }
+    }
+}
+
+/// `--kinematics` as given, set once by `main` before a command runs (a process-wide option:
+/// every command loads its robot through [`load_robot`], which applies it).
+static KINEMATICS: OnceLock<Option<KinematicsModel>> = OnceLock::new();
+
+/// Records `--kinematics` for [`load_robot`].
+pub fn set_kinematics_model(model: Option<KinematicsModel>) {
+    // A second call (never made by `main`) keeps the first value.
+    let _ = KINEMATICS.set(model);
+}
+
+/// The model in force for `robot` as loaded: `standard` when asked for or when no cable has a
+/// pulley, else `pulley` (the default for robots with pulleys).
+pub fn kinematics_model(robot: &RobotDescription) -> KinematicsModel {
+    if robot.robot.has_pulleys() {
+        KinematicsModel::Pulley
+    } else {
+        KinematicsModel::Standard
+    }
+}
+
+/// Loads a robot file, applies `--kinematics` (`standard` drops the pulleys) and prints the
+/// file's warnings on stderr.
 pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {
-    let robot = RobotDescription::load(path)?;
+    let mut robot = RobotDescription::load(path)?;
+    if KINEMATICS.get().copied().flatten() == Some(KinematicsModel::Standard) {
+        robot.robot = robot.robot.without_pulleys();
+    }
     for w in &robot.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }
