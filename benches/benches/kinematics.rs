@@ -1,9 +1,9 @@
 //! Inverse kinematics and wrench matrix (cdpr-kinematics).
 
-use cdpr_benches::{ipanema_like_8, spatial_poses};
-use cdpr_kinematics::PoseKinematics;
+use cdpr_benches::{ipanema_like_8, ipanema_like_8_pulleys, spatial_poses};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, PoseKinematics, Robot};
 use criterion::{Criterion, criterion_group, criterion_main};
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, Rotation3, Vector3};
 use std::hint::black_box;
 
 fn inverse_kinematics(c: &mut Criterion) {
@@ -24,8 +24,56 @@ fn inverse_kinematics(c: &mut Criterion) {
             black_box(w[(5, 7)])
         })
     });
+    // The same with a 0.05 m swivel pulley at every anchor (Pott 2018 model, issue budget 150 ns).
+    let robot = ipanema_like_8_pulleys();
+    let mut k = 0;
+    g.bench_function("ik_w_8_spatial_pulley", |b| {
+        b.iter(|| {
+            k = (k + 1) % poses.len();
+            robot
+                .update_kinematics(black_box(&poses[k]), &mut kin)
+                .unwrap();
+            kin.write_wrench_matrix(&mut w);
+            black_box(w[(5, 7)])
+        })
+    });
     g.finish();
 }
 
-criterion_group!(benches, inverse_kinematics);
+/// Lengths of every pose and a guess 2 cm and 0.02 rad away from it.
+fn forward_problems(robot: &Robot, poses: &[Pose]) -> Vec<(Vec<f64>, Pose)> {
+    let dp = Vector3::new(1.0, -1.0, 1.0).normalize() * 0.02;
+    let dr = Rotation3::new(Vector3::new(-1.0, 1.0, 1.0).normalize() * 0.02);
+    poses
+        .iter()
+        .map(|p| {
+            let l = robot.inverse_kinematics(p).unwrap().lengths().collect();
+            (l, Pose::new(p.position + dp, dr * p.rotation))
+        })
+        .collect()
+}
+
+fn forward_kinematics(c: &mut Criterion) {
+    let poses = spatial_poses(1000);
+    let mut g = c.benchmark_group("kinematics");
+    // One iteration = one Levenberg–Marquardt solve (issue budget 2 µs) with its certificate.
+    for (name, robot) in [
+        ("fk_8_spatial_standard", ipanema_like_8()),
+        ("fk_8_spatial_pulley", ipanema_like_8_pulleys()),
+    ] {
+        let problems = forward_problems(&robot, &poses);
+        let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+        let mut k = 0;
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                k = (k + 1) % problems.len();
+                let (l, guess) = &problems[k];
+                black_box(fk.solve(black_box(l), guess).unwrap().residual)
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, inverse_kinematics, forward_kinematics);
 criterion_main!(benches);

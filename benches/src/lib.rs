@@ -4,7 +4,7 @@
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 
-pub use cdpr_kinematics::reference_robots::ipanema_like_8;
+pub use cdpr_kinematics::reference_robots::{ipanema_like_8, ipanema_like_8_pulleys};
 
 /// `count` deterministic poses spread over the central part of the 8-cable robot's frame
 /// (|x| ≤ 1, |y| ≤ 0.75, z ∈ [0.5, 1.5], angles within ±0.1 rad), from a fixed LCG.

@@ -17,11 +17,17 @@ use std::process::{Command, ExitCode, Stdio};
 use std::time::Instant;
 
 /// The targets, in the order they run.
-pub const TARGETS: [&str; 3] = ["robot_file", "tension_methods", "polytope_index"];
+pub const TARGETS: [&str; 4] = [
+    "robot_file",
+    "tension_methods",
+    "polytope_index",
+    "forward_kinematics",
+];
 
 const USAGE: &str = "usage: cargo xtask fuzz [--seconds N] [--target NAME] [--timeout S]
 
-Runs every fuzz target of fuzz/ (robot_file, tension_methods, polytope_index) for N seconds
+Runs every fuzz target of fuzz/ (robot_file, tension_methods, polytope_index,
+forward_kinematics) for N seconds
 each (default 60) with `cargo fuzz run --sanitizer none` (stable Rust). A single input taking
 longer than S seconds (default 10) counts as a hang. Exit code 1 if any target crashed; the
 crashing input is in fuzz/artifacts/<target>/ (replay: cargo fuzz run --sanitizer none

@@ -28,10 +28,17 @@
 //! frame = [1.0, 0.5]                    # anchor on the fixed frame, base coordinates (2 or 3 numbers)
 //! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
 //! axial_stiffness = 60000.0             # optional E*S in N, for stiffness
-//! # optional swivel pulley at the frame anchor (spatial robots): radius (m) and the pulley frame
-//! # Q, rows as written (third column: swivel axis; first column: zero of the swivel angle)
-//! pulley = { radius = 0.05, orientation = [[1, 0, 0], [0, 1, 0], [0, 0, 1]] }
+//! # optional swivel pulley at the frame (Pott 2018): `frame` is then the point a on its axis,
+//! # where the cable arrives travelling along +axis; radius in m
+//! pulley = { radius = 0.05, axis = [0.0, 0.0, 1.0] }
+//! # or, to fix the zero of the swivel angle too, the rows of the pulley frame Q (third column =
+//! # axis, first column = zero of the swivel angle; orthonormal to 1e-6):
+//! # pulley = { radius = 0.05, orientation = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }
 //! ```
+//!
+//! `axis` has 3 numbers (2 are accepted for 2-D motion patterns, whose pulley axes lie in the
+//! plane); with `axis` alone, Q is [`Pulley::from_axis`]. A file without `pulley` keys describes
+//! straight cables exactly as before pulleys existed.
 //!
 //! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
 
@@ -235,7 +242,8 @@ struct RawCable {
 #[serde(deny_unknown_fields)]
 struct RawPulley {
     radius: Spanned<f64>,
-    orientation: Spanned<Vec<Vec<f64>>>,
+    axis: Option<Spanned<Vec<f64>>>,
+    orientation: Option<Spanned<Vec<Vec<f64>>>>,
 }
 
 struct Ctx<'a> {
@@ -361,6 +369,98 @@ fn key_at(text: &str, offset: usize) -> Option<String> {
     })
 }
 
+impl Ctx<'_> {
+    /// The pulley of `cables[i]`, with errors naming its keys.
+    fn pulley(
+        &self,
+        raw: &Spanned<RawPulley>,
+        key: &str,
+        motion: MotionPattern,
+    ) -> Result<Pulley, RobotFileError> {
+        let p = raw.get_ref();
+        let radius = self.finite(&p.radius, &format!("{key}.radius"))?;
+        if radius <= 0.0 {
+            return Err(self.invalid(
+                p.radius.span(),
+                format!("{key}.radius"),
+                format!("{radius} must be positive (m)"),
+            ));
+        }
+        match (&p.axis, &p.orientation) {
+            (Some(a), None) => {
+                let k = format!("{key}.axis");
+                let x = a.get_ref();
+                let axis = if x.len() == 3 || x.len() == motion.space_dim() {
+                    self.vector(a, &k, x.len(), motion)?
+                } else {
+                    return Err(self.invalid(
+                        a.span(),
+                        k,
+                        format!("has {} numbers, an axis needs 3", x.len()),
+                    ));
+                };
+                if axis.norm() == 0.0 {
+                    return Err(self.invalid(a.span(), k, "is the zero vector"));
+                }
+                Ok(Pulley::from_axis(radius, axis))
+            }
+            (None, Some(o)) => {
+                let k = format!("{key}.orientation");
+                let rows = o.get_ref();
+                if rows.len() != 3 || rows.iter().any(|r| r.len() != 3) {
+                    return Err(self.invalid(
+                        o.span(),
+                        k,
+                        "must be 3 rows of 3 numbers (the rows of Q)",
+                    ));
+                }
+                if let Some(bad) = rows.iter().flatten().find(|v| !v.is_finite()) {
+                    return Err(self.invalid(o.span(), k, format!("{bad} is not a finite number")));
+                }
+                Ok(Pulley {
+                    radius,
+                    orientation: Matrix3::from_fn(|i, j| rows[i][j]),
+                })
+            }
+            (Some(_), Some(_)) => Err(self.invalid(
+                raw.span(),
+                key,
+                "give either `axis` or `orientation`, not both",
+            )),
+            (None, None) => Err(self.invalid(
+                raw.span(),
+                key,
+                "needs `axis = [x, y, z]` or `orientation = [[..], [..], [..]]` beside `radius`",
+            )),
+        }
+    }
+}
+
+/// A pulley as the inline table of the robot-file key `pulley` (radius and the rows of Q, with
+/// Rust's shortest round-trip formatting, so that reading it back gives the same numbers).
+///
+/// ```
+/// use cdpr_io::pulley_toml;
+/// use cdpr_kinematics::Pulley;
+/// use nalgebra::Vector3;
+/// let p = Pulley::from_axis(0.05, Vector3::z());
+/// assert_eq!(
+///     pulley_toml(&p),
+///     "{ radius = 0.05, orientation = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }"
+/// );
+/// ```
+pub fn pulley_toml(pulley: &Pulley) -> String {
+    let q = &pulley.orientation;
+    let rows: Vec<String> = (0..3)
+        .map(|i| format!("[{:?}, {:?}, {:?}]", q[(i, 0)], q[(i, 1)], q[(i, 2)]))
+        .collect();
+    format!(
+        "{{ radius = {:?}, orientation = [{}] }}",
+        pulley.radius,
+        rows.join(", ")
+    )
+}
+
 impl RobotDescription {
     /// Reads and validates a cdpr TOML robot file.
     pub(crate) fn load_toml(path: &Path) -> Result<Self, RobotFileError> {
@@ -460,34 +560,11 @@ impl RobotDescription {
                 }
                 (None, false) => Vector3::zeros(),
             };
-            let pulley = match &c.pulley {
-                None => None,
-                Some(p) if motion != MotionPattern::Spatial => {
-                    return Err(ctx.invalid(
-                        p.span(),
-                        key("pulley"),
-                        format!(
-                            "swivel pulleys are modelled for spatial robots only, not `{motion}`"
-                        ),
-                    ));
-                }
-                Some(p) => {
-                    let p = p.get_ref();
-                    let radius = ctx.finite(&p.radius, &key("pulley.radius"))?;
-                    if radius <= 0.0 {
-                        return Err(ctx.invalid(
-                            p.radius.span(),
-                            key("pulley.radius"),
-                            format!("{radius} must be positive"),
-                        ));
-                    }
-                    let orientation = ctx.matrix(&p.orientation, &key("pulley.orientation"))?;
-                    Some(Pulley {
-                        radius,
-                        orientation,
-                    })
-                }
-            };
+            let pulley = c
+                .pulley
+                .as_ref()
+                .map(|p| ctx.pulley(p, &key("pulley"), motion))
+                .transpose()?;
             cables.push(Cable {
                 frame,
                 platform,
@@ -550,8 +627,17 @@ impl RobotDescription {
                 ));
             }
         };
-        let robot = Robot::new(motion, cables)
-            .map_err(|e| ctx.invalid(raw.cables.span(), "cables", e.to_string()))?;
+        let robot = Robot::new(motion, cables).map_err(|e| match e {
+            KinematicsError::InvalidPulley { cable, .. } => {
+                let span = cables_raw[cable]
+                    .get_ref()
+                    .pulley
+                    .as_ref()
+                    .map_or(raw.cables.span(), |p| p.span());
+                ctx.invalid(span, format!("cables[{}].pulley", cable + 1), e.to_string())
+            }
+            e => ctx.invalid(raw.cables.span(), "cables", e.to_string()),
+        })?;
         for (i, j) in robot.duplicate_cables() {
             warnings.push(format!(
                 "cables {} and {} are exact duplicates (same anchor and attachment)",

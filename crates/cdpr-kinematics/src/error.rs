@@ -1,5 +1,6 @@
 //! Errors of the kinematics layer.
 
+use crate::PulleyDegeneracy;
 use thiserror::Error;
 
 /// What can go wrong when describing a robot or computing its kinematics.
@@ -44,6 +45,45 @@ pub enum KinematicsError {
     DegenerateShape {
         /// What is wrong.
         reason: String,
+    },
+    /// A cable's pulley parameters cannot describe a pulley (see [`crate::Pulley`]).
+    #[error("cable {} pulley: {problem} ({value})", .cable + 1)]
+    InvalidPulley {
+        /// Cable index (0-based; the message counts from 1).
+        cable: usize,
+        /// What is wrong.
+        problem: &'static str,
+        /// The offending value.
+        value: f64,
+    },
+    /// At this pose a pulley cable has no defined geometry (Pott 2018 swivel-pulley model).
+    #[error("cable {} at this pose: {reason} (distance {distance:e} m)", .cable + 1)]
+    DegeneratePulley {
+        /// Cable index (0-based; the message counts from 1).
+        cable: usize,
+        /// Which degeneracy.
+        reason: PulleyDegeneracy,
+        /// The distance that vanished: from the attachment to the swivel axis (`OnSwivelAxis`) or
+        /// to the pulley centre (`InsidePulley`, then ≤ the radius).
+        distance: f64,
+    },
+    /// A solver setting is out of range.
+    #[error("{what}: {value}")]
+    InvalidSetting {
+        /// Which setting and its valid range.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// Forward kinematics needs at least as many cables (measured lengths) as DOF.
+    #[error(
+        "forward kinematics needs at least {dof} cable lengths for {dof} DOF, the robot has {cables} cables"
+    )]
+    TooFewCables {
+        /// Cables of the robot.
+        cables: usize,
+        /// DOF of its motion pattern.
+        dof: usize,
     },
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]

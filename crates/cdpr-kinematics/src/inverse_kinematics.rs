@@ -5,9 +5,16 @@
 //! vector ℓ^i / l_i (seed 002: ᵇu_i, pointing from B_i to A_i) and the attachment **a**^i = **T ā**^i
 //! (eq. (6.3); seed 002: ᵇb_i).
 //!
+//! A cable with a [`crate::Pulley`] follows the swivel-pulley model of Pott 2018 (module
+//! `pulley`): its length is the arc wrapped on the pulley plus the free segment, and its vector
+//! and unit vector are those of the free segment, from the attachment to the tangent point.
+//! Cables without a pulley run the straight-cable code unchanged (bit-identical results).
+//!
 //! ## References
 //! - Seed 000, eqs. (6.2)–(6.4). Seed 002, §2.
+//! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (pulley kinematics).
 
+use crate::pulley::pulley_cable;
 use crate::{KinematicsError, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 
@@ -17,16 +24,42 @@ const DEGENERATE_LENGTH: f64 = 1e-12;
 /// The state of one cable at one pose, all in base coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct CableState {
-    /// ℓ^i: from the platform attachment to the frame anchor, eq. (6.2).
+    /// ℓ^i: from the platform attachment to the frame anchor, eq. (6.2); with a pulley, to the
+    /// tangent point **C** (the free segment).
     pub vector: Vector3<f64>,
-    /// l_i = ‖ℓ^i‖, eq. (6.4).
+    /// l_i = ‖ℓ^i‖, eq. (6.4) (m); with a pulley the total length L = ρ β + l_f from the point
+    /// **a** on the swivel axis.
     pub length: f64,
-    /// ℓ^i / l_i: the direction in which the cable pulls the platform.
+    /// ℓ^i / ‖ℓ^i‖: the direction in which the cable pulls the platform.
     pub unit: Vector3<f64>,
+    /// ‖ℓ^i‖: the free (straight) length (m); equal to `length` without a pulley.
+    pub free_length: f64,
+    /// (cos γ, sin γ) of the pulley's swivel angle γ ((1, 0) without a pulley); γ itself is
+    /// [`CableState::swivel_angle`] (computed on demand: an `atan2` the hot path does not need).
+    pub swivel_direction: [f64; 2],
+    /// Wrap angle β of the cable on the pulley (rad); 0 without a pulley.
+    pub wrap_angle: f64,
+    /// Where the cable leaves the frame towards the platform: the tangent point **C** with a
+    /// pulley, the frame anchor without.
+    pub exit_point: Vector3<f64>,
+    /// e_n, the unit normal of the pulley plane (zero without a pulley): the direction in which
+    /// the attachment moves when the pulley swivels.
+    pub plane_normal: Vector3<f64>,
+    /// s_C / s, the distances of the tangent point and of the attachment from the swivel axis
+    /// (0 without a pulley). With it the free-segment direction varies as
+    /// δu = −(1/l_f) (I − u uᵀ − (s_C/s) e_n e_nᵀ) δB (the pulley stiffness).
+    pub swivel_ratio: f64,
     /// **a**^i = **T**(φ) **ā**^i: attachment relative to the platform origin, eq. (6.3).
     pub attachment: Vector3<f64>,
     /// **u** + **a**^i: the attachment point in base coordinates.
     pub attachment_point: Vector3<f64>,
+}
+
+impl CableState {
+    /// Swivel angle γ = atan2(p_y, p_x) of the pulley (rad, in (−π, π]); 0 without a pulley.
+    pub fn swivel_angle(&self) -> f64 {
+        self.swivel_direction[1].atan2(self.swivel_direction[0])
+    }
 }
 
 /// The inverse kinematics of a robot at one pose: one [`CableState`] per cable.
@@ -74,10 +107,13 @@ impl PoseKinematics {
 }
 
 impl Robot {
-    /// Inverse kinematics at `pose`, eqs. (6.2)–(6.4).
+    /// Inverse kinematics at `pose`, eqs. (6.2)–(6.4), and the swivel-pulley model for cables
+    /// with a pulley.
     ///
     /// Errors with [`KinematicsError::DegenerateCable`] if a cable has zero length at this pose
-    /// (its direction is undefined), or [`KinematicsError::NotFinite`] for a non-finite pose.
+    /// (its direction is undefined), [`KinematicsError::DegeneratePulley`] if a platform
+    /// attachment is inside its pulley or on its swivel axis, or [`KinematicsError::NotFinite`]
+    /// for a non-finite pose.
     ///
     /// ```
     /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -114,6 +150,29 @@ impl Robot {
         for (i, (cable, state)) in self.cables().iter().zip(kin.cables.iter_mut()).enumerate() {
             let attachment = r * cable.platform;
             let attachment_point = pose.position + attachment;
+            if let Some(pulley) = &cable.pulley {
+                let c = pulley_cable(&cable.frame, pulley, &attachment_point, threshold).map_err(
+                    |(reason, distance)| KinematicsError::DegeneratePulley {
+                        cable: i,
+                        reason,
+                        distance,
+                    },
+                )?;
+                *state = CableState {
+                    vector: c.free_vector,
+                    length: c.length,
+                    unit: c.free_vector / c.free_length,
+                    free_length: c.free_length,
+                    swivel_direction: c.swivel_direction,
+                    wrap_angle: c.wrap_angle,
+                    exit_point: c.exit_point,
+                    plane_normal: c.plane_normal,
+                    swivel_ratio: c.swivel_ratio,
+                    attachment,
+                    attachment_point,
+                };
+                continue;
+            }
             let vector = cable.frame - attachment_point;
             let length = vector.norm();
             // Written so that a NaN length also counts as degenerate.
@@ -124,6 +183,12 @@ impl Robot {
                 vector,
                 length,
                 unit: vector / length,
+                free_length: length,
+                swivel_direction: [1.0, 0.0],
+                wrap_angle: 0.0,
+                exit_point: cable.frame,
+                plane_normal: Vector3::zeros(),
+                swivel_ratio: 0.0,
                 attachment,
                 attachment_point,
             };

@@ -27,15 +27,24 @@
 //! assert!(kin.min_length() > 0.1);          // l_min of eq. (6.22)
 //! ```
 //!
+//! A cable may run over a swivel [`Pulley`] at the frame (Pott 2018; the WireCenter model): its
+//! length is then the arc wrapped on the pulley plus the free segment, its unit vector that of
+//! the free segment, and [`CableState`] reports the swivel and wrap angles. W keeps its form and
+//! J = Wᵀ stays the derivative of the total length, so every layer above works unchanged.
+//! [`ForwardKinematics`] goes back from measured lengths to the pose (Levenberg–Marquardt, with a
+//! certificate) for either cable model.
+//!
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
 
 mod error;
+mod forward_kinematics;
 pub mod interference;
 mod inverse_kinematics;
 mod motion;
 mod path;
 mod pose;
+mod pulley;
 pub mod reference_robots;
 mod robot;
 #[cfg(feature = "proptest")]
@@ -43,6 +52,7 @@ pub mod strategies;
 mod structure_matrix;
 
 pub use error::KinematicsError;
+pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
 pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
     closest_cables, min_cable_distance, platform_interference, segment_distance,
@@ -55,4 +65,5 @@ pub use motion::MotionPattern;
 pub use nalgebra;
 pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
+pub use pulley::PulleyDegeneracy;
 pub use robot::{Cable, Pulley, Robot};

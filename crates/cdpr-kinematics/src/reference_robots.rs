@@ -7,8 +7,8 @@
 //! - Seed 000, Tables 6.1–6.2 (planar 3- and 4-cable manipulators) and Figs. 6.3, 6.6.
 //! - Seed 001, §IV-B (3 motors at 1000 mm, 30°/150°/270°) and Fig. 10 (n motors on a circle).
 
-use crate::{Cable, MotionPattern, Robot};
-use nalgebra::Vector3;
+use crate::{Cable, MotionPattern, Pulley, Robot};
+use nalgebra::{Matrix3, Vector3};
 
 /// Platform attachments ā^i of Table 6.1 for the 3- or 4-cable manipulator.
 pub fn thesis_platform(cables: usize) -> Vec<Vector3<f64>> {
@@ -91,6 +91,24 @@ pub fn ipanema_like_8() -> Robot {
             });
         }
     }
+    Robot::new(MotionPattern::Spatial, cables).expect("valid robot")
+}
+
+/// [`ipanema_like_8`] with a swivel pulley of radius 0.05 m at every frame anchor, its axis
+/// pointing up (+z, Q = I, as in the IPAnema `.wcrfx` file of WireCenter): the robot of
+/// `examples/robots/ipanema-like-8-pulleys.toml`.
+pub fn ipanema_like_8_pulleys() -> Robot {
+    let cables = ipanema_like_8()
+        .cables()
+        .iter()
+        .map(|c| Cable {
+            pulley: Some(Pulley {
+                radius: 0.05,
+                orientation: Matrix3::identity(),
+            }),
+            ..*c
+        })
+        .collect();
     Robot::new(MotionPattern::Spatial, cables).expect("valid robot")
 }
 

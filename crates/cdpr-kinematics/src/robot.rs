@@ -162,7 +162,9 @@ pub struct Robot {
 
 impl Robot {
     /// A robot from its cables. Errors on no cables or non-finite coordinates; 2-D patterns
-    /// must have zero z components and point patterns zero platform attachments.
+    /// must have zero z components and point patterns zero platform attachments; a pulley needs a
+    /// finite radius > 0 and an orthonormal Q (|QᵀQ − I| ≤ 1e-6), whose axis lies in the plane
+    /// for 2-D patterns.
     pub fn new(motion: MotionPattern, cables: Vec<Cable>) -> Result<Self, KinematicsError> {
         if cables.is_empty() {
             return Err(KinematicsError::NoCables);
@@ -185,6 +187,17 @@ impl Robot {
                     motion: motion.name(),
                     expected: 2,
                     found: 3,
+                });
+            }
+            if let Some((problem, value)) = c
+                .pulley
+                .as_ref()
+                .and_then(|p| p.defect(motion.space_dim() == 2))
+            {
+                return Err(KinematicsError::InvalidPulley {
+                    cable: i,
+                    problem,
+                    value,
                 });
             }
             if !motion.has_orientation() && c.platform != Vector3::zeros() {
@@ -263,6 +276,21 @@ impl Robot {
             hi = hi.sup(&c.frame);
         }
         (lo, hi)
+    }
+
+    /// Whether any cable runs over a pulley (the pulley model then differs from the standard one).
+    pub fn has_pulleys(&self) -> bool {
+        self.cables.iter().any(|c| c.pulley.is_some())
+    }
+
+    /// The same robot with every pulley removed: the standard model, each cable a straight
+    /// segment from its `frame` point (with a pulley, the point **a** on the swivel axis).
+    pub fn without_pulleys(&self) -> Self {
+        let mut r = self.clone();
+        for c in &mut r.cables {
+            c.pulley = None;
+        }
+        r
     }
 
     /// The same robot with its cables reordered: `order[k]` is the old index of new cable k.

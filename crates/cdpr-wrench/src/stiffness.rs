@@ -24,8 +24,26 @@
 //! point2 (x, y), point3 (x, y, z); these are exactly the sub-blocks of the 6 × 6 matrix for
 //! motions confined to the pattern.
 //!
+//! **Pulley cables** (swivel-pulley model of Pott 2018, `cdpr_kinematics` module `pulley`):
+//! k_i = E S / L_i with the total length L_i = ρ β + l_f (the wrapped arc stretches too), u the
+//! free-segment direction, and in K_a
+//!
+//! ```text
+//!   t_i / l_i → t_i / l_f,i,    P_i → P̃_i = I − u uᵀ − (s_C / s) e_n e_nᵀ
+//! ```
+//!
+//! because the free segment's direction varies as δu = −(1/l_f) P̃ δB: an attachment motion δB
+//! along u leaves u unchanged; one in the pulley plane normal to u turns the tangent line while
+//! the tangent point slides along it (tangency), as for a straight cable of length l_f; one along
+//! the plane normal e_n swivels the pulley by δB·e_n / s, which carries the tangent point by
+//! (s_C / s) δB·e_n along e_n (s, s_C: distances of the attachment and of the tangent point from
+//! the swivel axis). This is exact, not an approximation: the finite-difference property test
+//! runs on pulley robots too. Without a pulley s_C / s = 0 and l_f = l, and K is bit-identical
+//! to the straight-cable formula.
+//!
 //! ## References
 //! - Seed 002 (Picard et al. 2020), eqs. (3)–(4); Behzadipour & Khajepour (2006).
+//! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (pulley kinematics).
 
 use crate::WrenchError;
 use crate::error::check_slice;
@@ -67,8 +85,10 @@ fn spatial_parts(
         let g =
             nalgebra::Vector6::from_iterator(u.iter().copied().chain(b.cross(&u).iter().copied()));
         kp += k * g * g.transpose();
-        let p = Matrix3::identity() - u * u.transpose();
-        let s = t / c.length;
+        // Pulley cables: the swivel carries the tangent point along e_n (module docs).
+        let e = c.plane_normal;
+        let p = Matrix3::identity() - u * u.transpose() - c.swivel_ratio * e * e.transpose();
+        let s = t / c.free_length;
         let pbt = p * bh.transpose();
         let mut blk = Matrix6::zeros();
         blk.fixed_view_mut::<3, 3>(0, 0).copy_from(&(s * p));

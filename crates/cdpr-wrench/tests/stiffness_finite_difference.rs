@@ -1,7 +1,7 @@
 //! K = Kp + Ka against physics: the finite-difference derivative of the restoring wrench of
 //! elastic cables (t_i(X) = t_i + k_i (l_i(X) − l_i(X₀)), k_i = E S / l_i(X₀)) at a perturbed pose.
 
-use cdpr_kinematics::strategies::arb_robot_and_pose;
+use cdpr_kinematics::strategies::{arb_pulley_robot_and_pose, arb_robot_and_pose};
 use cdpr_kinematics::{Pose, Robot};
 use cdpr_wrench::{stiffness_matrix, wrench_components};
 use nalgebra::{DMatrix, DVector, Rotation3, Vector3};
@@ -34,6 +34,24 @@ proptest! {
         tensions in prop::collection::vec(1.0f64..200.0, 9),
         es in prop::collection::vec(1.0e3f64..1.0e5, 9),
     ) {
+        check(&robot, &pose, &tensions, &es)?;
+    }
+
+    /// The same physics with swivel pulleys (Pott 2018 model): the lengths are the total ones
+    /// and W uses the free-segment directions.
+    #[test]
+    fn pulley_stiffness_equals_finite_difference_of_restoring_wrench(
+        (robot, pose) in arb_pulley_robot_and_pose(0..=3),
+        tensions in prop::collection::vec(1.0f64..200.0, 9),
+        es in prop::collection::vec(1.0e3f64..1.0e5, 9),
+    ) {
+        check(&robot, &pose, &tensions, &es)?;
+    }
+}
+
+fn check(robot: &Robot, pose: &Pose, tensions: &[f64], es: &[f64]) -> Result<(), TestCaseError> {
+    let (robot, pose) = (robot.clone(), *pose);
+    {
         let n = robot.cable_count();
         let (t0, es) = (&tensions[..n], &es[..n]);
         let kin = robot.inverse_kinematics(&pose).unwrap();
@@ -53,6 +71,10 @@ proptest! {
         }
         let scale = analytic.amax().max(1.0);
         let err = (&analytic - &fd).amax();
-        prop_assert!(err <= 1e-5 * scale, "max |K − K_fd| = {err:e} (scale {scale:e})\nK = {analytic}\nK_fd = {fd}");
+        prop_assert!(
+            err <= 1e-5 * scale,
+            "max |K − K_fd| = {err:e} (scale {scale:e})\nK = {analytic}\nK_fd = {fd}"
+        );
     }
+    Ok(())
 }

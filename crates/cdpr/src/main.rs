@@ -24,12 +24,19 @@ struct Cli {
     /// CASPR models: the <cable_set id> to read (default: the file's default_cable_set).
     #[arg(long, global = true, value_name = "ID")]
     cable_set: Option<String>,
+    /// Cable model: `pulley` (each cable over its swivel pulley, Pott 2018: length = wrapped arc +
+    /// free segment; the default when the robot file gives any pulley) or `standard` (straight
+    /// cables from each `frame` point; pulleys ignored).
+    #[arg(long, global = true, value_enum, value_name = "MODEL")]
+    kinematics: Option<cli::KinematicsModel>,
 }
 
 #[derive(Subcommand)]
 enum Command {
     /// Inverse kinematics at a pose: cable lengths, unit vectors and the wrench matrix W.
     Kinematics(cli::kinematics::Args),
+    /// Forward kinematics: the platform pose from measured cable lengths, with its certificate.
+    Forward(cli::forward::Args),
     /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (seed 002 eq. (4)).
     Stiffness(cli::stiffness::Args),
     /// Cable tensions at a pose by any tension distribution method (closed form, l1, l2, SOTDA, ...).
@@ -59,8 +66,10 @@ fn main() -> ExitCode {
     let mut options = cdpr::io::LoadOptions::default();
     options.cable_set = cli.cable_set;
     cli::set_load_options(options);
+    cli::set_kinematics_model(cli.kinematics);
     let result = match cli.command {
         Command::Kinematics(a) => cli::kinematics::run(a),
+        Command::Forward(a) => cli::forward::run(a),
         Command::Stiffness(a) => cli::stiffness::run(a),
         Command::Tension(a) => cli::tension::run(a),
         Command::Isotropic(a) => cli::isotropic::run(a),

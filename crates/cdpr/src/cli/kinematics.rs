@@ -1,15 +1,23 @@
 //! `cdpr kinematics`: inverse kinematics and the wrench matrix at one pose.
 
-use super::{CliError, Numbers, load_robot, matrix_rows, pose, print_json, print_matrix};
+use super::{
+    CliError, KinematicsModel, Numbers, kinematics_model, load_robot, matrix_rows, pose,
+    print_json, print_matrix,
+};
 use serde_json::json;
 use std::path::PathBuf;
 
-/// Inverse kinematics at a pose (seed 000 eqs. (6.2)–(6.4), (6.11)).
+/// Inverse kinematics at a pose (seed 000 eqs. (6.2)–(6.4), (6.11); pulleys: Pott 2018).
 ///
-/// Prints each cable's length l_i and unit vector (from the platform attachment towards the frame
-/// anchor), and the DOF × n wrench matrix W with W t + w_ext = 0.
-/// JSON fields: `lengths`, `unit_vectors` (one array per cable), `wrench_matrix` (one array per
-/// row of W), `attachment_points`, `jacobian_determinant` (n = DOF only), `closest_cables`
+/// Prints each cable's length l_i (m) and unit vector (from the platform attachment towards the
+/// frame anchor, or towards the point where the cable leaves its pulley), and the DOF × n wrench
+/// matrix W with W t + w_ext = 0. With pulleys (`--kinematics pulley`, the default when the robot
+/// file has any) the length is the wrapped arc plus the free segment, measured from `frame`.
+/// JSON fields: `kinematics` ("pulley" | "standard"), `lengths` (m), `free_lengths` (m, the straight
+/// part), `swivel_angles` and `wrap_angles` (rad; 0 for cables without a pulley), `unit_vectors`
+/// (one array per cable), `wrench_matrix` (one array per row of W), `attachment_points` (m),
+/// `exit_points` (m, where each cable leaves the frame or its pulley), `jacobian_determinant`
+/// (n = DOF only), `closest_cables`
 /// (the two cables, 1-based, whose straight segments come closest; pairs sharing an anchor or
 /// attachment are left out; null if none), `closest_distance` (their distance, m),
 /// `closest_points` (the closest point on each, m), and with a `[platform] shape` in the robot
@@ -32,6 +40,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     let pose = pose(&robot, &args.pose)?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
+    let model = kinematics_model(&robot);
     let w = kin.wrench_matrix();
     let dim = robot.robot.motion().space_dim();
     let vec_of = |v: &nalgebra::Vector3<f64>| v.iter().take(dim).copied().collect::<Vec<f64>>();
@@ -44,9 +53,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "robot": robot.name,
             "motion": robot.robot.motion().name(),
             "pose": args.pose.0,
+            "kinematics": model.name(),
             "lengths": kin.lengths().collect::<Vec<_>>(),
+            "free_lengths": kin.cables().iter().map(|c| c.free_length).collect::<Vec<_>>(),
+            "swivel_angles": kin.cables().iter().map(|c| c.swivel_angle()).collect::<Vec<_>>(),
+            "wrap_angles": kin.cables().iter().map(|c| c.wrap_angle).collect::<Vec<_>>(),
             "unit_vectors": kin.cables().iter().map(|c| vec_of(&c.unit)).collect::<Vec<_>>(),
             "attachment_points": kin.cables().iter().map(|c| vec_of(&c.attachment_point)).collect::<Vec<_>>(),
+            "exit_points": kin.cables().iter().map(|c| vec_of(&c.exit_point)).collect::<Vec<_>>(),
             "wrench_matrix": matrix_rows(&w),
             "jacobian_determinant": kin.jacobian_determinant(),
             "closest_cables": closest.map(|c| [c.cables.0 + 1, c.cables.1 + 1]),
@@ -60,18 +74,39 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }))
     } else {
         println!(
-            "robot {} ({}), pose {:?}",
+            "robot {} ({}, {} kinematics), pose {:?}",
             robot.name,
             robot.robot.motion(),
+            model.name(),
             args.pose.0
         );
-        println!("{:>6} {:>12}  unit vector", "cable", "length");
+        let pulleys = model == KinematicsModel::Pulley;
+        if pulleys {
+            println!(
+                "{:>6} {:>12} {:>12} {:>10} {:>10}  unit vector",
+                "cable", "length (m)", "free (m)", "swivel γ", "wrap β"
+            );
+        } else {
+            println!("{:>6} {:>12}  unit vector", "cable", "length (m)");
+        }
         for (i, c) in kin.cables().iter().enumerate() {
             let u: Vec<String> = vec_of(&c.unit)
                 .iter()
                 .map(|x| format!("{x:>10.6}"))
                 .collect();
-            println!("{:>6} {:>12.6}  {}", i + 1, c.length, u.join(" "));
+            if pulleys {
+                println!(
+                    "{:>6} {:>12.6} {:>12.6} {:>6.4} rad {:>6.4} rad  {}",
+                    i + 1,
+                    c.length,
+                    c.free_length,
+                    c.swivel_angle(),
+                    c.wrap_angle,
+                    u.join(" ")
+                );
+            } else {
+                println!("{:>6} {:>12.6}  {}", i + 1, c.length, u.join(" "));
+            }
         }
         print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
         if let Some(d) = kin.jacobian_determinant() {

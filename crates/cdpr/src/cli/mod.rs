@@ -3,6 +3,7 @@
 pub mod capacity;
 pub mod convert;
 pub mod dextrous;
+pub mod forward;
 pub mod isotropic;
 pub mod kinematics;
 pub mod orientations;
@@ -59,10 +60,53 @@ impl std::ops::Deref for Numbers {
     }
 }
 
-/// Loads a robot file (TOML, CASPR or WireCenter, by extension; `--cable-set` applied) and
-/// prints its warnings on stderr.
+/// The cable model of `--kinematics` (a global option every command takes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum KinematicsModel {
+    /// Cables over their swivel pulleys (Pott 2018): length = wrapped arc + free segment.
+    Pulley,
+    /// Straight cables from each `frame` point; pulleys in the robot file are ignored.
+    Standard,
+}
+
+impl KinematicsModel {
+    /// The name on the command line and in JSON output.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Pulley => "pulley",
+            Self::Standard => "standard",
+        }
+    }
+}
+
+/// `--kinematics` as given, set once by `main` before a command runs (a process-wide option:
+/// every command loads its robot through [`load_robot`], which applies it).
+static KINEMATICS: OnceLock<Option<KinematicsModel>> = OnceLock::new();
+
+/// Records `--kinematics` for [`load_robot`].
+pub fn set_kinematics_model(model: Option<KinematicsModel>) {
+    // A second call (never made by `main`) keeps the first value.
+    let _ = KINEMATICS.set(model);
+}
+
+/// The model in force for `robot` as loaded: `standard` when asked for or when no cable has a
+/// pulley, else `pulley` (the default for robots with pulleys).
+pub fn kinematics_model(robot: &RobotDescription) -> KinematicsModel {
+    if robot.robot.has_pulleys() {
+        KinematicsModel::Pulley
+    } else {
+        KinematicsModel::Standard
+    }
+}
+
+/// Loads a robot file (TOML, CASPR or WireCenter, by extension; `--cable-set` applied), applies
+/// `--kinematics` (`standard` drops the pulleys) and prints the file's warnings on stderr.
 pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {
-    let robot = RobotDescription::load_with(path, LOAD_OPTIONS.get_or_init(LoadOptions::default))?;
+    let mut robot =
+        RobotDescription::load_with(path, LOAD_OPTIONS.get_or_init(LoadOptions::default))?;
+    if KINEMATICS.get().copied().flatten() == Some(KinematicsModel::Standard) {
+        robot.robot = robot.robot.without_pulleys();
+    }
     for w in &robot.warnings {
         eprintln!("warning: {}: {w}", path.display());
     }

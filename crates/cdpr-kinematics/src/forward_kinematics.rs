@@ -1,0 +1,636 @@
+//! # Forward kinematics
+//!
+//! From measured cable lengths **L** (n ≥ DOF) to the platform pose: Levenberg–Marquardt on the
+//! residual **r**(x) = **l**(x) − **L**, with the analytic Jacobian of whichever cable model the
+//! robot uses (straight cables, or the swivel-pulley model: in both, l̇ = −Wᵀ q̇ for the twist
+//! q̇ of the motion pattern). Each iteration solves
+//!
+//! ```text
+//!   (W Wᵀ + μ diag(W Wᵀ)) δ = W r,     x ← x ⊕ δ
+//! ```
+//!
+//! where x ⊕ δ moves the position by δ_p and rotates the platform by exp([δ_φ]×) (base-frame
+//! rotation vector, as in the Jacobian). μ starts at 0 (a Gauss–Newton step); a step that does
+//! not lower ½‖r‖² is rejected and μ raised, an accepted one lowers it (Nielsen's rule). When
+//! n > DOF and the lengths are inconsistent (noise) the iteration converges to the least-squares
+//! pose, the minimiser of ‖l(x) − L‖₂.
+//!
+//! Every answer carries its certificate: the residual max |l_i(x) − L_i| recomputed at the
+//! returned pose, the iterations, whether the iteration converged, and the smallest singular
+//! value σ_min of J = Wᵀ there (σ_min → 0 near a singularity, where the pose is ill-determined
+//! by the lengths: pose error ≲ length error / σ_min). "Did not converge" and "no pose within
+//! the tolerance" are [`ForwardStatus`] values, not errors.
+//!
+//! Without a guess, [`ForwardKinematics::solve_multistart`] starts from the centre of the frame
+//! anchors' bounding box in several orientations and from points halfway to its corners, and
+//! returns every distinct pose that solves the lengths.
+//!
+//! ## References
+//! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (forward kinematics by nonlinear
+//!   least squares).
+//! - Levenberg 1944, Marquardt 1963; Nielsen 1999 (damping update); Madsen, Nielsen & Tingleff
+//!   2004, *Methods for non-linear least squares problems* (stopping rules).
+
+use crate::{KinematicsError, MotionPattern, Pose, PoseKinematics, Robot};
+use nalgebra::{Rotation3, Vector3};
+
+/// Settings of the forward-kinematics solver.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForwardSettings {
+    /// A pose whose residual max |l_i(x) − L_i| is at most this (m) solves the lengths.
+    pub tolerance: f64,
+    /// Largest number of iterations (accepted or rejected steps) per start.
+    pub max_iterations: usize,
+}
+
+impl Default for ForwardSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: 1e-9,
+            max_iterations: 100,
+        }
+    }
+}
+
+impl ForwardSettings {
+    /// Errors on a tolerance that is not finite and > 0, or a zero iteration limit.
+    pub fn validate(&self) -> Result<(), KinematicsError> {
+        if !(self.tolerance.is_finite() && self.tolerance > 0.0) {
+            return Err(KinematicsError::InvalidSetting {
+                what: "forward-kinematics tolerance (must be finite and > 0)",
+                value: self.tolerance,
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(KinematicsError::InvalidSetting {
+                what: "forward-kinematics iteration limit (must be ≥ 1)",
+                value: 0.0,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// How a forward-kinematics solve ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ForwardStatus {
+    /// The iteration converged and max |l_i(x) − L_i| ≤ tolerance.
+    Solved,
+    /// The iteration converged (the step vanished) to a pose whose residual exceeds the
+    /// tolerance: the least-squares pose of inconsistent lengths, or a local minimum. No pose
+    /// within the tolerance was found from this start.
+    NoPoseWithinTolerance,
+    /// The iteration limit was reached first; the pose is the best one found.
+    NotConverged,
+}
+
+impl ForwardStatus {
+    /// The name used in JSON output and messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Solved => "solved",
+            Self::NoPoseWithinTolerance => "no pose within tolerance",
+            Self::NotConverged => "did not converge",
+        }
+    }
+}
+
+/// A forward-kinematics answer with its certificate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ForwardSolution {
+    /// The pose found (the best one, whatever the status).
+    pub pose: Pose,
+    /// max |l_i(pose) − L_i| (m), recomputed at `pose`.
+    pub residual: f64,
+    /// Iterations taken (accepted and rejected steps).
+    pub iterations: usize,
+    /// Whether the iteration converged (status `Solved` or `NoPoseWithinTolerance`).
+    pub converged: bool,
+    /// How the solve ended.
+    pub status: ForwardStatus,
+    /// Smallest singular value of J = Wᵀ at `pose` (m per unit twist: m/m and m/rad).
+    pub min_singular_value: f64,
+}
+
+/// Largest DOF of any motion pattern: the size of the fixed normal-equation buffers.
+const MAX_DOF: usize = 6;
+type Square = [[f64; MAX_DOF]; MAX_DOF];
+
+/// A reusable forward-kinematics solver for one robot: no allocation per solve.
+///
+/// ```
+/// use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardStatus, Pose};
+/// use cdpr_kinematics::reference_robots::ipanema_like_8_pulleys;
+/// use nalgebra::Vector3;
+/// let robot = ipanema_like_8_pulleys();
+/// let truth = Pose::spatial(Vector3::new(0.3, -0.2, 1.1), 0.05, -0.02, 0.1);
+/// let lengths: Vec<f64> = robot.inverse_kinematics(&truth).unwrap().lengths().collect();
+/// let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+/// let guess = Pose::spatial(Vector3::new(0.0, 0.0, 1.0), 0.0, 0.0, 0.0);
+/// let sol = fk.solve(&lengths, &guess).unwrap();
+/// assert_eq!(sol.status, ForwardStatus::Solved);
+/// assert!((sol.pose.position - truth.position).norm() < 1e-9);
+/// ```
+#[derive(Debug, Clone)]
+pub struct ForwardKinematics<'a> {
+    robot: &'a Robot,
+    settings: ForwardSettings,
+    kin: PoseKinematics,
+    trial: PoseKinematics,
+}
+
+impl<'a> ForwardKinematics<'a> {
+    /// A solver for `robot` (any cable model). Errors on invalid settings or n < DOF.
+    pub fn new(robot: &'a Robot, settings: ForwardSettings) -> Result<Self, KinematicsError> {
+        settings.validate()?;
+        if robot.cable_count() < robot.dof() {
+            return Err(KinematicsError::TooFewCables {
+                cables: robot.cable_count(),
+                dof: robot.dof(),
+            });
+        }
+        Ok(Self {
+            robot,
+            settings,
+            kin: PoseKinematics::for_robot(robot),
+            trial: PoseKinematics::for_robot(robot),
+        })
+    }
+
+    /// The settings in use.
+    pub fn settings(&self) -> &ForwardSettings {
+        &self.settings
+    }
+
+    fn check_lengths(&self, lengths: &[f64]) -> Result<(), KinematicsError> {
+        if lengths.len() != self.robot.cable_count() {
+            return Err(KinematicsError::WrongDimension {
+                what: "cable lengths".into(),
+                motion: self.robot.motion().name(),
+                expected: self.robot.cable_count(),
+                found: lengths.len(),
+            });
+        }
+        if let Some((i, &v)) = lengths.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(KinematicsError::NotFinite {
+                what: format!("length of cable {}", i + 1),
+                value: v,
+            });
+        }
+        Ok(())
+    }
+
+    /// The pose whose cable lengths are `lengths` (m), by Levenberg–Marquardt from `guess`.
+    ///
+    /// Errors only on bad input (wrong count, non-finite lengths or guess, a guess at which the
+    /// inverse kinematics is degenerate); every numerical outcome is a [`ForwardSolution`].
+    pub fn solve(
+        &mut self,
+        lengths: &[f64],
+        guess: &Pose,
+    ) -> Result<ForwardSolution, KinematicsError> {
+        self.check_lengths(lengths)?;
+        if let Some(&v) = guess.rotation.matrix().iter().find(|v| !v.is_finite()) {
+            return Err(KinematicsError::NotFinite {
+                what: "guess orientation".into(),
+                value: v,
+            });
+        }
+        self.robot.update_kinematics(guess, &mut self.kin)?;
+        Ok(self.iterate(lengths, *guess))
+    }
+
+    /// Solves along a path: sample k starts from the solution of sample k − 1 (the first from
+    /// `guess`). `lengths` holds the samples one after another (n values each). A sample whose
+    /// start is degenerate restarts from `guess`.
+    pub fn solve_path(
+        &mut self,
+        lengths: &[f64],
+        guess: &Pose,
+    ) -> Result<Vec<ForwardSolution>, KinematicsError> {
+        let n = self.robot.cable_count();
+        if lengths.len() % n != 0 {
+            return Err(KinematicsError::WrongDimension {
+                what: "concatenated cable lengths (a multiple of the cable count)".into(),
+                motion: self.robot.motion().name(),
+                expected: n * lengths.len().div_ceil(n).max(1),
+                found: lengths.len(),
+            });
+        }
+        let mut out = Vec::with_capacity(lengths.len() / n);
+        let mut start = *guess;
+        for sample in lengths.chunks_exact(n) {
+            let sol = match self.solve(sample, &start) {
+                Err(KinematicsError::DegenerateCable { .. })
+                | Err(KinematicsError::DegeneratePulley { .. }) => self.solve(sample, guess)?,
+                other => other?,
+            };
+            if sol.converged {
+                start = sol.pose;
+            }
+            out.push(sol);
+        }
+        Ok(out)
+    }
+
+    /// Every distinct pose found from a fixed set of starts, solutions (status `Solved`) first,
+    /// by residual; if none solves the lengths, the best converged (or best) answer alone.
+    ///
+    /// Starts: the centre of the frame anchors' bounding box, in the reference orientation and
+    /// (for oriented platforms) rotated by ±π/2 about each rotation axis and by π about z, and
+    /// the points halfway from the centre to each corner of the box in the reference
+    /// orientation. Two poses are the same when their positions differ by less than
+    /// 1e-6 × the robot's length scale and their orientations by less than 1e-6 rad.
+    pub fn solve_multistart(
+        &mut self,
+        lengths: &[f64],
+    ) -> Result<Vec<ForwardSolution>, KinematicsError> {
+        self.check_lengths(lengths)?;
+        let motion = self.robot.motion();
+        let mut solutions: Vec<ForwardSolution> = Vec::new();
+        let mut best: Option<ForwardSolution> = None;
+        let scale = self.robot.length_scale();
+        for start in multistart_poses(self.robot) {
+            if self.robot.update_kinematics(&start, &mut self.kin).is_err() {
+                continue;
+            }
+            let sol = self.iterate(lengths, start);
+            let better =
+                |b: &ForwardSolution| (sol.converged, -sol.residual) > (b.converged, -b.residual);
+            if best.as_ref().is_none_or(better) {
+                best = Some(sol);
+            }
+            if sol.status == ForwardStatus::Solved
+                && !solutions
+                    .iter()
+                    .any(|s| same_pose(motion, &s.pose, &sol.pose, scale))
+            {
+                solutions.push(sol);
+            }
+        }
+        if solutions.is_empty() {
+            solutions.extend(best);
+        }
+        solutions.sort_by(|a, b| a.residual.total_cmp(&b.residual));
+        Ok(solutions)
+    }
+
+    /// The Levenberg–Marquardt loop from `x`, whose kinematics are in `self.kin`.
+    fn iterate(&mut self, lengths: &[f64], mut x: Pose) -> ForwardSolution {
+        let motion = self.robot.motion();
+        let d = motion.dof();
+        let scale = self.robot.length_scale();
+        // Below this step (m, rad) nothing changes at the precision of the lengths.
+        let step_tolerance = 1e-13 * scale;
+        let mut cost = half_squared_residual(&self.kin, lengths);
+        let mut mu = 0.0;
+        let mut nu = 2.0;
+        let mut iterations = 0;
+        let mut converged = false;
+        let mut a: Square = [[0.0; MAX_DOF]; MAX_DOF];
+        let mut rhs = [0.0; MAX_DOF];
+        while iterations < self.settings.max_iterations {
+            if max_residual(&self.kin, lengths) <= f64::EPSILON * scale {
+                converged = true;
+                break;
+            }
+            normal_equations(&self.kin, lengths, &mut a, &mut rhs);
+            let diag_max = (0..d).map(|k| a[k][k]).fold(0.0, f64::max);
+            if diag_max == 0.0 {
+                break;
+            }
+            let mut damped = a;
+            for k in 0..d {
+                damped[k][k] += mu * a[k][k].max(1e-12 * diag_max);
+            }
+            iterations += 1;
+            let Some(delta) = cholesky_solve(&damped, &rhs, d) else {
+                mu = if mu == 0.0 { 1e-6 } else { mu * nu };
+                nu *= 2.0;
+                continue;
+            };
+            let step = delta[..d].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let trial = displaced(motion, &x, &delta);
+            let accepted = match self.robot.update_kinematics(&trial, &mut self.trial) {
+                Ok(()) => {
+                    let trial_cost = half_squared_residual(&self.trial, lengths);
+                    trial_cost < cost
+                }
+                Err(_) => false,
+            };
+            if accepted {
+                cost = half_squared_residual(&self.trial, lengths);
+                x = trial;
+                std::mem::swap(&mut self.kin, &mut self.trial);
+                mu /= 3.0;
+                nu = 2.0;
+                if step <= step_tolerance {
+                    converged = true;
+                    break;
+                }
+            } else {
+                if step <= step_tolerance {
+                    // Even the undamped-size step cannot lower the cost: a stationary point.
+                    converged = true;
+                    break;
+                }
+                mu = if mu == 0.0 { 1e-6 } else { mu * nu };
+                nu *= 2.0;
+                if mu > 1e12 {
+                    // The gradient no longer points downhill at any representable step.
+                    converged = true;
+                    break;
+                }
+            }
+        }
+        let residual = max_residual(&self.kin, lengths);
+        normal_equations(&self.kin, lengths, &mut a, &mut rhs);
+        let min_singular_value = smallest_eigenvalue(a, d).max(0.0).sqrt();
+        let status = match (converged, residual <= self.settings.tolerance) {
+            (_, true) => ForwardStatus::Solved,
+            (true, false) => ForwardStatus::NoPoseWithinTolerance,
+            (false, false) => ForwardStatus::NotConverged,
+        };
+        ForwardSolution {
+            pose: x,
+            residual,
+            iterations,
+            converged: converged || status == ForwardStatus::Solved,
+            status,
+            min_singular_value,
+        }
+    }
+}
+
+impl Robot {
+    /// Forward kinematics from `guess` with the given settings (see [`ForwardKinematics`]).
+    pub fn forward_kinematics(
+        &self,
+        lengths: &[f64],
+        guess: &Pose,
+        settings: ForwardSettings,
+    ) -> Result<ForwardSolution, KinematicsError> {
+        ForwardKinematics::new(self, settings)?.solve(lengths, guess)
+    }
+}
+
+fn max_residual(kin: &PoseKinematics, lengths: &[f64]) -> f64 {
+    kin.lengths()
+        .zip(lengths)
+        .fold(0.0, |m, (l, t)| m.max((l - t).abs()))
+}
+
+fn half_squared_residual(kin: &PoseKinematics, lengths: &[f64]) -> f64 {
+    0.5 * kin
+        .lengths()
+        .zip(lengths)
+        .map(|(l, t)| (l - t) * (l - t))
+        .sum::<f64>()
+}
+
+/// A = W Wᵀ and rhs = W r (r = l − L), in the first DOF rows and columns.
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+fn normal_equations(kin: &PoseKinematics, lengths: &[f64], a: &mut Square, rhs: &mut [f64; 6]) {
+    let motion = kin.motion();
+    let d = motion.dof();
+    *a = [[0.0; MAX_DOF]; MAX_DOF];
+    *rhs = [0.0; MAX_DOF];
+    for (c, &target) in kin.cables().iter().zip(lengths) {
+        let col = wrench_column(motion, &c.unit, &c.attachment);
+        let r = c.length - target;
+        for i in 0..d {
+            rhs[i] += col[i] * r;
+            for j in 0..=i {
+                a[i][j] += col[i] * col[j];
+            }
+        }
+    }
+    for i in 0..d {
+        for j in 0..i {
+            a[j][i] = a[i][j];
+        }
+    }
+}
+
+/// Column of W for one cable (the same as `PoseKinematics::write_wrench_matrix`).
+#[inline]
+fn wrench_column(motion: MotionPattern, u: &Vector3<f64>, b: &Vector3<f64>) -> [f64; MAX_DOF] {
+    match motion {
+        MotionPattern::Point2 => [u.x, u.y, 0.0, 0.0, 0.0, 0.0],
+        MotionPattern::Planar => [u.x, u.y, b.x * u.y - b.y * u.x, 0.0, 0.0, 0.0],
+        MotionPattern::Point3 => [u.x, u.y, u.z, 0.0, 0.0, 0.0],
+        MotionPattern::Spatial => {
+            let m = b.cross(u);
+            [u.x, u.y, u.z, m.x, m.y, m.z]
+        }
+    }
+}
+
+/// Solves A δ = b for symmetric positive definite A (first `d` rows); `None` if not SPD.
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+fn cholesky_solve(a: &Square, b: &[f64; MAX_DOF], d: usize) -> Option<[f64; MAX_DOF]> {
+    let mut l: Square = [[0.0; MAX_DOF]; MAX_DOF];
+    for i in 0..d {
+        for j in 0..=i {
+            let mut s = a[i][j];
+            for k in 0..j {
+                s -= l[i][k] * l[j][k];
+            }
+            if i == j {
+                if s.is_nan() || s <= 0.0 || s.is_infinite() {
+                    return None;
+                }
+                l[i][i] = s.sqrt();
+            } else {
+                l[i][j] = s / l[j][j];
+            }
+        }
+    }
+    let mut y = [0.0; MAX_DOF];
+    for i in 0..d {
+        let mut s = b[i];
+        for k in 0..i {
+            s -= l[i][k] * y[k];
+        }
+        y[i] = s / l[i][i];
+    }
+    for i in (0..d).rev() {
+        let mut s = y[i];
+        for k in i + 1..d {
+            s -= l[k][i] * y[k];
+        }
+        y[i] = s / l[i][i];
+    }
+    y.iter().all(|v| v.is_finite()).then_some(y)
+}
+
+/// Smallest eigenvalue of the symmetric `d × d` matrix `a`, by cyclic Jacobi rotations.
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+fn smallest_eigenvalue(mut a: Square, d: usize) -> f64 {
+    for _sweep in 0..30 {
+        let mut off = 0.0;
+        let mut norm = 0.0;
+        for i in 0..d {
+            for j in 0..d {
+                norm += a[i][j] * a[i][j];
+                if i != j {
+                    off += a[i][j] * a[i][j];
+                }
+            }
+        }
+        if off <= 1e-30 * norm {
+            break;
+        }
+        for p in 0..d {
+            for q in p + 1..d {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for k in 0..d {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for k in 0..d {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+            }
+        }
+    }
+    (0..d).map(|k| a[k][k]).fold(f64::INFINITY, f64::min)
+}
+
+/// x ⊕ δ: the pose moved by the twist δ of the motion pattern (position first, then the
+/// rotation vector in base coordinates, applied on the left as in the Jacobian).
+fn displaced(motion: MotionPattern, pose: &Pose, delta: &[f64; MAX_DOF]) -> Pose {
+    let (dp, dphi) = match motion {
+        MotionPattern::Point2 => (Vector3::new(delta[0], delta[1], 0.0), None),
+        MotionPattern::Planar => (
+            Vector3::new(delta[0], delta[1], 0.0),
+            Some(Vector3::new(0.0, 0.0, delta[2])),
+        ),
+        MotionPattern::Point3 => (Vector3::new(delta[0], delta[1], delta[2]), None),
+        MotionPattern::Spatial => (
+            Vector3::new(delta[0], delta[1], delta[2]),
+            Some(Vector3::new(delta[3], delta[4], delta[5])),
+        ),
+    };
+    let rotation = match dphi {
+        Some(w) => Rotation3::new(w) * pose.rotation,
+        None => pose.rotation,
+    };
+    Pose::new(pose.position + dp, rotation)
+}
+
+fn same_pose(motion: MotionPattern, a: &Pose, b: &Pose, scale: f64) -> bool {
+    let position = (a.position - b.position).norm() <= 1e-6 * scale;
+    // ‖R_a − R_b‖_F ≈ √2 × their angle (`angle_to`, an acos of the trace, is NaN or 1e-8 for
+    // equal rotations).
+    let rotation =
+        !motion.has_orientation() || (a.rotation.matrix() - b.rotation.matrix()).norm() <= 1e-6;
+    position && rotation
+}
+
+/// The starts of [`ForwardKinematics::solve_multistart`].
+fn multistart_poses(robot: &Robot) -> Vec<Pose> {
+    let motion = robot.motion();
+    let (lo, hi) = robot.frame_bounding_box();
+    let centre = (lo + hi) / 2.0;
+    let half = (hi - lo) / 4.0;
+    let mut rotations = vec![Rotation3::identity()];
+    match motion {
+        MotionPattern::Planar => {
+            for angle in [
+                std::f64::consts::FRAC_PI_2,
+                -std::f64::consts::FRAC_PI_2,
+                std::f64::consts::PI,
+            ] {
+                rotations.push(Rotation3::from_axis_angle(&Vector3::z_axis(), angle));
+            }
+        }
+        MotionPattern::Spatial => {
+            for axis in [Vector3::x_axis(), Vector3::y_axis(), Vector3::z_axis()] {
+                for angle in [std::f64::consts::FRAC_PI_2, -std::f64::consts::FRAC_PI_2] {
+                    rotations.push(Rotation3::from_axis_angle(&axis, angle));
+                }
+            }
+            rotations.push(Rotation3::from_axis_angle(
+                &Vector3::z_axis(),
+                std::f64::consts::PI,
+            ));
+        }
+        MotionPattern::Point2 | MotionPattern::Point3 => {}
+    }
+    let mut starts: Vec<Pose> = rotations
+        .into_iter()
+        .map(|r| Pose::new(centre, r))
+        .collect();
+    let dims = motion.space_dim();
+    for corner in 0..(1 << dims) {
+        let mut p = centre;
+        for k in 0..dims {
+            p[k] += if corner & (1 << k) == 0 {
+                -half[k]
+            } else {
+                half[k]
+            };
+        }
+        starts.push(Pose::new(p, Rotation3::identity()));
+    }
+    starts
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cholesky_and_jacobi_by_hand() {
+        let mut a: Square = [[0.0; MAX_DOF]; MAX_DOF];
+        a[0] = [4.0, 2.0, 0.0, 0.0, 0.0, 0.0];
+        a[1] = [2.0, 3.0, 0.0, 0.0, 0.0, 0.0];
+        a[2][2] = 9.0;
+        let b = [2.0, 1.0, 3.0, 0.0, 0.0, 0.0];
+        let x = cholesky_solve(&a, &b, 3).unwrap();
+        // [[4, 2], [2, 3]] x = [2, 1] → x = (0.5, 0); 9 x₂ = 3.
+        assert!((x[0] - 0.5).abs() < 1e-15 && x[1].abs() < 1e-15);
+        assert!((x[2] - 1.0 / 3.0).abs() < 1e-15);
+        // Eigenvalues of [[4, 2], [2, 3]]: (7 ± √17) / 2; and 9.
+        let expected = (7.0 - 17f64.sqrt()) / 2.0;
+        assert!((smallest_eigenvalue(a, 3) - expected).abs() < 1e-14);
+        a[0][0] = -1.0;
+        assert!(cholesky_solve(&a, &b, 3).is_none());
+    }
+
+    #[test]
+    fn settings_are_validated() {
+        assert!(ForwardSettings::default().validate().is_ok());
+        for bad in [
+            ForwardSettings {
+                tolerance: 0.0,
+                ..Default::default()
+            },
+            ForwardSettings {
+                tolerance: f64::NAN,
+                ..Default::default()
+            },
+            ForwardSettings {
+                max_iterations: 0,
+                ..Default::default()
+            },
+        ] {
+            assert!(bad.validate().is_err());
+        }
+    }
+}

@@ -1,0 +1,371 @@
+//! # Swivel-pulley kinematics
+//!
+//! The cable model of WireCenter `.wcrfx` files and of Pott 2018 (§ on pulley kinematics): at
+//! the frame the cable runs along the swivel axis **k** (third column of the pulley frame Q)
+//! through the point **a** (the cable's `frame` point), travelling in the +**k** direction; there
+//! it meets a pulley of radius ρ that swivels freely about that axis, wraps it by the angle β and
+//! leaves it tangentially at **C** towards the platform attachment **B** = **r** + R **b̄**.
+//!
+//! In the pulley frame, with **d** = **B** − **a**:
+//!
+//! ```text
+//!   p = Qᵀ d,  s = √(p_x² + p_y²),  h = p_z,  γ = atan2(p_y, p_x)      swivel angle
+//!   x = s − ρ,  BM = √(x² + h²),  l_f = √(BM² − ρ²)                     free length
+//!   cos β = (l_f h − ρ x) / BM²,  sin β = (l_f x + ρ h) / BM²,  β ∈ (0, 2π)   wrap angle
+//!   L = ρ β + l_f                                                        cable length from a
+//!   C = a + Q R_z(γ) (ρ (1 − cos β), 0, ρ sin β)                         tangent point
+//!   u = (C − B) / l_f                                                    free-segment direction
+//! ```
+//!
+//! M = **a** + ρ Q R_z(γ) e_x is the pulley centre and BM the distance from it to **B**. For
+//! s ≥ ρ the wrap angle is the issue's / WireLib's β = acos(l_f / BM) + acos(h / BM); that form
+//! takes the *unsigned* angle between MB and **k**, which mirrors the tangent point when
+//! 0 < s < ρ (the attachment between the swivel axis and the pulley centre: with **B** on the
+//! axis above **a** it gives β = 2 atan(ρ / h) where the cable runs straight, β = 0). The sine
+//! and cosine above are those of the signed angle and hold for every s > 0.
+//!
+//! **Jacobian.** The free segment is tangent to the pulley and the pulley swivels freely, so the
+//! rate of the total length is the attachment velocity along the free segment:
+//! L̇ = −u · (ṙ + ω × R b̄) (the arc gained is the tangent-point motion along the free segment,
+//! and the swivel moves C perpendicular to u). The wrench matrix therefore keeps its form,
+//! column i = [u; (R b̄) × u] with the free-segment u, and W = Jᵀ with l̇ = −J q̇ exactly as for
+//! straight cables (`tests/pulley.rs` checks it against finite differences of L).
+//!
+//! **Degenerate poses** (errors for that pose): **B** inside the pulley circle (BM ≤ ρ, no
+//! tangent) and **B** on the swivel axis (s = 0, γ undefined).
+//!
+//! **CASPR.** A `base_rotating_pulley` (`fixed_location` F, `pulley_radius` R,
+//! `cable_entry_vector` v) is the same pulley: its centre is F + R · (radial direction towards
+//! **B**) and the cable enters at F travelling along v. So **a** = F, ρ = R and **k** = v / ‖v‖
+//! ([`Pulley::from_axis`]); CASPR does not fix the zero of the swivel angle. CASPR's arc
+//! length R · acos(n₁ · n₂) is limited to wraps ≤ π; the lengths agree whenever β ≤ π.
+//!
+//! ## References
+//! - Pott, *Cable-Driven Parallel Robots: Theory and Application*, Springer 2018 (pulley
+//!   kinematics; the `.wcrfx` model of WireLib's `doInverseKinematicsPulleyEx`).
+//! - CASPR (Lau et al.), `BaseRotatingPulleyAttachment`.
+
+use crate::Pulley;
+use nalgebra::{Matrix3, Vector3};
+use std::f64::consts::TAU;
+
+/// Largest deviation |QᵀQ − I| accepted for a pulley frame.
+pub(crate) const ORTHONORMAL_TOLERANCE: f64 = 1e-6;
+
+impl Pulley {
+    /// A pulley of radius ρ = `radius` swivelling about `axis` (any non-zero length; the cable
+    /// arrives travelling along +axis). Q = [e₁, k × e₁, k] with k = axis / ‖axis‖ and e₁ the
+    /// base x axis projected onto the plane normal to k (the base y axis instead when k is within
+    /// about 25° of x), so that the swivel angle γ is measured from e₁ about k.
+    ///
+    /// ```
+    /// use cdpr_kinematics::Pulley;
+    /// use nalgebra::Vector3;
+    /// let p = Pulley::from_axis(0.1, Vector3::new(0.0, 0.0, 2.0));
+    /// assert_eq!(p.axis(), Vector3::z());
+    /// assert_eq!(p.orientation.column(0), Vector3::x());
+    /// ```
+    pub fn from_axis(radius: f64, axis: Vector3<f64>) -> Self {
+        let k = axis / axis.norm();
+        let reference = if k.x.abs() < 0.9 {
+            Vector3::x()
+        } else {
+            Vector3::y()
+        };
+        let e1 = (reference - k * k.dot(&reference)).normalize();
+        let e2 = k.cross(&e1);
+        Self {
+            radius,
+            orientation: Matrix3::from_columns(&[e1, e2, k]),
+        }
+    }
+
+    /// The swivel axis **k**: the third column of Q.
+    pub fn axis(&self) -> Vector3<f64> {
+        self.orientation.column(2).into_owned()
+    }
+
+    /// Why these parameters cannot describe a pulley, if they cannot: radius not finite and > 0,
+    /// Q not finite or not orthonormal (|QᵀQ − I| > 1e-6), or `planar` and the axis leaves the
+    /// plane z = 0.
+    pub(crate) fn defect(&self, planar: bool) -> Option<(&'static str, f64)> {
+        if !(self.radius.is_finite() && self.radius > 0.0) {
+            return Some(("radius must be finite and > 0", self.radius));
+        }
+        if let Some(&x) = self.orientation.iter().find(|x| !x.is_finite()) {
+            return Some(("orientation has a non-finite entry", x));
+        }
+        let k = self.axis();
+        if k.norm() == 0.0 {
+            return Some(("swivel axis (third column of the orientation) is zero", 0.0));
+        }
+        let deviation =
+            (self.orientation.transpose() * self.orientation - Matrix3::identity()).amax();
+        if deviation > ORTHONORMAL_TOLERANCE {
+            return Some((
+                "orientation is not orthonormal (largest entry of |QᵀQ − I|)",
+                deviation,
+            ));
+        }
+        if planar && k.z.abs() > ORTHONORMAL_TOLERANCE {
+            return Some((
+                "a planar robot's pulley axis must lie in the plane (z component)",
+                k.z,
+            ));
+        }
+        None
+    }
+}
+
+/// Why a pulley cable has no defined geometry at a pose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum PulleyDegeneracy {
+    /// The platform attachment is inside (or on) the pulley circle: no tangent exists.
+    InsidePulley,
+    /// The platform attachment is on the swivel axis: the swivel angle is undefined.
+    OnSwivelAxis,
+}
+
+impl std::fmt::Display for PulleyDegeneracy {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Self::InsidePulley => "the platform attachment is inside the pulley circle",
+            Self::OnSwivelAxis => "the platform attachment is on the swivel axis",
+        })
+    }
+}
+
+/// The geometry of one pulley cable at one pose (base coordinates).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PulleyCable {
+    /// Tangent point **C** where the cable leaves the pulley.
+    pub exit_point: Vector3<f64>,
+    /// **C** − **B**: the free segment from the attachment to the tangent point.
+    pub free_vector: Vector3<f64>,
+    /// l_f = ‖C − B‖.
+    pub free_length: f64,
+    /// L = ρ β + l_f.
+    pub length: f64,
+    /// (cos γ, sin γ).
+    pub swivel_direction: [f64; 2],
+    /// β (rad), in (0, 2π).
+    pub wrap_angle: f64,
+    /// e_n = Q R_z(γ) e_y: unit normal of the pulley plane.
+    pub plane_normal: Vector3<f64>,
+    /// s_C / s: distance of the tangent point from the swivel axis over that of the attachment.
+    pub swivel_ratio: f64,
+}
+
+/// The module's equations for the cable through `a` over `pulley` to the attachment point `b`.
+/// `threshold` (m) is the distance below which s or l_f count as zero.
+#[inline]
+pub(crate) fn pulley_cable(
+    a: &Vector3<f64>,
+    pulley: &Pulley,
+    b: &Vector3<f64>,
+    threshold: f64,
+) -> Result<PulleyCable, (PulleyDegeneracy, f64)> {
+    let q = &pulley.orientation;
+    let rho = pulley.radius;
+    let p = q.tr_mul(&(b - a));
+    // √ rather than `hypot`: a tenth of the cost, and s² cannot overflow for finite robots.
+    let s = (p.x * p.x + p.y * p.y).sqrt();
+    // Written so that NaN also counts as degenerate.
+    if s.is_nan() || s <= threshold {
+        return Err((PulleyDegeneracy::OnSwivelAxis, s));
+    }
+    let h = p.z;
+    let x = s - rho;
+    let bm2 = x * x + h * h;
+    let free2 = bm2 - rho * rho;
+    if free2.is_nan() || free2 <= threshold * threshold {
+        return Err((PulleyDegeneracy::InsidePulley, bm2.sqrt()));
+    }
+    let free_length = free2.sqrt();
+    let inv_bm2 = 1.0 / bm2;
+    let cos_beta = (free_length * h - rho * x) * inv_bm2;
+    let sin_beta = (free_length * x + rho * h) * inv_bm2;
+    let mut wrap_angle = sin_beta.atan2(cos_beta);
+    if wrap_angle < 0.0 {
+        wrap_angle += TAU;
+    }
+    let inv_s = 1.0 / s;
+    let (cos_gamma, sin_gamma) = (p.x * inv_s, p.y * inv_s);
+    let radial = rho * (1.0 - cos_beta);
+    let (e1, e2, k) = (q.column(0), q.column(1), q.column(2));
+    // C = a + Q R_z(γ) (radial, 0, ρ sin β), with Q R_z(γ) e_x = cos γ e₁ + sin γ e₂.
+    let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
+    let exit_point = a + radial_direction * radial + k * (rho * sin_beta);
+    Ok(PulleyCable {
+        exit_point,
+        free_vector: exit_point - b,
+        free_length,
+        length: rho * wrap_angle + free_length,
+        swivel_direction: [cos_gamma, sin_gamma],
+        wrap_angle,
+        plane_normal: e2 * cos_gamma - e1 * sin_gamma,
+        swivel_ratio: radial * inv_s,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    fn z_pulley(rho: f64) -> Pulley {
+        Pulley::from_axis(rho, Vector3::z())
+    }
+
+    #[test]
+    fn attachment_straight_along_the_axis_has_no_wrap() {
+        // B just off the axis above a: the cable runs (almost) straight, L → h.
+        let c = pulley_cable(
+            &Vector3::zeros(),
+            &z_pulley(0.1),
+            &Vector3::new(1e-9, 0.0, 2.0),
+            1e-12,
+        )
+        .unwrap();
+        assert!(c.wrap_angle < 1e-8, "β = {}", c.wrap_angle);
+        assert_relative_eq!(c.length, 2.0, epsilon = 1e-8);
+    }
+
+    #[test]
+    fn horizontal_attachment_by_hand() {
+        // a = 0, k = z, ρ = 1, B = (3, 0, 0): M = (1, 0, 0), BM = 2, l_f = √3,
+        // tangent point at 60° past the top of the pulley: β = π/2 + π/6 = 2π/3,
+        // C = M + (−cos β, 0, sin β) = (1.5, 0, √3/2).
+        let c = pulley_cable(
+            &Vector3::zeros(),
+            &z_pulley(1.0),
+            &Vector3::new(3.0, 0.0, 0.0),
+            1e-12,
+        )
+        .unwrap();
+        assert_relative_eq!(
+            c.wrap_angle,
+            2.0 * std::f64::consts::FRAC_PI_3,
+            epsilon = 1e-15
+        );
+        assert_relative_eq!(c.free_length, 3f64.sqrt(), epsilon = 1e-15);
+        assert_relative_eq!(
+            c.length,
+            2.0 * std::f64::consts::FRAC_PI_3 + 3f64.sqrt(),
+            epsilon = 1e-15
+        );
+        assert_relative_eq!(
+            c.exit_point,
+            Vector3::new(1.5, 0.0, 3f64.sqrt() / 2.0),
+            epsilon = 1e-15
+        );
+        assert_eq!(c.swivel_direction, [1.0, 0.0]);
+    }
+
+    #[test]
+    fn wrap_matches_the_issue_formula_when_s_at_least_rho() {
+        let pulley = Pulley::from_axis(0.2, Vector3::new(0.3, -0.4, 1.0));
+        let a = Vector3::new(1.0, 2.0, 3.0);
+        for b in [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(2.5, 2.0, 3.0),
+            Vector3::new(1.0, 4.0, 5.0),
+            Vector3::new(-1.0, 2.0, 1.0),
+        ] {
+            let c = pulley_cable(&a, &pulley, &b, 1e-12).unwrap();
+            let p = pulley.orientation.transpose() * (b - a);
+            let (s, h) = (p.x.hypot(p.y), p.z);
+            assert!(s >= pulley.radius);
+            let bm = ((s - pulley.radius).powi(2) + h * h).sqrt();
+            let lf = (bm * bm - pulley.radius.powi(2)).sqrt();
+            let beta = (lf / bm).acos() + (h / bm).acos();
+            assert_relative_eq!(c.wrap_angle, beta, epsilon = 1e-12);
+            assert_relative_eq!(
+                c.swivel_direction[1].atan2(c.swivel_direction[0]),
+                p.y.atan2(p.x),
+                epsilon = 1e-15
+            );
+            // C is on the pulley circle and the free segment is tangent there.
+            let gamma_dir = pulley.orientation * Vector3::new(p.x / s, p.y / s, 0.0);
+            let m = a + pulley.radius * gamma_dir;
+            assert_relative_eq!((c.exit_point - m).norm(), pulley.radius, epsilon = 1e-12);
+            assert!((c.exit_point - m).dot(&c.free_vector).abs() < 1e-12);
+            assert_relative_eq!(c.free_vector.norm(), c.free_length, epsilon = 1e-12);
+        }
+    }
+
+    #[test]
+    fn wrap_beyond_half_turn_below_the_pulley() {
+        // B far below a, between the axis and the pulley centre: the cable runs over the top and
+        // down the far side, leaving just below the centre's height (β a little over π).
+        let c = pulley_cable(
+            &Vector3::zeros(),
+            &z_pulley(1.0),
+            &Vector3::new(0.5, 0.0, -5.0),
+            1e-12,
+        )
+        .unwrap();
+        assert!(c.wrap_angle > std::f64::consts::PI && c.wrap_angle < 1.5 * std::f64::consts::PI);
+        assert!(
+            c.exit_point.x > 1.9,
+            "leaves on the far side: {}",
+            c.exit_point
+        );
+        let m = Vector3::new(1.0, 0.0, 0.0);
+        assert_relative_eq!((c.exit_point - m).norm(), 1.0, epsilon = 1e-14);
+        assert!((c.exit_point - m).dot(&c.free_vector).abs() < 1e-13);
+    }
+
+    #[test]
+    fn degenerate_geometry_is_reported() {
+        let p = z_pulley(0.5);
+        let a = Vector3::zeros();
+        assert_eq!(
+            pulley_cable(&a, &p, &Vector3::new(0.0, 0.0, 1.0), 1e-12)
+                .unwrap_err()
+                .0,
+            PulleyDegeneracy::OnSwivelAxis
+        );
+        // Inside the pulley: 0.1 from the centre (0.5, 0, 0).
+        assert_eq!(
+            pulley_cable(&a, &p, &Vector3::new(0.6, 0.0, 0.0), 1e-12)
+                .unwrap_err()
+                .0,
+            PulleyDegeneracy::InsidePulley
+        );
+        assert!(pulley_cable(&a, &p, &Vector3::new(1.1, 0.0, 0.0), 1e-12).is_ok());
+        assert!(pulley_cable(&a, &p, &Vector3::new(f64::NAN, 0.0, 0.0), 1e-12).is_err());
+    }
+
+    #[test]
+    fn pulley_defects() {
+        let planar = false;
+        assert!(z_pulley(0.1).defect(planar).is_none());
+        assert!(z_pulley(0.0).defect(planar).is_some());
+        assert!(z_pulley(f64::INFINITY).defect(planar).is_some());
+        let mut p = z_pulley(0.1);
+        p.orientation[(0, 0)] = 2.0;
+        assert!(p.defect(planar).is_some());
+        p.orientation = Matrix3::zeros();
+        assert!(p.defect(planar).is_some());
+        assert!(z_pulley(0.1).defect(true).is_some());
+        assert!(Pulley::from_axis(0.1, Vector3::x()).defect(true).is_none());
+    }
+
+    #[test]
+    fn from_axis_is_orthonormal_with_the_axis_last() {
+        for axis in [
+            Vector3::x(),
+            Vector3::new(1.0, 2.0, -3.0),
+            -Vector3::z(),
+            Vector3::y(),
+        ] {
+            let p = Pulley::from_axis(0.1, axis);
+            assert_relative_eq!(p.axis(), axis.normalize(), epsilon = 1e-15);
+            let q = p.orientation;
+            assert!((q.transpose() * q - Matrix3::identity()).amax() < 1e-15);
+            assert_relative_eq!(q.determinant(), 1.0, epsilon = 1e-15);
+        }
+    }
+}

@@ -1,0 +1,114 @@
+//! `cdpr forward`: forward kinematics, from measured cable lengths to the platform pose.
+
+use super::{CliError, Numbers, kinematics_model, load_robot, pose, print_json};
+use cdpr::kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, MotionPattern};
+use serde_json::json;
+use std::path::PathBuf;
+
+/// The platform pose whose cable lengths are the measured ones (Levenberg–Marquardt on
+/// l(x) − L with the analytic Jacobian; straight or pulley cables, see `--kinematics`).
+///
+/// With `--guess` it iterates from that pose; without, it starts from the centre of the frame
+/// anchors' bounding box in several orientations and from points halfway to its corners, and
+/// reports every distinct solution. With more cables than DOF and inconsistent (noisy) lengths the
+/// answer is the least-squares pose. Every answer is certified: `residual` = max |l_i(pose) − L_i|
+/// (m) recomputed at the pose, `iterations`, `converged`, `status` ("solved" when the residual is
+/// within --tolerance, "no pose within tolerance" when the iteration converged to a larger
+/// residual, "did not converge"), and `min_singular_value`, the smallest singular value of the
+/// Jacobian (pose error ≲ length error / σ_min). Those outcomes exit 0; bad input exits 2.
+/// JSON fields: `kinematics`, `pose` (the best solution, motion-pattern coordinates: m and rad),
+/// `residual` (m), `iterations`, `converged`, `status`, `min_singular_value`, and `solutions`
+/// (every distinct solution found, each with the same fields; one entry with --guess).
+#[derive(clap::Args)]
+pub struct Args {
+    /// Robot file (TOML).
+    robot: PathBuf,
+    /// Measured cable lengths L_1,…,L_n (m), in cable order; with pulleys measured from each
+    /// cable's `frame` point over its pulley.
+    #[arg(long, allow_hyphen_values = true)]
+    lengths: Numbers,
+    /// Starting pose (motion-pattern coordinates, e.g. x,y,z,rx,ry,rz); without it, multi-start.
+    #[arg(long, allow_hyphen_values = true)]
+    guess: Option<Numbers>,
+    /// A pose solves the lengths when max |l_i − L_i| is at most this (m).
+    #[arg(long, default_value_t = 1e-9)]
+    tolerance: f64,
+    /// Write one JSON object on stdout instead of a table.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs the command.
+pub fn run(args: Args) -> Result<(), CliError> {
+    let robot = load_robot(&args.robot)?;
+    let motion = robot.robot.motion();
+    let settings = ForwardSettings {
+        tolerance: args.tolerance,
+        ..ForwardSettings::default()
+    };
+    let mut fk = ForwardKinematics::new(&robot.robot, settings)?;
+    let solutions = match &args.guess {
+        Some(g) => vec![fk.solve(&args.lengths, &pose(&robot, g)?)?],
+        None => fk.solve_multistart(&args.lengths)?,
+    };
+    let best = solutions[0];
+    let model = kinematics_model(&robot);
+    if args.json {
+        let mut out = entry(motion, &best);
+        out["robot"] = json!(robot.name);
+        out["motion"] = json!(motion.name());
+        out["kinematics"] = json!(model.name());
+        out["solutions"] = solutions.iter().map(|s| entry(motion, s)).collect();
+        print_json(&out)
+    } else {
+        println!(
+            "robot {} ({}, {} kinematics), {} from {}",
+            robot.name,
+            motion,
+            model.name(),
+            if solutions.len() == 1 {
+                "1 answer".to_string()
+            } else {
+                format!("{} distinct solutions", solutions.len())
+            },
+            if args.guess.is_some() {
+                "the guess"
+            } else {
+                "the multi-start"
+            }
+        );
+        println!(
+            "{:>3}  {:<24} {:>12} {:>6} {:>12}  pose (m, rad)",
+            "#", "status", "residual (m)", "iter", "σ_min(J)"
+        );
+        for (i, s) in solutions.iter().enumerate() {
+            let p: Vec<String> = s
+                .pose
+                .coordinates(motion)
+                .iter()
+                .map(|x| format!("{x:.9}"))
+                .collect();
+            println!(
+                "{:>3}  {:<24} {:>12.3e} {:>6} {:>12.4e}  {}",
+                i + 1,
+                s.status.name(),
+                s.residual,
+                s.iterations,
+                s.min_singular_value,
+                p.join(",")
+            );
+        }
+        Ok(())
+    }
+}
+
+fn entry(motion: MotionPattern, s: &ForwardSolution) -> serde_json::Value {
+    json!({
+        "pose": s.pose.coordinates(motion),
+        "residual": s.residual,
+        "iterations": s.iterations,
+        "converged": s.converged,
+        "status": s.status.name(),
+        "min_singular_value": s.min_singular_value,
+    })
+}
