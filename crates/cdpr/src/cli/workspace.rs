@@ -858,40 +858,29 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (None, _) => vec![],
     };
     super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
+    let context = super::workspace_mesh::Context {
+        desc: &desc,
+        setup: &setup,
+        eval: &eval,
+        rotation: &rot,
+        orientation: &orientation,
+        w_ext: w_ext.as_slice(),
+        region: &region,
+        m,
+        draw_pose: args.draw_pose.as_deref(),
+        plot: args.plot.as_deref(),
+        json: args.json,
+    };
     if let Some(section) = &args.section {
         let section = super::workspace_mesh::parse_section(section, &region)?;
-        return super::workspace_mesh::run_section(super::workspace_mesh::SectionRun {
-            desc: &desc,
-            setup: &setup,
-            eval: &eval,
-            rotation: &rot,
-            orientation: &orientation,
-            w_ext: w_ext.as_slice(),
-            region: &region,
-            section,
-            chord: args.chord,
-            m,
-            draw_pose: args.draw_pose.as_deref(),
-            plot: args.plot.as_deref(),
-            json: args.json,
-        });
+        return super::workspace_mesh::run_section(&context, section, args.chord);
     }
     if args.boundary == "mesh" {
-        return super::workspace_mesh::run_mesh(super::workspace_mesh::MeshRun {
-            desc: &desc,
-            setup: &setup,
-            eval: &eval,
-            rotation: &rot,
-            orientation: &orientation,
-            w_ext: w_ext.as_slice(),
-            region: &region,
-            m,
-            mesh: args.mesh.as_deref(),
-            points: args.points.as_deref(),
-            draw_pose: args.draw_pose.as_deref(),
-            plot: args.plot.as_deref(),
-            json: args.json,
-        });
+        return super::workspace_mesh::run_mesh(
+            &context,
+            args.mesh.as_deref(),
+            args.points.as_deref(),
+        );
     }
     let pose = if args.plot.is_some() {
         Some(draw_pose(robot, args.draw_pose.as_deref(), &region, &rot)?)
@@ -946,22 +935,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
             save_plot(&fig, path)?;
         }
         if args.json {
-            return print_json(&json!({
-                "robot": desc.name,
-                "method": "chord",
-                "orientation": orientation,
-                "external_wrench": w_ext.as_slice(),
-                "criteria": setup.labels(),
-                "tension_method": method.name(),
-                "box": box_json(&region, dim),
-                "chord": args.chord,
-                "area": ws.area,
-                "boundaries": ws.boundaries.iter().map(|b| &b.vertices).collect::<Vec<_>>(),
-                "signed_areas": ws.boundaries.iter().map(|b| b.signed_area()).collect::<Vec<_>>(),
-                "bifurcations": ws.boundaries.iter().map(|b| b.bifurcations.iter().map(|&k| b.vertices[k]).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                "abandoned": ws.abandoned,
-                "evaluations": ws.evaluations,
-            }));
+            return print_json(&super::workspace_mesh::with_chord_fields(
+                json!({
+                    "robot": desc.name,
+                    "method": "chord",
+                    "orientation": orientation,
+                    "external_wrench": w_ext.as_slice(),
+                    "criteria": setup.labels(),
+                    "tension_method": method.name(),
+                    "box": box_json(&region, dim),
+                    "chord": args.chord,
+                }),
+                &ws,
+            ));
         }
         println!(
             "robot {}: chord-method workspace at orientation {:?}, w_ext {:?}",

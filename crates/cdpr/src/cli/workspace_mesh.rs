@@ -7,8 +7,8 @@ use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::plot::WorkspacePlot;
 use cdpr::workspace::{
-    BoundaryMesh, BoxFace, ChordSettings, Grid, GridWorkspace, MeshSettings, PoseEvaluator, Region,
-    Section, boundary_mesh, chord_section,
+    BoundaryMesh, BoxFace, ChordSettings, ChordWorkspace, Grid, GridWorkspace, MeshSettings,
+    PoseEvaluator, Region, Section, boundary_mesh, chord_section,
 };
 use nalgebra::{Rotation3, Vector2};
 use serde_json::{Value, json};
@@ -145,8 +145,8 @@ fn write_mesh(mesh: &BoundaryMesh, path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Everything `--boundary mesh` needs.
-pub struct MeshRun<'a> {
+/// What the mesh and section modes share with the rest of `cdpr workspace`.
+pub struct Context<'a> {
     /// Robot file.
     pub desc: &'a RobotDescription,
     /// Criteria.
@@ -161,12 +161,8 @@ pub struct MeshRun<'a> {
     pub w_ext: &'a [f64],
     /// Search box.
     pub region: &'a Region,
-    /// Grid resolution M.
+    /// Grid resolution M (with --section: of the grid seeding the walks).
     pub m: usize,
-    /// `--mesh` file.
-    pub mesh: Option<&'a Path>,
-    /// `--points` file.
-    pub points: Option<&'a Path>,
     /// `--draw-pose`.
     pub draw_pose: Option<&'a [f64]>,
     /// `--plot` file.
@@ -176,7 +172,11 @@ pub struct MeshRun<'a> {
 }
 
 /// `--boundary mesh`.
-pub fn run_mesh(r: MeshRun<'_>) -> Result<(), CliError> {
+pub fn run_mesh(
+    r: &Context<'_>,
+    mesh_file: Option<&Path>,
+    points: Option<&Path>,
+) -> Result<(), CliError> {
     let desc = r.desc;
     let robot = &desc.robot;
     let grid = Grid::new(r.m, *r.region);
@@ -184,10 +184,10 @@ pub fn run_mesh(r: MeshRun<'_>) -> Result<(), CliError> {
     let mesh = boundary_mesh(r.eval, r.rotation, &grid, &MeshSettings::default())?;
     let seconds = start.elapsed().as_secs_f64();
     let defects = mesh.edge_defects();
-    if let Some(path) = r.mesh {
+    if let Some(path) = mesh_file {
         write_mesh(&mesh, path)?;
     }
-    if let Some(path) = r.points {
+    if let Some(path) = points {
         write_points(&mesh.grid, path)?;
     }
     let ws = &mesh.grid;
@@ -259,16 +259,7 @@ pub fn run_mesh(r: MeshRun<'_>) -> Result<(), CliError> {
             "triangles": mesh.triangles,
         }));
     }
-    println!(
-        "robot {}: boundary mesh of the constant-orientation workspace at orientation {:?}, \
-         w_ext {:?} (N, N·m)",
-        desc.name, r.orientation, r.w_ext
-    );
-    println!(
-        "criteria: {} (tensions: {})",
-        r.setup.labels().join(", "),
-        r.setup.method.name()
-    );
+    header(r, "boundary mesh of the constant-orientation workspace");
     println!(
         "grid m = {} over {} (m): {} of {} points feasible; grid count {:.6} m³",
         r.m,
@@ -322,10 +313,10 @@ pub fn run_mesh(r: MeshRun<'_>) -> Result<(), CliError> {
         mesh.evaluations,
         seconds
     );
-    if let Some(p) = r.mesh {
+    if let Some(p) = mesh_file {
         println!("mesh written to {}", p.display());
     }
-    if let Some(p) = r.points {
+    if let Some(p) = points {
         println!("grid verdicts written to {}", p.display());
     }
     if let Some(p) = r.plot {
@@ -334,49 +325,53 @@ pub fn run_mesh(r: MeshRun<'_>) -> Result<(), CliError> {
     Ok(())
 }
 
-/// Everything `--section` needs.
-pub struct SectionRun<'a> {
-    /// Robot file.
-    pub desc: &'a RobotDescription,
-    /// Criteria.
-    pub setup: &'a CriteriaSetup,
-    /// Evaluator at the orientation.
-    pub eval: &'a PoseEvaluator,
-    /// Orientation.
-    pub rotation: &'a Rotation3<f64>,
-    /// Orientation as given (for reports).
-    pub orientation: &'a [f64],
-    /// w_ext (N, N·m).
-    pub w_ext: &'a [f64],
-    /// Search box.
-    pub region: &'a Region,
-    /// The plane.
-    pub section: Section,
-    /// Chord length d (m).
-    pub chord: f64,
-    /// Seed grid resolution M.
-    pub m: usize,
-    /// `--draw-pose`.
-    pub draw_pose: Option<&'a [f64]>,
-    /// `--plot` file.
-    pub plot: Option<&'a Path>,
-    /// `--json`.
-    pub json: bool,
+/// The two first lines of a text report: robot, what, orientation, load; criteria.
+fn header(r: &Context<'_>, what: &str) {
+    println!(
+        "robot {}: {what} at orientation {:?}, w_ext {:?} (N, N·m)",
+        r.desc.name, r.orientation, r.w_ext
+    );
+    println!(
+        "criteria: {} (tensions: {})",
+        r.setup.labels().join(", "),
+        r.setup.method.name()
+    );
+}
+
+/// Adds the chord method's result fields (`area`, `boundaries`, `signed_areas`, `bifurcations`,
+/// `abandoned`, `evaluations`) to a JSON object.
+pub fn with_chord_fields(mut v: Value, ws: &ChordWorkspace) -> Value {
+    let b = &ws.boundaries;
+    v["area"] = json!(ws.area);
+    v["boundaries"] = json!(b.iter().map(|p| &p.vertices).collect::<Vec<_>>());
+    v["signed_areas"] = json!(b.iter().map(|p| p.signed_area()).collect::<Vec<_>>());
+    v["bifurcations"] = json!(
+        b.iter()
+            .map(|p| p
+                .bifurcations
+                .iter()
+                .map(|&k| p.vertices[k])
+                .collect::<Vec<_>>())
+            .collect::<Vec<_>>()
+    );
+    v["abandoned"] = json!(ws.abandoned);
+    v["evaluations"] = json!(ws.evaluations);
+    v
 }
 
 /// `--section AXIS=VALUE`.
-pub fn run_section(r: SectionRun<'_>) -> Result<(), CliError> {
+pub fn run_section(r: &Context<'_>, section: Section, chord: f64) -> Result<(), CliError> {
     let desc = r.desc;
     let robot = &desc.robot;
     let settings = ChordSettings {
-        chord: r.chord,
+        chord,
         seed_resolution: r.m,
         ..ChordSettings::default()
     };
-    let ws = chord_section(r.eval, r.rotation, r.section, r.region, &settings)?;
+    let ws = chord_section(r.eval, r.rotation, section, r.region, &settings)?;
     let names = ["x", "y", "z"];
-    let [a, b] = r.section.in_plane_axes();
-    let plane = format!("{} = {}", names[r.section.axis], r.section.value);
+    let [a, b] = section.in_plane_axes();
+    let plane = format!("{} = {}", names[section.axis], section.value);
     let regions = ws
         .boundaries
         .iter()
@@ -388,8 +383,7 @@ pub fn run_section(r: SectionRun<'_>) -> Result<(), CliError> {
         let mut pose = draw_pose(robot, r.draw_pose, r.region, r.rotation)?;
         if r.draw_pose.is_none() {
             pose = Pose::new(
-                r.section
-                    .embed(Vector2::new(pose.position[a], pose.position[b])),
+                section.embed(Vector2::new(pose.position[a], pose.position[b])),
                 pose.rotation,
             );
         }
@@ -422,7 +416,7 @@ pub fn run_section(r: SectionRun<'_>) -> Result<(), CliError> {
                 format!(
                     "area {:.4} m², {regions} region(s), {holes} hole(s); chord method, d = {} m, \
                      vertices on the boundary to 1e-8 m",
-                    ws.area, r.chord
+                    ws.area, chord
                 ),
                 format!(
                     "orientation {:?}; {}; thin rectangle: the search box; robot projected at \
@@ -438,41 +432,30 @@ pub fn run_section(r: SectionRun<'_>) -> Result<(), CliError> {
         save_plot(&fig, path)?;
     }
     if r.json {
-        return print_json(&json!({
-            "robot": desc.name,
-            "method": "chord",
-            "section": {
-                "axis": names[r.section.axis],
-                "value": r.section.value,
-                "plane_axes": [names[a], names[b]],
-            },
-            "orientation": r.orientation,
-            "external_wrench": r.w_ext,
-            "criteria": r.setup.labels(),
-            "tension_method": r.setup.method.name(),
-            "box": box_json(r.region, 3),
-            "chord": r.chord,
-            "area": ws.area,
-            "boundaries": ws.boundaries.iter().map(|b| &b.vertices).collect::<Vec<_>>(),
-            "signed_areas": ws.boundaries.iter().map(|b| b.signed_area()).collect::<Vec<_>>(),
-            "bifurcations": ws.boundaries.iter().map(|b| b.bifurcations.iter().map(|&k| b.vertices[k]).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            "abandoned": ws.abandoned,
-            "evaluations": ws.evaluations,
-        }));
+        return print_json(&with_chord_fields(
+            json!({
+                "robot": desc.name,
+                "method": "chord",
+                "section": {
+                    "axis": names[section.axis],
+                    "value": section.value,
+                    "plane_axes": [names[a], names[b]],
+                },
+                "orientation": r.orientation,
+                "external_wrench": r.w_ext,
+                "criteria": r.setup.labels(),
+                "tension_method": r.setup.method.name(),
+                "box": box_json(r.region, 3),
+                "chord": chord,
+            }),
+            &ws,
+        ));
     }
-    println!(
-        "robot {}: workspace section {plane} m at orientation {:?}, w_ext {:?} (N, N·m)",
-        desc.name, r.orientation, r.w_ext
-    );
-    println!(
-        "criteria: {} (tensions: {})",
-        r.setup.labels().join(", "),
-        r.setup.method.name()
-    );
+    header(r, &format!("workspace section {plane} m"));
     println!(
         "area {:.6} m² in the ({}, {}) plane: {regions} region(s), {holes} hole(s), chord d = {} m, \
          {} pose evaluations",
-        ws.area, names[a], names[b], r.chord, ws.evaluations
+        ws.area, names[a], names[b], chord, ws.evaluations
     );
     for (k, p) in ws.boundaries.iter().enumerate() {
         println!(

@@ -159,14 +159,19 @@ impl Figure for WorkspacePlot {
                 .iter()
                 .map(|&p| Circle::new(p, 6, RGBColor(200, 30, 30).stroke_width(2))),
         )?;
-        chart.draw_series(self.anchors.iter().enumerate().map(|(i, &(x, y))| {
-            EmptyElement::at((x, y))
+        // Anchors that coincide in the drawing (a spatial robot seen along an axis) share one
+        // label, "c1, c5", instead of overprinting each other.
+        let mut labels: Vec<((f64, f64), String)> = Vec::new();
+        for (i, &p) in self.anchors.iter().enumerate() {
+            match labels.iter_mut().find(|(q, _)| *q == p) {
+                Some((_, text)) => text.push_str(&format!(", c{}", i + 1)),
+                None => labels.push((p, format!("c{}", i + 1))),
+            }
+        }
+        chart.draw_series(labels.into_iter().map(|(p, text)| {
+            EmptyElement::at(p)
                 + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
-                + Text::new(
-                    format!("c{}", i + 1),
-                    (7, -18),
-                    ("sans-serif", 14).into_font(),
-                )
+                + Text::new(text, (7, -18), ("sans-serif", 14).into_font())
         }))?;
         Ok(())
     }
