@@ -75,8 +75,9 @@ JSON (grid): `area` (m², in the convention `volume_convention`: \"cells\" or \"
 `area_cells`, `area_points` (both conventions), `feasible_points`, `total_points`, `cell_area`
 (m² or m³), `resolution`, `box` (m), `orientation` (rad), `external_wrench` (N, N·m),
 `criteria`, `method`; 3-D grids add `volume` (m³, = `area`).
-JSON (mesh): the grid fields (`area` and `grid_volume` = the grid count, `feasible_points`, …)
-plus `volume` (m³, enclosed by the mesh), `surface_area` (m², box caps included), `cap_area`
+JSON (mesh): the grid fields (`area`, `area_cells`, `area_points`, `volume_convention`,
+`feasible_points`, …; `grid_volume` = `area`, the grid count in --volume-convention) plus
+`volume` (m³, enclosed by the mesh), `surface_area` (m², box caps included), `cap_area`
 (m², the part on the box faces), `components`, `regions`, `cavities`, `shells` (volume m³, area
 m², genus each), `box_faces_reached` ({x_min: bool, …}), `vertices` ([[x, y, z], …] m),
 `triangles` ([[i, j, k], …], counter-clockwise seen from outside), `tolerance` (m),
@@ -829,9 +830,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let rot = rotation(motion, args.orientation.as_deref())?;
     let region = region(robot, args.area.as_deref(), "--box")?;
     let m = resolution(args.grid, dim, 50)?;
+    super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
     if let Some(set) = &args.orientations {
         if args.boundary != "grid" {
             return Err("--orientations runs on the grid (--boundary grid)".into());
+        }
+        if args.section.is_some() || args.points.is_some() {
+            return Err(
+                "--section and --points apply to one orientation, not --orientations".into(),
+            );
         }
         let kind = match args.kind.as_deref() {
             Some("maximal") => OrientationWorkspaceKind::Maximal,
@@ -857,7 +864,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (None, MotionPattern::Spatial) => vec![0.0; 3],
         (None, _) => vec![],
     };
-    super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
     let context = super::workspace_mesh::Context {
         desc: &desc,
         setup: &setup,
@@ -867,6 +873,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         w_ext: w_ext.as_slice(),
         region: &region,
         m,
+        volume_convention: args.volume_convention,
         draw_pose: args.draw_pose.as_deref(),
         plot: args.plot.as_deref(),
         json: args.json,

@@ -1,14 +1,16 @@
 //! `cdpr workspace --boundary mesh` and `--section AXIS=VALUE`: the boundary of a 3-D workspace as
 //! a closed triangle mesh (its volume, files), and exact plane sections by the chord method.
 
-use super::workspace::{CriteriaSetup, box_json, draw_pose, save_plot, workspace_plot};
+use super::workspace::{
+    CriteriaSetup, box_json, draw_pose, measure_json, save_plot, workspace_plot,
+};
 use super::{CliError, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::plot::WorkspacePlot;
 use cdpr::workspace::{
     BoundaryMesh, BoxFace, ChordSettings, ChordWorkspace, Grid, GridWorkspace, MeshSettings,
-    PoseEvaluator, Region, Section, boundary_mesh, chord_section,
+    PoseEvaluator, Region, Section, VolumeConvention, boundary_mesh, chord_section,
 };
 use nalgebra::{Rotation3, Vector2};
 use serde_json::{Value, json};
@@ -163,6 +165,8 @@ pub struct Context<'a> {
     pub region: &'a Region,
     /// Grid resolution M (with --section: of the grid seeding the walks).
     pub m: usize,
+    /// How the grid count turns points into a volume (`grid_volume`).
+    pub volume_convention: VolumeConvention,
     /// `--draw-pose`.
     pub draw_pose: Option<&'a [f64]>,
     /// `--plot` file.
@@ -191,6 +195,7 @@ pub fn run_mesh(
         write_points(&mesh.grid, path)?;
     }
     let ws = &mesh.grid;
+    let grid_volume = ws.measure(r.volume_convention);
     let reached: Vec<&str> = BoxFace::ALL
         .iter()
         .filter(|f| mesh.box_faces_reached[**f as usize])
@@ -208,10 +213,11 @@ pub fn run_mesh(
                 desc.name, r.orientation
             ),
             vec![format!(
-                "volume {:.4} m³ (boundary mesh, m = {}); grid count {:.4} m³; {}",
+                "volume {:.4} m³ (boundary mesh, m = {}); grid count {:.4} m³ ({}); {}",
                 mesh.volume,
                 r.m,
-                ws.area,
+                grid_volume,
+                r.volume_convention,
                 r.setup.labels().join(", ")
             )],
         );
@@ -225,7 +231,7 @@ pub fn run_mesh(
                 Value::Bool(mesh.box_faces_reached[f as usize]),
             );
         }
-        return print_json(&json!({
+        let mut v = json!({
             "robot": desc.name,
             "method": "mesh",
             "orientation": r.orientation,
@@ -235,12 +241,10 @@ pub fn run_mesh(
             "box": box_json(r.region, 3),
             "resolution": r.m,
             "dimension": 3,
-            "area": ws.area,
             "feasible_points": ws.feasible_points,
             "total_points": ws.total_points,
             "cell_area": ws.cell_area,
-            "grid_volume": ws.area,
-            "volume": mesh.volume,
+            "grid_volume": grid_volume,
             "surface_area": mesh.surface_area,
             "cap_area": mesh.cap_area,
             "components": mesh.components,
@@ -257,16 +261,22 @@ pub fn run_mesh(
             "seconds": seconds,
             "vertices": mesh.vertices,
             "triangles": mesh.triangles,
-        }));
+        });
+        // The grid's fields as in grid mode (`area` in the chosen convention, both
+        // conventions); then `volume` is the mesh's.
+        measure_json(&mut v, ws, r.volume_convention);
+        v["volume"] = json!(mesh.volume);
+        return print_json(&v);
     }
     header(r, "boundary mesh of the constant-orientation workspace");
     println!(
-        "grid m = {} over {} (m): {} of {} points feasible; grid count {:.6} m³",
+        "grid m = {} over {} (m): {} of {} points feasible; grid count {:.6} m³ ({} convention)",
         r.m,
         box_json(r.region, 3),
         ws.feasible_points,
         ws.total_points,
-        ws.area
+        grid_volume,
+        r.volume_convention
     );
     println!(
         "volume {:.6} m³ (enclosed by the mesh; vertices within {:.1e} m of the boundary)",
