@@ -2,14 +2,18 @@
 //! thesis robots at m = 50 (thesis, Fortran 2002: 3-cable 0.03 s, 4-cable with l2 29.3 s), the
 //! chord method (§6.4.3, thesis 4-cable l2: 30.12 s) and a spatial constant-orientation grid of
 //! the 8-cable robot (`ipanema_like_8`, 25³ = 15 625 poses over the frame's bounding box: about
-//! CASPR's IPAnema 2 benchmark size of 14 823) for wrench closure and l2 tension feasibility.
+//! CASPR's IPAnema 2 benchmark size of 14 823) for wrench closure and l2 tension feasibility,
+//! and the boundary mesh of the same robot's wrench-feasible workspace with gravity (l2 tensions
+//! in [10, 1000] N, 5 kg platform, cables ≥ 0.05 m, `examples/robots/ipanema-like-8.toml`) at
+//! M = 60 over its frame, vertices refined to 1e-8 of the box (issue 16: ≤ 1 s on 2 cores).
 
 use cdpr_benches::ipanema_like_8;
 use cdpr_kinematics::{Cable, MotionPattern, Robot};
 use cdpr_tension::{Method, TensionBounds};
 use cdpr_workspace::{
-    ChordSettings, Criterion as Cr, Grid, OrientationRange, PoseEvaluator, Region, chord_workspace,
-    constant_orientation_workspace, dextrous_workspace, planar_workspace,
+    ChordSettings, Criterion as Cr, Grid, MeshSettings, OrientationRange, PoseEvaluator, Region,
+    boundary_mesh, chord_workspace, constant_orientation_workspace, dextrous_workspace,
+    planar_workspace,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::{DVector, Rotation3, Vector3};
@@ -146,5 +150,29 @@ fn spatial(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, discretisation, chord, dextrous, spatial);
+fn mesh(c: &mut Criterion) {
+    let mut g = c.benchmark_group("workspace");
+    g.sample_size(10);
+    let robot = ipanema_like_8();
+    let grid = Grid::over_frame(&robot, 60);
+    let eval = PoseEvaluator::new(
+        robot,
+        TensionBounds::uniform(8, 10.0, 1000.0).unwrap(),
+        vec![
+            Cr::TensionFeasible {
+                method: Method::L2,
+                wrench: DVector::from_vec(vec![0.0, 0.0, -9.80665 * 5.0, 0.0, 0.0, 0.0]),
+            },
+            Cr::MinCableLength(0.05),
+        ],
+    )
+    .unwrap();
+    let id = Rotation3::identity();
+    g.bench_function("boundary_mesh_8_spatial_m60", |b| {
+        b.iter(|| boundary_mesh(black_box(&eval), &id, &grid, &MeshSettings::default()).unwrap())
+    });
+    g.finish();
+}
+
+criterion_group!(benches, discretisation, chord, dextrous, spatial, mesh);
 criterion_main!(benches);

@@ -13,6 +13,7 @@ pub mod synthesize;
 pub mod tension;
 pub mod trajectory;
 pub mod workspace;
+pub mod workspace_mesh;
 
 use cdpr::RobotDescription;
 use cdpr::io::LoadOptions;

@@ -36,6 +36,16 @@ Methods (--boundary):
         boundary (to 1e-8) a chord length --chord apart, every region and hole (seeded by a
         coarse grid of --grid M), corners refined; area = sum of the polygons' signed areas.
         Planar and point2 robots only.
+  mesh  robots moving in space (point3, spatial): the boundary inside --box as a closed,
+        consistently oriented triangle mesh: marching cubes over the (M+1)³ grid verdicts, every
+        vertex then bisected onto the boundary along its grid edge to 1e-8 of the box size;
+        the box faces close the mesh where the workspace reaches them. `volume` is the volume
+        enclosed by the mesh (divergence theorem; error O(h²) against the grid count's O(h)),
+        `grid_volume` the grid count. --mesh FILE.stl|.ply|.obj writes the mesh.
+
+Sections (--section AXIS=VALUE, e.g. z=1.2; point3 and spatial robots): the exact boundary of
+the workspace in that plane by the chord method (closed polygons to 1e-8, --chord, seeded by a
+--grid M grid of the plane), in the plane's coordinates (y,z for x=…, x,z for y=…, x,y for z=…).
 
 Criteria (--criteria, a comma list; default: tension, plus length and det when the robot file
 gives min_cable_length / min_jacobian_det):
@@ -65,6 +75,15 @@ JSON (grid): `area` (m², in the convention `volume_convention`: \"cells\" or \"
 `area_cells`, `area_points` (both conventions), `feasible_points`, `total_points`, `cell_area`
 (m² or m³), `resolution`, `box` (m), `orientation` (rad), `external_wrench` (N, N·m),
 `criteria`, `method`; 3-D grids add `volume` (m³, = `area`).
+JSON (mesh): the grid fields (`area`, `area_cells`, `area_points`, `volume_convention`,
+`feasible_points`, …; `grid_volume` = `area`, the grid count in --volume-convention) plus
+`volume` (m³, enclosed by the mesh), `surface_area` (m², box caps included), `cap_area`
+(m², the part on the box faces), `components`, `regions`, `cavities`, `shells` (volume m³, area
+m², genus each), `box_faces_reached` ({x_min: bool, …}), `vertices` ([[x, y, z], …] m),
+`triangles` ([[i, j, k], …], counter-clockwise seen from outside), `tolerance` (m),
+`watertight`, `evaluations`.
+JSON (section): the chord fields plus `section` ({axis, value (m), plane_axes}).
+--points FILE.csv (grid and mesh) writes the grid verdicts: `x (m),y (m)[,z (m)],feasible`.
 JSON (chord): `area`, `boundaries` (closed polygons [[x, y], …]: counter-clockwise around
 regions, clockwise around holes), `signed_areas`, `bifurcations` (corner points per polygon),
 `abandoned`, `evaluations`, `chord`.
@@ -94,9 +113,21 @@ pub struct Args {
     orientation: Option<Numbers>,
     #[command(flatten)]
     criteria: CriteriaArgs,
-    /// Method: `grid` (Algorithm 6.2) or `chord` (the chord method, planar robots).
-    #[arg(long, default_value = "grid", value_parser = ["grid", "chord"])]
+    /// Method: `grid` (Algorithm 6.2), `chord` (the chord method, planar robots) or `mesh`
+    /// (closed boundary mesh and its volume, robots moving in space).
+    #[arg(long, default_value = "grid", value_parser = ["grid", "chord", "mesh"])]
     boundary: String,
+    /// With --boundary mesh: write the mesh to FILE.stl (binary), FILE.ply (with per-vertex
+    /// normals) or FILE.obj; coordinates in m.
+    #[arg(long, value_name = "FILE")]
+    mesh: Option<PathBuf>,
+    /// Write the grid verdicts to a CSV file (header `x (m),y (m)[,z (m)],feasible`).
+    #[arg(long, value_name = "FILE.csv")]
+    points: Option<PathBuf>,
+    /// Plane section of a 3-D workspace, AXIS=VALUE (m), e.g. z=1.2: its exact boundary by the
+    /// chord method.
+    #[arg(long, value_name = "AXIS=VALUE", allow_hyphen_values = true)]
+    section: Option<String>,
     /// Chord length d of the chord method (the thesis uses 0.05, and 0.03 or 0.02 to resolve
     /// features narrower than 0.05).
     #[arg(long, default_value_t = 0.05)]
@@ -775,6 +806,16 @@ pub fn box_json(r: &Region, dim: usize) -> Value {
     }
 }
 
+/// The options that `--boundary mesh` and `--section` check.
+fn args_mesh_view(args: &Args) -> super::workspace_mesh::Options<'_> {
+    super::workspace_mesh::Options {
+        boundary: &args.boundary,
+        mesh: args.mesh.as_deref(),
+        points: args.points.as_deref(),
+        section: args.section.as_deref(),
+    }
+}
+
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let desc = load_robot(&args.robot)?;
@@ -789,9 +830,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let rot = rotation(motion, args.orientation.as_deref())?;
     let region = region(robot, args.area.as_deref(), "--box")?;
     let m = resolution(args.grid, dim, 50)?;
+    super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
     if let Some(set) = &args.orientations {
         if args.boundary != "grid" {
             return Err("--orientations runs on the grid (--boundary grid)".into());
+        }
+        if args.section.is_some() || args.points.is_some() {
+            return Err(
+                "--section and --points apply to one orientation, not --orientations".into(),
+            );
         }
         let kind = match args.kind.as_deref() {
             Some("maximal") => OrientationWorkspaceKind::Maximal,
@@ -817,6 +864,31 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (None, MotionPattern::Spatial) => vec![0.0; 3],
         (None, _) => vec![],
     };
+    let context = super::workspace_mesh::Context {
+        desc: &desc,
+        setup: &setup,
+        eval: &eval,
+        rotation: &rot,
+        orientation: &orientation,
+        w_ext: w_ext.as_slice(),
+        region: &region,
+        m,
+        volume_convention: args.volume_convention,
+        draw_pose: args.draw_pose.as_deref(),
+        plot: args.plot.as_deref(),
+        json: args.json,
+    };
+    if let Some(section) = &args.section {
+        let section = super::workspace_mesh::parse_section(section, &region)?;
+        return super::workspace_mesh::run_section(&context, section, args.chord);
+    }
+    if args.boundary == "mesh" {
+        return super::workspace_mesh::run_mesh(
+            &context,
+            args.mesh.as_deref(),
+            args.points.as_deref(),
+        );
+    }
     let pose = if args.plot.is_some() {
         Some(draw_pose(robot, args.draw_pose.as_deref(), &region, &rot)?)
     } else {
@@ -870,22 +942,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
             save_plot(&fig, path)?;
         }
         if args.json {
-            return print_json(&json!({
-                "robot": desc.name,
-                "method": "chord",
-                "orientation": orientation,
-                "external_wrench": w_ext.as_slice(),
-                "criteria": setup.labels(),
-                "tension_method": method.name(),
-                "box": box_json(&region, dim),
-                "chord": args.chord,
-                "area": ws.area,
-                "boundaries": ws.boundaries.iter().map(|b| &b.vertices).collect::<Vec<_>>(),
-                "signed_areas": ws.boundaries.iter().map(|b| b.signed_area()).collect::<Vec<_>>(),
-                "bifurcations": ws.boundaries.iter().map(|b| b.bifurcations.iter().map(|&k| b.vertices[k]).collect::<Vec<_>>()).collect::<Vec<_>>(),
-                "abandoned": ws.abandoned,
-                "evaluations": ws.evaluations,
-            }));
+            return print_json(&super::workspace_mesh::with_chord_fields(
+                json!({
+                    "robot": desc.name,
+                    "method": "chord",
+                    "orientation": orientation,
+                    "external_wrench": w_ext.as_slice(),
+                    "criteria": setup.labels(),
+                    "tension_method": method.name(),
+                    "box": box_json(&region, dim),
+                    "chord": args.chord,
+                }),
+                &ws,
+            ));
         }
         println!(
             "robot {}: chord-method workspace at orientation {:?}, w_ext {:?}",
@@ -922,6 +991,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let grid = Grid::new(m, region);
         let bar = progress(grid.point_count(dim).div_ceil(grid.points_per_axis()));
         let ws = grid_workspace(&eval, &rot, &grid, &bar)?;
+        if let Some(path) = &args.points {
+            super::workspace_mesh::write_points(&ws, path)?;
+        }
         let (what, unit) = if dim == 2 {
             ("area", "m²")
         } else {

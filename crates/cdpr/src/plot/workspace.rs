@@ -34,6 +34,8 @@ pub struct WorkspacePlot {
     pub chained_lines: Vec<Vec<(f64, f64)>>,
     /// Points marked with a red ring, e.g. the bifurcation points of a chord boundary.
     pub markers: Vec<(f64, f64)>,
+    /// Axis captions (default "x" and "y"), e.g. "y (m)" and "z (m)" for a section x = c.
+    pub axis_names: Option<(String, String)>,
 }
 
 const FILL: RGBColor = RGBColor(158, 202, 225);
@@ -85,8 +87,8 @@ impl Figure for WorkspacePlot {
         chart
             .configure_mesh()
             .disable_mesh()
-            .x_desc("x")
-            .y_desc("y")
+            .x_desc(self.axis_names.as_ref().map_or("x", |a| a.0.as_str()))
+            .y_desc(self.axis_names.as_ref().map_or("y", |a| a.1.as_str()))
             .x_label_formatter(&|v| super::tick(*v))
             .y_label_formatter(&|v| super::tick(*v))
             .label_style(("sans-serif", 14))
@@ -157,14 +159,19 @@ impl Figure for WorkspacePlot {
                 .iter()
                 .map(|&p| Circle::new(p, 6, RGBColor(200, 30, 30).stroke_width(2))),
         )?;
-        chart.draw_series(self.anchors.iter().enumerate().map(|(i, &(x, y))| {
-            EmptyElement::at((x, y))
+        // Anchors that coincide in the drawing (a spatial robot seen along an axis) share one
+        // label, "c1, c5", instead of overprinting each other.
+        let mut labels: Vec<((f64, f64), String)> = Vec::new();
+        for (i, &p) in self.anchors.iter().enumerate() {
+            match labels.iter_mut().find(|(q, _)| *q == p) {
+                Some((_, text)) => text.push_str(&format!(", c{}", i + 1)),
+                None => labels.push((p, format!("c{}", i + 1))),
+            }
+        }
+        chart.draw_series(labels.into_iter().map(|(p, text)| {
+            EmptyElement::at(p)
                 + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
-                + Text::new(
-                    format!("c{}", i + 1),
-                    (7, -18),
-                    ("sans-serif", 14).into_font(),
-                )
+                + Text::new(text, (7, -18), ("sans-serif", 14).into_font())
         }))?;
         Ok(())
     }
@@ -220,35 +227,35 @@ fn signed_area(p: &[(f64, f64)]) -> f64 {
 
 impl WorkspacePlot {
     /// Frame anchors, and the cables and platform drawn at `pose` (if no cable is degenerate there).
-    pub fn with_robot(
+    pub fn with_robot(self, robot: &cdpr_kinematics::Robot, pose: &cdpr_kinematics::Pose) -> Self {
+        self.with_robot_projected(robot, pose, [0, 1])
+    }
+
+    /// The robot at `pose` projected on the coordinate plane of `axes` (e.g. [1, 2]: the y–z
+    /// plane, for a section x = c).
+    pub fn with_robot_projected(
         mut self,
         robot: &cdpr_kinematics::Robot,
         pose: &cdpr_kinematics::Pose,
+        axes: [usize; 2],
     ) -> Self {
-        self.anchors = robot
-            .cables()
-            .iter()
-            .map(|c| (c.frame.x, c.frame.y))
-            .collect();
+        let [a, b] = axes;
+        let pr = |v: &nalgebra::Vector3<f64>| (v[a], v[b]);
+        self.anchors = robot.cables().iter().map(|c| pr(&c.frame)).collect();
         if let Ok(kin) = robot.inverse_kinematics(pose) {
             self.cables = robot
                 .cables()
                 .iter()
                 .zip(kin.cables())
-                .map(|(c, s)| {
-                    (
-                        (c.frame.x, c.frame.y),
-                        (s.attachment_point.x, s.attachment_point.y),
-                    )
-                })
+                .map(|(c, s)| (pr(&c.frame), pr(&s.attachment_point)))
                 .collect();
             // Platform outline: attachment points ordered by angle around the platform origin.
             let mut pts: Vec<(f64, f64)> = kin
                 .cables()
                 .iter()
-                .map(|s| (s.attachment_point.x, s.attachment_point.y))
+                .map(|s| pr(&s.attachment_point))
                 .collect();
-            let (px, py) = (pose.position.x, pose.position.y);
+            let (px, py) = pr(&pose.position);
             pts.sort_by(|a, b| {
                 (a.1 - py)
                     .atan2(a.0 - px)
