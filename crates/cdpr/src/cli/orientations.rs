@@ -316,15 +316,14 @@ pub fn run_workspace(
     if let Some(path) = plot {
         let pose =
             super::workspace::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        let fig = super::workspace::workspace_plot(
-            &desc.robot,
+        super::workspace::save_scene_plot(
+            desc,
             &pose,
-            Some(w),
-            Vec::new(),
+            w,
             title.clone(),
             vec![summary.clone()],
-        );
-        super::workspace::save_plot(&fig, path)?;
+            path,
+        )?;
     }
     if json_out {
         return print_json(&json!({

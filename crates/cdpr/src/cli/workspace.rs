@@ -99,7 +99,11 @@ first). `cdpr orientations` gives the feasible orientations at one position.
 
 --plot FILE.svg|png draws the frame anchors, the cables and platform at --draw-pose (default:
 the centre of the box at the orientation), the feasible cells filled and the chord boundaries
-outlined (3-D robots: the z-slice of the grid nearest the drawn pose).";
+outlined. Robots moving in space (point3, spatial): an isometric view of the workspace (the
+surface of the feasible grid cells) with the anchors, the robot at the draw pose and the box,
+plus its three sections x, y, z = the draw pose's coordinates, axes in m. --plot FILE.html
+writes one self-contained page (no network needed): the same scene to orbit (drag), zoom
+(wheel) and cut with a slider along x, y or z, with a legend giving the volume and settings.";
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
@@ -779,6 +783,42 @@ pub fn workspace_plot(
     .with_robot(robot, pose)
 }
 
+/// The 3-D figure (`.html` viewer, or isometric view and sections) of a spatial or point3
+/// workspace on a grid: the surface of the grid cells, the robot at `pose`.
+pub fn save_scene_plot(
+    desc: &RobotDescription,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    legend: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let (vertices, triangles) = cdpr::plot::grid_surface(ws);
+    let r = &ws.grid.region;
+    let scene = cdpr::plot::Scene {
+        title,
+        vertices,
+        triangles,
+        region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
+        legend,
+        mesh_label: format!(
+            "grid cells of the feasible points (m = {})",
+            ws.grid.resolution
+        ),
+        ..cdpr::plot::Scene::default()
+    }
+    .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
+/// Whether `path` names an HTML page (only 3-D workspaces have one).
+pub fn is_html(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html"))
+}
+
 /// Writes a plot and reports its file on stderr-free stdout text mode (callers print).
 pub fn save_plot(fig: &WorkspacePlot, path: &Path) -> Result<(), CliError> {
     cdpr::plot::save(fig, path)?;
@@ -864,6 +904,16 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (None, MotionPattern::Spatial) => vec![0.0; 3],
         (None, _) => vec![],
     };
+    if let Some(p) = &args.plot {
+        if is_html(p) && (dim != 3 || args.boundary == "chord") {
+            return Err(format!(
+                "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
+                 use .svg or .png",
+                p.display()
+            )
+            .into());
+        }
+    }
     let context = super::workspace_mesh::Context {
         desc: &desc,
         setup: &setup,
@@ -999,7 +1049,32 @@ pub fn run(args: Args) -> Result<(), CliError> {
         } else {
             ("volume", "m³")
         };
-        if let (Some(path), Some(pose)) = (&args.plot, &pose) {
+        if let (Some(path), Some(pose), 3) = (&args.plot, &pose, dim) {
+            save_scene_plot(
+                &desc,
+                pose,
+                &ws,
+                format!(
+                    "{}: constant-orientation workspace {:?}",
+                    desc.name, orientation
+                ),
+                vec![
+                    format!(
+                        "volume {:.4} m³ ({} of {} points, m = {m}, {} convention)",
+                        ws.measure(args.volume_convention),
+                        ws.feasible_points,
+                        ws.total_points,
+                        args.volume_convention
+                    ),
+                    format!("criteria: {}", setup.labels().join(", ")),
+                    format!(
+                        "draw pose ({:.3}, {:.3}, {:.3}) m",
+                        pose.position.x, pose.position.y, pose.position.z
+                    ),
+                ],
+                path,
+            )?;
+        } else if let (Some(path), Some(pose)) = (&args.plot, &pose) {
             let fig = workspace_plot(
                 robot,
                 pose,

@@ -5,16 +5,21 @@
 
 mod force_polygon;
 mod heat_map;
+pub mod iso;
 mod layout;
 mod lines;
 mod panels;
+pub mod scene;
 mod vertex_projection;
+pub mod viewer;
 mod workspace;
 
 pub use force_polygon::{ForcePolygonPlot, Segment};
 pub use heat_map::HeatMap;
+pub use iso::IsoFigure;
 pub use lines::{LinePlot, Series};
 pub use panels::Panels;
+pub use scene::{Scene, grid_surface};
 pub use vertex_projection::{CandidateLinesPlot, TensionBoxPlot, clip_line};
 pub use workspace::WorkspacePlot;
 
@@ -28,8 +33,8 @@ use thiserror::Error;
 #[derive(Debug, Error)]
 #[non_exhaustive]
 pub enum PlotError {
-    /// The extension is neither `.svg` nor `.png`.
-    #[error("{0}: plot files must end in .svg or .png")]
+    /// The extension is neither `.svg` nor `.png` (nor `.html` for 3-D scenes).
+    #[error("{0}: plot files must end in .svg or .png (.html for 3-D workspaces)")]
     UnknownFormat(String),
     /// Drawing or writing failed.
     #[error("cannot draw {file}: {message}")]
@@ -99,6 +104,29 @@ pub fn save(figure: &impl Figure, path: impl AsRef<Path>) -> Result<(), PlotErro
             root.present().map_err(|e| err(Box::new(e)))
         }
         _ => Err(PlotError::UnknownFormat(name)),
+    }
+}
+
+/// Writes a 3-D scene: `.html` the interactive viewer ([`viewer`]), `.svg`/`.png` the
+/// isometric view with three sections ([`IsoFigure`]).
+pub fn save_scene(scene: &Scene, path: impl AsRef<Path>) -> Result<(), PlotError> {
+    let path = path.as_ref();
+    let html = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html"));
+    if html {
+        viewer::save_html(scene, path).map_err(|e| PlotError::Draw {
+            file: path.display().to_string(),
+            message: e.to_string(),
+        })
+    } else {
+        save(
+            &IsoFigure {
+                scene: scene.clone(),
+            },
+            path,
+        )
     }
 }
 

@@ -1,0 +1,216 @@
+// cdpr workspace viewer: a small orthographic canvas renderer (painter's algorithm).
+// Part of the cdpr crate (MIT OR Apache-2.0); no external library.
+(function () {
+  "use strict";
+  var status = document.getElementById("cdpr-status");
+  function fail(msg) {
+    status.textContent = "error: " + msg;
+    status.setAttribute("data-state", "error");
+  }
+  window.addEventListener("error", function (e) { fail(e.message); });
+  try {
+    var S = JSON.parse(document.getElementById("scene").textContent);
+    var canvas = document.getElementById("view");
+    var ctx = canvas.getContext("2d");
+    document.getElementById("title").textContent = S.title;
+    document.getElementById("mesh-label").textContent = S.meshLabel || "workspace";
+    var legend = document.getElementById("legend");
+    S.legend.forEach(function (line) {
+      var p = document.createElement("p");
+      p.textContent = line;
+      legend.appendChild(p);
+    });
+
+    var lo = S.box[0].slice(), hi = S.box[1].slice();
+    S.anchors.concat(S.vertices).forEach(function (p) {
+      for (var k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], p[k]); hi[k] = Math.max(hi[k], p[k]); }
+    });
+    var centre = [0, 1, 2].map(function (k) { return 0.5 * (lo[k] + hi[k]); });
+    var radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+    var view = { yaw: -0.65, pitch: 0.45, zoom: 1 };
+    var axisSel = document.getElementById("axis"), cutSlider = document.getElementById("cut");
+    var cutLabel = document.getElementById("cut-value");
+
+    function cutValue() {
+      var a = +axisSel.value;
+      return S.box[0][a] + (S.box[1][a] - S.box[0][a]) * (+cutSlider.value) / 1000;
+    }
+
+    // World (z up) to view: yaw about z, then pitch (elevation of the eye).
+    function toView(p) {
+      var x = p[0] - centre[0], y = p[1] - centre[1], z = p[2] - centre[2];
+      var cy = Math.cos(view.yaw), sy = Math.sin(view.yaw);
+      var x1 = x * cy - y * sy, y1 = x * sy + y * cy;
+      var ce = Math.cos(view.pitch), se = Math.sin(view.pitch);
+      return [x1, y1 * se + z * ce, -y1 * ce + z * se]; // screen x, screen y (up), depth (towards eye)
+    }
+    var W = 0, H = 0, scale = 1;
+    function toScreen(v) { return [W / 2 + v[0] * scale, H / 2 - v[1] * scale]; }
+    function project(p) { return toScreen(toView(p)); }
+
+    // Keep the part of a polygon with p[axis] <= value (Sutherland-Hodgman, one plane).
+    function clip(poly, axis, value) {
+      var out = [];
+      for (var i = 0; i < poly.length; i++) {
+        var a = poly[i], b = poly[(i + 1) % poly.length];
+        var ina = a[axis] <= value, inb = b[axis] <= value;
+        if (ina) out.push(a);
+        if (ina !== inb) {
+          var s = (value - a[axis]) / (b[axis] - a[axis]);
+          out.push([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]);
+        }
+      }
+      return out;
+    }
+
+    function line(a, b, colour, width, dash) {
+      var p = project(a), q = project(b);
+      ctx.strokeStyle = colour; ctx.lineWidth = width; ctx.setLineDash(dash || []);
+      ctx.beginPath(); ctx.moveTo(p[0], p[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
+      ctx.setLineDash([]);
+    }
+
+    function boxEdges(a, b, colour, width, dash) {
+      var c = function (i) { return [i & 1 ? b[0] : a[0], i & 2 ? b[1] : a[1], i & 4 ? b[2] : a[2]]; };
+      [[0, 1], [2, 3], [4, 5], [6, 7], [0, 2], [1, 3], [4, 6], [5, 7], [0, 4], [1, 5], [2, 6], [3, 7]]
+        .forEach(function (e) { line(c(e[0]), c(e[1]), colour, width, dash); });
+    }
+
+    function labelPlacer() {
+      var placed = [];
+      return function (x, y, text) {
+        var w = ctx.measureText(text).width, h = 13, g = 5;
+        var cands = [[x + g, y - h - g], [x + g, y + g], [x - w - g, y - h - g], [x - w - g, y + g],
+                     [x - w / 2, y - h - 2 * g], [x - w / 2, y + 2 * g]];
+        for (var r = 1; r < 6; r++) { cands.push([x + g, y - h - g - r * (h + 2)]); cands.push([x + g, y + g + r * (h + 2)]); }
+        var pick = cands[0];
+        for (var i = 0; i < cands.length; i++) {
+          var c = cands[i], ok = placed.every(function (q) {
+            return c[0] + w <= q[0] || q[0] + q[2] <= c[0] || c[1] + h <= q[1] || q[1] + q[3] <= c[1];
+          });
+          if (ok) { pick = c; break; }
+        }
+        placed.push([pick[0], pick[1], w, h]);
+        ctx.fillText(text, pick[0], pick[1] + h - 2);
+      };
+    }
+
+    function draw() {
+      var dpr = window.devicePixelRatio || 1;
+      W = canvas.clientWidth; H = canvas.clientHeight;
+      canvas.width = W * dpr; canvas.height = H * dpr;
+      ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+      scale = view.zoom * Math.min(W, H) / (2.15 * radius);
+      ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
+      var axis = +axisSel.value, cut = cutValue();
+      cutLabel.textContent = cut.toFixed(3);
+
+      // Frame: the anchors' bounding box (grey) and the search box (dashed blue).
+      if (S.anchors.length) {
+        var alo = S.anchors[0].slice(), ahi = S.anchors[0].slice();
+        S.anchors.forEach(function (p) { for (var k = 0; k < 3; k++) { alo[k] = Math.min(alo[k], p[k]); ahi[k] = Math.max(ahi[k], p[k]); } });
+        boxEdges(alo, ahi, "#c8c8c8", 1);
+      }
+      boxEdges(S.box[0], S.box[1], "#1f5fa0", 1, [5, 4]);
+
+      // Workspace mesh, clipped by the cut plane, back to front.
+      var light = [0.35, 0.45, 0.82];
+      var polys = [];
+      var section = [];
+      for (var t = 0; t < S.triangles.length; t++) {
+        var tri = S.triangles[t];
+        var pts = [S.vertices[tri[0]], S.vertices[tri[1]], S.vertices[tri[2]]];
+        var v = pts.map(toView);
+        var ux = v[1][0] - v[0][0], uy = v[1][1] - v[0][1], uz = v[1][2] - v[0][2];
+        var wx = v[2][0] - v[0][0], wy = v[2][1] - v[0][1], wz = v[2][2] - v[0][2];
+        var n = [uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx];
+        var nn = Math.hypot(n[0], n[1], n[2]) || 1;
+        var shade = Math.abs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]) / nn;
+        var poly = clip(pts, axis, cut);
+        if (poly.length < 3) continue;
+        var cutPts = [];
+        for (var i = 0; i < 3; i++) {
+          var a = pts[i], b = pts[(i + 1) % 3];
+          if ((a[axis] - cut) * (b[axis] - cut) < 0) {
+            var s = (cut - a[axis]) / (b[axis] - a[axis]);
+            cutPts.push([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]);
+          }
+        }
+        if (cutPts.length === 2) section.push(cutPts);
+        var pv = poly.map(toView);
+        var depth = pv.reduce(function (d, q) { return d + q[2]; }, 0) / pv.length;
+        polys.push({ p: pv, depth: depth, shade: shade });
+      }
+      polys.sort(function (a, b) { return a.depth - b.depth; });
+      polys.forEach(function (q) {
+        var k = 0.45 + 0.55 * q.shade;
+        ctx.fillStyle = "rgba(" + Math.round(70 * k) + "," + Math.round(130 * k) + "," + Math.round(180 * k + 40 * (1 - k)) + ",0.45)";
+        ctx.beginPath();
+        q.p.forEach(function (v, i) { var s = toScreen(v); if (i) ctx.lineTo(s[0], s[1]); else ctx.moveTo(s[0], s[1]); });
+        ctx.closePath(); ctx.fill();
+      });
+      section.forEach(function (s) { line(s[0], s[1], "#d62728", 2); });
+
+      // Robot at the draw pose: cables, platform, anchors with labels.
+      S.cables.forEach(function (c) { line(c[0], c[1], "#555", 1.2); });
+      var faces = S.platform.map(function (f) {
+        var v = f.map(toView);
+        return { v: v, depth: v.reduce(function (d, q) { return d + q[2]; }, 0) / v.length };
+      }).sort(function (a, b) { return a.depth - b.depth; });
+      faces.forEach(function (f) {
+        ctx.fillStyle = "rgba(232,163,61,0.85)"; ctx.strokeStyle = "#8a5a12"; ctx.lineWidth = 1;
+        ctx.beginPath();
+        f.v.forEach(function (v, i) { var s = toScreen(v); if (i) ctx.lineTo(s[0], s[1]); else ctx.moveTo(s[0], s[1]); });
+        ctx.closePath(); ctx.fill(); ctx.stroke();
+      });
+      if (!S.platform.length) {
+        var pp = project(S.platformPosition);
+        ctx.fillStyle = "#e8a33d"; ctx.beginPath(); ctx.arc(pp[0], pp[1], 4, 0, 2 * Math.PI); ctx.fill();
+      }
+      ctx.font = "12px 'DejaVu Sans', Arial, sans-serif";
+      var place = labelPlacer();
+      var groups = [];
+      S.anchors.forEach(function (a, i) {
+        var p = project(a);
+        var g = groups.find(function (q) { return Math.abs(q.x - p[0]) <= 2 && Math.abs(q.y - p[1]) <= 2; });
+        if (g) g.names.push("A" + (i + 1)); else groups.push({ x: p[0], y: p[1], names: ["A" + (i + 1)] });
+      });
+      groups.forEach(function (g) {
+        ctx.fillStyle = "#000"; ctx.fillRect(g.x - 3, g.y - 3, 6, 6);
+        place(g.x, g.y, g.names.join("/"));
+      });
+      // Axes triad at the box's lower corner, labelled with units.
+      var o = S.box[0], len = 0.12 * radius;
+      ["x", "y", "z"].forEach(function (name, k) {
+        var e = o.slice(); e[k] += len;
+        line(o, e, ["#c0392b", "#27ae60", "#2e62c9"][k], 2);
+        var s = project(e); ctx.fillStyle = "#333"; ctx.fillText(name + " (m)", s[0] + 3, s[1] - 3);
+      });
+      status.textContent = "rendered " + S.triangles.length + " triangles";
+      status.setAttribute("data-state", "ok");
+    }
+
+    var drag = null;
+    canvas.addEventListener("mousedown", function (e) { drag = [e.clientX, e.clientY]; canvas.style.cursor = "grabbing"; });
+    window.addEventListener("mouseup", function () { drag = null; canvas.style.cursor = "grab"; });
+    window.addEventListener("mousemove", function (e) {
+      if (!drag) return;
+      view.yaw += (e.clientX - drag[0]) * 0.01;
+      view.pitch = Math.max(-1.55, Math.min(1.55, view.pitch + (e.clientY - drag[1]) * 0.01));
+      drag = [e.clientX, e.clientY];
+      draw();
+    });
+    canvas.addEventListener("wheel", function (e) {
+      e.preventDefault();
+      view.zoom = Math.max(0.1, Math.min(20, view.zoom * Math.exp(-e.deltaY * 0.001)));
+      draw();
+    }, { passive: false });
+    canvas.addEventListener("dblclick", function () { view.yaw = -0.65; view.pitch = 0.45; view.zoom = 1; draw(); });
+    cutSlider.addEventListener("input", draw);
+    axisSel.addEventListener("change", draw);
+    window.addEventListener("resize", draw);
+    draw();
+  } catch (e) {
+    fail(e && e.message ? e.message : String(e));
+  }
+})();
