@@ -1,8 +1,10 @@
-//! The robot-file parser (`cdpr::RobotDescription::parse`) on arbitrary text. Invariants: no
-//! panic and no hang; errors display (with the file name first); an accepted file is consistent
-//! (one bound per cable, finite geometry, t_min ≤ t_max), and its robot goes through inverse
-//! kinematics, the gravity wrench and a tension distribution whose feasible verdict passes the
-//! certificate.
+//! The robot-file parsers on arbitrary text: cdpr TOML (`RobotDescription::parse`), and for
+//! text that starts with `<` the XML readers — WireCenter `.wcrfx` when it contains `<models`,
+//! otherwise a CASPR model whose bodies file starts at `<bodies_system` (`parse_caspr`).
+//! Invariants: no panic and no hang; errors display (with the file name first); an accepted file
+//! is consistent (one bound per cable, finite geometry, t_min ≤ t_max), writes as TOML that reads
+//! back as the same robot, and its robot goes through inverse kinematics, the gravity wrench and
+//! a tension distribution whose feasible verdict passes the certificate.
 #![no_main]
 
 use cdpr::RobotDescription;
@@ -15,17 +17,26 @@ fuzz_target!(|data: &[u8]| {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
     };
-    let desc = match RobotDescription::parse(text, "fuzz.toml") {
+    let parsed = if !text.trim_start().starts_with('<') {
+        RobotDescription::parse(text, "fuzz.toml")
+    } else if text.contains("<models") {
+        RobotDescription::parse_wcrfx(text, "fuzz.wcrfx")
+    } else {
+        let (cables, bodies) = text.split_at(text.find("<bodies_system").unwrap_or(text.len()));
+        RobotDescription::parse_caspr(cables, "fuzz_cables.xml", bodies, "fuzz_bodies.xml", None)
+    };
+    let desc = match parsed {
         Ok(d) => d,
         Err(e) => {
             let msg = e.to_string();
-            assert!(
-                msg.starts_with("fuzz.toml"),
-                "error without file name: {msg}"
-            );
+            assert!(msg.starts_with("fuzz"), "error without file name: {msg}");
             return;
         }
     };
+    let again = RobotDescription::parse(&desc.to_toml("fuzz"), "again.toml")
+        .unwrap_or_else(|e| panic!("written TOML does not read back: {e}"));
+    assert_eq!(again.robot, desc.robot, "TOML round trip changed the robot");
+    assert_eq!(again.bounds, desc.bounds, "TOML round trip changed the bounds");
     let robot = &desc.robot;
     let n = robot.cable_count();
     assert!(n >= robot.dof(), "accepted fewer cables than DOF");

@@ -249,3 +249,37 @@ fn tempdir() -> PathBuf {
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }
+
+/// Every published robot shipped in examples/robots/ is its source file, converted: same
+/// robot, bounds, platform, inertia, stiffness, names and home pose (the `# source:` line says
+/// which file and cable set).
+#[test]
+fn shipped_published_robots_equal_their_sources() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let mut checked = 0;
+    for e in std::fs::read_dir(root.join("examples/robots")).unwrap() {
+        let path = e.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let Some(line) = text.lines().find_map(|l| l.strip_prefix("# source: ")) else {
+            continue;
+        };
+        let mut words = line.split_whitespace();
+        let source = root.join(words.next().unwrap());
+        let mut options = LoadOptions::default();
+        if words.next() == Some("--cable-set") {
+            options.cable_set = words.next().map(str::to_string);
+        }
+        let shipped = RobotDescription::load(&path).unwrap();
+        let original = RobotDescription::load_with(&source, &options).unwrap();
+        let what = path.display();
+        assert_eq!(shipped.robot, original.robot, "{what}");
+        assert_eq!(shipped.bounds, original.bounds, "{what}");
+        assert_eq!(shipped.platform, original.platform, "{what}");
+        assert_eq!(shipped.inertia, original.inertia, "{what}");
+        assert_eq!(shipped.axial_stiffness, original.axial_stiffness, "{what}");
+        assert_eq!(shipped.cable_names, original.cable_names, "{what}");
+        assert_eq!(shipped.home_pose, original.home_pose, "{what}");
+        checked += 1;
+    }
+    assert!(checked >= 28, "{checked} shipped published robots");
+}
