@@ -16,6 +16,7 @@ use std::path::PathBuf;
 /// file `platform_interference` (null, or the cable, 1-based, that passes deepest through the
 /// platform and its `penetration` in m).
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -60,12 +61,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }))
     } else {
         println!(
-            "robot {} ({}), pose {:?}",
+            "robot {} ({}), pose {}",
             robot.name,
             robot.robot.motion(),
-            args.pose.0
+            super::pose_text(&args.pose.0, robot.robot.motion().space_dim())
         );
-        println!("{:>6} {:>12}  unit vector", "cable", "length");
+        println!("{:>6} {:>12}  unit vector", "cable", "length (m)");
         for (i, c) in kin.cables().iter().enumerate() {
             let u: Vec<String> = vec_of(&c.unit)
                 .iter()
