@@ -79,7 +79,7 @@ fn bad_input_exits_2_with_a_message() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&out.stderr).contains("zero length"));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cable 1 has zero length"));
 }
 
 #[test]
@@ -259,4 +259,201 @@ fn tension_bad_method_exits_2() {
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
+}
+
+/// Runs a command that must fail with exit code 2 and returns its stderr.
+fn stderr_of_failure(args: &[&str]) -> String {
+    let out = cdpr().args(args).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    err
+}
+
+/// Issue 13 §2: negative numbers reach the program and are rejected by the option's name (not
+/// clap's "unexpected argument '-0' found"); --box names the axis; an overflowing coordinate
+/// is not "zero length"; a plot in a missing folder says so; --chord 1e-7 blames no tolerance.
+#[test]
+fn messages_a_person_understands() {
+    let tdpm = robot("tdpm-4.toml");
+    for (args, wanted) in [
+        (
+            vec!["workspace", &tdpm, "--boundary", "chord", "--chord", "-0.1"],
+            "'--chord <CHORD>': must be a finite number > 0",
+        ),
+        (
+            vec![
+                "tension", &tdpm, "--pose", "0,0,0", "--method", "sotda", "--nu", "-0.5",
+            ],
+            "'--nu <NU>': must lie in [0, 1]",
+        ),
+        (
+            vec!["workspace", &tdpm, "--grid", "-5"],
+            "'--grid <M>': must be a whole number ≥ 1",
+        ),
+        (
+            vec!["workspace", &tdpm, "--box", "1,-1,-1,1"],
+            "--box: along x, XMIN = 1 m must be less than XMAX = -1 m",
+        ),
+        (
+            vec!["kinematics", &tdpm, "--pose", "1e155,0,0"],
+            "cable 1: its length at this pose is not a finite number",
+        ),
+        (
+            vec![
+                "workspace",
+                &tdpm,
+                "--grid",
+                "2",
+                "--plot",
+                "/no/such/dir/x.png",
+            ],
+            "cannot write /no/such/dir/x.png: no such directory",
+        ),
+    ] {
+        let err = stderr_of_failure(&args);
+        assert!(err.contains(wanted), "{args:?}: {err}");
+        assert!(
+            !err.contains("unexpected argument") && !err.contains("Os {"),
+            "{err}"
+        );
+    }
+    let err = stderr_of_failure(&[
+        "workspace",
+        &robot("ipanema-like-8.toml"),
+        "--box",
+        "-1,1,-1,1,2,2",
+    ]);
+    assert!(err.contains("along z, ZMIN = 2 m"), "{err}");
+    // A chord of 1e-7 m on a load no pose can hold: runs (no tolerance of the user's to blame).
+    let out = cdpr()
+        .args(["workspace", &tdpm, "--boundary", "chord", "--chord", "1e-7"])
+        .args(["--wrench", "0,-1e6,0", "--grid", "4"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success() && !err.contains("tolerance"), "{err}");
+}
+
+/// Issue 13 §2: printed numbers read as written (no `-0`, no `Some(`, no
+/// `-98.10000000000001`), with units.
+#[test]
+fn printed_numbers_have_units_and_no_debug_noise() {
+    let out = cdpr()
+        .args([
+            "tension",
+            &robot("ipanema-like-8.toml"),
+            "--pose",
+            "0,0,1,0,0,0",
+        ])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(
+        text.contains(" N, ") && text.contains(" N·m") && text.contains("(0 m, 0 m, 1 m, 0 rad"),
+        "{text}"
+    );
+    assert!(text.contains("tension (N)"), "{text}");
+    for bad in ["Some(", "-0 ", "-0,", "000000001", "99999999"] {
+        assert!(!text.contains(bad), "{bad} in {text}");
+    }
+}
+
+/// Issue 13 §2: `tension --help` lists every method with its line.
+#[test]
+fn tension_help_lists_every_method() {
+    let out = cdpr().args(["tension", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&out.stdout);
+    for m in cdpr::tension::Method::ALL {
+        let line = format!("{:<21} {}", m.name(), m.summary());
+        assert!(help.contains(&line), "{line} missing from\n{help}");
+    }
+    let out = cdpr().args(["trajectory", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        help.contains("pose   = [..]") && help.contains("wrench = [..]"),
+        "{help}"
+    );
+}
+
+/// Issue 13 §1: `isotropic` includes the platform's weight, as `capacity` does. A point2 robot
+/// with 3 distant cables along ±x and +y... here 4 cables ±x, ±y far away, t ∈ [1, 10] N:
+/// the force set is [−9, 9]² N; a 0.5 kg platform (4.903325 N down) leaves 9 − 4.903325 N.
+#[test]
+fn isotropic_includes_the_weight() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("p.toml");
+    std::fs::write(
+        &file,
+        "motion = \"point2\"\n[tension]\nmin = 1.0\nmax = 10.0\n[platform]\nmass = 0.5\n\
+         [[cables]]\nframe = [1e6, 0.0]\n[[cables]]\nframe = [-1e6, 0.0]\n\
+         [[cables]]\nframe = [0.0, 1e6]\n[[cables]]\nframe = [0.0, -1e6]\n",
+    )
+    .unwrap();
+    let file = file.display().to_string();
+    let out = cdpr()
+        .args(["isotropic", &file, "--pose", "0,0", "--json"])
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = v["isotropic_force"].as_f64().unwrap();
+    assert!((f - (9.0 - 0.5 * 9.80665)).abs() < 1e-6, "{f}");
+    assert!((v["external_wrench"][1].as_f64().unwrap() + 0.5 * 9.80665).abs() < 1e-12);
+    // The capacity margin of the weight alone is the same number (a ball of radius 0).
+    let out = cdpr()
+        .args(["capacity", &file, "--pose", "0,0", "--json"])
+        .output()
+        .unwrap();
+    let c: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!((c["capacity_margin"].as_f64().unwrap() - f).abs() < 1e-6);
+    let text = cdpr()
+        .args(["isotropic", &file, "--pose", "0,0"])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(
+        text.contains("weight") && text.contains("-4.903325 N]"),
+        "{text}"
+    );
+}
+
+/// Issue 13 §1: the capacity ball with separate force (N) and moment (N·m) radii on a planar
+/// robot: a moment radius 0 gives the force-only margin, growing it can only shrink the margin;
+/// point robots refuse a moment radius.
+#[test]
+fn capacity_force_and_moment_radii() {
+    let run = |extra: &[&str]| -> serde_json::Value {
+        let tdpm = robot("tdpm-4.toml");
+        let out = cdpr()
+            .args(["capacity", &tdpm, "--pose", "0,0,0", "--json"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        serde_json::from_slice(&out.stdout).unwrap()
+    };
+    let f_only = run(&["--force-radius", "1"]);
+    let both = run(&["--force-radius", "1", "--moment-radius", "0.5"]);
+    assert_eq!(f_only["required"]["shape"], "force-moment-balls");
+    assert_eq!(both["required"]["moment_radius"], 0.5);
+    let (a, b) = (
+        f_only["capacity_margin"].as_f64().unwrap(),
+        both["capacity_margin"].as_f64().unwrap(),
+    );
+    assert!(b < a, "{a} {b}");
+    let none = run(&[]);
+    assert!(a < none["capacity_margin"].as_f64().unwrap());
+    let err = stderr_of_failure(&[
+        "capacity",
+        &robot("krut-3.toml"),
+        "--pose",
+        "0,0",
+        "--moment-radius",
+        "1",
+    ]);
+    assert!(err.contains("--moment-radius"), "{err}");
 }

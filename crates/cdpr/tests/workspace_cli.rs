@@ -493,3 +493,37 @@ fn synthesize_rejects_an_impossible_min_separation() {
     assert!(err.contains("--min-separation"), "{err}");
     assert!(err.contains("2π/3 = 2.0944 rad"), "{err}");
 }
+
+/// Issue 13 §1: `stiffness:KT,KR` keeps N/m and N·m/rad apart. On a spatial robot the
+/// workspace with floors (0, 0) is within the tension workspace, a huge rotational floor
+/// (1e12 N·m/rad) empties it; the label keeps both numbers; a point robot refuses a
+/// rotational floor.
+#[test]
+fn stiffness_criterion_with_its_own_units() {
+    let ipanema = robot("ipanema-like-8.toml");
+    let run = |criteria: &str| {
+        json(&[
+            "workspace",
+            &ipanema,
+            "--grid",
+            "2",
+            "--criteria",
+            criteria,
+            "--json",
+        ])
+    };
+    let tension = run("tension");
+    let zero = run("tension,stiffness:0,0");
+    assert_eq!(zero["criteria"][1], "stiffness:0,0");
+    assert!(zero["feasible_points"].as_u64() <= tension["feasible_points"].as_u64());
+    assert!(tension["feasible_points"].as_u64().unwrap() > 0);
+    let huge_rot = run("tension,stiffness:0,1e12");
+    assert_eq!(huge_rot["feasible_points"], 0);
+    let err = fails(&[
+        "workspace",
+        &robot("krut-3.toml"),
+        "--criteria",
+        "tension,stiffness:10,5",
+    ]);
+    assert!(err.contains("does not rotate"), "{err}");
+}

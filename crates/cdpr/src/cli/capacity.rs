@@ -30,6 +30,7 @@ use std::path::PathBuf;
 /// \"box\", \"ball\" or \"force-moment-balls\"), `centre` (N, N·m), `half_widths`, `radius`, or
 /// `force_radius` (N) and `moment_radius` (N·m)}, `facets`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -156,22 +157,42 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "facets": aws.facets().len(),
         }));
     }
-    println!("robot {}, pose {:?}", robot.name, args.pose.0);
+    let forces = motion.translation_dof();
     println!(
-        "required {shape} of external wrenches centred on {:?} (--wrench + gravity){}",
-        centre.as_slice(),
+        "robot {}, pose {}",
+        robot.name,
+        super::pose_text(&args.pose.0, motion.space_dim())
+    );
+    println!(
+        "required {shape} of external wrenches centred on {} (--wrench + gravity){}",
+        super::wrench_text(centre.as_slice(), forces),
         match (
             required.half_widths(),
             required.radius(),
             required.force_and_moment_radii()
         ) {
-            (Some(h), _, _) => format!(", half-widths {h:?}"),
-            (None, Some(r), _) if r > 0.0 => format!(", radius {r}"),
+            (Some(h), _, _) => format!(", half-widths {}", super::wrench_text(h, forces)),
+            (None, Some(r), _) if r > 0.0 => format!(
+                ", radius {} ({})",
+                super::num(r),
+                if forces == dof {
+                    "N"
+                } else {
+                    "N and N·m combined, length scale 1 m"
+                }
+            ),
             (_, _, Some((f, m))) => format!(", forces up to {f} N and moments up to {m} N·m"),
             _ => String::new(),
         }
     );
-    println!("capacity margin: {margin:.6}");
+    println!(
+        "capacity margin: {margin:.6} {}",
+        if forces == dof {
+            "N"
+        } else {
+            "(N and N·m combined, length scale 1 m)"
+        }
+    );
     println!(
         "{}",
         if feasible {
@@ -183,9 +204,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some((k, _)) = limit {
         let f = &aws.facets()[k];
         println!(
-            "limiting facet {k} of {}: normal {:?}, offset {:.6}",
+            "limiting facet {} of {}: unit normal {}, offset {:.6}",
+            k + 1,
             aws.facets().len(),
-            f.normal.as_slice(),
+            super::nums(f.normal.as_slice()),
             f.offset
         );
     }

@@ -40,7 +40,7 @@ convention `volume_convention` (\"cells\" or \"points\"), `area_cells` and `area
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
-#[command(after_long_help = LONG_HELP)]
+#[command(allow_negative_numbers = true, after_long_help = LONG_HELP)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -57,7 +57,7 @@ pub struct Args {
     #[command(flatten)]
     criteria: CriteriaArgs,
     /// Grid resolution M: (M+1)² points (in space (M+1)³). Default 50 (20 in space).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = super::count)]
     grid: Option<usize>,
     /// Search box XMIN,XMAX,YMIN,YMAX (space: …,ZMIN,ZMAX); default the frame anchors' bounding
     /// box (the thesis' synthesis uses the whole frame: --box -1,1,-1,1).

@@ -50,6 +50,7 @@ use std::path::PathBuf;
 /// where undefined)}, `stats` {`min`, `max` (N), `argmax` (m), `positive_fraction`,
 /// `undefined`, `centre` (N)}, `external_wrench`, `definition`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -63,7 +64,7 @@ pub struct Args {
     )]
     pose: Option<Numbers>,
     /// Map the index over a (M+1) × (M+1) grid of positions (M intervals per side).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = super::count)]
     grid: Option<usize>,
     /// Grid: the area XMIN,XMAX,YMIN,YMAX (default: the bounding box of the frame anchors).
     #[arg(
@@ -78,7 +79,8 @@ pub struct Args {
         long,
         default_value_t = 0.0,
         allow_hyphen_values = true,
-        requires = "grid"
+        requires = "grid",
+        value_parser = super::finite
     )]
     orientation: f64,
     /// External wrench w_e on the platform (DOF numbers, N and N·m; default zero), added to the
@@ -86,7 +88,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
     /// Grid: height z of the slice for 3-D robots (default: middle of the frame anchors).
-    #[arg(long, allow_hyphen_values = true, requires = "grid")]
+    #[arg(long, allow_hyphen_values = true, requires = "grid", value_parser = super::finite)]
     z: Option<f64>,
     /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.
     /// Pose (point2 robots only): the available force polygon with the largest centred circle

@@ -24,6 +24,7 @@ use std::path::PathBuf;
 /// file `platform_interference` (null, or the cable, 1-based, that passes deepest through the
 /// platform and its `penetration` in m).
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -74,11 +75,11 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }))
     } else {
         println!(
-            "robot {} ({}, {} kinematics), pose {:?}",
+            "robot {} ({}, {} kinematics), pose {}",
             robot.name,
             robot.robot.motion(),
             model.name(),
-            args.pose.0
+            super::pose_text(&args.pose.0, robot.robot.motion().space_dim())
         );
         let pulleys = model == KinematicsModel::Pulley;
         if pulleys {

@@ -61,6 +61,73 @@ impl std::ops::Deref for Numbers {
     }
 }
 
+/// `value_parser` of a quantity that must be a finite number > 0 (clap names the option:
+/// "invalid value '-0.1' for '--chord <CHORD>': must be a finite number > 0").
+pub fn positive(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number > 0, got {s}"))
+    }
+}
+
+/// `value_parser` of a quantity that must be a finite number ≥ 0.
+pub fn non_negative(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number ≥ 0, got {s}"))
+    }
+}
+
+/// `value_parser` of a weight in [0, 1] (SOTDA's ν).
+pub fn unit_interval(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if (0.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("must lie in [0, 1], got {s}"))
+    }
+}
+
+/// `value_parser` of a finite number (any sign).
+pub fn finite(s: &str) -> Result<f64, String> {
+    let v = number(s)?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("must be a finite number, got {s}"))
+    }
+}
+
+/// `value_parser` of a count: a whole number ≥ 1 (grid intervals, samples).
+pub fn count(s: &str) -> Result<usize, String> {
+    match s.trim().parse::<i64>() {
+        Ok(v) if v >= 1 => usize::try_from(v).map_err(|_| format!("{s} is too large")),
+        Ok(_) => Err(format!("must be a whole number ≥ 1, got {s}")),
+        Err(_) => Err(format!("`{s}` is not a whole number (expected 1, 2, 3, …)")),
+    }
+}
+
+fn number(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .map_err(|_| format!("`{s}` is not a number"))
+}
+
+/// The long help of a `--method` option: every tension distribution method with one line.
+pub fn method_help() -> String {
+    let mut s = String::from(
+        "Tension distribution method (n cables, DOF degrees of freedom, redundancy r = n − DOF):",
+    );
+    for m in cdpr::tension::Method::ALL {
+        s.push_str(&format!("\n  {:<21} {}", m.name(), m.summary()));
+    }
+    s
+}
+
 /// The cable model of `--kinematics` (a global option every command takes).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum KinematicsModel {

@@ -47,7 +47,7 @@ azimuths feasible (tilt sets), or rx against ry coloured by the fraction of rz f
 
 /// Arguments of `cdpr orientations`.
 #[derive(clap::Args)]
-#[command(after_long_help = format!("{LONG_HELP}\n\n{SYNTAX_HELP}"))]
+#[command(allow_negative_numbers = true, after_long_help = format!("{LONG_HELP}\n\n{SYNTAX_HELP}"))]
 pub struct Args {
     /// Robot file (TOML), a `spatial` robot.
     robot: PathBuf,

@@ -9,6 +9,7 @@ use std::path::PathBuf;
 /// Needs `axial_stiffness` (E·S, N) on every cable of the robot file, or --axial-stiffness.
 /// JSON fields: `stiffness` (rows of K), `passive` (Kp), `active` (Ka).
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -19,7 +20,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     tensions: Numbers,
     /// E·S for every cable (N), overriding the robot file.
-    #[arg(long)]
+    #[arg(long, value_parser = super::positive)]
     axial_stiffness: Option<f64>,
     /// Write one JSON object on stdout.
     #[arg(long)]

@@ -32,6 +32,7 @@ use std::path::PathBuf;
 /// pairs), `grid` (`lambda1`, `lambda2`, `values[j][i]` at (lambda1[i], lambda2[j]), null outside
 /// the polygon), `unit`; `feasible` false with `reason` when the polygon is empty.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx with redundancy 2 and `axial_stiffness` on every cable.
     robot: PathBuf,
@@ -45,10 +46,10 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
     /// Grid resolution per λ axis over the polygon's bounding box.
-    #[arg(long, default_value_t = 80)]
+    #[arg(long, default_value_t = 80, value_parser = super::count)]
     grid: usize,
     /// Number of ν values in [0, 1] for the intermediate-solution curve.
-    #[arg(long, default_value_t = 21)]
+    #[arg(long, default_value_t = 21, value_parser = super::count)]
     nu_samples: usize,
     /// Use SOTDA's real-time variant (only the polygon corners with a cable at t_max) for the
     /// optimum instead of the full search (grid + pattern search).
@@ -204,15 +205,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }))
     } else {
         println!(
-            "robot {}, pose {:?}, w_ext {:?} (tensions), load {:?} (displacement), direction {:?}",
+            "robot {}, pose {}, w_ext {} (tensions), load {} (displacement), direction {}",
             robot.name,
-            args.pose.0,
-            w_ext.as_slice(),
-            settings
-                .perturbation
-                .as_ref()
-                .map(|p| p.as_slice().to_vec()),
-            settings.direction.as_slice()
+            super::pose_text(&args.pose.0, robot.robot.motion().space_dim()),
+            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
+            settings.perturbation.as_ref().map_or_else(
+                || "none".to_string(),
+                |p| super::wrench_text(p.as_slice(), robot.robot.motion().translation_dof())
+            ),
+            super::nums(settings.direction.as_slice())
         );
         println!("feasible polygon: {} vertices", polygon.vertices.len());
         println!("displacement |d·δp| in {unit}:");

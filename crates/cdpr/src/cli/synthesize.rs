@@ -55,7 +55,7 @@ JSON: `design` (optimised angles, rad), `area` (its A_d, m²), `evaluations` {`f
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
-#[command(after_long_help = LONG_HELP)]
+#[command(allow_negative_numbers = true, after_long_help = LONG_HELP)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx, planar: platform attachments, limits and gravity are used.
     robot: PathBuf,
@@ -66,7 +66,7 @@ pub struct Args {
     criteria: CriteriaArgs,
     /// Grid resolution M of the objective: (M+1)² points over --grid-box. Default 100 for n = 3
     /// cables, 50 otherwise (the thesis).
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = super::count)]
     grid: Option<usize>,
     /// Box of the objective's grid XMIN,XMAX,YMIN,YMAX (default the whole frame -1,1,-1,1).
     #[arg(long, allow_hyphen_values = true, value_name = "XMIN,XMAX,YMIN,YMAX")]
@@ -79,13 +79,13 @@ pub struct Args {
     optimizer: String,
     /// β_min (rad): minimum separation of consecutive anchors. Default π/18 (10°), the separation
     /// active at every published optimum.
-    #[arg(long)]
+    #[arg(long, value_parser = super::non_negative)]
     min_separation: Option<f64>,
     /// Dynamic-Q move limit ρ (rad).
-    #[arg(long, default_value_t = 0.1)]
+    #[arg(long, default_value_t = 0.1, value_parser = super::positive)]
     move_limit: f64,
     /// Dynamic-Q central-difference interval Γ (rad). Default 0.05 for 3 cables, 0.1 otherwise.
-    #[arg(long)]
+    #[arg(long, value_parser = super::positive)]
     fd_interval: Option<f64>,
     /// Write the optimised design's dextrous workspace (.svg or .png).
     #[arg(long)]

@@ -23,6 +23,7 @@ use std::path::PathBuf;
 /// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
 /// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -32,14 +33,15 @@ pub struct Args {
     /// External wrench w_e applied to the platform (DOF numbers; default zero), e.g. --wrench 0,-10,0.
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
-    /// Tension distribution method.
-    #[arg(long, default_value = "l2")]
+    /// Tension distribution method: exact, pinv, closed-form, l1, l1-max, l2, l2-max, linf,
+    /// improved-closed-form, barycenter, sotda (one line each in --help).
+    #[arg(long, default_value = "l2", long_help = super::method_help())]
     method: Method,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
     /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
     nu: f64,
     /// SOTDA: which points of the feasible polygon are evaluated. corners: seed 002's real-time
     /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
@@ -185,10 +187,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
         print_json(&v)
     } else {
         println!(
-            "robot {}, pose {:?}, w_ext {:?}, method {}",
+            "robot {}, pose {}, w_ext {}, method {}",
             robot.name,
-            args.pose.0,
-            w_ext.as_slice(),
+            super::pose_text(&args.pose.0, robot.robot.motion().space_dim()),
+            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
             args.method.name()
         );
         match &outcome {
@@ -196,19 +198,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 println!("feasible (residual {:.3e})", s.residual);
                 println!(
                     "{:>6} {:>14} {:>10} {:>10}",
-                    "cable", "tension", "t_min", "t_max"
+                    "cable", "tension (N)", "t_min (N)", "t_max (N)"
                 );
                 for (i, t) in s.tensions.iter().enumerate() {
                     println!(
                         "{:>6} {:>14.6} {:>10} {:>10}",
                         i + 1,
                         t,
-                        robot.bounds.min()[i],
-                        robot.bounds.max()[i]
+                        super::num(robot.bounds.min()[i]),
+                        super::num(robot.bounds.max()[i])
                     );
                 }
                 if let Some(d) = displacement {
-                    println!("displacement along the direction: {d:.6e}");
+                    println!("displacement along the direction: {d:.6e} m");
                 }
             }
             TensionOutcome::Infeasible(r) => println!("infeasible: {r}"),

@@ -45,6 +45,7 @@ use std::path::PathBuf;
 /// cable), `reasons` (null or string per sample), `feasible_count`, `discontinuities` (indices k),
 /// `method`, `poses`, `t_min`, `t_max`.
 #[derive(clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -59,23 +60,29 @@ pub struct Args {
     /// End pose of the straight segment.
     #[arg(long, allow_hyphen_values = true, requires = "from")]
     to: Option<Numbers>,
-    /// A polyline in a TOML file instead of --from/--to (see above for its keys).
-    #[arg(long)]
+    /// A polyline in a TOML file instead of --from/--to: one `[[waypoints]]` table per
+    /// waypoint, in path order, at least 2, with the keys
+    ///   pose   = [..]  the pose in motion-pattern coordinates (m, and rad for angles), required;
+    ///   wrench = [..]  the external wrench w_e there (DOF numbers, N and N·m), optional
+    ///                  (default --wrench); interpolated linearly in s between waypoints.
+    /// Example: [[waypoints]] pose = [-0.5, 0.0, 0.0]   [[waypoints]] pose = [0.5, 0.2, 0.1]
+    /// wrench = [0.0, -10.0, 0.0]. See docs/robot-file.md.
+    #[arg(long, value_name = "FILE.toml", verbatim_doc_comment)]
     waypoints: Option<PathBuf>,
     /// Number of samples, evenly spaced in s (at least 2).
-    #[arg(long, conflicts_with = "step")]
+    #[arg(long, conflicts_with = "step", value_parser = super::count)]
     samples: Option<usize>,
     /// Largest pose distance between samples (alternative to --samples; default: 101 samples).
-    #[arg(long)]
+    #[arg(long, value_parser = super::positive)]
     step: Option<f64>,
     /// External wrench w_e held constant along the path (DOF numbers; default zero).
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
-    /// Tension distribution method (see `cdpr tension --help`).
+    /// Tension distribution method (see `cdpr tension --help` for the list).
     #[arg(long, default_value = "l2")]
     method: Method,
     /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
-    #[arg(long, default_value_t = 1.0)]
+    #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
     nu: f64,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
     #[arg(long, allow_hyphen_values = true)]
@@ -89,7 +96,7 @@ pub struct Args {
     #[arg(long)]
     full: bool,
     /// A step is flagged as a discontinuity when its jump exceeds this many median jumps.
-    #[arg(long, default_value_t = 20.0)]
+    #[arg(long, default_value_t = 20.0, value_parser = super::positive)]
     jump_ratio: f64,
     /// Tension profiles (one line per cable vs s, dashed t_min/t_max, gaps where infeasible).
     #[arg(long)]
@@ -265,6 +272,7 @@ fn print_table(
     let head: Vec<String> = (1..=n)
         .map(|i| format!("{:>10}", format!("t{i}")))
         .collect();
+    println!("tensions t_i in N along the path parameter s ∈ [0, 1]");
     println!("{:>8}  {}", "s", head.join(" "));
     // At most ~40 rows in the table: every k-th sample, plus every infeasible one.
     let every = profile.s.len().div_ceil(40).max(1);
@@ -276,8 +284,11 @@ fn print_table(
             }
             Some(_) => {}
             None => println!(
-                "{s:>8.4}  infeasible at {:?}: {}",
-                samples[k].pose.coordinates(robot.robot.motion()),
+                "{s:>8.4}  infeasible at {}: {}",
+                super::pose_text(
+                    &samples[k].pose.coordinates(robot.robot.motion()),
+                    robot.robot.motion().space_dim()
+                ),
                 profile.reasons[k].as_deref().unwrap_or("")
             ),
         }

@@ -107,7 +107,7 @@ writes one self-contained page (no network needed): the same scene to orbit (dra
 
 /// Arguments of the command; see [`LONG_HELP`].
 #[derive(clap::Args)]
-#[command(after_long_help = format!("{LONG_HELP}\n\n{}", super::orientations::SYNTAX_HELP))]
+#[command(allow_negative_numbers = true, after_long_help = format!("{LONG_HELP}\n\n{}", super::orientations::SYNTAX_HELP))]
 pub struct Args {
     /// Robot file: .toml, CASPR NAME_cables.xml or WireCenter .wcrfx.
     robot: PathBuf,
@@ -134,11 +134,11 @@ pub struct Args {
     section: Option<String>,
     /// Chord length d of the chord method (the thesis uses 0.05, and 0.03 or 0.02 to resolve
     /// features narrower than 0.05).
-    #[arg(long, default_value_t = 0.05)]
+    #[arg(long, default_value_t = 0.05, value_parser = super::positive)]
     chord: f64,
     /// Grid resolution M: M intervals per side, (M+1)² points (or (M+1)³ in space); with
     /// --boundary chord, the coarse grid that seeds the walks. Default 50 (thesis), 20 in space.
-    #[arg(long, value_name = "M")]
+    #[arg(long, value_name = "M", value_parser = super::count)]
     grid: Option<usize>,
     /// Search box XMIN,XMAX,YMIN,YMAX (in space: XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX); default the
     /// bounding box of the frame anchors.
@@ -548,6 +548,24 @@ pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, 
             .into());
         }
     };
+    if q.is_some() {
+        for (k, axis) in ["x", "y", "z"].iter().enumerate().take(dim) {
+            let (lo, hi) = (r.min[k], r.max[k]);
+            let (a, b) = (axis.to_uppercase(), axis.to_uppercase());
+            if !(lo.is_finite() && hi.is_finite()) {
+                return Err(format!(
+                    "{option}: the {axis} bounds {a}MIN = {lo}, {b}MAX = {hi} must be finite numbers (m)"
+                )
+                .into());
+            }
+            if lo >= hi {
+                return Err(format!(
+                    "{option}: along {axis}, {a}MIN = {lo} m must be less than {b}MAX = {hi} m"
+                )
+                .into());
+            }
+        }
+    }
     r.validate(dim)?;
     Ok(r)
 }
@@ -958,10 +976,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
         } else {
             0.0
         };
+        // The bisection tolerance ε^u must stay below d/100: the default 1e-8 m, smaller for
+        // chords under 1e-6 m (the user sets d only, so no tolerance of theirs is at fault).
+        let defaults = ChordSettings::default();
         let settings = ChordSettings {
             chord: args.chord,
             seed_resolution: m,
-            ..ChordSettings::default()
+            tolerance: defaults.tolerance.min(args.chord * 1e-3),
+            ..defaults
         };
         let ws = chord_workspace(&eval, phi, &region, &settings)?;
         let polys: Vec<Vec<(f64, f64)>> = ws
@@ -1007,10 +1029,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
             ));
         }
         println!(
-            "robot {}: chord-method workspace at orientation {:?}, w_ext {:?}",
+            "robot {}: chord-method workspace at orientation {} rad, w_ext {}",
             desc.name,
-            orientation,
-            w_ext.as_slice()
+            super::nums(&orientation),
+            super::wrench_text(w_ext.as_slice(), motion.translation_dof())
         );
         println!(
             "criteria: {} (tensions: {})",
@@ -1018,12 +1040,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
             method.name()
         );
         println!(
-            "area {:.6}: {regions} region(s), {holes} hole(s), chord d = {}, {} pose evaluations",
+            "area {:.6} m²: {regions} region(s), {holes} hole(s), chord d = {} m, {} pose evaluations",
             ws.area, args.chord, ws.evaluations
         );
         for (k, b) in ws.boundaries.iter().enumerate() {
             println!(
-                "  boundary {}: {} vertices, signed area {:+.6}, perimeter {:.4}, {} bifurcation point(s)",
+                "  boundary {}: {} vertices, signed area {:+.6} m², perimeter {:.4} m, {} bifurcation point(s)",
                 k + 1,
                 b.vertices.len(),
                 b.signed_area(),
@@ -1081,8 +1103,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 Some(&ws),
                 Vec::new(),
                 format!(
-                    "{}: constant-orientation workspace {:?}",
-                    desc.name, orientation
+                    "{}: constant-orientation workspace at orientation {} rad",
+                    desc.name,
+                    super::nums(&orientation)
                 ),
                 vec![format!(
                     "{what} {:.4} {unit} ({} of {} points, m = {m}, {} convention); {}",
@@ -1114,10 +1137,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
             return print_json(&v);
         }
         println!(
-            "robot {}: constant-orientation workspace at orientation {:?}, w_ext {:?}",
+            "robot {}: constant-orientation workspace at orientation {} rad, w_ext {}",
             desc.name,
-            orientation,
-            w_ext.as_slice()
+            super::nums(&orientation),
+            super::wrench_text(w_ext.as_slice(), motion.translation_dof())
         );
         println!(
             "criteria: {} (tensions: {})",

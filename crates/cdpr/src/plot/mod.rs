@@ -36,6 +36,14 @@ pub enum PlotError {
     /// The extension is neither `.svg` nor `.png` (nor `.html` for 3-D scenes).
     #[error("{0}: plot files must end in .svg or .png (.html for 3-D workspaces)")]
     UnknownFormat(String),
+    /// The folder the file should go to does not exist.
+    #[error("cannot write {file}: no such directory ({dir})")]
+    NoDirectory {
+        /// The file.
+        file: String,
+        /// Its folder.
+        dir: String,
+    },
     /// Drawing or writing failed.
     #[error("cannot draw {file}: {message}")]
     Draw {
@@ -84,6 +92,14 @@ pub fn save(figure: &impl Figure, path: impl AsRef<Path>) -> Result<(), PlotErro
     register_font();
     let path = path.as_ref();
     let name = path.display().to_string();
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(PlotError::NoDirectory {
+            file: name,
+            dir: dir.display().to_string(),
+        });
+    }
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
