@@ -6,7 +6,7 @@
 
 use crate::value_error;
 use numpy::ndarray::{ArrayD, IxDyn};
-use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
@@ -133,6 +133,21 @@ pub fn to_numpy<'py, T: numpy::Element>(
     ArrayD::from_shape_vec(IxDyn(shape), data)
         .expect("buffer length matches the shape")
         .into_pyarray(py)
+}
+
+/// A new zero-filled float64 numpy array of `shape`.
+pub fn zeros<'py>(py: Python<'py>, shape: &[usize]) -> Bound<'py, PyArrayDyn<f64>> {
+    PyArrayDyn::zeros(py, IxDyn(shape), false)
+}
+
+/// The elements of arrays made by [`zeros`], writable (they are not shared with Python yet).
+pub fn writable<'a>(arrays: &'a mut [Bound<'_, PyArrayDyn<f64>>]) -> Vec<&'a mut [f64]> {
+    arrays
+        .iter_mut()
+        // SAFETY: the arrays were just created by `zeros` (C-contiguous, no other reference:
+        // Python has not seen them), and each is borrowed mutably once.
+        .map(|a| unsafe { a.as_slice_mut() }.expect("a new array is contiguous"))
+        .collect()
 }
 
 /// `shape` with the leading batch axis of length `count`, dropped for a single row.

@@ -101,11 +101,12 @@ pub fn capacity_margin(
     let desc = &robot.desc;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
@@ -180,11 +181,12 @@ pub fn isotropic(
     let desc = &robot.desc;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
@@ -266,11 +268,12 @@ pub fn stiffness(
     };
     let widths = [dof * dof; 3];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, dof)),
             |(kin, km), k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;

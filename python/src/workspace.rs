@@ -10,7 +10,7 @@
 use crate::arrays::to_numpy;
 use crate::robot::Robot;
 use crate::tension::parse_method;
-use crate::{guarded, value_error};
+use crate::value_error;
 use cdpr_kinematics::{MotionPattern, Pose};
 use cdpr_polytope::RequiredWrenchSet;
 use cdpr_tension::Method;
@@ -341,8 +341,8 @@ pub fn workspace(
     match boundary {
         "grid" => {
             let grid = Grid::new(m, region);
-            let ws = py.detach(|| {
-                guarded(|| constant_orientation_workspace(&eval, &rot, &grid).map_err(value_error))
+            let ws = crate::parallel(py, || {
+                constant_orientation_workspace(&eval, &rot, &grid).map_err(value_error)
             })?;
             let p = m + 1;
             let axis = |stride: usize, k: usize| -> Vec<f64> {
@@ -382,8 +382,8 @@ pub fn workspace(
                 seed_resolution: m,
                 ..ChordSettings::default()
             };
-            let ws = py.detach(|| {
-                guarded(|| chord_workspace(&eval, phi, &region, &settings).map_err(value_error))
+            let ws = crate::parallel(py, || {
+                chord_workspace(&eval, phi, &region, &settings).map_err(value_error)
             })?;
             out.area = ws.area;
             out.boundaries = Some(
