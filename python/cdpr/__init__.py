@@ -38,7 +38,3 @@ __all__ = [
     "thread_count",
 ]
 
-
-def _rebuild_robot(motion, frame, platform, t_min, t_max, kwargs):
-    """Unpickles a :class:`Robot` (see ``Robot.__reduce__``)."""
-    return Robot.from_anchors(motion, frame, platform, t_min, t_max, **kwargs)

@@ -52,7 +52,13 @@ class WorkspaceResult:
     z: Optional[FloatArray]
     points: Optional[FloatArray]
     boundaries: Optional[List[FloatArray]]
+    vertices: Optional[FloatArray]
+    faces: Optional[IntArray]
+    surface_area: Optional[float]
     area: float
+    area_cells: Optional[float]
+    area_points: Optional[float]
+    volume_convention: Optional[str]
     volume: Optional[float]
     cell_area: Optional[float]
     feasible_points: Optional[int]
@@ -75,7 +81,10 @@ class TrajectoryResult:
 
 class Robot:
     @staticmethod
-    def load(path: Union[str, PathLike[str]]) -> Robot: ...
+    def load(path: Union[str, PathLike[str]], cable_set: Optional[str] = None) -> Robot: ...
+    @staticmethod
+    def from_toml(text: str, file: str = "<string>") -> Robot: ...
+    def to_toml(self, header: str = "") -> str: ...
     @staticmethod
     def from_anchors(
         motion: Motion,
@@ -143,7 +152,7 @@ class Robot:
         wrench_box: Optional[Sequence[float]] = None,
         wrench_ball: Optional[float] = None,
     ) -> CapacityResult: ...
-    def isotropic_force(self, poses: ArrayLike) -> IsotropicResult: ...
+    def isotropic_force(self, poses: ArrayLike, wrenches: Optional[ArrayLike] = None) -> IsotropicResult: ...
     def stiffness(
         self,
         poses: ArrayLike,
@@ -159,8 +168,9 @@ class Robot:
         method: Optional[str] = None,
         wrench: Optional[Sequence[float]] = None,
         wrench_box: Optional[Sequence[float]] = None,
-        boundary: Literal["grid", "chord"] = "grid",
+        boundary: Literal["grid", "chord", "mesh"] = "grid",
         chord: float = 0.05,
+        volume_convention: Literal["cells", "points"] = "cells",
     ) -> WorkspaceResult: ...
     def trajectory(
         self,
