@@ -5,13 +5,14 @@
     RAYON_NUM_THREADS=1 python python/benchmarks/bench.py  # batches on one thread
 
 1. Inverse kinematics + wrench matrix of 10⁶ poses of the 8-cable spatial robot
-   (examples/robots/ipanema-like-8.toml), one batch call. Compare its time per pose with the
-   Rust loop doing the same work on one thread:
-   `cargo bench -p cdpr-benches --bench kinematics -- kinematics_batch` (criterion's
-   throughput gives poses/s; the package's threads are printed here).
-2. Per-call overhead of a single-pose call: the time of `robot.inverse_kinematics(q)` and
-   `robot.tensions(q)` for one pose minus the time per pose inside a large batch on one thread
-   (what the Rust code itself spends on that pose).
+   (examples/robots/ipanema-like-8.toml), one batch call, alternating with the plain Rust loop
+   doing the same work on one thread with fresh buffers (`cdpr._cdpr._ik_reference_loop`: no
+   numpy, no Python inside; the same loop as the criterion bench
+   `cargo bench -p cdpr-benches --bench kinematics -- kinematics_batch`, which reuses its
+   buffers).
+2. Per-call overhead of a single-pose call: the time of `robot.inverse_kinematics(q)` for one
+   pose minus the Rust loop's time per pose (measured in the same run), with a trivial native
+   call and np.empty(3) printed for scale on a loaded machine.
 3. Constrained minimum-2-norm tensions (method "l2", seed 000 eq. (6.17)) of 10⁵ poses:
    `robot.tensions(poses)` against the same problem min ‖t‖² s.t. W t + w = 0,
    t_min ≤ t ≤ t_max solved pose by pose with scipy's SLSQP (scipy.optimize.minimize), given W
@@ -29,6 +30,7 @@ import time
 import numpy as np
 
 import cdpr
+from cdpr._cdpr import _ik_reference_loop
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 ROBOT = REPO / "examples" / "robots" / "ipanema-like-8.toml"
@@ -66,14 +68,15 @@ def scipy_l2(w, w_ext, t_min, t_max):
 
     n = w.shape[1]
     t0 = np.clip(np.linalg.lstsq(w, -w_ext, rcond=None)[0], t_min, t_max)
+    s = float(np.max(np.abs(t_max[np.isfinite(t_max)]), initial=1.0))  # scaled to O(1)
     res = minimize(
-        lambda t: t @ t,
+        lambda t: (t @ t) / s**2,
         t0,
-        jac=lambda t: 2 * t,
+        jac=lambda t: 2 * t / s**2,
         method="SLSQP",
         bounds=list(zip(t_min, t_max)),
-        constraints=[{"type": "eq", "fun": lambda t: w @ t + w_ext, "jac": lambda t: w}],
-        options={"ftol": 1e-12, "maxiter": 200},
+        constraints=[{"type": "eq", "fun": lambda t: (w @ t + w_ext) / s, "jac": lambda t: w / s}],
+        options={"ftol": 1e-14, "maxiter": 500},
     )
     ok = res.success and np.abs(w @ res.x + w_ext).max() < 1e-6
     return res.x if ok else np.full(n, np.nan)
@@ -90,27 +93,39 @@ def main():
     print(f"cdpr package, {cdpr.thread_count()} rayon thread(s) "
           f"(RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset')}); robot {robot}")
 
-    # 1. IK + W of a large batch.
+    # 1. IK + W of a large batch, alternating with the plain Rust loop (same process).
     q = poses_8(robot, args.ik_poses)
-    t_ik = median_time(lambda: robot.inverse_kinematics(q), args.repeat)
-    print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables): "
-          f"median {t_ik * 1e3:.1f} ms = {t_ik / args.ik_poses * 1e9:.1f} ns/pose")
+    ours, rust = [], []
+    for _ in range(args.repeat):
+        t0 = time.perf_counter()
+        robot.inverse_kinematics(q)
+        ours.append(time.perf_counter() - t0)
+        rust.append(_ik_reference_loop(robot, q))
+    t_ik, t_rust = statistics.median(ours), statistics.median(rust)
+    print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables): median "
+          f"{t_ik * 1e3:.1f} ms = {t_ik / args.ik_poses * 1e9:.0f} ns/pose; the Rust loop on one "
+          f"thread {t_rust * 1e3:.1f} ms = {t_rust / args.ik_poses * 1e9:.0f} ns/pose; "
+          f"package / Rust = {t_ik / t_rust:.2f}")
 
-    # 2. Per-call overhead of one pose.
+    # 2. Per-call overhead of one pose: the call minus the Rust loop's time per pose.
     one = q[0].copy()
+    small = q[:100_000]
+    per_pose = statistics.median(_ik_reference_loop(robot, small) for _ in range(args.repeat))
+    per_pose /= len(small)
     t_call = per_call(lambda: robot.inverse_kinematics(one))
-    big = q[:100_000]
-    t_in_batch = median_time(lambda: robot.inverse_kinematics(big), args.repeat) / len(big)
-    print(f"[2] inverse_kinematics(one pose): {t_call * 1e9:.0f} ns per call; in a batch "
-          f"{t_in_batch * 1e9:.0f} ns/pose (x threads: {cdpr.thread_count()}); overhead "
-          f"{(t_call - t_in_batch * cdpr.thread_count()) * 1e9:.0f} ns "
-          "(run with RAYON_NUM_THREADS=1 for the exact single-thread figure)")
+    t_dof = per_call(lambda: robot.dof)
+    t_np = per_call(lambda: np.empty(3))
+    print(f"[2] inverse_kinematics(one pose): {t_call * 1e9:.0f} ns per call; the Rust loop "
+          f"{per_pose * 1e9:.0f} ns per pose; overhead {(t_call - per_pose) * 1e9:.0f} ns "
+          f"(for scale, in this run: the property robot.dof {t_dof * 1e9:.0f} ns, "
+          f"np.empty(3) {t_np * 1e9:.0f} ns)")
     t_tcall = per_call(lambda: robot.tensions(one), calls=5000)
+    saved = os.environ.get("RAYON_NUM_THREADS")
     tb = q[:20_000]
     t_tbatch = median_time(lambda: robot.tensions(tb), args.repeat) / len(tb)
     print(f"    tensions(one pose): {t_tcall * 1e9:.0f} ns per call; in a batch "
-          f"{t_tbatch * 1e9:.0f} ns/pose; overhead "
-          f"{(t_tcall - t_tbatch * cdpr.thread_count()) * 1e9:.0f} ns")
+          f"{t_tbatch * 1e9:.0f} ns/pose on {cdpr.thread_count()} thread(s) (RAYON_NUM_THREADS="
+          f"{saved or 'unset'})")
 
     # 3. l2 tensions against scipy.
     m = args.tension_poses

@@ -12,18 +12,36 @@ use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 use std::borrow::Cow;
 
-/// A float64 array borrowed from Python (or converted from a list or another dtype).
-pub struct FloatArray<'py> {
-    array: PyReadonlyArrayDyn<'py, f64>,
+/// Arrays up to this many elements are copied at once (cheaper than registering a borrow).
+const COPY_BELOW: usize = 4096;
+
+/// A float64 array from Python: borrowed (large arrays: read later with the GIL released) or
+/// copied (small ones, or lists and other dtypes converted with `numpy.asarray`).
+pub enum FloatArray<'py> {
+    Borrowed(PyReadonlyArrayDyn<'py, f64>),
+    Owned { shape: Vec<usize>, data: Vec<f64> },
 }
 
 static AS_FLOAT: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
 
 impl<'py> FloatArray<'py> {
-    /// Borrows `obj` if it is a float64 ndarray, else converts it with `numpy.asarray`.
+    /// Reads `obj` if it is a float64 ndarray, else converts it with `numpy.asarray`.
     pub fn new(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Self> {
-        if let Ok(array) = obj.extract::<PyReadonlyArrayDyn<'py, f64>>() {
-            return Ok(Self { array });
+        if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
+            if array.len() <= COPY_BELOW && array.is_c_contiguous() {
+                // SAFETY: the GIL is held and no Python code runs during the copy, so nothing
+                // writes to the array meanwhile; the slice does not outlive this statement.
+                let data = unsafe { array.as_slice() }
+                    .map_err(|e| value_error(format!("{what}: {e}")))?
+                    .to_vec();
+                return Ok(Self::Owned {
+                    shape: array.shape().to_vec(),
+                    data,
+                });
+            }
+            if let Ok(ro) = array.try_readonly() {
+                return Ok(Self::Borrowed(ro));
+            }
         }
         let py = obj.py();
         let asarray = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
@@ -38,19 +56,28 @@ impl<'py> FloatArray<'py> {
         let array = converted
             .extract::<PyReadonlyArrayDyn<'py, f64>>()
             .map_err(|e| value_error(format!("{what}: {e}")))?;
-        Ok(Self { array })
+        Ok(Self::Owned {
+            shape: array.shape().to_vec(),
+            data: array.as_array().iter().copied().collect(),
+        })
     }
 
     /// The shape.
     pub fn shape(&self) -> &[usize] {
-        self.array.shape()
+        match self {
+            Self::Borrowed(a) => a.shape(),
+            Self::Owned { shape, .. } => shape,
+        }
     }
 
-    /// The elements in C order (borrowed when the array is C-contiguous).
+    /// The elements in C order (borrowed when possible).
     pub fn data(&self) -> Cow<'_, [f64]> {
-        match self.array.as_slice() {
-            Ok(s) => Cow::Borrowed(s),
-            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
+        match self {
+            Self::Borrowed(a) => match a.as_slice() {
+                Ok(s) => Cow::Borrowed(s),
+                Err(_) => Cow::Owned(a.as_array().iter().copied().collect()),
+            },
+            Self::Owned { data, .. } => Cow::Borrowed(data),
         }
     }
 

@@ -102,3 +102,49 @@ pub fn inverse_kinematics(
         attachment_points,
     })
 }
+
+/// The plain Rust loop that `inverse_kinematics` runs for a batch, on the calling thread with
+/// fresh output buffers and no numpy or Python in it: the reference of the benchmark
+/// (`python/benchmarks/bench.py`) in the same process and conditions. Returns seconds.
+#[pyfunction]
+pub fn _ik_reference_loop(
+    py: Python<'_>,
+    robot: &Robot,
+    poses: &Bound<'_, PyAny>,
+) -> PyResult<f64> {
+    let geo = robot.geometry();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let data = rows.array.data();
+    let count = rows.count;
+    py.detach(|| {
+        let start = std::time::Instant::now();
+        let (mut l, mut u, mut wm, mut a) = (
+            vec![0.0; count * n],
+            vec![0.0; count * 3 * n],
+            vec![0.0; count * dof * n],
+            vec![0.0; count * 3 * n],
+        );
+        let mut kin = PoseKinematics::for_robot(geo);
+        let mut w = DMatrix::zeros(dof, n);
+        for k in 0..count {
+            let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k).map_err(value_error)?;
+            geo.update_kinematics(&pose, &mut kin)
+                .map_err(value_error)?;
+            kin.write_wrench_matrix(&mut w);
+            for (i, c) in kin.cables().iter().enumerate() {
+                l[k * n + i] = c.length;
+                u[3 * (k * n + i)..3 * (k * n + i) + 3].copy_from_slice(c.unit.as_slice());
+                a[3 * (k * n + i)..3 * (k * n + i) + 3]
+                    .copy_from_slice(c.attachment_point.as_slice());
+            }
+            for r in 0..dof {
+                for c in 0..n {
+                    wm[k * dof * n + r * n + c] = w[(r, c)];
+                }
+            }
+        }
+        std::hint::black_box((&l, &u, &wm, &a));
+        Ok(start.elapsed().as_secs_f64())
+    })
+}
