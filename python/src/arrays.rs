@@ -25,40 +25,49 @@ pub enum FloatArray<'py> {
 static AS_FLOAT: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
 
 impl<'py> FloatArray<'py> {
-    /// Reads `obj` if it is a float64 ndarray, else converts it with `numpy.asarray`.
+    /// Reads `obj` if it is an aligned C-contiguous float64 ndarray, else converts it with
+    /// `numpy.require`.
     pub fn new(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Self> {
         if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
-            if array.len() <= COPY_BELOW && array.is_c_contiguous() {
+            if array.len() <= COPY_BELOW {
                 // SAFETY: the GIL is held and no Python code runs during the copy, so nothing
                 // writes to the array meanwhile; the slice does not outlive this statement.
-                let data = unsafe { array.as_slice() }
-                    .map_err(|e| value_error(format!("{what}: {e}")))?
-                    .to_vec();
-                return Ok(Self::Owned {
-                    shape: array.shape().to_vec(),
-                    data,
-                });
-            }
-            if let Ok(ro) = array.try_readonly() {
+                // `as_slice` checks contiguity and alignment.
+                if let Ok(s) = unsafe { array.as_slice() } {
+                    return Ok(Self::Owned {
+                        shape: array.shape().to_vec(),
+                        data: s.to_vec(),
+                    });
+                }
+            } else if let Ok(ro) = array.try_readonly()
+                && ro.as_slice().is_ok()
+            {
                 return Ok(Self::Borrowed(ro));
             }
         }
         let py = obj.py();
-        let asarray = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
-            Ok(py.import("numpy")?.getattr("asarray")?.unbind())
+        // Lists, other dtypes, strided or misaligned arrays (as unpickled buffers can be): an
+        // aligned C-contiguous float64 copy.
+        let require = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
+            Ok(py.import("numpy")?.getattr("require")?.unbind())
         })?;
         let kwargs = PyDict::new(py);
         kwargs.set_item("dtype", "float64")?;
-        let converted = asarray
+        kwargs.set_item("requirements", "CA")?;
+        let converted = require
             .bind(py)
             .call((obj,), Some(&kwargs))
             .map_err(|e| value_error(format!("{what}: not an array of numbers ({e})")))?;
         let array = converted
             .extract::<PyReadonlyArrayDyn<'py, f64>>()
             .map_err(|e| value_error(format!("{what}: {e}")))?;
+        let data = array
+            .as_slice()
+            .map_err(|e| value_error(format!("{what}: {e}")))?
+            .to_vec();
         Ok(Self::Owned {
             shape: array.shape().to_vec(),
-            data: array.as_array().iter().copied().collect(),
+            data,
         })
     }
 
