@@ -1,8 +1,10 @@
 //! Inverse kinematics and wrench matrix (cdpr-kinematics).
 
 use cdpr_benches::{ipanema_like_8, ipanema_like_8_pulleys, spatial_poses};
-use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, PoseKinematics, Robot};
-use criterion::{Criterion, criterion_group, criterion_main};
+use cdpr_kinematics::{
+    ForwardKinematics, ForwardSettings, MotionPattern, Pose, PoseKinematics, Robot,
+};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, Rotation3, Vector3};
 use std::hint::black_box;
 
@@ -75,5 +77,57 @@ fn forward_kinematics(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, inverse_kinematics, forward_kinematics);
+/// The loop behind the Python package's `Robot.inverse_kinematics` for a batch (python/), on one
+/// thread: pose coordinates → pose → IK → W, written into flat row-major buffers (lengths, unit
+/// vectors, W, attachment points). `python/benchmarks/bench.py` compares the package with it.
+fn batch_from_coordinates(c: &mut Criterion) {
+    const N: usize = 100_000;
+    let robot = ipanema_like_8();
+    let n = robot.cable_count();
+    let q: Vec<f64> = spatial_poses(N)
+        .iter()
+        .flat_map(|p| p.coordinates(MotionPattern::Spatial))
+        .collect();
+    let (mut l, mut u, mut wm, mut a) = (
+        vec![0.0; N * n],
+        vec![0.0; N * 3 * n],
+        vec![0.0; N * 6 * n],
+        vec![0.0; N * 3 * n],
+    );
+    let mut kin = PoseKinematics::for_robot(&robot);
+    let mut w = DMatrix::zeros(6, n);
+    let mut g = c.benchmark_group("kinematics_batch");
+    g.throughput(Throughput::Elements(N as u64));
+    g.sample_size(20);
+    g.bench_function("ik_and_wrench_matrix_from_coordinates/spatial_8", |b| {
+        b.iter(|| {
+            for k in 0..N {
+                let pose =
+                    Pose::from_coordinates(MotionPattern::Spatial, &q[6 * k..6 * k + 6]).unwrap();
+                robot.update_kinematics(&pose, &mut kin).unwrap();
+                kin.write_wrench_matrix(&mut w);
+                for (i, s) in kin.cables().iter().enumerate() {
+                    l[k * n + i] = s.length;
+                    u[3 * (k * n + i)..3 * (k * n + i) + 3].copy_from_slice(s.unit.as_slice());
+                    a[3 * (k * n + i)..3 * (k * n + i) + 3]
+                        .copy_from_slice(s.attachment_point.as_slice());
+                }
+                for r in 0..6 {
+                    for j in 0..n {
+                        wm[k * 6 * n + r * n + j] = w[(r, j)];
+                    }
+                }
+            }
+            black_box((l[0], u[0], wm[0], a[0]))
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    inverse_kinematics,
+    forward_kinematics,
+    batch_from_coordinates
+);
 criterion_main!(benches);

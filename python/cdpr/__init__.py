@@ -1,27 +1,40 @@
 """cdpr: analysis and design of cable-driven parallel robots, from Python.
 
-The classes and functions are the Rust crates of the cdpr project compiled into this package
-(no command line in between): numpy arrays in and out, batches in parallel with the GIL
-released. See ``docs/python.md`` for a tutorial.
+The classes below are the Rust crates of the cdpr project compiled into this package (no
+command line in between): numpy arrays in and out, batches in parallel with the GIL released.
+Bad input raises ``ValueError`` with the library's message. See ``docs/python.md``.
+
+>>> import cdpr
+>>> robot = cdpr.Robot.from_anchors("point2", [[1, 0], [-0.5, 0.8], [-0.5, -0.8]], t_min=1, t_max=50)
+>>> robot.dof, robot.n_cables, robot.motion
+(2, 3, 'point2')
 """
 
+from . import sweep
 from ._cdpr import (
     METHODS,
+    CapacityResult,
+    IsotropicResult,
     KinematicsResult,
     Robot,
+    StiffnessResult,
     TensionResult,
+    TrajectoryResult,
+    WorkspaceResult,
     thread_count,
 )
 
 __all__ = [
     "METHODS",
+    "CapacityResult",
+    "IsotropicResult",
     "KinematicsResult",
     "Robot",
+    "StiffnessResult",
     "TensionResult",
+    "TrajectoryResult",
+    "WorkspaceResult",
+    "sweep",
     "thread_count",
 ]
 
-
-def _rebuild_robot(motion, frame, platform, t_min, t_max, kwargs):
-    """Unpickles a :class:`Robot` (see ``Robot.__reduce__``)."""
-    return Robot.from_anchors(motion, frame, platform, t_min, t_max, **kwargs)

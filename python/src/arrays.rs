@@ -6,51 +6,87 @@
 
 use crate::value_error;
 use numpy::ndarray::{ArrayD, IxDyn};
-use numpy::{IntoPyArray, PyArrayDyn, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
 use std::borrow::Cow;
 
-/// A float64 array borrowed from Python (or converted from a list or another dtype).
-pub struct FloatArray<'py> {
-    array: PyReadonlyArrayDyn<'py, f64>,
+/// Arrays up to this many elements are copied at once (cheaper than registering a borrow).
+const COPY_BELOW: usize = 4096;
+
+/// A float64 array from Python: borrowed (large arrays: read later with the GIL released) or
+/// copied (small ones, or lists and other dtypes converted with `numpy.asarray`).
+pub enum FloatArray<'py> {
+    Borrowed(PyReadonlyArrayDyn<'py, f64>),
+    Owned { shape: Vec<usize>, data: Vec<f64> },
 }
 
 static AS_FLOAT: PyOnceLock<Py<PyAny>> = PyOnceLock::new();
 
 impl<'py> FloatArray<'py> {
-    /// Borrows `obj` if it is a float64 ndarray, else converts it with `numpy.asarray`.
+    /// Reads `obj` if it is an aligned C-contiguous float64 ndarray, else converts it with
+    /// `numpy.require`.
     pub fn new(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Self> {
-        if let Ok(array) = obj.extract::<PyReadonlyArrayDyn<'py, f64>>() {
-            return Ok(Self { array });
+        if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
+            if array.len() <= COPY_BELOW {
+                // SAFETY: the GIL is held and no Python code runs during the copy, so nothing
+                // writes to the array meanwhile; the slice does not outlive this statement.
+                // `as_slice` checks contiguity and alignment.
+                if let Ok(s) = unsafe { array.as_slice() } {
+                    return Ok(Self::Owned {
+                        shape: array.shape().to_vec(),
+                        data: s.to_vec(),
+                    });
+                }
+            } else if let Ok(ro) = array.try_readonly()
+                && ro.as_slice().is_ok()
+            {
+                return Ok(Self::Borrowed(ro));
+            }
         }
         let py = obj.py();
-        let asarray = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
-            Ok(py.import("numpy")?.getattr("asarray")?.unbind())
+        // Lists, other dtypes, strided or misaligned arrays (as unpickled buffers can be): an
+        // aligned C-contiguous float64 copy.
+        let require = AS_FLOAT.get_or_try_init(py, || -> PyResult<Py<PyAny>> {
+            Ok(py.import("numpy")?.getattr("require")?.unbind())
         })?;
         let kwargs = PyDict::new(py);
         kwargs.set_item("dtype", "float64")?;
-        let converted = asarray
+        kwargs.set_item("requirements", "CA")?;
+        let converted = require
             .bind(py)
             .call((obj,), Some(&kwargs))
             .map_err(|e| value_error(format!("{what}: not an array of numbers ({e})")))?;
         let array = converted
             .extract::<PyReadonlyArrayDyn<'py, f64>>()
             .map_err(|e| value_error(format!("{what}: {e}")))?;
-        Ok(Self { array })
+        let data = array
+            .as_slice()
+            .map_err(|e| value_error(format!("{what}: {e}")))?
+            .to_vec();
+        Ok(Self::Owned {
+            shape: array.shape().to_vec(),
+            data,
+        })
     }
 
     /// The shape.
     pub fn shape(&self) -> &[usize] {
-        self.array.shape()
+        match self {
+            Self::Borrowed(a) => a.shape(),
+            Self::Owned { shape, .. } => shape,
+        }
     }
 
-    /// The elements in C order (borrowed when the array is C-contiguous).
+    /// The elements in C order (borrowed when possible).
     pub fn data(&self) -> Cow<'_, [f64]> {
-        match self.array.as_slice() {
-            Ok(s) => Cow::Borrowed(s),
-            Err(_) => Cow::Owned(self.array.as_array().iter().copied().collect()),
+        match self {
+            Self::Borrowed(a) => match a.as_slice() {
+                Ok(s) => Cow::Borrowed(s),
+                Err(_) => Cow::Owned(a.as_array().iter().copied().collect()),
+            },
+            Self::Owned { data, .. } => Cow::Borrowed(data),
         }
     }
 
@@ -133,6 +169,21 @@ pub fn to_numpy<'py, T: numpy::Element>(
     ArrayD::from_shape_vec(IxDyn(shape), data)
         .expect("buffer length matches the shape")
         .into_pyarray(py)
+}
+
+/// A new zero-filled float64 numpy array of `shape`.
+pub fn zeros<'py>(py: Python<'py>, shape: &[usize]) -> Bound<'py, PyArrayDyn<f64>> {
+    PyArrayDyn::zeros(py, IxDyn(shape), false)
+}
+
+/// The elements of arrays made by [`zeros`], writable (they are not shared with Python yet).
+pub fn writable<'a>(arrays: &'a mut [Bound<'_, PyArrayDyn<f64>>]) -> Vec<&'a mut [f64]> {
+    arrays
+        .iter_mut()
+        // SAFETY: the arrays were just created by `zeros` (C-contiguous, no other reference:
+        // Python has not seen them), and each is borrowed mutably once.
+        .map(|a| unsafe { a.as_slice_mut() }.expect("a new array is contiguous"))
+        .collect()
 }
 
 /// `shape` with the leading batch axis of length `count`, dropped for a single row.

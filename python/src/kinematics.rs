@@ -4,7 +4,7 @@
 //! DOF × n wrench matrix W with W t + w_ext = 0 (seed 000 eqs. (6.2)–(6.4), (6.11); the
 //! `cdpr kinematics` command at one pose).
 
-use crate::arrays::{Rows, batch_shape, to_numpy};
+use crate::arrays::{Rows, batch_shape, writable, zeros};
 use crate::robot::Robot;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::{Pose, PoseKinematics};
@@ -52,12 +52,19 @@ pub fn inverse_kinematics(
     let count = rows.count;
     let data = rows.array.data();
     let widths = [n, 3 * n, dof * n, 3 * n];
-    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    let mut arrays = [
+        zeros(py, &shape(&[n])),
+        zeros(py, &shape(&[n, 3])),
+        zeros(py, &shape(&[dof, n])),
+        zeros(py, &shape(&[n, 3])),
+    ];
+    let outs = writable(&mut arrays);
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            outs,
             || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, n)),
             |(kin, w), k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
@@ -87,13 +94,57 @@ pub fn inverse_kinematics(
         )
         .map_err(value_error)
     })?;
-    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
-    let mut outs = outs.into_iter();
-    let mut next = |rest: &[usize]| to_numpy(py, &shape(rest), outs.next().unwrap()).unbind();
+    let [lengths, unit_vectors, wrench_matrix, attachment_points] = arrays.map(Bound::unbind);
     Ok(KinematicsResult {
-        lengths: next(&[n]),
-        unit_vectors: next(&[n, 3]),
-        wrench_matrix: next(&[dof, n]),
-        attachment_points: next(&[n, 3]),
+        lengths,
+        unit_vectors,
+        wrench_matrix,
+        attachment_points,
+    })
+}
+
+/// The plain Rust loop that `inverse_kinematics` runs for a batch, on the calling thread with
+/// fresh output buffers and no numpy or Python in it: the reference of the benchmark
+/// (`python/benchmarks/bench.py`) in the same process and conditions. Returns seconds.
+#[pyfunction]
+pub fn _ik_reference_loop(
+    py: Python<'_>,
+    robot: &Robot,
+    poses: &Bound<'_, PyAny>,
+) -> PyResult<f64> {
+    let geo = robot.geometry();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
+    let data = rows.array.data();
+    let count = rows.count;
+    py.detach(|| {
+        let start = std::time::Instant::now();
+        let (mut l, mut u, mut wm, mut a) = (
+            vec![0.0; count * n],
+            vec![0.0; count * 3 * n],
+            vec![0.0; count * dof * n],
+            vec![0.0; count * 3 * n],
+        );
+        let mut kin = PoseKinematics::for_robot(geo);
+        let mut w = DMatrix::zeros(dof, n);
+        for k in 0..count {
+            let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k).map_err(value_error)?;
+            geo.update_kinematics(&pose, &mut kin)
+                .map_err(value_error)?;
+            kin.write_wrench_matrix(&mut w);
+            for (i, c) in kin.cables().iter().enumerate() {
+                l[k * n + i] = c.length;
+                u[3 * (k * n + i)..3 * (k * n + i) + 3].copy_from_slice(c.unit.as_slice());
+                a[3 * (k * n + i)..3 * (k * n + i) + 3]
+                    .copy_from_slice(c.attachment_point.as_slice());
+            }
+            for r in 0..dof {
+                for c in 0..n {
+                    wm[k * dof * n + r * n + c] = w[(r, c)];
+                }
+            }
+        }
+        std::hint::black_box((&l, &u, &wm, &a));
+        Ok(start.elapsed().as_secs_f64())
     })
 }

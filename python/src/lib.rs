@@ -19,8 +19,10 @@ mod workspace;
 
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
+use rayon::{ThreadPool, ThreadPoolBuilder};
 use std::fmt::Display;
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::{Arc, Mutex};
 
 /// A `ValueError` carrying the Rust error's message.
 pub(crate) fn value_error(e: impl Display) -> PyErr {
@@ -49,14 +51,45 @@ pub(crate) fn guarded<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
 /// the calling thread (rayon's dispatch costs microseconds, more than a single pose).
 pub(crate) const PARALLEL_THRESHOLD: usize = 64;
 
-/// Runs `f` with the GIL released (and panics caught) when the batch is large enough.
+/// The thread pool of this process. Not rayon's global pool: a process forked after the pool
+/// started (`multiprocessing` with the fork start method) has none of its threads, so a
+/// child builds its own instead of waiting forever for threads that do not exist.
+fn pool() -> Arc<ThreadPool> {
+    static POOL: Mutex<Option<(u32, Arc<ThreadPool>)>> = Mutex::new(None);
+    let pid = std::process::id();
+    let mut slot = POOL.lock().unwrap_or_else(|e| e.into_inner());
+    match &*slot {
+        Some((p, pool)) if *p == pid => pool.clone(),
+        _ => {
+            let pool = Arc::new(
+                ThreadPoolBuilder::new()
+                    .build()
+                    .expect("rayon thread pool (RAYON_NUM_THREADS must be a number)"),
+            );
+            *slot = Some((pid, pool.clone()));
+            pool
+        }
+    }
+}
+
+/// Runs `f` on this process's thread pool with the GIL released and panics caught.
+pub(crate) fn parallel<T: Send>(
+    py: Python<'_>,
+    f: impl FnOnce() -> PyResult<T> + Send,
+) -> PyResult<T> {
+    let pool = pool();
+    py.detach(|| pool.install(|| guarded(f)))
+}
+
+/// Runs `f` with the GIL released on the thread pool (and panics caught) when the batch is
+/// large enough, else on the calling thread.
 pub(crate) fn run_batch<T: Send>(
     py: Python<'_>,
     count: usize,
     f: impl FnOnce() -> PyResult<T> + Send,
 ) -> PyResult<T> {
     if count >= PARALLEL_THRESHOLD {
-        py.detach(|| guarded(f))
+        parallel(py, f)
     } else {
         guarded(f)
     }
@@ -72,7 +105,7 @@ const BLOCK: usize = 256;
 pub(crate) fn map_poses<S, R, E>(
     count: usize,
     widths: &[usize],
-    outputs: &mut [Vec<f64>],
+    outputs: Vec<&mut [f64]>,
     init: impl Fn() -> S + Sync + Send,
     f: impl Fn(&mut S, usize, usize, &mut [&mut [f64]]) -> Result<R, E> + Sync + Send,
 ) -> Result<Vec<R>, E>
@@ -81,8 +114,19 @@ where
     E: Send,
 {
     use rayon::prelude::*;
+    let run = |state: &mut S, (b, mut outs): (usize, Vec<&mut [f64]>)| -> Result<Vec<R>, E> {
+        let start = b * BLOCK;
+        let end = (start + BLOCK).min(count);
+        (start..end)
+            .map(|k| f(state, k, k - start, &mut outs))
+            .collect()
+    };
+    if count <= BLOCK {
+        // One block: no splitting, no pool.
+        return run(&mut init(), (0, outputs));
+    }
     let mut chunks: Vec<_> = outputs
-        .iter_mut()
+        .into_iter()
         .zip(widths)
         .map(|(o, &w)| o.chunks_mut((BLOCK * w).max(1)))
         .collect();
@@ -94,13 +138,6 @@ where
                 .collect()
         })
         .collect();
-    let run = |state: &mut S, (b, mut outs): (usize, Vec<&mut [f64]>)| -> Result<Vec<R>, E> {
-        let start = b * BLOCK;
-        let end = (start + BLOCK).min(count);
-        (start..end)
-            .map(|k| f(state, k, k - start, &mut outs))
-            .collect()
-    };
     let per_block: Vec<Result<Vec<R>, E>> = if count >= PARALLEL_THRESHOLD {
         blocks
             .into_par_iter()
@@ -128,10 +165,10 @@ pub(crate) fn row(block: &mut [f64], j: usize, w: usize) -> &mut [f64] {
     &mut block[j * w..(j + 1) * w]
 }
 
-/// The number of threads rayon uses for batches.
+/// The number of threads batches run on (``RAYON_NUM_THREADS``, default one per core).
 #[pyfunction]
 fn thread_count() -> usize {
-    rayon::current_num_threads()
+    pool().current_num_threads()
 }
 
 #[pymodule]
@@ -145,6 +182,7 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<workspace::WorkspaceResult>()?;
     m.add_class::<trajectory::TrajectoryResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
+    m.add_function(wrap_pyfunction!(kinematics::_ik_reference_loop, m)?)?;
     m.add("METHODS", tension::method_names())?;
     Ok(())
 }

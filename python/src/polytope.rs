@@ -13,7 +13,7 @@ use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_polytope::hyperplane_shifting::available_wrench_set;
-use cdpr_polytope::{RequiredWrenchSet, isotropic_force, isotropic_wrench_radius, limiting_facet};
+use cdpr_polytope::{RequiredWrenchSet, isotropic_force_under_load, limiting_facet};
 use nalgebra::{DMatrix, DVector};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
@@ -39,9 +39,10 @@ pub struct CapacityResult {
 
 /// Maximum isotropic force of a batch.
 ///
-/// ``isotropic_force`` (N,): radius of the largest force ball centred at the origin inside the
-/// available force set (N); for planar and spatial robots the force at zero moment; negative
-/// when the origin is outside. ``wrench_radius`` (N,): the ball in the full wrench space.
+/// ``isotropic_force`` (N,): radius of the largest ball of forces, added to the external
+/// wrench, that the cables can still balance (N); for planar and spatial robots the force at
+/// zero added moment; negative when the external wrench itself cannot be held.
+/// ``wrench_radius`` (N,): the same ball in the full wrench space (N and N·m combined).
 /// ``definition``: what the index means for this motion pattern.
 #[pyclass(module = "cdpr", frozen, get_all)]
 pub struct IsotropicResult {
@@ -101,11 +102,12 @@ pub fn capacity_margin(
     let desc = &robot.desc;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
@@ -171,20 +173,26 @@ pub fn isotropic(
     robot: &Robot,
     py: Python<'_>,
     poses: &Bound<'_, PyAny>,
+    wrenches: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<IsotropicResult> {
     let geo = robot.geometry();
     let (dof, motion) = (geo.dof(), geo.motion());
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
+    let warr = wrenches
+        .map(|w| FloatArray::new(w, "wrenches"))
+        .transpose()?;
+    let wr = read_wrenches(&warr, count, rows.single, dof)?;
     let desc = &robot.desc;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
@@ -194,8 +202,14 @@ pub fn isotropic(
                 let [f, r] = blocks else {
                     unreachable!("two outputs")
                 };
-                f[j] = isotropic_force(&aws, motion).map_err(at(k))?;
-                r[j] = isotropic_wrench_radius(&aws);
+                let w_ext = DVector::from_column_slice(wr.at(k))
+                    + desc.platform.gravity_wrench(motion, &pose);
+                f[j] = isotropic_force_under_load(&aws, motion, &w_ext).map_err(at(k))?;
+                r[j] = aws
+                    .supporting_halfspaces()
+                    .iter()
+                    .map(|h| h.offset + h.normal.dot(&w_ext))
+                    .fold(f64::INFINITY, f64::min);
                 Ok::<(), String>(())
             },
         )
@@ -266,11 +280,12 @@ pub fn stiffness(
     };
     let widths = [dof * dof; 3];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            slices,
             || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, dof)),
             |(kin, km), k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;

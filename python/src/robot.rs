@@ -13,7 +13,7 @@ use cdpr_wrench::{Platform, STANDARD_GRAVITY};
 use nalgebra::Vector3;
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::PyTuple;
 use std::sync::Arc;
 
 /// A cable-driven parallel robot: geometry, tension bounds, workspace limits and platform mass.
@@ -103,12 +103,19 @@ fn anchors(obj: &Bound<'_, PyAny>, dim: usize, what: &str) -> PyResult<(usize, V
 
 #[pymethods]
 impl Robot {
-    /// Loads a robot file (the cdpr TOML format; see ``docs/getting-started.md``).
+    /// Loads a robot file in any format ``cdpr-io`` reads, told apart by the extension: cdpr
+    /// TOML (``.toml``), a CASPR model (``NAME_cables.xml`` with ``NAME_bodies.xml`` beside it;
+    /// ``cable_set`` picks a ``<cable_set id>``) or WireCenter (``.wcrfx``).
     ///
-    /// Raises ``ValueError`` naming the file, line and key of the first problem.
+    /// Raises ``ValueError`` naming the file, line and key (or element) of the first problem.
     #[staticmethod]
-    fn load(path: std::path::PathBuf) -> PyResult<Self> {
-        let desc = RobotDescription::load(&path).map_err(value_error)?;
+    #[pyo3(signature = (path, cable_set=None))]
+    fn load(path: std::path::PathBuf, cable_set: Option<String>) -> PyResult<Self> {
+        let options = match cable_set {
+            Some(id) => cdpr_io::LoadOptions::cable_set(id),
+            None => cdpr_io::LoadOptions::default(),
+        };
+        let desc = RobotDescription::load_with(&path, &options).map_err(value_error)?;
         Ok(Self {
             desc: Arc::new(desc),
         })
@@ -239,6 +246,10 @@ impl Robot {
                 },
                 platform: plat,
                 axial_stiffness,
+                platform_shape: None,
+                cable_names: vec![None; n],
+                inertia: None,
+                home_pose: None,
                 warnings,
             }),
         })
@@ -448,13 +459,17 @@ impl Robot {
     }
 
     /// Maximum isotropic force (Krut, Company & Pierrot 2004) at one pose or a batch: the
-    /// largest force the platform resists in every direction with tensions in bounds.
+    /// largest force the platform resists in every direction with tensions in bounds, on top of
+    /// the external wrench ``wrenches`` (default zero) plus the platform's weight, as
+    /// ``cdpr isotropic`` computes it.
+    #[pyo3(signature = (poses, wrenches=None))]
     fn isotropic_force(
         &self,
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
+        wrenches: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<crate::polytope::IsotropicResult> {
-        crate::polytope::isotropic(self, py, poses)
+        crate::polytope::isotropic(self, py, poses, wrenches)
     }
 
     /// Stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)) at one
@@ -477,13 +492,17 @@ impl Robot {
     /// ``box``: (xmin, xmax, ymin, ymax[, zmin, zmax]), default the frame anchors' bounding
     /// box; ``orientation``: φ (planar) or (rx, ry, rz) (spatial); ``criteria``: a list (or a
     /// comma string) of ``tension``, ``length[:L]``, ``det[:D]``, ``wrench-closure``,
-    /// ``capacity[:M]``, ``isotropic:F``, ``stiffness:K`` (default: tension, plus length and det
+    /// ``capacity[:M]``, ``isotropic:F``, ``stiffness:K``, ``stiffness:KT,KR``,
+    /// ``interference[:D]`` (default: tension, plus length and det
     /// when the robot has those limits); ``method``: tension method (default exact when
     /// n = DOF, else l2); ``wrench``: w_e (gravity is added); ``wrench_box``: half-widths of
-    /// the capacity criterion's box; ``boundary``: ``"grid"`` or ``"chord"`` (planar robots,
-    /// chord length ``chord``). The grid runs in parallel with the GIL released.
+    /// the capacity criterion's box; ``boundary``: ``"grid"``, ``"chord"`` (robots in the plane,
+    /// chord length ``chord``) or ``"mesh"`` (robots in space: the boundary as a triangle
+    /// mesh); ``volume_convention``: ``"cells"`` (default, as ``cdpr workspace``) or
+    /// ``"points"`` (the thesis' feasible points × cell area). Grids run in parallel with the
+    /// GIL released.
     #[pyo3(signature = (resolution=None, r#box=None, orientation=None, criteria=None, method=None,
-        wrench=None, wrench_box=None, boundary="grid", chord=0.05))]
+        wrench=None, wrench_box=None, boundary="grid", chord=0.05, volume_convention="cells"))]
     #[allow(clippy::too_many_arguments)]
     fn workspace(
         &self,
@@ -497,6 +516,7 @@ impl Robot {
         wrench_box: Option<Vec<f64>>,
         boundary: &str,
         chord: f64,
+        volume_convention: &str,
     ) -> PyResult<crate::workspace::WorkspaceResult> {
         let orientation = orientation
             .map(|o| match o.extract::<f64>() {
@@ -522,6 +542,7 @@ impl Robot {
             wrench_box,
             boundary,
             chord,
+            volume_convention,
         )
     }
 
@@ -572,34 +593,28 @@ impl Robot {
         )
     }
 
-    /// Pickling (for process pools and Dask workers): the robot is rebuilt with
-    /// :meth:`from_anchors` from its arrays.
+    /// The robot as cdpr TOML (the robot-file format; ``header`` becomes a comment).
+    #[pyo3(signature = (header=""))]
+    fn to_toml(&self, header: &str) -> String {
+        self.desc.to_toml(header)
+    }
+
+    /// A robot from cdpr TOML text (``file`` names it in error messages).
+    #[staticmethod]
+    #[pyo3(signature = (text, file="<string>"))]
+    fn from_toml(text: &str, file: &str) -> PyResult<Self> {
+        let desc = RobotDescription::parse(text, file).map_err(value_error)?;
+        Ok(Self {
+            desc: Arc::new(desc),
+        })
+    }
+
+    /// Pickling (for process pools and Dask workers): the robot travels as its TOML text.
     fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<Bound<'py, PyTuple>> {
         let py = slf.py();
-        let this = slf.get();
-        if this.geometry().cables().iter().any(|c| c.pulley.is_some()) {
-            return Err(value_error(
-                "a robot with swivel pulleys cannot be pickled yet: pass its file path instead",
-            ));
-        }
-        let kwargs = PyDict::new(py);
-        kwargs.set_item("mass", this.desc.platform.mass)?;
-        kwargs.set_item("centre_of_mass", this.centre_of_mass(py))?;
-        kwargs.set_item("gravity", this.gravity(py))?;
-        kwargs.set_item("axial_stiffness", this.axial_stiffness(py))?;
-        kwargs.set_item("min_cable_length", this.min_cable_length())?;
-        kwargs.set_item("min_jacobian_det", this.min_jacobian_det())?;
-        kwargs.set_item("name", this.name())?;
-        let args = (
-            this.motion(),
-            this.frame(py),
-            this.platform(py),
-            this.t_min(py),
-            this.t_max(py),
-            kwargs,
-        );
-        let rebuild = py.import("cdpr")?.getattr("_rebuild_robot")?;
-        PyTuple::new(py, [rebuild.into_any(), args.into_pyobject(py)?.into_any()])
+        let rebuild = py.get_type::<Robot>().getattr("from_toml")?;
+        let args = (slf.get().to_toml(""), "<pickle>").into_pyobject(py)?;
+        PyTuple::new(py, [rebuild.into_any(), args.into_any()])
     }
 }
 

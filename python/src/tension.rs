@@ -5,7 +5,7 @@
 //! platform's gravity at that pose (seed 002 eq. (1)). Every feasible answer is certified by
 //! the crate; an infeasible one comes with its reason.
 
-use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writable, zeros};
 use crate::kinematics::pose_at;
 use crate::robot::Robot;
 use crate::{map_poses, row, run_batch, value_error};
@@ -192,12 +192,19 @@ pub fn tensions(
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
     let desc = &robot.desc;
     let widths = [n, 1, 1, dof];
-    let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
+    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    let mut arrays = [zeros(py, &shape(&[n])), zeros(py, &shape(&[dof]))];
+    let (mut f, mut r) = (vec![0.0; count], vec![0.0; count]);
+    let [t_arr, w_arr] = &mut arrays;
+    let mut outs = writable(std::slice::from_mut(t_arr));
+    outs.push(&mut f);
+    outs.push(&mut r);
+    outs.extend(writable(std::slice::from_mut(w_arr)));
     let reasons = run_batch(py, count, || {
         map_poses(
             count,
             &widths,
-            &mut outs,
+            outs,
             || Buffers {
                 kin: PoseKinematics::for_robot(geo),
                 w: DMatrix::zeros(dof, n),
@@ -252,18 +259,12 @@ pub fn tensions(
         )
         .map_err(|e: String| value_error(e))
     })?;
-    let mut outs = outs.into_iter();
-    let (t, f, r, we) = (
-        outs.next().unwrap(),
-        outs.next().unwrap(),
-        outs.next().unwrap(),
-        outs.next().unwrap(),
-    );
     let feasible: Vec<bool> = f.iter().map(|&v| v == 1.0).collect();
-    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    let [tensions, external_wrench] = arrays.map(|a| a.into_any().unbind());
+    let method = method.name().to_string();
     Ok(if rows.single {
         TensionResult {
-            tensions: to_numpy(py, &shape(&[n]), t).into_any().unbind(),
+            tensions,
             feasible: feasible[0]
                 .into_pyobject(py)?
                 .to_owned()
@@ -271,17 +272,17 @@ pub fn tensions(
                 .unbind(),
             residual: r[0].into_pyobject(py)?.into_any().unbind(),
             reason: reasons[0].clone().into_pyobject(py)?.into_any().unbind(),
-            external_wrench: to_numpy(py, &shape(&[dof]), we).into_any().unbind(),
-            method: method.name().into(),
+            external_wrench,
+            method,
         }
     } else {
         TensionResult {
-            tensions: to_numpy(py, &shape(&[n]), t).into_any().unbind(),
+            tensions,
             feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
             residual: to_numpy(py, &[count], r).into_any().unbind(),
             reason: PyList::new(py, reasons)?.into_any().unbind(),
-            external_wrench: to_numpy(py, &shape(&[dof]), we).into_any().unbind(),
-            method: method.name().into(),
+            external_wrench,
+            method,
         }
     })
 }

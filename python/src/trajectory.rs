@@ -9,7 +9,7 @@
 use crate::arrays::{FloatArray, Rows, shape_string, to_numpy};
 use crate::robot::Robot;
 use crate::tension::{parse_method, solver, sotda_settings};
-use crate::{guarded, value_error};
+use crate::value_error;
 use cdpr_kinematics::{Path, PathSample, Pose, Sampling};
 use cdpr_tension::profile::tension_profile;
 use nalgebra::DVector;
@@ -147,25 +147,23 @@ pub fn trajectory(
     let method = parse_method(method)?;
     let mut solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?;
     let desc = &robot.desc;
-    let (samples, profile) = py.detach(|| {
-        guarded(|| {
-            let path = Path::new(motion, poses.clone()).map_err(value_error)?;
-            let samples = path.sample(sampling).map_err(value_error)?;
-            let s_way = waypoint_s(robot, &poses);
-            let profile = tension_profile(
-                geo,
-                &samples,
-                &desc.bounds,
-                &mut solver,
-                desc.axial_stiffness.as_deref(),
-                |sample: &PathSample| {
-                    interpolate(&s_way, &wrench_rows, sample.s)
-                        + desc.platform.gravity_wrench(motion, &sample.pose)
-                },
-            )
-            .map_err(value_error)?;
-            Ok((samples, profile))
-        })
+    let (samples, profile) = crate::parallel(py, || {
+        let path = Path::new(motion, poses.clone()).map_err(value_error)?;
+        let samples = path.sample(sampling).map_err(value_error)?;
+        let s_way = waypoint_s(robot, &poses);
+        let profile = tension_profile(
+            geo,
+            &samples,
+            &desc.bounds,
+            &mut solver,
+            desc.axial_stiffness.as_deref(),
+            |sample: &PathSample| {
+                interpolate(&s_way, &wrench_rows, sample.s)
+                    + desc.platform.gravity_wrench(motion, &sample.pose)
+            },
+        )
+        .map_err(value_error)?;
+        Ok((samples, profile))
     })?;
     let count = samples.len();
     let q: Vec<f64> = samples

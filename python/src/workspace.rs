@@ -10,13 +10,13 @@
 use crate::arrays::to_numpy;
 use crate::robot::Robot;
 use crate::tension::parse_method;
-use crate::{guarded, value_error};
+use crate::value_error;
 use cdpr_kinematics::{MotionPattern, Pose};
 use cdpr_polytope::RequiredWrenchSet;
 use cdpr_tension::Method;
 use cdpr_workspace::{
-    ChordSettings, Criterion, Grid, PoseEvaluator, Region, chord_workspace,
-    constant_orientation_workspace,
+    ChordSettings, Criterion, Grid, GridWorkspace, MeshSettings, PoseEvaluator, Region,
+    VolumeConvention, boundary_mesh, chord_workspace, constant_orientation_workspace,
 };
 use nalgebra::{DVector, Rotation3, Vector3};
 use numpy::PyArrayDyn;
@@ -27,10 +27,17 @@ use pyo3::prelude::*;
 /// Grid (``boundary="grid"``): ``feasible`` bool array of shape (M+1, M+1) indexed [iy, ix]
 /// (in space (M+1, M+1, M+1) indexed [iz, iy, ix]); axes ``x``, ``y`` (and ``z``) (m);
 /// ``points`` (P, dim): the feasible positions; ``area`` (m², or the volume in m³ for robots
-/// moving in space, also in ``volume``), ``cell_area``, ``feasible_points``, ``total_points``.
+/// moving in space, also in ``volume``) in the convention ``volume_convention``: ``"cells"``
+/// (each feasible point counts for its cell clipped to the box, the default) or ``"points"``
+/// (feasible points × cell area, the thesis' convention); ``area_cells`` and ``area_points``
+/// give both; ``cell_area``, ``feasible_points``, ``total_points``.
 /// Chord (``boundary="chord"``, planar robots): ``boundaries``: closed polygons, arrays (k, 2),
 /// counter-clockwise around regions and clockwise around holes; ``area`` from their signed
-/// areas; ``feasible`` is None. Always: ``criteria`` (labels), ``method`` (tension method),
+/// areas; ``feasible`` is None. Mesh (``boundary="mesh"``, robots moving in space): the grid
+/// fields above plus the closed, outward-oriented triangle mesh of the boundary (marching cubes
+/// with vertices bisected onto the boundary): ``vertices`` (V, 3) (m), ``faces`` (T, 3) vertex
+/// indices, ``surface_area`` (m², box caps included), and ``volume`` from the divergence
+/// theorem (m³; ``area`` is the same number). Always: ``criteria`` (labels), ``method`` (tension method),
 /// ``external_wrench`` (DOF,), ``box`` (the region searched).
 #[pyclass(module = "cdpr", frozen, get_all)]
 pub struct WorkspaceResult {
@@ -40,7 +47,13 @@ pub struct WorkspaceResult {
     pub z: Option<Py<PyArrayDyn<f64>>>,
     pub points: Option<Py<PyArrayDyn<f64>>>,
     pub boundaries: Option<Vec<Py<PyArrayDyn<f64>>>>,
+    pub vertices: Option<Py<PyArrayDyn<f64>>>,
+    pub faces: Option<Py<PyArrayDyn<i64>>>,
+    pub surface_area: Option<f64>,
     pub area: f64,
+    pub area_cells: Option<f64>,
+    pub area_points: Option<f64>,
+    pub volume_convention: Option<String>,
     pub volume: Option<f64>,
     pub cell_area: Option<f64>,
     pub feasible_points: Option<usize>,
@@ -76,6 +89,8 @@ enum Spec {
     Capacity(f64),
     Isotropic(f64),
     Stiffness(f64),
+    StiffnessFloor(f64, f64),
+    Interference(f64),
 }
 
 impl Spec {
@@ -88,6 +103,8 @@ impl Spec {
             Spec::Capacity(m) => format!("capacity:{m}"),
             Spec::Isotropic(f) => format!("isotropic:{f}"),
             Spec::Stiffness(k) => format!("stiffness:{k}"),
+            Spec::StiffnessFloor(kt, kr) => format!("stiffness:{kt},{kr}"),
+            Spec::Interference(d) => format!("interference:{d}"),
         }
     }
 }
@@ -118,6 +135,24 @@ fn specs(robot: &Robot, tokens: Option<Vec<String>>) -> PyResult<Vec<Spec>> {
         if token.is_empty() {
             continue;
         }
+        // `stiffness:KT,KR`: a bare number after `stiffness:KT` is its KR.
+        if let (Some(Spec::Stiffness(kt)), Ok(kr)) = (out.last(), token.parse::<f64>()) {
+            let kt = *kt;
+            if !kr.is_finite() {
+                return Err(value_error(format!(
+                    "criteria stiffness:{kt},{token}: KR must be finite (N·m/rad)"
+                )));
+            }
+            if !robot.motion_pattern().has_orientation() {
+                return Err(value_error(format!(
+                    "criteria stiffness:{kt},{token}: a `{}` robot does not rotate; give \
+                     stiffness:KT (N/m) only",
+                    robot.motion_pattern().name()
+                )));
+            }
+            *out.last_mut().expect("just matched") = Spec::StiffnessFloor(kt, kr);
+            continue;
+        }
         let (name, value) = match token.split_once(':') {
             Some((n, v)) => (n, Some(v)),
             None => (token, None),
@@ -138,6 +173,15 @@ fn specs(robot: &Robot, tokens: Option<Vec<String>>) -> PyResult<Vec<Spec>> {
             }
             ("isotropic", Some(v)) => Spec::Isotropic(number(token, v)?),
             ("stiffness", Some(v)) => Spec::Stiffness(number(token, v)?),
+            ("interference", v) => {
+                let d = v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0);
+                if d < 0.0 {
+                    return Err(value_error(format!(
+                        "criteria: `{token}`: the clearance D (m) must be ≥ 0"
+                    )));
+                }
+                Spec::Interference(d)
+            }
             ("isotropic" | "stiffness", None) => {
                 return Err(value_error(format!(
                     "criteria {name} needs a floor, e.g. {name}:10"
@@ -146,7 +190,8 @@ fn specs(robot: &Robot, tokens: Option<Vec<String>>) -> PyResult<Vec<Spec>> {
             _ => {
                 return Err(value_error(format!(
                     "criteria: unknown criterion `{token}` (known: tension, length[:L], det[:D], \
-                     wrench-closure, capacity[:M], isotropic:F, stiffness:K)"
+                     wrench-closure, capacity[:M], isotropic:F, stiffness:KT,KR, stiffness:K, \
+                     interference[:D])"
                 )));
             }
         });
@@ -230,7 +275,11 @@ pub fn workspace(
     wrench_box: Option<Vec<f64>>,
     boundary: &str,
     chord: f64,
+    volume_convention: &str,
 ) -> PyResult<WorkspaceResult> {
+    let convention: VolumeConvention = volume_convention
+        .parse()
+        .map_err(|e: String| value_error(format!("volume_convention: {e}")))?;
     let geo = robot.geometry();
     let desc = &robot.desc;
     let motion = geo.motion();
@@ -273,7 +322,8 @@ pub fn workspace(
             Some(_) => {}
         }
     }
-    let needs_stiffness = specs.iter().any(|s| matches!(s, Spec::Stiffness(_)))
+    let stiffness_spec = |s: &Spec| matches!(s, Spec::Stiffness(_) | Spec::StiffnessFloor(..));
+    let needs_stiffness = specs.iter().any(stiffness_spec)
         || (method == Method::Sotda && specs.contains(&Spec::Tension));
     if needs_stiffness && desc.axial_stiffness.is_none() {
         return Err(value_error(
@@ -281,7 +331,7 @@ pub fn workspace(
              every cable of the robot",
         ));
     }
-    if specs.iter().any(|s| matches!(s, Spec::Stiffness(_))) && !specs.contains(&Spec::Tension) {
+    if specs.iter().any(stiffness_spec) && !specs.contains(&Spec::Tension) {
         return Err(value_error(
             "criteria stiffness:K needs the tension criterion too (K uses its tensions)",
         ));
@@ -305,8 +355,19 @@ pub fn workspace(
                     .map_err(value_error)?,
                     min_margin: *m,
                 },
-                Spec::Isotropic(f) => Criterion::IsotropicForce { min: *f },
+                Spec::Isotropic(f) => Criterion::IsotropicForceUnderLoad {
+                    min: *f,
+                    wrench: w_ext.clone(),
+                },
                 Spec::Stiffness(k) => Criterion::Stiffness { min_eigenvalue: *k },
+                Spec::StiffnessFloor(kt, kr) => Criterion::StiffnessFloor {
+                    translational: *kt,
+                    rotational: *kr,
+                },
+                Spec::Interference(d) => Criterion::Interference {
+                    min_distance: *d,
+                    platform: desc.platform_shape.clone().map(std::sync::Arc::new),
+                },
             })
         })
         .collect::<PyResult<Vec<_>>>()?;
@@ -328,7 +389,13 @@ pub fn workspace(
         z: None,
         points: None,
         boundaries: None,
+        vertices: None,
+        faces: None,
+        surface_area: None,
         area: 0.0,
+        area_cells: None,
+        area_points: None,
+        volume_convention: None,
         volume: None,
         cell_area: None,
         feasible_points: None,
@@ -341,29 +408,29 @@ pub fn workspace(
     match boundary {
         "grid" => {
             let grid = Grid::new(m, region);
-            let ws = py.detach(|| {
-                guarded(|| constant_orientation_workspace(&eval, &rot, &grid).map_err(value_error))
+            let ws = crate::parallel(py, || {
+                constant_orientation_workspace(&eval, &rot, &grid).map_err(value_error)
             })?;
-            let p = m + 1;
-            let axis = |stride: usize, k: usize| -> Vec<f64> {
-                (0..p).map(|i| grid.point(dim, i * stride)[k]).collect()
-            };
-            out.x = Some(to_numpy(py, &[p], axis(1, 0)).unbind());
-            out.y = Some(to_numpy(py, &[p], axis(p, 1)).unbind());
-            if dim == 3 {
-                out.z = Some(to_numpy(py, &[p], axis(p * p, 2)).unbind());
-                out.volume = Some(ws.area);
-            }
-            let pts: Vec<f64> = ws
-                .feasible_positions()
-                .flat_map(|u| u.as_slice()[..dim].to_vec())
+            fill_grid(py, &mut out, &grid, ws, convention);
+        }
+        "mesh" => {
+            let grid = Grid::new(m, region);
+            let mesh = crate::parallel(py, || {
+                boundary_mesh(&eval, &rot, &grid, &MeshSettings::default()).map_err(value_error)
+            })?;
+            fill_grid(py, &mut out, &grid, mesh.grid.clone(), convention);
+            let v: Vec<f64> = mesh.vertices.iter().flatten().copied().collect();
+            let f: Vec<i64> = mesh
+                .triangles
+                .iter()
+                .flatten()
+                .map(|&i| i64::from(i))
                 .collect();
-            out.points = Some(to_numpy(py, &[ws.feasible_points, dim], pts).unbind());
-            out.area = ws.area;
-            out.cell_area = Some(ws.cell_area);
-            out.feasible_points = Some(ws.feasible_points);
-            out.total_points = Some(ws.total_points);
-            out.feasible = Some(to_numpy(py, &vec![p; dim], ws.feasible).unbind());
+            out.vertices = Some(to_numpy(py, &[mesh.vertices.len(), 3], v).unbind());
+            out.faces = Some(to_numpy(py, &[mesh.triangles.len(), 3], f).unbind());
+            out.surface_area = Some(mesh.surface_area);
+            out.area = mesh.volume;
+            out.volume = Some(mesh.volume);
         }
         "chord" => {
             if dim != 2 {
@@ -382,8 +449,8 @@ pub fn workspace(
                 seed_resolution: m,
                 ..ChordSettings::default()
             };
-            let ws = py.detach(|| {
-                guarded(|| chord_workspace(&eval, phi, &region, &settings).map_err(value_error))
+            let ws = crate::parallel(py, || {
+                chord_workspace(&eval, phi, &region, &settings).map_err(value_error)
             })?;
             out.area = ws.area;
             out.boundaries = Some(
@@ -398,9 +465,44 @@ pub fn workspace(
         }
         other => {
             return Err(value_error(format!(
-                "boundary: `{other}` is not one of grid, chord"
+                "boundary: `{other}` is not one of grid, chord, mesh"
             )));
         }
     }
     Ok(out)
+}
+
+/// The grid fields of a result from grid verdicts.
+fn fill_grid(
+    py: Python<'_>,
+    out: &mut WorkspaceResult,
+    grid: &Grid,
+    ws: GridWorkspace,
+    convention: VolumeConvention,
+) {
+    let dim = ws.dim;
+    let p = grid.resolution + 1;
+    let axis = |stride: usize, k: usize| -> Vec<f64> {
+        (0..p).map(|i| grid.point(dim, i * stride)[k]).collect()
+    };
+    out.x = Some(to_numpy(py, &[p], axis(1, 0)).unbind());
+    out.y = Some(to_numpy(py, &[p], axis(p, 1)).unbind());
+    let measure = ws.measure(convention);
+    if dim == 3 {
+        out.z = Some(to_numpy(py, &[p], axis(p * p, 2)).unbind());
+        out.volume = Some(measure);
+    }
+    let pts: Vec<f64> = ws
+        .feasible_positions()
+        .flat_map(|u| u.as_slice()[..dim].to_vec())
+        .collect();
+    out.points = Some(to_numpy(py, &[ws.feasible_points, dim], pts).unbind());
+    out.area = measure;
+    out.area_cells = Some(ws.clipped_area);
+    out.area_points = Some(ws.area);
+    out.volume_convention = Some(convention.name().into());
+    out.cell_area = Some(ws.cell_area);
+    out.feasible_points = Some(ws.feasible_points);
+    out.total_points = Some(ws.total_points);
+    out.feasible = Some(to_numpy(py, &vec![p; dim], ws.feasible).unbind());
 }

@@ -1,5 +1,8 @@
 """Capacity margin, isotropic force, stiffness, workspace and trajectory against the CLI."""
 
+import pathlib
+import pickle
+
 import numpy as np
 import pytest
 
@@ -39,6 +42,19 @@ def test_isotropic_force_matches_cli(cli, robot_path, name):
         assert res.definition == ref["definition"].replace("(seed 001 eq. 19)", "(Krut, Company & Pierrot 2004, eq. 19)")
 
 
+def test_isotropic_force_under_load_matches_cli(cli, robot_path):
+    path = robot_path("tdpm-4")
+    robot = cdpr.Robot.load(path)
+    poses = random_poses(robot, 3, seed=9)
+    res = robot.isotropic_force(poses, [0.0, -10.0, 0.5])
+    for k, q in enumerate(poses):
+        ref = cli("isotropic", path, pose=q, wrench=[0.0, -10.0, 0.5])
+        assert res.isotropic_force[k] == pytest.approx(ref["isotropic_force"], rel=1e-12, abs=1e-9)
+        assert res.wrench_radius[k] == pytest.approx(ref["wrench_radius"], rel=1e-12, abs=1e-9)
+    # The load enters: the same poses without it give other values.
+    assert not np.allclose(robot.isotropic_force(poses).isotropic_force, res.isotropic_force)
+
+
 def test_isotropic_force_of_krut_robot_is_the_published_value(robot_path):
     # Krut, Company & Pierrot 2004, §IV-B: 225·√3 N at the centre of the 3-motor robot (the
     # file gives the anchors to 1e-6 mm, hence the tolerance).
@@ -75,6 +91,7 @@ def test_stiffness_matches_cli(cli, robot_path):
 def test_workspace_grid_matches_cli(cli, robot_path, name, options):
     robot = cdpr.Robot.load(robot_path(name))
     res = robot.workspace(**options)
+    dim = robot.frame.shape[1]
     flags = {"grid": options["resolution"]}
     if "wrench" in options:
         flags["wrench"] = options["wrench"]
@@ -89,10 +106,14 @@ def test_workspace_grid_matches_cli(cli, robot_path, name, options):
     assert res.feasible_points == ref["feasible_points"]
     assert res.total_points == ref["total_points"]
     assert res.area == pytest.approx(ref["area"], rel=1e-12)
+    assert res.area_cells == pytest.approx(ref["area_cells"], rel=1e-12)
+    assert res.area_points == pytest.approx(ref["area_points"], rel=1e-12)
+    assert res.volume_convention == ref["volume_convention"] == "cells"
     assert res.cell_area == pytest.approx(ref["cell_area"], rel=1e-12)
+    if dim == 3:
+        assert res.volume == res.area
     assert res.criteria == ref["criteria"] and res.method == ref["tension_method"]
     np.testing.assert_allclose(res.external_wrench, ref["external_wrench"], atol=1e-12)
-    dim = robot.frame.shape[1]
     assert res.feasible.shape == (options["resolution"] + 1,) * dim
     assert res.feasible.dtype == np.bool_ and res.feasible.sum() == res.feasible_points
     assert res.points.shape == (res.feasible_points, dim)
@@ -148,3 +169,42 @@ def test_forward_kinematics_says_it_is_not_there_yet(robot_path):
     robot = cdpr.Robot.load(robot_path("tdpm-4"))
     with pytest.raises(NotImplementedError, match="forward"):
         robot.forward_kinematics(robot.inverse_kinematics([0, 0, 0]).lengths)
+
+
+def test_workspace_mesh_is_closed_and_measures_the_grid(robot_path):
+    robot = cdpr.Robot.load(robot_path("ipanema-like-8"))
+    res = robot.workspace(resolution=8, boundary="mesh", criteria="tension")
+    grid = robot.workspace(resolution=8, criteria="tension")
+    assert res.feasible_points == grid.feasible_points
+    v, f = res.vertices, res.faces
+    assert v.shape[1] == 3 and f.shape[1] == 3 and f.dtype == np.int64 and f.max() < len(v)
+    # Closed and consistently oriented: every directed edge appears once, its reverse once.
+    edges = np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]])
+    directed = {tuple(e) for e in edges}
+    assert len(directed) == len(edges) and all((b, a) in directed for a, b in directed)
+    # Divergence theorem recomputed here: the same volume, close to the grid's.
+    a, b, c = v[f[:, 0]], v[f[:, 1]], v[f[:, 2]]
+    assert np.einsum("ij,ij->i", a, np.cross(b, c)).sum() / 6 == pytest.approx(res.volume, rel=1e-9)
+    assert res.volume == pytest.approx(grid.volume, rel=0.25)
+    with pytest.raises(ValueError, match="space|spatial|point3"):
+        cdpr.Robot.load(robot_path("tdpm-4")).workspace(boundary="mesh")
+
+
+DATA = pathlib.Path(__file__).resolve().parents[2] / "crates" / "cdpr-io" / "tests" / "data"
+
+
+@pytest.mark.parametrize(
+    "model",
+    ["wirecenter/IPAnema.wcrfx", "caspr/spatial_manipulators/CAROCA/CAROCA_cables.xml"],
+)
+def test_every_robot_file_format_loads_and_matches_cli(cli, model):
+    path = DATA / model
+    robot = cdpr.Robot.load(path)
+    q = np.zeros(robot.dof)
+    q[:3] = robot.frame.mean(axis=0)
+    kin = robot.inverse_kinematics(q)
+    ref = cli("kinematics", path, pose=q)
+    np.testing.assert_allclose(kin.lengths, ref["lengths"], rtol=1e-12)
+    np.testing.assert_allclose(kin.wrench_matrix, ref["wrench_matrix"], atol=1e-12)
+    back = pickle.loads(pickle.dumps(robot))
+    np.testing.assert_array_equal(back.inverse_kinematics(q).lengths, kin.lengths)

@@ -75,3 +75,15 @@ def test_degenerate_cable_names_the_pose():
     poses = np.array([[0.0, 0.0], [1.0, 0.0]])
     with pytest.raises(ValueError, match=r"poses\[1\].*cable"):
         robot.inverse_kinematics(poses)
+
+
+@pytest.mark.parametrize("count", [1, 1000])
+def test_misaligned_arrays_are_read(robot_path, count):
+    # As pickle protocol 5 (Dask) can hand them over: float64 data at an odd address.
+    robot = cdpr.Robot.load(robot_path("tdpm-4"))
+    poses = np.random.default_rng(0).uniform(-0.3, 0.3, (count, 3))
+    raw = np.zeros(poses.nbytes + 1, dtype=np.uint8)
+    odd = np.frombuffer(raw.data, dtype=np.float64, count=poses.size, offset=1).reshape(poses.shape)
+    odd[...] = poses
+    assert not odd.flags.aligned
+    np.testing.assert_array_equal(robot.inverse_kinematics(odd).lengths, robot.inverse_kinematics(poses).lengths)

@@ -1,0 +1,187 @@
+"""Type stubs of the native module cdpr._cdpr (see the docstrings for units and meanings)."""
+
+from os import PathLike
+from typing import List, Literal, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+ArrayLike = npt.ArrayLike
+FloatArray = npt.NDArray[np.float64]
+BoolArray = npt.NDArray[np.bool_]
+IntArray = npt.NDArray[np.int64]
+Motion = Literal["point2", "planar", "point3", "spatial"]
+
+METHODS: List[str]
+
+def thread_count() -> int: ...
+
+class KinematicsResult:
+    lengths: FloatArray
+    unit_vectors: FloatArray
+    wrench_matrix: FloatArray
+    attachment_points: FloatArray
+
+class TensionResult:
+    tensions: FloatArray
+    feasible: Union[BoolArray, bool]
+    residual: Union[FloatArray, float]
+    reason: Union[List[Optional[str]], Optional[str]]
+    external_wrench: FloatArray
+    method: str
+
+class CapacityResult:
+    capacity_margin: Union[FloatArray, float]
+    feasible: Union[BoolArray, bool]
+    limiting_facet: Union[IntArray, int]
+
+class IsotropicResult:
+    isotropic_force: Union[FloatArray, float]
+    wrench_radius: Union[FloatArray, float]
+    definition: str
+
+class StiffnessResult:
+    stiffness: FloatArray
+    passive: FloatArray
+    active: FloatArray
+
+class WorkspaceResult:
+    feasible: Optional[BoolArray]
+    x: Optional[FloatArray]
+    y: Optional[FloatArray]
+    z: Optional[FloatArray]
+    points: Optional[FloatArray]
+    boundaries: Optional[List[FloatArray]]
+    vertices: Optional[FloatArray]
+    faces: Optional[IntArray]
+    surface_area: Optional[float]
+    area: float
+    area_cells: Optional[float]
+    area_points: Optional[float]
+    volume_convention: Optional[str]
+    volume: Optional[float]
+    cell_area: Optional[float]
+    feasible_points: Optional[int]
+    total_points: Optional[int]
+    criteria: List[str]
+    method: str
+    external_wrench: FloatArray
+    box: List[float]
+
+class TrajectoryResult:
+    s: FloatArray
+    poses: FloatArray
+    tensions: FloatArray
+    feasible: BoolArray
+    reason: List[Optional[str]]
+    max_jump: FloatArray
+    discontinuities: List[int]
+    feasible_count: int
+    method: str
+
+class Robot:
+    @staticmethod
+    def load(path: Union[str, PathLike[str]], cable_set: Optional[str] = None) -> Robot: ...
+    @staticmethod
+    def from_toml(text: str, file: str = "<string>") -> Robot: ...
+    def to_toml(self, header: str = "") -> str: ...
+    @staticmethod
+    def from_anchors(
+        motion: Motion,
+        frame: ArrayLike,
+        platform: Optional[ArrayLike] = None,
+        t_min: Optional[ArrayLike] = None,
+        t_max: Optional[ArrayLike] = None,
+        *,
+        mass: float = 0.0,
+        centre_of_mass: Optional[ArrayLike] = None,
+        gravity: Optional[ArrayLike] = None,
+        axial_stiffness: Optional[ArrayLike] = None,
+        min_cable_length: Optional[float] = None,
+        min_jacobian_det: Optional[float] = None,
+        name: str = "robot",
+    ) -> Robot: ...
+    @property
+    def dof(self) -> int: ...
+    @property
+    def n_cables(self) -> int: ...
+    @property
+    def motion(self) -> Motion: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def frame(self) -> FloatArray: ...
+    @property
+    def platform(self) -> FloatArray: ...
+    @property
+    def t_min(self) -> FloatArray: ...
+    @property
+    def t_max(self) -> FloatArray: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def gravity(self) -> FloatArray: ...
+    @property
+    def centre_of_mass(self) -> FloatArray: ...
+    @property
+    def axial_stiffness(self) -> Optional[FloatArray]: ...
+    @property
+    def min_cable_length(self) -> Optional[float]: ...
+    @property
+    def min_jacobian_det(self) -> Optional[float]: ...
+    @property
+    def warnings(self) -> List[str]: ...
+    def gravity_wrench(self, poses: ArrayLike) -> FloatArray: ...
+    def inverse_kinematics(self, poses: ArrayLike) -> KinematicsResult: ...
+    def forward_kinematics(self, lengths: ArrayLike, guess: Optional[ArrayLike] = None) -> None: ...
+    def tensions(
+        self,
+        poses: ArrayLike,
+        wrenches: Optional[ArrayLike] = None,
+        method: str = "l2",
+        *,
+        direction: Optional[Sequence[float]] = None,
+        nu: float = 1.0,
+        sotda_search: Literal["corners", "vertices", "full"] = "corners",
+    ) -> TensionResult: ...
+    def capacity_margin(
+        self,
+        poses: ArrayLike,
+        wrenches: Optional[ArrayLike] = None,
+        *,
+        wrench_box: Optional[Sequence[float]] = None,
+        wrench_ball: Optional[float] = None,
+    ) -> CapacityResult: ...
+    def isotropic_force(self, poses: ArrayLike, wrenches: Optional[ArrayLike] = None) -> IsotropicResult: ...
+    def stiffness(
+        self,
+        poses: ArrayLike,
+        tensions: ArrayLike,
+        axial_stiffness: Optional[ArrayLike] = None,
+    ) -> StiffnessResult: ...
+    def workspace(
+        self,
+        resolution: Optional[int] = None,
+        box: Optional[Sequence[float]] = None,
+        orientation: Union[float, Sequence[float], None] = None,
+        criteria: Union[str, Sequence[str], None] = None,
+        method: Optional[str] = None,
+        wrench: Optional[Sequence[float]] = None,
+        wrench_box: Optional[Sequence[float]] = None,
+        boundary: Literal["grid", "chord", "mesh"] = "grid",
+        chord: float = 0.05,
+        volume_convention: Literal["cells", "points"] = "cells",
+    ) -> WorkspaceResult: ...
+    def trajectory(
+        self,
+        waypoints: ArrayLike,
+        samples: Optional[int] = None,
+        step: Optional[float] = None,
+        wrenches: Optional[ArrayLike] = None,
+        method: str = "l2",
+        *,
+        direction: Optional[Sequence[float]] = None,
+        nu: float = 1.0,
+        sotda_search: Literal["corners", "vertices", "full"] = "corners",
+        jump_ratio: float = 20.0,
+    ) -> TrajectoryResult: ...
