@@ -532,21 +532,12 @@ fn stiffness_criterion_with_its_own_units() {
 /// axes with units), an empty result says so, and the dextrous workspace of a spatial robot is
 /// drawn as z-slices whose coinciding anchors (upper and lower frame corners seen from above)
 /// share one label.
-#[test]
-fn workspace_figures_say_what_they_show() {
-    let dir = tempfile::tempdir().unwrap();
-    let empty = dir.path().join("empty.svg");
+/// Runs a plotting command with `--plot DIR/NAME.svg` and returns the SVG text.
+fn svg_of(dir: &Path, name: &str, args: &[&str]) -> String {
+    let file = dir.join(format!("{name}.svg"));
     let out = cdpr()
-        .args([
-            "workspace",
-            &robot("tdpm-3.toml"),
-            "--grid",
-            "10",
-            "--wrench",
-            "0,-1e6,0",
-            "--plot",
-            empty.to_str().unwrap(),
-        ])
+        .args(args)
+        .args(["--plot", file.to_str().unwrap()])
         .output()
         .unwrap();
     assert!(
@@ -554,7 +545,18 @@ fn workspace_figures_say_what_they_show() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    let svg = std::fs::read_to_string(&empty).unwrap();
+    std::fs::read_to_string(&file).unwrap()
+}
+
+#[test]
+fn workspace_figures_say_what_they_show() {
+    let dir = tempfile::tempdir().unwrap();
+    let r3 = robot("tdpm-3.toml");
+    let svg = svg_of(
+        dir.path(),
+        "empty",
+        &["workspace", &r3, "--grid", "10", "--wrench", "0,-1e6,0"],
+    );
     for text in [
         "no feasible pose in the box",
         "x (m)",
@@ -564,26 +566,19 @@ fn workspace_figures_say_what_they_show() {
     ] {
         assert!(svg.contains(text), "`{text}` missing from the SVG");
     }
-    let slices = dir.path().join("slices.svg");
-    let out = cdpr()
-        .args([
+    let r8 = robot("ipanema-like-8.toml");
+    let svg = svg_of(
+        dir.path(),
+        "slices",
+        &[
             "dextrous",
-            &robot("ipanema-like-8.toml"),
+            &r8,
             "--orientations",
             "-0.05:0.05:2",
             "--grid",
             "8",
-            "--plot",
-            slices.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+        ],
     );
-    let svg = std::fs::read_to_string(&slices).unwrap();
     assert_eq!(svg.matches("slice z = ").count(), 4, "four z-slices");
     assert!(svg.contains("c1, c5"), "coinciding anchors share a label");
     assert!(!svg.contains(">c5<"), "no label on top of another");
