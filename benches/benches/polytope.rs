@@ -1,7 +1,7 @@
 //! Criterion benchmarks of cdpr-polytope, one group per method:
 //! - `capacity_margin/hyperplane_shifting_8_spatial`: capacity margin of a gravity-centred box
 //!   for the 8-cable spatial robot, per pose (W given; target ≤ 10 µs);
-//! - `isotropic_force/seed001_point2`: the maximum isotropic force of seed 001's 3-motor robot,
+//! - `isotropic_force/seed001_point2`: the maximum isotropic force of Krut, Company & Pierrot's (2004) 3-motor robot,
 //!   per pose, inverse kinematics and W included (target ≤ 200 ns);
 //! - `available_wrench_set/*`: full facet lists by both methods, for reference.
 

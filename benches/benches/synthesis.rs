@@ -1,4 +1,4 @@
-//! Dimensional synthesis (seed 000 §6.6): one dextrous-area evaluation and one optimisation run.
+//! Dimensional synthesis (thesis §6.6): one dextrous-area evaluation and one optimisation run.
 
 use cdpr_tension::Method as TensionMethod;
 use cdpr_workspace::synthesis::{DextrousArea, Method, SynthesisSettings, synthesise};

@@ -1,4 +1,4 @@
-//! Workspace analysis (seed 000 §§6.4–6.5): the discretisation method (Algorithm 6.2) on the
+//! Workspace analysis (thesis §§6.4–6.5): the discretisation method (Algorithm 6.2) on the
 //! thesis robots at m = 50 (thesis, Fortran 2002: 3-cable 0.03 s, 4-cable with l2 29.3 s), the
 //! chord method (§6.4.3, thesis 4-cable l2: 30.12 s) and a spatial constant-orientation grid of
 //! the 8-cable robot (`ipanema_like_8`, 25³ = 15 625 poses over the frame's bounding box: about

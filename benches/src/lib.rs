@@ -29,7 +29,7 @@ pub fn spatial_poses(count: usize) -> Vec<Pose> {
         .collect()
 }
 
-/// Seed 001's 3-motor point robot (§IV-B): motors at 1000 mm, angles 30°, 150°, 270°.
+/// Krut, Company & Pierrot's (2004) 3-motor point robot (§IV-B): motors at 1000 mm, angles 30°, 150°, 270°.
 pub fn krut_three_motor() -> Robot {
     let motor = |deg: f64| {
         let a = deg.to_radians();
@@ -46,7 +46,7 @@ pub fn krut_three_motor() -> Robot {
     .expect("valid robot")
 }
 
-/// `count` deterministic point poses inside seed 001's triangle (|x|, |y| ≤ 300 mm).
+/// `count` deterministic point poses inside Krut, Company & Pierrot's (2004) triangle (|x|, |y| ≤ 300 mm).
 pub fn krut_poses(count: usize) -> Vec<Pose> {
     (0..count)
         .map(|i| {

@@ -13,7 +13,7 @@
 2. Per-call overhead of a single-pose call: the time of `robot.inverse_kinematics(q)` for one
    pose minus the Rust loop's time per pose (measured in the same run), with a trivial native
    call and np.empty(3) printed for scale on a loaded machine.
-3. Constrained minimum-2-norm tensions (method "l2", seed 000 eq. (6.17)) of 10⁵ poses:
+3. Constrained minimum-2-norm tensions (method "l2", thesis eq. (6.17)) of 10⁵ poses:
    `robot.tensions(poses)` against the same problem min ‖t‖² s.t. W t + w = 0,
    t_min ≤ t ≤ t_max solved pose by pose with scipy's SLSQP (scipy.optimize.minimize), given W
    and w precomputed (so the scipy side is not charged for kinematics). Both answers are compared.

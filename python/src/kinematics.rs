@@ -1,7 +1,7 @@
 //! # Inverse kinematics over a batch
 //!
 //! Per pose, every cable's length l_i, unit vector ℓ^i / l_i and attachment point, and the
-//! DOF × n wrench matrix W with W t + w_ext = 0 (seed 000 eqs. (6.2)–(6.4), (6.11); the
+//! DOF × n wrench matrix W with W t + w_ext = 0 (thesis eqs. (6.2)–(6.4), (6.11); the
 //! `cdpr kinematics` command at one pose).
 
 use crate::arrays::{Rows, batch_shape, writable, zeros};

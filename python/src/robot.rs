@@ -396,7 +396,7 @@ impl Robot {
     /// ``wrenches``: the external wrench w_e on the platform (N, N·m), shape ``(DOF,)`` for all
     /// poses or ``(N, DOF)``; default zero. The platform's gravity (robot file) is added, as the
     /// ``cdpr tension`` command does. ``method``: one of ``cdpr.METHODS`` (default ``"l2"``,
-    /// the constrained minimum 2-norm, seed 000 eq. (6.17)). SOTDA options: ``direction``
+    /// the constrained minimum 2-norm, thesis eq. (6.17)). SOTDA options: ``direction``
     /// (2 or 3 numbers), ``nu`` ∈ [0, 1], ``sotda_search`` (``"corners"``, ``"vertices"``,
     /// ``"full"``). Infeasible poses are answers (NaN tensions and a reason), not errors.
     #[pyo3(signature = (poses, wrenches=None, method="l2", *, direction=None, nu=1.0,
@@ -486,7 +486,7 @@ impl Robot {
         crate::polytope::stiffness(self, py, poses, tensions, axial_stiffness)
     }
 
-    /// Constant-orientation workspace (seed 000 Algorithm 6.2 on a grid, or the chord method).
+    /// Constant-orientation workspace (thesis Algorithm 6.2 on a grid, or the chord method).
     ///
     /// ``resolution`` M: M intervals per side (default 50 in the plane, 20 in space);
     /// ``box``: (xmin, xmax, ymin, ymax[, zmin, zmax]), default the frame anchors' bounding

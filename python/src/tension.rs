@@ -2,7 +2,7 @@
 //!
 //! Per pose, tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max by one of the methods of
 //! `cdpr-tension` (the `cdpr tension` command at one pose). w_ext is the given wrench plus the
-//! platform's gravity at that pose (seed 002 eq. (1)). Every feasible answer is certified by
+//! platform's gravity at that pose (Picard, Caro, Plestan & Claveau 2020, eq. (1)). Every feasible answer is certified by
 //! the crate; an infeasible one comes with its reason.
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writable, zeros};

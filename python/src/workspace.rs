@@ -1,6 +1,6 @@
 //! # Constant-orientation workspace
 //!
-//! The positions where every criterion holds at a fixed orientation (seed 000 eq. (6.23)):
+//! The positions where every criterion holds at a fixed orientation (thesis eq. (6.23)):
 //! Algorithm 6.2 on a grid ([`cdpr_workspace::constant_orientation_workspace`]) or, for robots
 //! moving in the plane, the chord method's boundary polygons (§6.4.3). Criteria are written as
 //! for `cdpr workspace --criteria` (`tension`, `length[:L]`, `det[:D]`, `wrench-closure`,

@@ -3,7 +3,7 @@
 //! Run as `cargo xtask <subcommand>` (alias in `.cargo/config.toml`, release build):
 //!
 //! - `reproduce`: regenerate the published results from the code alone: Tables 6.5–6.10 of
-//!   seed 000 (every published design re-evaluated, our optimiser re-run from every published
+//!   the thesis chapter (every published design re-evaluated, our optimiser re-run from every published
 //!   start), written to `docs/reproduction.md` and `target/reproduce/tables.json`, with every
 //!   convention the thesis leaves open settled by experiment;
 //! - `bench [--quick] [--no-run] [FILTER]`: run the criterion suite of `benches/` and print each

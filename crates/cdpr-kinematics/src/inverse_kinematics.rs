@@ -2,8 +2,8 @@
 //!
 //! For a platform pose (**u**, **T**), each cable's vector from platform attachment to frame anchor
 //! ℓ^i = **c**^i − **T ā**^i − **u** (eq. (6.2)), its length l_i = ‖ℓ^i‖ (eq. (6.4)), its unit
-//! vector ℓ^i / l_i (seed 002: ᵇu_i, pointing from B_i to A_i) and the attachment **a**^i = **T ā**^i
-//! (eq. (6.3); seed 002: ᵇb_i).
+//! vector ℓ^i / l_i (Picard, Caro, Plestan & Claveau 2020: ᵇu_i, pointing from B_i to A_i) and the attachment **a**^i = **T ā**^i
+//! (eq. (6.3); Picard, Caro, Plestan & Claveau 2020: ᵇb_i).
 //!
 //! A cable with a [`crate::Pulley`] follows the swivel-pulley model of Pott 2018 (module
 //! `pulley`): its length is the arc wrapped on the pulley plus the free segment, and its vector
@@ -11,7 +11,7 @@
 //! Cables without a pulley run the straight-cable code unchanged (bit-identical results).
 //!
 //! ## References
-//! - Seed 000, eqs. (6.2)–(6.4). Seed 002, §2.
+//! - Thesis eqs. (6.2)–(6.4). Picard, Caro, Plestan & Claveau 2020, §2.
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (pulley kinematics).
 
 use crate::pulley::pulley_cable;

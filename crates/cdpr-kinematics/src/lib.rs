@@ -4,7 +4,7 @@
 //!
 //! A [`Robot`] is a [`MotionPattern`] and a list of [`Cable`]s (frame anchor **c**^i, platform
 //! attachment **ā**^i). At a [`Pose`], [`Robot::inverse_kinematics`] gives every cable's vector,
-//! length and unit vector ([`PoseKinematics`], seed 000 eqs. (6.2)–(6.4)), from which the
+//! length and unit vector ([`PoseKinematics`], thesis eqs. (6.2)–(6.4)), from which the
 //! DOF × n wrench matrix W (the thesis' structure matrix S = Jᵀ, eq. (6.11)) follows, with the
 //! sign convention **W t + w_ext = 0**.
 //!

@@ -10,8 +10,8 @@
 //! | `spatial`| 6   | 3-D   | x, y, z, r_x, r_y, r_z| f_x, f_y, f_z, τ_x, τ_y, τ_z |
 //!
 //! ## References
-//! - Seed 000 (thesis ch. 6) §6.2: the planar pattern; seed 001 §II: the point pattern;
-//!   seed 002 §2: the spatial pattern.
+//! - The thesis chapter on planar tendon-driven manipulators (ch. 6) §6.2: the planar pattern; Krut, Company & Pierrot 2004, §II: the point pattern;
+//!   Picard, Caro, Plestan & Claveau 2020, §2: the spatial pattern.
 
 use crate::KinematicsError;
 use std::fmt;
@@ -20,13 +20,13 @@ use std::str::FromStr;
 /// The motion pattern of a platform (how many and which degrees of freedom it has).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum MotionPattern {
-    /// A point moving in a plane: 2 translations (seed 001).
+    /// A point moving in a plane: 2 translations (Krut, Company & Pierrot 2004).
     Point2,
-    /// A rigid body in a plane: x, y and the rotation φ about z (seed 000).
+    /// A rigid body in a plane: x, y and the rotation φ about z (the thesis chapter on planar tendon-driven manipulators).
     Planar,
     /// A point in space: 3 translations.
     Point3,
-    /// A rigid body in space: 3 translations and 3 rotations (seed 002).
+    /// A rigid body in space: 3 translations and 3 rotations (Picard, Caro, Plestan & Claveau 2020).
     Spatial,
 }
 

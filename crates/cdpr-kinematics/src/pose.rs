@@ -1,7 +1,7 @@
 //! # Platform poses
 //!
 //! A pose is the position **u** of the platform frame origin and its orientation, both in base
-//! coordinates. Planar poses rotate about z by φ (seed 000 eq. (6.3)).
+//! coordinates. Planar poses rotate about z by φ (thesis eq. (6.3)).
 //!
 //! **Spatial orientation convention.** Six-number spatial poses are `x, y, z, r_x, r_y, r_z` with
 //! XYZ Euler angles in radians, as CASPR uses them: intrinsic rotations about x, then the new y,

@@ -1,11 +1,11 @@
 //! # Reference robots of the papers
 //!
-//! The robots the seeds study, built in code so tests, benchmarks and examples share one
+//! The robots the reference papers study, built in code so tests, benchmarks and examples share one
 //! definition (the same robots ship as files in `examples/robots/`).
 //!
 //! ## References
-//! - Seed 000, Tables 6.1–6.2 (planar 3- and 4-cable manipulators) and Figs. 6.3, 6.6.
-//! - Seed 001, §IV-B (3 motors at 1000 mm, 30°/150°/270°) and Fig. 10 (n motors on a circle).
+//! - Thesis Tables 6.1–6.2 (planar 3- and 4-cable manipulators) and Figs. 6.3, 6.6.
+//! - Krut, Company & Pierrot 2004, §IV-B (3 motors at 1000 mm, 30°/150°/270°) and Fig. 10 (n motors on a circle).
 
 use crate::{Cable, MotionPattern, Pulley, Robot};
 use nalgebra::{Matrix3, Vector3};
@@ -27,7 +27,7 @@ pub fn thesis_platform(cables: usize) -> Vec<Vector3<f64>> {
 ///
 /// ```
 /// use cdpr_kinematics::reference_robots::thesis_manipulator;
-/// // Seed 000 Fig. 6.3's robot: c = [±1, ±0.15].
+/// // Thesis Fig. 6.3's robot: c = [±1, ±0.15].
 /// let r = thesis_manipulator(&[[1.0, 0.15], [-1.0, 0.15], [-1.0, -0.15], [1.0, -0.15]]);
 /// assert_eq!(r.cable_count(), 4);
 /// ```
@@ -61,7 +61,7 @@ pub fn thesis_four_cable() -> Robot {
     thesis_manipulator(&[[1.0, 0.5], [-1.0, 0.5], [-1.0, -0.5], [1.0, -0.5]])
 }
 
-/// Seed 001's point robot with `n` motors at radius `radius`, the first at `first_deg` degrees
+/// Krut, Company & Pierrot's (2004) point robot with `n` motors at radius `radius`, the first at `first_deg` degrees
 /// and the others evenly spaced (3 motors at 30°: the §IV-B robot; Fig. 10: n = 4, 5, 6).
 pub fn krut_point_robot(n: usize, radius: f64, first_deg: f64) -> Robot {
     let cables = (0..n)

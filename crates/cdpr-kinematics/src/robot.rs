@@ -2,7 +2,7 @@
 //!
 //! A cable-driven parallel robot, as far as kinematics is concerned: a motion pattern and, per
 //! cable i, the frame anchor **c**^i (base coordinates) and the platform attachment **ā**^i
-//! (platform coordinates). Seed 000 Fig. 6.1 and Tables 6.1–6.2; seed 002 §2 calls them A_i, B_i.
+//! (platform coordinates). Thesis Fig. 6.1 and Tables 6.1–6.2; Picard, Caro, Plestan & Claveau 2020, §2 calls them A_i, B_i.
 
 use crate::{KinematicsError, MotionPattern};
 use nalgebra::{Matrix3, Vector2, Vector3};
@@ -61,12 +61,12 @@ impl Cable {
 }
 
 /// Constructors per motion pattern: a planar or point2 robot is built from 2-vectors in the
-/// plane z = 0 (seed 000 Table 6.1 gives its anchors that way).
+/// plane z = 0 (thesis Table 6.1 gives its anchors that way).
 ///
 /// ```
 /// use cdpr_kinematics::nalgebra::Vector2;
 /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
-/// // Seed 000's 4-cable planar robot: frame corners, platform attachments of Table 6.1.
+/// // The thesis chapter's 4-cable planar robot: frame corners, platform attachments of Table 6.1.
 /// let cables = vec![
 ///     Cable::planar(Vector2::new(-1.0, -1.0), Vector2::new(-0.1, -0.05)),
 ///     Cable::planar(Vector2::new(1.0, -1.0), Vector2::new(0.1, -0.05)),

@@ -1,19 +1,19 @@
 //! # Structure (wrench) matrix and Jacobian
 //!
 //! Static equilibrium of the platform under cable tensions **t** and an external wrench
-//! **w**_ext (seed 000: **f**^P) is
+//! **w**_ext (the thesis chapter: **f**^P) is
 //!
 //! ```text
-//!     W t + w_ext = 0                      (seed 000 eq. (6.11): f^P = −S t; seed 002 eq. (1))
+//!     W t + w_ext = 0                      (thesis eq. (6.11): f^P = −S t; Picard, Caro, Plestan & Claveau 2020, eq. (1))
 //! ```
 //!
 //! with the DOF × n wrench matrix W (the thesis' *structure matrix* S), whose column i is
-//! `[u_i ; a_i × u_i]` restricted to the motion pattern's wrench components (seed 002 eq. (2)).
+//! `[u_i ; a_i × u_i]` restricted to the motion pattern's wrench components (Picard, Caro, Plestan & Claveau 2020, eq. (2)).
 //! The Jacobian of eq. (6.7) is J = Wᵀ (n × DOF) and relates cable and platform velocities by
 //! l̇ = −J q̇ for a twist q̇ = [u̇; ω] (ω: angular velocity in base coordinates).
 //!
 //! ## References
-//! - Seed 000, eqs. (6.6), (6.7), (6.11). Seed 002, eqs. (1)–(2).
+//! - Thesis eqs. (6.6), (6.7), (6.11). Picard, Caro, Plestan & Claveau 2020, eqs. (1)–(2).
 
 use crate::MotionPattern;
 use crate::PoseKinematics;
@@ -42,7 +42,7 @@ impl PoseKinematics {
         }
     }
 
-    /// The DOF × n wrench (structure) matrix W, eq. (6.11) / seed 002 eq. (2).
+    /// The DOF × n wrench (structure) matrix W, eq. (6.11) / Picard, Caro, Plestan & Claveau 2020, eq. (2).
     ///
     /// ```
     /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};

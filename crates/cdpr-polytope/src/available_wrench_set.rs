@@ -3,7 +3,7 @@
 //! The set of wrenches the cables can apply to the platform with admissible tensions,
 //!
 //! ```text
-//!     AWS = { W t : t_min ≤ t ≤ t_max }            (seed 001 §III: image of the box (3) by Jₘᵀ = W)
+//!     AWS = { W t : t_min ≤ t ≤ t_max }            (Krut, Company & Pierrot 2004, §III: image of the box (3) by Jₘᵀ = W)
 //! ```
 //!
 //! stored as its H-representation `n_k · w ≤ d_k` with **unit** normals n_k, so that d_k is the
@@ -15,11 +15,11 @@
 //! the mirror.
 //!
 //! Build one with [`crate::hyperplane_shifting::available_wrench_set`] (any size) or
-//! [`crate::krut_vertex_projection::available_wrench_set`] (seed 001's method, small n).
+//! [`crate::krut_vertex_projection::available_wrench_set`] (Krut, Company & Pierrot's (2004) method, small n).
 //!
 //! ## References
 //! - S. Krut, O. Company, F. Pierrot, *Force performance indexes for parallel mechanisms with
-//!   actuation redundancy, especially for parallel wire-driven manipulators*, IROS 2004 (seed 001),
+//!   actuation redundancy, especially for parallel wire-driven manipulators*, IROS 2004 (Krut, Company & Pierrot 2004),
 //!   eqs. (3), (16)–(18).
 
 use nalgebra::{DMatrix, DVector};

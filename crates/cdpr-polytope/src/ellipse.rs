@@ -1,6 +1,6 @@
 //! # Largest origin-centred inscribed ellipse
 //!
-//! Seed 001 §IV-C proposes, after the isotropic force, a second index: the centred ellipse of
+//! Krut, Company & Pierrot 2004, §IV-C proposes, after the isotropic force, a second index: the centred ellipse of
 //! largest area inside the 2-D operational force polytope. Writing the ellipse as
 //! E = {B u : ‖u‖ ≤ 1} with B symmetric positive definite, E lies in {f : n_k · f ≤ d_k} iff
 //! h_E(n_k) = ‖B n_k‖ ≤ d_k for every facet, and its area is π det B. So
@@ -20,7 +20,7 @@
 //! the sign of B u, i.e. the same set).
 //!
 //! ## References
-//! - S. Krut, O. Company, F. Pierrot, IROS 2004 (seed 001), §IV-C and Fig. 4.
+//! - S. Krut, O. Company, F. Pierrot, IROS 2004 (Krut, Company & Pierrot 2004), §IV-C and Fig. 4.
 //! - S. Boyd, L. Vandenberghe, *Convex Optimization*, 2004, §8.4.2 (maximum volume inscribed
 //!   ellipsoid in a polyhedron).
 //! - P. Goulart, Y. Chen, *Clarabel: an interior-point solver for conic programs*, 2024.

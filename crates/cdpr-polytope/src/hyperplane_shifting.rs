@@ -34,7 +34,7 @@
 //!   prescribed set of wrenches*, ASME IDETC 2008 (J. Mech. Robot. 2, 2010): hyperplane shifting.
 //! - M. Gouttefarde, S. Krut, *Characterization of parallel manipulator available wrench set
 //!   facets*, ARK 2010: facets of the AWS are parallel to DOF − 1 independent columns of W.
-//! - Seed 001 (Krut et al. 2004) eq. (3): the box of admissible tensions.
+//! - Krut, Company & Pierrot 2004 eq. (3): the box of admissible tensions.
 
 use crate::PolytopeError;
 use crate::available_wrench_set::{AvailableWrenchSet, Facet};

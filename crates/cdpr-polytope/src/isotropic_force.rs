@@ -1,7 +1,7 @@
 //! # Maximum isotropic force
 //!
 //! The largest force the platform can resist in *every* direction: the radius of the largest
-//! ball centred at the origin inside the operational force polytope (seed 001 §IV, Fig. 4).
+//! ball centred at the origin inside the operational force polytope (Krut, Company & Pierrot 2004, §IV, Fig. 4).
 //! With the facets `n_k · w ≤ d_k` of the available wrench set (unit normals, signed d_k),
 //! eq. (19) reads
 //!
@@ -10,7 +10,7 @@
 //! ```
 //!
 //! and is **signed**: negative when the origin lies outside the polytope (the pose cannot even
-//! balance a zero load; seed 001 draws those poses white). It is then the most violated facet's
+//! balance a zero load; Krut, Company & Pierrot 2004 draws those poses white). It is then the most violated facet's
 //! signed distance, whose magnitude is at most the distance from the origin to the polytope.
 //! The AWS {W t} and the balanceable set −AWS give the same value: a ball centred at the origin
 //! is its own mirror.
@@ -43,9 +43,9 @@
 //! itself cannot be balanced.
 //!
 //! ## References
-//! - S. Krut, O. Company, F. Pierrot, IROS 2004 (seed 001), §IV-A eq. (19), §IV-B.
+//! - S. Krut, O. Company, F. Pierrot, IROS 2004 (Krut, Company & Pierrot 2004), §IV-A eq. (19), §IV-B.
 //! - S. Krut, O. Company, F. Pierrot, *Velocity performance indexes for parallel mechanisms with
-//!   actuation redundancy*, Robotica 22(2), 2004 (seed 001's reference \[1\]).
+//!   actuation redundancy*, Robotica 22(2), 2004 (Krut, Company & Pierrot's (2004) reference \[1\]).
 
 use crate::PolytopeError;
 use crate::available_wrench_set::AvailableWrenchSet;
@@ -205,7 +205,7 @@ pub fn isotropic_wrench_radius(aws: &AvailableWrenchSet) -> f64 {
 /// use cdpr_polytope::IsotropicForce;
 /// use cdpr_tension::TensionBounds;
 /// use nalgebra::Vector3;
-/// // Seed 001's robot: motors at 1000 mm, 30°, 150°, 270°; tensions in [50, 500].
+/// // Krut, Company & Pierrot's (2004) robot: motors at 1000 mm, 30°, 150°, 270°; tensions in [50, 500].
 /// let motor = |deg: f64| Cable {
 ///     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
 ///     platform: Vector3::zeros(),

@@ -1,12 +1,12 @@
 //! # Krut's vertex projection method (operational force polytope)
 //!
-//! Seed 001 §III computes the operational force polytope {W t : t_min ≤ t ≤ t_max} (W = Jₘᵀ) by
+//! Krut, Company & Pierrot 2004, §III computes the operational force polytope {W t : t_min ≤ t ≤ t_max} (W = Jₘᵀ) by
 //! projecting the 2ⁿ vertices of the tension box onto the range of W and keeping, among all
 //! hyperplanes through DOF projected vertices, those with every projected vertex on one side
-//! (here n is the number of cables and DOF the wrench-space dimension; the seed writes m for the
+//! (here n is the number of cables and DOF the wrench-space dimension; the paper writes m for the
 //! motors and n for the DOF):
 //!
-//! 1. SVD W = U [S 0] Vᵀ and the 2ⁿ box vertices τ_vertex of the box (3). The seed text breaks
+//! 1. SVD W = U [S 0] Vᵀ and the 2ⁿ box vertices τ_vertex of the box (3). The paper's text breaks
 //!    off before Step 1 (its eqs. (4)–(7) are missing); this step is reconstructed from Steps 2–3,
 //!    which name "the SVD joint base" V and the factors U, S;
 //! 2. τ_s = Vᵀ τ_vertex, eq. (8);
@@ -50,7 +50,7 @@
 //! −U S⁻¹ a and offset −b, normalised), exactly as [`crate::hyperplane_shifting`] produces it.
 //!
 //! [`candidate_hyperplanes`] lists every candidate of step 4 with its border test (15), mapped
-//! to the wrench space (seed 001 Fig. 8); it and [`available_wrench_set`] share one enumeration.
+//! to the wrench space (Krut, Company & Pierrot 2004, Fig. 8); it and [`available_wrench_set`] share one enumeration.
 //!
 //! The cost is C(2ⁿ, DOF) small solves each followed by a 2ⁿ-point border test: the method is
 //! refused for n > 10 or more than 10⁸ candidates ([`PolytopeError::TooLarge`]; e.g. 6 DOF with
@@ -58,7 +58,7 @@
 //!
 //! ## References
 //! - S. Krut, O. Company, F. Pierrot, *Force performance indexes for parallel mechanisms with
-//!   actuation redundancy, especially for parallel wire-driven manipulators*, IROS 2004 (seed 001),
+//!   actuation redundancy, especially for parallel wire-driven manipulators*, IROS 2004 (Krut, Company & Pierrot 2004),
 //!   §III steps 1–6, eqs. (3), (8)–(18).
 
 use crate::PolytopeError;
@@ -125,7 +125,7 @@ pub fn available_wrench_set(
 /// Largest number of candidates [`candidate_hyperplanes`] lists (each is a small allocation).
 pub const MAX_LISTED_CANDIDATES: f64 = 1e6;
 
-/// One of the C(2ⁿ, DOF) choices of DOF box vertices of step 4 (seed 001 Fig. 8 draws them for
+/// One of the C(2ⁿ, DOF) choices of DOF box vertices of step 4 (Krut, Company & Pierrot 2004, Fig. 8 draws them for
 /// n = 3, DOF = 2: the 28 lines through pairs of the 8 projected vertices).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Candidate {
@@ -148,7 +148,7 @@ pub struct Candidate {
 
 /// Every candidate hyperplane of Krut's step 4 and its border test (15), in the order the
 /// method enumerates them (lexicographic in the vertex indices), for plotting and teaching
-/// (seed 001 Fig. 8). The borders are exactly the supporting half-spaces
+/// (Krut, Company & Pierrot 2004, Fig. 8). The borders are exactly the supporting half-spaces
 /// [`available_wrench_set`] builds (same code path), before duplicates are merged.
 ///
 /// Unlike the paper's u_k of eq. (14), a hyperplane through the origin (T_k singular, the
@@ -598,7 +598,7 @@ mod tests {
         }
     }
 
-    /// Seed 001's 3-motor robot at the centre (unit columns at 30°, 150°, 270°, t ∈ [50, 500]):
+    /// Krut, Company & Pierrot's (2004) 3-motor robot at the centre (unit columns at 30°, 150°, 270°, t ∈ [50, 500]):
     /// Σ w_j = 0, so t = 50·1 and t = 500·1 both map to the origin and the other 6 vertices to
     /// ±450 w_j, a regular hexagon of circumradius 450. Of the 28 pairs, 1 coincides (vertices
     /// 0 and 7), 15 lie on the 3 diameters (offset 0), 6 on the short diagonals (offset

@@ -2,7 +2,7 @@
 //!
 //! Force capabilities of a cable robot at a pose, from its wrench matrix W (DOF × n) and the
 //! tension bounds t_min ≤ t ≤ t_max: the **available wrench set** (the operational force
-//! polytope of seed 001), the **maximum isotropic force**, the **capacity margin** of a required
+//! polytope of Krut, Company & Pierrot 2004), the **maximum isotropic force**, the **capacity margin** of a required
 //! wrench set and the **largest inscribed ellipse**.
 //!
 //! ## Vocabulary and sign convention
@@ -15,10 +15,10 @@
 //! | module | method |
 //! |---|---|
 //! | [`hyperplane_shifting`] | AWS facets for any n (Bouchard et al. 2008; Gouttefarde & Krut 2010) |
-//! | [`krut_vertex_projection`] | AWS by seed 001's steps 1–6, eqs. (8)–(18), n ≤ 10; its candidate hyperplanes (Fig. 8) |
+//! | [`krut_vertex_projection`] | AWS by Krut, Company & Pierrot's (2004) steps 1–6, eqs. (8)–(18), n ≤ 10; its candidate hyperplanes (Fig. 8) |
 //! | [`isotropic_force`](mod@isotropic_force) | maximum isotropic force, eq. (19), signed |
 //! | [`capacity_margin`](mod@capacity_margin) | capacity margin (Guay et al. 2014) |
-//! | [`ellipse`] | largest-area centred ellipse (seed 001 §IV-C) |
+//! | [`ellipse`] | largest-area centred ellipse (Krut, Company & Pierrot 2004, §IV-C) |
 //!
 //! The indices come in two flavours: functions of an [`AvailableWrenchSet`] (facets built and
 //! kept, vertices for plotting), and allocation-free evaluators for sweeps over many poses
@@ -32,7 +32,7 @@
 //! use cdpr_tension::TensionBounds;
 //! use nalgebra::{dvector, Vector3};
 //!
-//! // Seed 001 §IV-B: three motors at 1000 mm, 30°, 150°, 270°; tensions in [50, 500] N.
+//! // Krut, Company & Pierrot 2004, §IV-B: three motors at 1000 mm, 30°, 150°, 270°; tensions in [50, 500] N.
 //! let motor = |deg: f64| Cable {
 //!     frame: Vector3::new(1000.0 * deg.to_radians().cos(), 1000.0 * deg.to_radians().sin(), 0.0),
 //!     platform: Vector3::zeros(),

@@ -331,7 +331,7 @@ proptest! {
         }
     }
 
-    /// Krut's candidate listing (seed 001 Fig. 8) against brute force over the 2ⁿ corner
+    /// Krut's candidate listing (Krut, Company & Pierrot 2004, Fig. 8) against brute force over the 2ⁿ corner
     /// images W τ: C(2ⁿ, DOF) candidates; each hyperplane passes through its vertices' images;
     /// each border has every image inside and is a facet found by hyperplane shifting, any other
     /// hyperplane is not; the borders are exactly `available_wrench_set`'s supporting

@@ -1,4 +1,4 @@
-//! Seed 001 (Krut, Company, Pierrot 2004): the 3-motor planar wire robot of §IV-B and the
+//! Krut, Company & Pierrot 2004: the 3-motor planar wire robot of §IV-B and the
 //! regular n-motor robots of Fig. 10, with hand-derived isotropic forces.
 
 use approx::assert_relative_eq;
@@ -178,7 +178,7 @@ fn symmetric_bounds_of_a_general_redundant_mechanism() {
     }
 }
 
-/// The second index of §IV-C at the centre of the seed robot: the AWS is a regular hexagon
+/// The second index of §IV-C at the centre of the paper's robot: the AWS is a regular hexagon
 /// with apothem 225√3, so the largest centred ellipse is its inscribed circle.
 #[test]
 fn largest_ellipse_of_the_seed_robot_is_the_inscribed_circle() {

@@ -11,7 +11,7 @@
 //! directly and it contributes no row). Every row has norm ‖N_i‖ ≤ 1, so slacks are in tension
 //! units. On these rows `a_jᵀ x ≥ b_j`:
 //!
-//! - **l2** (seed 000 eq. (6.17)): ‖t0 + N λ‖² = ‖t0‖² + 2 gᵀλ + ‖λ‖² with g = Nᵀ t0, a strictly
+//! - **l2** (thesis eq. (6.17)): ‖t0 + N λ‖² = ‖t0‖² + 2 gᵀλ + ‖λ‖² with g = Nᵀ t0, a strictly
 //!   convex QP with identity Hessian, solved by the dual active-set method of Goldfarb & Idnani
 //!   (1983): start at the unconstrained minimum λ = −g, repeatedly pick the most violated
 //!   constraint q and take the combined primal/dual step (z = the part of a_q orthogonal to the
@@ -50,7 +50,7 @@
 //! - Nocedal, J. & Wright, S. (2006), *Numerical Optimization*, 2nd ed., §13.3 (simplex pivots,
 //!   degeneracy), §16.5 (active-set methods, Alg. 16.3).
 //! - Bland, R. G. (1977), *New finite pivoting rules for the simplex method*, Math. Oper. Res. 2.
-//! - Seed 000 eqs. (6.17), (6.19); seed 002 eq. (5).
+//! - Thesis eqs. (6.17), (6.19); Picard, Caro, Plestan & Claveau 2020, eq. (5).
 
 use crate::certificate::bound_violation;
 use crate::interior_point::Objective;

@@ -1,6 +1,6 @@
 //! # Barycentric (centroid) tension distribution
 //!
-//! For redundancy 2, the tensions at the area centroid of the feasible polygon (seed 002
+//! For redundancy 2, the tensions at the area centroid of the feasible polygon (Picard, Caro, Plestan & Claveau 2020
 //! eqs. (5)–(6)): far from all bounds, continuous along trajectories, and computed by a
 //! finite number of operations (Lamaury & Gouttefarde 2013 walk the polygon's edges; we clip
 //! it, see [`crate::FeasiblePolygon`]). The area centroid commutes with affine maps, so the
@@ -10,7 +10,7 @@
 //! ## References
 //! - Lamaury & Gouttefarde (2013), *A tension distribution method with improved computational
 //!   efficiency*, Cable-Driven Parallel Robots, Springer, pp. 71–85.
-//! - Seed 002 (Picard et al. 2020), eqs. (5)–(6), Fig. 2.
+//! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6), Fig. 2.
 
 use crate::Infeasibility;
 use crate::feasible_polygon::Region;

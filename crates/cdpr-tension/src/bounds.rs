@@ -1,6 +1,6 @@
 //! # Tension bounds
 //!
-//! Per-cable limits t_min,i ≤ t_i ≤ t_max,i (seed 000 eq. (6.21); seed 001 eq. (3)).
+//! Per-cable limits t_min,i ≤ t_i ≤ t_max,i (thesis eq. (6.21); Krut, Company & Pierrot 2004, eq. (3)).
 
 use crate::TensionError;
 use nalgebra::DVector;

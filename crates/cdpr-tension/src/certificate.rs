@@ -6,7 +6,7 @@
 //! t_min,i − 10⁻⁹ max(1, |t_min,i|) ≤ t_i ≤ t_max,i + 10⁻⁹ max(1, |t_max,i|).
 //!
 //! ## References
-//! - Seed 000 eqs. (6.11), (6.21); seed 002 eq. (1).
+//! - Thesis eqs. (6.11), (6.21); Picard, Caro, Plestan & Claveau 2020, eq. (1).
 
 use crate::TensionBounds;
 use nalgebra::{DMatrix, DVector};

@@ -26,7 +26,7 @@
 //! random problems in the unit tests.
 //!
 //! ## References
-//! - Seed 000 (thesis ch. 6), eqs. (6.15)–(6.20), Algorithm 6.1.
+//! - The thesis chapter on planar tendon-driven manipulators (ch. 6), eqs. (6.15)–(6.20), Algorithm 6.1.
 
 use crate::certificate::bound_violation;
 use crate::null_space::SINGULARITY_RATIO;

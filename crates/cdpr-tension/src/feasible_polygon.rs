@@ -1,8 +1,8 @@
 //! # Feasible polygon
 //!
-//! With t = t0 + N λ (seed 002 eq. (5), see the null-space parametrisation below), the bounds
+//! With t = t0 + N λ (Picard, Caro, Plestan & Claveau 2020, eq. (5), see the null-space parametrisation below), the bounds
 //! t_min ≤ t0 + N λ ≤ t_max cut the λ-space into a convex set, the *feasible polygon*
-//! 𝒜⁻¹(Λ) of seed 002 eq. (6) for redundancy r = 2, an interval for r = 1 and the single point
+//! 𝒜⁻¹(Λ) of Picard, Caro, Plestan & Claveau 2020, eq. (6) for redundancy r = 2, an interval for r = 1 and the single point
 //! λ = 0 for r = 0. We build it by clipping a box that surely contains it with the 2n half-planes
 //! (Sutherland–Hodgman, one half-plane at a time, buffers of capacity 2n + 4 reused across
 //! calls). The box has half-width R = ‖(max(|t_min,i − t0,i|, |t_max,i − t0,i|))_i‖₂, because
@@ -19,7 +19,7 @@
 //! centroids).
 //!
 //! ## References
-//! - Seed 002 (Picard et al. 2020), eqs. (5)–(6), Fig. 2.
+//! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6), Fig. 2.
 //! - Lamaury & Gouttefarde (2013), *A tension distribution method with improved computational
 //!   efficiency*, Cable-Driven Parallel Robots, pp. 71–85.
 //! - Sutherland & Hodgman (1974), *Reentrant polygon clipping*, CACM 17(1).
@@ -531,7 +531,7 @@ impl Region {
     }
 }
 
-/// The feasible polygon of a redundancy-2 problem (seed 002 eq. (6)), in λ-space and in
+/// The feasible polygon of a redundancy-2 problem (Picard, Caro, Plestan & Claveau 2020, eq. (6)), in λ-space and in
 /// tension space.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FeasiblePolygon {

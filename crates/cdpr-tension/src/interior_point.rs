@@ -20,7 +20,7 @@
 //! ## References
 //! - Goulart & Chen (2024), *Clarabel: an interior-point solver for conic programs with
 //!   quadratic objectives*, arXiv:2405.12762.
-//! - Seed 000 eqs. (6.17), (6.19).
+//! - Thesis eqs. (6.17), (6.19).
 
 use crate::certificate::polish;
 use crate::outcome::validate;

@@ -1,8 +1,8 @@
 //! # cdpr-tension
 //!
 //! Cable tension distribution: given the wrench matrix W (DOF × n), an external wrench w_ext and
-//! bounds t_min ≤ t ≤ t_max, find tensions with **W t + w_ext = 0** (seed 000 eq. (6.11),
-//! seed 002 eq. (1)).
+//! bounds t_min ≤ t ≤ t_max, find tensions with **W t + w_ext = 0** (thesis eq. (6.11),
+//! Picard, Caro, Plestan & Claveau 2020, eq. (1)).
 //!
 //! Vocabulary: a [`TensionProblem`] (borrowing W, w_ext, [`TensionBounds`] and, for SOTDA,
 //! [`StiffnessData`]) is solved by a [`TensionSolver`] for one [`Method`], giving a
@@ -20,7 +20,7 @@
 //! | `linf` | min max t | [`linear_program`] (r ≥ 3: active-set LP) |
 //! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
-//! | `sotda` | stiffness-oriented, r = 2 (seed 002) | [`sotda`] |
+//! | `sotda` | stiffness-oriented, r = 2 (Picard, Caro, Plestan & Claveau 2020) | [`sotda`] |
 //!
 //! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
 //! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible

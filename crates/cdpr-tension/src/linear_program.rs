@@ -1,6 +1,6 @@
 //! # Constrained ℓ₁ and ℓ∞ approaches (linear programs)
 //!
-//! - **l1** (seed 000 eq. (6.19)): minimise ‖t‖₁ = Σ t_i subject to W t + w_ext = 0,
+//! - **l1** (thesis eq. (6.19)): minimise ‖t‖₁ = Σ t_i subject to W t + w_ext = 0,
 //!   t_min ≤ t ≤ t_max (Σ t_i = ‖t‖₁ because the thesis' bounds satisfy 0 ≤ t_min; with negative
 //!   t_min the objective is still Σ t_i).
 //! - **l1-max**: maximise Σ t_i (the thesis' "maximum allowable cable tensions").
@@ -14,7 +14,7 @@
 //! (module `active_set`).
 //!
 //! ## References
-//! - Seed 000 (thesis ch. 6), §6.3.3, eq. (6.19).
+//! - The thesis chapter on planar tendon-driven manipulators (ch. 6), §6.3.3, eq. (6.19).
 //! - Bland, R. G. (1977), *New finite pivoting rules for the simplex method*.
 
 use crate::feasible_polygon::{P2, Region};

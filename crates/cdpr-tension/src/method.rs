@@ -12,17 +12,17 @@ use std::str::FromStr;
 /// method prints the same in a log, a report and on the command line.
 #[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
-    /// n = DOF: t = −W⁻¹ w_ext (seed 000 eq. (6.12)).
+    /// n = DOF: t = −W⁻¹ w_ext (thesis eq. (6.12)).
     Exact,
-    /// Minimum-norm t = −W⁺ w_ext, bounds only checked (seed 000 eq. (6.14)).
+    /// Minimum-norm t = −W⁺ w_ext, bounds only checked (thesis eq. (6.14)).
     Pinv,
-    /// Algorithm 6.1 of seed 000 (redundancy 1): the minimum-‖t‖₁ end of the feasible interval.
+    /// Algorithm 6.1 of the thesis chapter on planar tendon-driven manipulators (redundancy 1): the minimum-‖t‖₁ end of the feasible interval.
     ClosedForm,
-    /// Constrained minimum ‖t‖₁ (LP, seed 000 eq. (6.19)).
+    /// Constrained minimum ‖t‖₁ (LP, thesis eq. (6.19)).
     L1,
     /// Constrained maximum ‖t‖₁ (LP).
     L1Max,
-    /// Constrained minimum ‖t‖₂² (QP, seed 000 eq. (6.17)).
+    /// Constrained minimum ‖t‖₂² (QP, thesis eq. (6.17)).
     L2,
     /// Constrained maximum ‖t‖₂² (concave; solved exactly over the vertices).
     L2Max,
@@ -32,7 +32,7 @@ pub enum Method {
     ImprovedClosedForm,
     /// Area centroid of the feasible polygon, redundancy 2 (Lamaury & Gouttefarde 2013).
     Barycenter,
-    /// Stiffness-oriented tension distribution, redundancy 2 (seed 002, Algorithm 1).
+    /// Stiffness-oriented tension distribution, redundancy 2 (Picard, Caro, Plestan & Claveau 2020, Algorithm 1).
     Sotda,
 }
 

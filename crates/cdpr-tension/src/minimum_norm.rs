@@ -1,6 +1,6 @@
 //! # Minimum-norm approach
 //!
-//! For n = DOF the unique solution t = −W⁻¹ w_ext (seed 000 eq. (6.12)); for n > DOF the
+//! For n = DOF the unique solution t = −W⁻¹ w_ext (thesis eq. (6.12)); for n > DOF the
 //! minimum-norm solution t^mn = −W⁺ w_ext = −Wᵀ(W Wᵀ)⁻¹ w_ext (eq. (6.14), Fattah & Agrawal),
 //! i.e. t^nul = 0 in eq. (6.13). The bounds are only checked: the thesis' Fig. 6.3 shows how much
 //! workspace this loses compared with the constrained ℓ₂ approach (see
@@ -16,7 +16,7 @@
 //! answer into a failure.
 //!
 //! ## References
-//! - Seed 000, eqs. (6.12)–(6.14). Fattah & Agrawal (2005).
+//! - Thesis eqs. (6.12)–(6.14). Fattah & Agrawal (2005).
 
 use crate::certificate::bound_violation;
 use crate::null_space::{NullSpace, SINGULARITY_RATIO};

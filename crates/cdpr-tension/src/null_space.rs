@@ -1,7 +1,7 @@
 //! # Null-space parametrisation of the equilibrium
 //!
-//! Every solution of W t + w_ext = 0 is t = t0 + N λ (seed 002 eq. (5)), with t0 = −W⁺ w_ext
-//! the minimum-norm solution (seed 000 eq. (6.14)) and N an n × r basis of the null space of W,
+//! Every solution of W t + w_ext = 0 is t = t0 + N λ (Picard, Caro, Plestan & Claveau 2020, eq. (5)), with t0 = −W⁺ w_ext
+//! the minimum-norm solution (thesis eq. (6.14)) and N an n × r basis of the null space of W,
 //! r = n − DOF the redundancy.
 //!
 //! **How N is chosen.** We factor Wᵀ P = Q R by Householder QR with column pivoting (P permutes
@@ -17,7 +17,7 @@
 //! length unit), and report `condition = 1/ρ`; W counts as singular when ρ < 10⁻¹⁰.
 //!
 //! ## References
-//! - Seed 002 (Picard et al. 2020), eqs. (5)–(6). Seed 000, eq. (6.14).
+//! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6). Thesis eq. (6.14).
 //! - Golub & Van Loan, *Matrix Computations*, §5.4.1 (QR with column pivoting).
 
 use nalgebra::{DMatrix, DVector};

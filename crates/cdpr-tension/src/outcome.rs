@@ -11,7 +11,7 @@ use std::fmt;
 /// A tension distribution problem: find t with W t + w_ext = 0 and t_min ≤ t ≤ t_max.
 #[derive(Debug, Clone, Copy)]
 pub struct TensionProblem<'a> {
-    /// W, DOF × n (seed 000 eq. (6.11): S; seed 002 eq. (2)).
+    /// W, DOF × n (thesis eq. (6.11): S; Picard, Caro, Plestan & Claveau 2020, eq. (2)).
     pub wrench_matrix: &'a DMatrix<f64>,
     /// w_ext, length DOF: the wrench applied to the platform (W t + w_ext = 0).
     pub external_wrench: &'a DVector<f64>,
@@ -42,7 +42,7 @@ impl<'a> TensionProblem<'a> {
     }
 }
 
-/// What SOTDA needs to build the stiffness matrix K = Kp + Ka (seed 002 eq. (4)).
+/// What SOTDA needs to build the stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eq. (4)).
 #[derive(Debug, Clone, Copy)]
 pub struct StiffnessData<'a> {
     /// The inverse kinematics at the pose W was built from.

@@ -3,7 +3,7 @@
 //! The tensions a robot needs along a motion: one certified tension distribution per path sample
 //! (any [`Method`](crate::Method)), infeasible samples kept with their path parameter and reason,
 //! and the continuity of the result: the largest jump per cable between consecutive samples.
-//! Seed 000 Fig. 6.6 shows that minimum-norm tensions can jump; seed 002 §4 reports SOTDA
+//! Thesis Fig. 6.6 shows that minimum-norm tensions can jump; Picard, Caro, Plestan & Claveau 2020, §4 reports SOTDA
 //! tensions staying continuous.
 
 use crate::{

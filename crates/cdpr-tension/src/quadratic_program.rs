@@ -1,6 +1,6 @@
 //! # Constrained ℓ₂ approach (quadratic programs)
 //!
-//! - **l2** (seed 000 eq. (6.17)): minimise ‖t‖₂² subject to W t + w_ext = 0 and the bounds.
+//! - **l2** (thesis eq. (6.17)): minimise ‖t‖₂² subject to W t + w_ext = 0 and the bounds.
 //!   Without bounds this is the minimum-norm solution (6.14) (thesis Appendix E).
 //! - **l2-max**: maximise ‖t‖₂² ("maximal stiffness", §6.3.2). This is a concave maximisation:
 //!   its maximum is attained at a vertex of the feasible polytope, so we enumerate vertices.
@@ -13,7 +13,7 @@
 //! {λ : r independent bounds active} (at most C(n, r)·2^r candidates, capped at 2·10⁵).
 //!
 //! ## References
-//! - Seed 000 (thesis ch. 6), §6.3.2, eq. (6.17) and Appendix E.
+//! - The thesis chapter on planar tendon-driven manipulators (ch. 6), §6.3.2, eq. (6.17) and Appendix E.
 
 use crate::certificate::bound_violation;
 use crate::feasible_polygon::Region;

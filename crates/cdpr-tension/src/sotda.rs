@@ -1,10 +1,10 @@
 //! # Stiffness-oriented tension distribution (SOTDA)
 //!
 //! Among the tensions of the feasible polygon (redundancy 2), pick those that minimise the
-//! platform displacement along a direction d under a small wrench δw_e (seed 002 eq. (7)):
+//! platform displacement along a direction d under a small wrench δw_e (Picard, Caro, Plestan & Claveau 2020, eq. (7)):
 //!
 //! ```text
-//!   min_t |d · δp(t)|,   δX(t) = [δp; δφ] = K(t)⁻¹ δw_e,   K = Kp + Ka  (seed 002 eqs. (3)–(4))
+//!   min_t |d · δp(t)|,   δX(t) = [δp; δφ] = K(t)⁻¹ δw_e,   K = Kp + Ka  (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4))
 //! ```
 //!
 //! with K from `cdpr_wrench::write_stiffness_matrix` (k_i = E S / l_i). δw_e is
@@ -13,7 +13,7 @@
 //! is not identically zero. d is restricted to the translation components of the motion
 //! pattern and normalised.
 //!
-//! Variants (seed 002 Algorithm 1 and §3):
+//! Variants (Picard, Caro, Plestan & Claveau 2020, Algorithm 1 and §3):
 //! - [`SotdaVariant::Full`]: evaluate a 24 × 24 grid over the polygon's bounding box (points
 //!   inside), its vertices, edge midpoints and centroid, then refine the best point by a
 //!   projected pattern search down to 10⁻⁹ of the polygon size.
@@ -33,7 +33,7 @@
 //! stays in the polygon by convexity.
 //!
 //! ## References
-//! - Seed 002: Picard, Caro, Plestan & Claveau (2020), *Stiffness oriented tension distribution
+//! - Picard, Caro, Plestan & Claveau 2020: Picard, Caro, Plestan & Claveau (2020), *Stiffness oriented tension distribution
 //!   algorithm for cable-driven parallel robots*, ARK 2020, eqs. (3)–(7), Algorithm 1, Fig. 2.
 
 use crate::feasible_polygon::{P2, Region};
@@ -47,7 +47,7 @@ use nalgebra::{DMatrix, DVector, Vector3};
 pub enum SotdaVariant {
     /// Dense search plus local refinement over the whole polygon.
     Full,
-    /// Seed 002's real-time variant: the polygon's vertices at which some cable is at its
+    /// Picard, Caro, Plestan & Claveau's (2020) real-time variant: the polygon's vertices at which some cable is at its
     /// t_max (§3 assumptions (i)–(ii)); all vertices if there is none.
     #[default]
     Corners,
@@ -59,7 +59,7 @@ pub enum SotdaVariant {
 #[derive(Clone, Debug, PartialEq)]
 pub struct SotdaSettings {
     /// Direction d along which the displacement is minimised (base frame; only the translation
-    /// components of the motion pattern are used). Default +y, as in seed 002.
+    /// components of the motion pattern are used). Default +y, as in Picard, Caro, Plestan & Claveau 2020.
     pub direction: Vector3<f64>,
     /// ν ∈ [0, 1]: 0 gives the barycentre, 1 the stiffness-oriented optimum (Fig. 2).
     pub nu: f64,
@@ -212,7 +212,7 @@ impl Sotda {
         f
     }
 
-    /// Seed 002 Algorithm 1 with the intermediate solution; writes t.
+    /// Picard, Caro, Plestan & Claveau 2020, Algorithm 1 with the intermediate solution; writes t.
     pub fn solve_on_region(
         &mut self,
         settings: &SotdaSettings,
@@ -347,7 +347,7 @@ impl Sotda {
     }
 }
 
-/// The test "cable i is at its upper bound" of seed 002 §3 assumption (i), applied to the
+/// The test "cable i is at its upper bound" of Picard, Caro, Plestan & Claveau 2020, §3 assumption (i), applied to the
 /// vertices of the clipped polygon: t_i(λ) ≥ t_max,i − τ_i with
 ///
 /// ```text
@@ -430,7 +430,7 @@ fn lu_solve(a: &mut [f64], m: usize, x: &mut [f64]) -> bool {
     true
 }
 
-/// The SOTDA objective |d · δp(t)| of seed 002 eq. (7) at given tensions (for analysis and
+/// The SOTDA objective |d · δp(t)| of Picard, Caro, Plestan & Claveau 2020, eq. (7) at given tensions (for analysis and
 /// tests); `None` when K(t) is singular.
 pub fn sotda_displacement(
     stiffness: &StiffnessData,

@@ -1,4 +1,4 @@
-//! Seed 000 Fig. 6.6: the 4-cable robot with c = [±1, ±0.1] (Table 6.1 platform, load L1,
+//! Thesis Fig. 6.6: the 4-cable robot with c = [±1, ±0.1] (Table 6.1 platform, load L1,
 //! φ = 0, t ∈ [5, 100]); the section x = 0.54.
 //!
 //! The thesis reports t3, t4 "discontinuous at y = 0, a point which corresponds to the

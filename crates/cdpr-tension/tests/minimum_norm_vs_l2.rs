@@ -1,4 +1,4 @@
-//! Seed 000 Fig. 6.3: the minimum-norm approach (eq. (6.14), t^nul = 0) underestimates the
+//! Thesis Fig. 6.3: the minimum-norm approach (eq. (6.14), t^nul = 0) underestimates the
 //! workspace of the 4-cable robot with c = [±1, ±0.15] (Table 6.1 platform, t ∈ [5, 100],
 //! load L1, φ = 0) compared with the constrained ℓ₂ approach (eq. (6.17)).
 

@@ -1,5 +1,5 @@
 //! Tension profiles along paths: continuity of barycentre, ℓ2 and SOTDA (ν < 1) inside the
-//! workspace, and the jump of seed 000 Fig. 6.6.
+//! workspace, and the jump of thesis Fig. 6.6.
 
 use cdpr_kinematics::{Cable, MotionPattern, Path, Robot, Sampling};
 use cdpr_tension::profile::tension_profile;
@@ -70,7 +70,7 @@ fn barycenter_l2_and_sotda_profiles_are_continuous() {
     }
 }
 
-/// Seed 000 Fig. 6.6: c = [±1, ±0.1], platform of Table 6.1, load L1, φ = 0, section x = 0.54.
+/// Thesis Fig. 6.6: c = [±1, ±0.1], platform of Table 6.1, load L1, φ = 0, section x = 0.54.
 /// The thesis draws t3, t4 jumping at y = 0, on the workspace boundary. In our model the section
 /// leaves the workspace at y ≈ −0.85 mm, and within the last centimetre before it (most in the last
 /// 2 mm) the ℓ2 tensions change by

@@ -1,4 +1,4 @@
-//! SOTDA (seed 002, Algorithm 1) on an 8-cable spatial robot (redundancy 2).
+//! SOTDA (Picard, Caro, Plestan & Claveau 2020, Algorithm 1) on an 8-cable spatial robot (redundancy 2).
 
 use cdpr_kinematics::strategies::arb_robot;
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -43,7 +43,7 @@ fn setup(robot: &Robot, pose: &Pose, we: DVector<f64>) -> Setup {
         kin,
         we,
         b: TensionBounds::uniform(n, 1.0, 1000.0).unwrap(),
-        // E = 80 GPa, S = 0.75 mm² (seed 002 §4).
+        // E = 80 GPa, S = 0.75 mm² (Picard, Caro, Plestan & Claveau 2020, §4).
         es: vec![80e9 * 0.75e-6; n],
     }
 }
@@ -188,7 +188,7 @@ proptest! {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Corners (seed 002 §3 assumptions (i)–(ii)) vs Vertices vs Full.
+// Corners (Picard, Caro, Plestan & Claveau 2020, §3 assumptions (i)–(ii)) vs Vertices vs Full.
 
 fn sotda(
     variant: SotdaVariant,
@@ -213,7 +213,7 @@ fn at_t_max(t: &DVector<f64>, b: &TensionBounds, rel: f64) -> bool {
 
 /// Point on four cables from (±1, ±1) (no external wrench): W t = 0 gives t = (a, b, b, a), so
 /// the feasible polygon is the square [1, 10]² in (a, b) with the t_min–t_min corner (1, 1).
-/// With k_i = E S_i / l = (20, 10, 10, 10), l = √2 and u_i = (±1, ±1)/√2 (seed 002 eq. (4)):
+/// With k_i = E S_i / l = (20, 10, 10, 10), l = √2 and u_i = (±1, ±1)/√2 (Picard, Caro, Plestan & Claveau 2020, eq. (4)):
 ///
 /// ```text
 ///   Kp = Σ k_i u_i u_iᵀ = [[25, 5], [5, 25]],  Ka = Σ t_i/l (I − u_i u_iᵀ) = [[S, −D], [−D, S]]

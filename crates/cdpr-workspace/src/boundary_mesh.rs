@@ -44,7 +44,7 @@
 //!   cubes", IEEE Visualization 91 (face consistency).
 //! - Ju, Losasso, Schaefer & Warren (2002), "Dual contouring of Hermite data", SIGGRAPH 02 (edge
 //!   crossings found on the grid edges, then the surface built from them).
-//! - Seed 000, §6.4.3 and Algorithm 6.3: the chord method, the planar analogue (boundary points by
+//! - Thesis §6.4.3 and Algorithm 6.3: the chord method, the planar analogue (boundary points by
 //!   bisection to ε^u), and Algorithm 6.2 (the grid).
 
 use crate::discretisation::{checked_orientation, map_grid};

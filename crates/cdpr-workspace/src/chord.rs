@@ -13,7 +13,7 @@
 //!    and an infeasible direction (scanning in steps of π/8 from the previous chord's
 //!    direction: clockwise if that is feasible, counter-clockwise if not) and halved until the
 //!    bracket is shorter than ε^u; the feasible end is b^{i+1}. (The thesis starts its bracket
-//!    from s^{1i} of eq. (C.13), in an appendix not part of the seed.) The walk keeps the
+//!    from s^{1i} of eq. (C.13), in an appendix not part of the thesis chapter.) The walk keeps the
 //!    workspace on its left: counter-clockwise around a region, clockwise around a hole.
 //! 4. **Bifurcation points** (corners of the boundary, where two constraints meet): when the
 //!    chord turns by more than `max_turn`, the last chord (which may have cut the corner with a
@@ -21,7 +21,7 @@
 //!    Points crowd into the corner, and the vertex where a turn sharper than `max_turn`
 //!    remains at the finest chord is reported as a bifurcation point (within two finest chords
 //!    of the corner). This local chord refinement plays the role of the thesis' special
-//!    procedure (Appendix C, not part of the seed).
+//!    procedure (Appendix C, not part of the thesis chapter).
 //! 5. **Gaps.** A chord must not jump a gap narrower than itself to another region (the
 //!    3-cable robot's two regions at φ = 0 are only ~0.016 apart): the point a tenth of a chord
 //!    to the left of each chord's midpoint must be feasible, else the chord is halved.
@@ -45,9 +45,9 @@
 //! z = c ([`chord_section`]): points of the plane are embedded in space, nothing else changes.
 //!
 //! ## References
-//! - Seed 000, §6.4.3: eqs. (6.25)–(6.27), Algorithm 6.3; §6.4.2 Algorithm 6.2 (seeding).
+//! - Thesis §6.4.3: eqs. (6.25)–(6.27), Algorithm 6.3; §6.4.2 Algorithm 6.2 (seeding).
 //! - Du Plessis & Snyman (2001), the chord method for parallel manipulator workspaces
-//!   (seed 000 §5.4, Appendix C).
+//!   (thesis §5.4, Appendix C).
 
 use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Criterion, Grid, PoseEvaluator, Region, WorkspaceError};

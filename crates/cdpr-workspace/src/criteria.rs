@@ -6,10 +6,10 @@
 //! `[WrenchClosure]`. Further criteria (stiffness floor, user closures) compose the same way.
 //!
 //! ## References
-//! - Seed 000, eqs. (6.21) tension limits, (6.22) minimum cable length, (6.23) constant
+//! - Thesis eqs. (6.21) tension limits, (6.22) minimum cable length, (6.23) constant
 //!   orientation workspace, (6.24) Jacobian determinant floor.
-//! - Seed 002, eqs. (3)–(4): stiffness K = Kp + Ka.
-//! - Seed 001, eq. (19): maximum isotropic force. Guay, Cardou, Cruz-Ruiz, Caro (2014): capacity
+//! - Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4): stiffness K = Kp + Ka.
+//! - Krut, Company & Pierrot 2004, eq. (19): maximum isotropic force. Guay, Cardou, Cruz-Ruiz, Caro (2014): capacity
 //!   margin.
 //! - Perreault, Cardou, Gosselin & Otis (2010), "Geometric determination of the
 //!   interference-free constant-orientation workspace of parallel cable-driven mechanisms",
@@ -31,11 +31,11 @@ pub enum Criterion {
     /// Eq. (6.21): some tensions t_min ≤ t ≤ t_max balance `wrench` (W t + w_ext = 0), as
     /// decided by the tension distribution `method` (`Exact` for n = DOF, `L1`, `L2`, `Pinv`,
     /// `ClosedForm`, …). Methods differ: `Pinv` (eq. (6.14), no null-space term) rejects poses
-    /// where other feasible tensions exist (seed 000 Fig. 6.3).
+    /// where other feasible tensions exist (thesis Fig. 6.3).
     TensionFeasible {
         /// Tension distribution method.
         method: Method,
-        /// External wrench w_ext on the platform, length DOF (seed 000 Table 6.3 loads).
+        /// External wrench w_ext on the platform, length DOF (thesis Table 6.3 loads).
         wrench: DVector<f64>,
     },
     /// Eq. (6.22): every cable length l_i ≥ l_min.
@@ -55,13 +55,13 @@ pub enum Criterion {
         /// Floor on the margin (≥ 0 in the usual definition of the workspace).
         min_margin: f64,
     },
-    /// Maximum isotropic force (seed 001 eq. (19), via `cdpr-polytope`): the platform resists a
+    /// Maximum isotropic force (Krut, Company & Pierrot 2004, eq. (19), via `cdpr-polytope`): the platform resists a
     /// force of `min` in every direction (planar/spatial robots: at zero moment).
     IsotropicForce {
         /// Floor on the isotropic force (force units).
         min: f64,
     },
-    /// Maximum isotropic force on top of a constant external wrench (seed 001 eq. (19) with the
+    /// Maximum isotropic force on top of a constant external wrench (Krut, Company & Pierrot 2004, eq. (19) with the
     /// facets shifted by `wrench`, via [`cdpr_polytope::isotropic_force_of_under_load`]): the
     /// platform, already loaded by `wrench` (its weight, say), resists an extra force of `min`
     /// (N) in every direction (planar/spatial robots: at zero extra moment).
@@ -73,7 +73,7 @@ pub enum Criterion {
     },
     /// Stiffness floor in separate units: for every small displacement δ = (δp, δθ),
     /// δᵀ K δ ≥ k_t ‖δp‖² + k_r ‖δθ‖², i.e. sym(K) − diag(k_t I, k_r I) is positive
-    /// semidefinite (K = Kp + Ka, seed 002 eqs. (3)–(4)). The eigenvalues of that matrix mix
+    /// semidefinite (K = Kp + Ka, Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)). The eigenvalues of that matrix mix
     /// units but their sign does not (Sylvester's law of inertia), so `translational` (N/m) and
     /// `rotational` (N·m/rad) keep their own units. Robots without orientation ignore
     /// `rotational`. Tensions as for [`Criterion::Stiffness`].
@@ -84,7 +84,7 @@ pub enum Criterion {
         rotational: f64,
     },
     /// Stiffness floor: the smallest eigenvalue of the symmetric part of K = Kp + Ka
-    /// (seed 002 eqs. (3)–(4)) is at least `min_eigenvalue`. For planar and spatial robots K
+    /// (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)) is at least `min_eigenvalue`. For planar and spatial robots K
     /// mixes N/m, N and N·m/rad: the floor compares them as plain SI numbers (a length scale
     /// of 1 m); [`Criterion::StiffnessFloor`] keeps the units apart.
     /// K uses the tensions found by the first [`Criterion::TensionFeasible`] criterion of the

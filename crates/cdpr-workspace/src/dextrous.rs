@@ -3,7 +3,7 @@
 //! The set of positions u at which every orientation of a range is feasible: the intersection
 //! of the constant-orientation workspaces of m_sl regularly spaced orientations φ_min, …, φ_max
 //! (endpoints included), computed on one grid by testing each point for all orientations
-//! (seed 000 §6.5: "testing for compliance in Step 4 for a range of values of φ_P").
+//! (thesis §6.5: "testing for compliance in Step 4 for a range of values of φ_P").
 //!
 //! **The check of §6.5.** Du Plessis and Snyman's shortcut uses only the two extreme
 //! orientations; it is valid when the workspace at the central orientation (φ_min + φ_max)/2
@@ -15,8 +15,8 @@
 //! angles ([`euler_box`], [`dextrous_workspace_over`]).
 //!
 //! ## References
-//! - Seed 000, §6.5, eq. (6.28).
-//! - Du Plessis & Snyman (2003), dextrous workspaces of parallel manipulators (seed 000 ref. \[18\]).
+//! - Thesis §6.5, eq. (6.28).
+//! - Du Plessis & Snyman (2003), dextrous workspaces of parallel manipulators (the thesis chapter ref. \[18\]).
 
 use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};

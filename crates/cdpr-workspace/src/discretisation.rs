@@ -22,7 +22,7 @@
 //! whatever the number of threads.
 //!
 //! ## References
-//! - Seed 000, §6.4.2, Algorithm 6.2.
+//! - Thesis §6.4.2, Algorithm 6.2.
 
 use crate::{PoseEvaluator, Region, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};

@@ -8,7 +8,7 @@
 //! ends the test. Grids clone one evaluator per rayon task.
 //!
 //! ## References
-//! - Seed 000, eq. (6.23): the constant-orientation workspace definition.
+//! - Thesis eq. (6.23): the constant-orientation workspace definition.
 
 use crate::criteria::square_determinant;
 use crate::wrench_closure::WrenchClosureTest;
@@ -18,7 +18,7 @@ use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under
 use cdpr_tension::{Method, StiffnessData, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 
-/// Tests poses against composable workspace criteria (seed 000 eq. (6.23) and more).
+/// Tests poses against composable workspace criteria (thesis eq. (6.23) and more).
 ///
 /// ```
 /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};

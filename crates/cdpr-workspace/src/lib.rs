@@ -1,7 +1,7 @@
 //! # cdpr-workspace
 //!
-//! Workspace analysis and dimensional synthesis of cable-driven parallel robots (seed 000
-//! §§6.4–6.6).
+//! Workspace analysis and dimensional synthesis of cable-driven parallel robots (the thesis
+//! chapter on planar tendon-driven manipulators, §§6.4–6.6).
 //!
 //! **Vocabulary.**
 //! - [`Criterion`]: one condition on a pose: tensions within bounds for a load under a chosen

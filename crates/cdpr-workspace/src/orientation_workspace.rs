@@ -4,7 +4,7 @@
 //! others (Merlet 2006 §6.1; Bosscher, Riechel & Ebert-Uphoff 2006 for cable robots):
 //!
 //! - the **total-orientation workspace** W_𝓡 = {u : (u, R) feasible for every R ∈ 𝓡}, the
-//!   spatial form of the dextrous workspace of seed 000 eq. (6.28);
+//!   spatial form of the dextrous workspace of thesis eq. (6.28);
 //! - the **maximal workspace** {u : (u, R) feasible for some R ∈ 𝓡};
 //! - the **orientation workspace at a position** u: {R ∈ 𝓡 : (u, R) feasible}.
 //!
@@ -45,7 +45,7 @@
 //!   cable-driven robots", IEEE T-RO 22(5).
 //! - Bonev, Zlatanov & Gosselin (2002), "Advantages of the modified Euler angles in the design
 //!   and control of PKMs" (tilt-and-torsion angles).
-//! - Seed 000, §6.5, eq. (6.28) (dextrous workspace).
+//! - Thesis §6.5, eq. (6.28) (dextrous workspace).
 
 use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};

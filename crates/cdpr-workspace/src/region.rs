@@ -1,10 +1,10 @@
 //! # Search regions
 //!
-//! The axis-aligned box a workspace is searched in. Algorithm 6.2 step 2 of seed 000 uses the
+//! The axis-aligned box a workspace is searched in. Algorithm 6.2 step 2 of the thesis chapter on planar tendon-driven manipulators uses the
 //! bounding box of the frame anchors c^i; any other box may be given.
 //!
 //! ## References
-//! - Seed 000, Algorithm 6.2, step 2.
+//! - Thesis Algorithm 6.2, step 2.
 
 use crate::WorkspaceError;
 use cdpr_kinematics::Robot;

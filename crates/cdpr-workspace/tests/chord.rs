@@ -1,4 +1,4 @@
-//! The chord method (seed 000 §6.4.3, Algorithm 6.3).
+//! The chord method (thesis §6.4.3, Algorithm 6.3).
 mod common;
 
 use cdpr_kinematics::Pose;
@@ -154,7 +154,7 @@ fn separate_regions_are_all_found() {
     assert!((ws.area - (PI * 0.13 + 0.04)).abs() < 2e-3);
 }
 
-/// Seed 000 Fig. 6.4 (left column): the 3-cable workspace at φ = 0 is split at x = 0 by the
+/// Thesis Fig. 6.4 (left column): the 3-cable workspace at φ = 0 is split at x = 0 by the
 /// singularity det J = 0; the chord method maps both parts (under L1 and L2; under L3 the torque
 /// leaves only the part x > 0, see `thesis.rs`).
 #[test]

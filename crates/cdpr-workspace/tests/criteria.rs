@@ -111,7 +111,7 @@ fn jacobian_floor_matches_lu_determinant() {
 
 /// Stiffness floor: a point at the origin held by four unit-length cables along ±x, ±y, E·S =
 /// 1000 and (minimum-norm) t = 10 each. Each cable adds k = E·S/l = 1000 along itself and
-/// t/l = 10 across it (seed 002 eqs. (3)–(4)): K = diag(2020, 2020), λ_min = 2020.
+/// t/l = 10 across it (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)): K = diag(2020, 2020), λ_min = 2020.
 #[test]
 fn stiffness_floor_by_hand() {
     let robot = point_robot(&[[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0]]);
@@ -328,7 +328,7 @@ proptest! {
     }
 }
 
-/// Seed 001 §IV-B: three motors at 1000 mm (30°, 150°, 270°), t ∈ [50, 500] N: at the centre
+/// Krut, Company & Pierrot 2004, §IV-B: three motors at 1000 mm (30°, 150°, 270°), t ∈ [50, 500] N: at the centre
 /// the maximum isotropic force is 225√3 ≈ 389.71 N.
 #[test]
 fn isotropic_force_floor_reproduces_seed_001() {

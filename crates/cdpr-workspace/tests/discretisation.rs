@@ -1,4 +1,4 @@
-//! Algorithm 6.2 (seed 000 §6.4.2): grids, areas, determinism and independent cross-checks.
+//! Algorithm 6.2 (thesis §6.4.2): grids, areas, determinism and independent cross-checks.
 mod common;
 
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
@@ -200,7 +200,7 @@ fn three_cable_grid_matches_a_direct_evaluation() {
 }
 
 /// The feasible set's non-emptiness does not depend on the objective: l1, l2 and linf decide
-/// alike; the minimum-norm (pinv) tensions only underestimate (seed 000 Fig. 6.3).
+/// alike; the minimum-norm (pinv) tensions only underestimate (thesis Fig. 6.3).
 #[test]
 fn four_cable_methods_agree_and_pinv_underestimates() {
     let g = Grid::over_frame(&four_cable(), 40);

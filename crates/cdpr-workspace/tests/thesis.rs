@@ -1,5 +1,5 @@
-//! Seed 000 §6.4: the workspaces of Figs. 6.4 (3-cable) and 6.5 (4-cable), as far as the text
-//! describes them (the figures themselves are not part of the seed).
+//! Thesis §6.4: the workspaces of Figs. 6.4 (3-cable) and 6.5 (4-cable), as far as the text
+//! describes them (the figures themselves are not part of the thesis chapter).
 mod common;
 
 use cdpr_tension::{Method, TensionBounds};

@@ -1,11 +1,11 @@
 //! # External wrenches
 //!
-//! The wrench **w**_ext acting on the platform (seed 000: **f**^P = [f_x, f_y, τ]; seed 002:
+//! The wrench **w**_ext acting on the platform (the thesis chapter: **f**^P = [f_x, f_y, τ]; Picard, Caro, Plestan & Claveau 2020:
 //! **w**_e + **w**_g), expressed in base coordinates about the platform origin, with the
 //! motion pattern's components (see [`MotionPattern`]).
 //!
 //! ## References
-//! - Seed 000 eq. (6.8), Table 6.3. Seed 002 eq. (1).
+//! - Thesis eq. (6.8), Table 6.3. Picard, Caro, Plestan & Claveau 2020, eq. (1).
 
 use crate::WrenchError;
 use crate::error::check_slice;
@@ -15,7 +15,7 @@ use nalgebra::{DVector, Vector3};
 /// Standard gravity vector (m/s²), −z.
 pub const STANDARD_GRAVITY: Vector3<f64> = Vector3::new(0.0, 0.0, -9.80665);
 
-/// Mass properties of the platform (seed 002's w_g).
+/// Mass properties of the platform (Picard, Caro, Plestan & Claveau's (2020) w_g).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Platform {
     /// Mass m (kg).

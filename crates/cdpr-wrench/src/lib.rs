@@ -1,8 +1,8 @@
 //! # cdpr-wrench
 //!
 //! Wrenches and stiffness of cable-driven parallel robots, on top of `cdpr-kinematics`:
-//! the gravity wrench of a [`Platform`] and the stiffness matrix K = Kp + Ka of seed 002
-//! (Picard et al. 2020, eqs. (3)–(4)) with k_i = E S / l_i.
+//! the gravity wrench of a [`Platform`] and the stiffness matrix K = Kp + Ka of Picard, Caro, Plestan & Claveau 2020
+//! (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)) with k_i = E S / l_i.
 //!
 //! ```
 //! use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};

@@ -1,6 +1,6 @@
 //! # Stiffness matrix K = Kp + Ka
 //!
-//! The stiffness of the platform, K = δw_e / δX (seed 002 eq. (3)), for a small displacement
+//! The stiffness of the platform, K = δw_e / δX (Picard, Caro, Plestan & Claveau 2020, eq. (3)), for a small displacement
 //! screw δX = [δp; δφ] (δφ: small rotation vector in base coordinates, applied as
 //! R ← exp([δφ]×) R), with linear elastic cables of stiffness k_i = E S / l_i.
 //!
@@ -9,11 +9,11 @@
 //! P = I − u uᵀ, G = [u; b × u] and H = [I₃; b̂] (b̂: cross-product matrix of b):
 //!
 //! ```text
-//!   K_p = Σ k_i G_i G_iᵀ                                  (seed 002 eq. (4), passive part)
-//!   K_a = Σ (t_i / l_i) H_i P_i H_iᵀ − t_i [0 0; 0 û_i b̂_i]   (seed 002 eq. (4), active part)
+//!   K_p = Σ k_i G_i G_iᵀ                                  (Picard, Caro, Plestan & Claveau 2020, eq. (4), passive part)
+//!   K_a = Σ (t_i / l_i) H_i P_i H_iᵀ − t_i [0 0; 0 û_i b̂_i]   (Picard, Caro, Plestan & Claveau 2020, eq. (4), active part)
 //! ```
 //!
-//! This is seed 002's eq. (4) rewritten with b̂ᵀ = −b̂; `tests/stiffness_printed_eq4.rs` checks it
+//! This is Picard, Caro, Plestan & Claveau's (2020) eq. (4) rewritten with b̂ᵀ = −b̂; `tests/stiffness_printed_eq4.rs` checks it
 //! against the printed blocks assembled literally. We derived it independently from the
 //! restoring wrench of elastic cables (see `docs/algorithms.md`) and the property test
 //! `tests/stiffness_finite_difference.rs` checks it against the finite-difference derivative of
@@ -42,7 +42,7 @@
 //! to the straight-cable formula.
 //!
 //! ## References
-//! - Seed 002 (Picard et al. 2020), eqs. (3)–(4); Behzadipour & Khajepour (2006).
+//! - Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4); Behzadipour & Khajepour (2006).
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (pulley kinematics).
 
 use crate::WrenchError;
@@ -114,7 +114,7 @@ fn restrict(motion: MotionPattern, m: &Matrix6<f64>, out: &mut DMatrix<f64>) {
 }
 
 /// The stiffness matrix K = Kp + Ka (DOF × DOF) at the pose of `kin` under `tensions`, with
-/// per-cable axial stiffness E·S (N) so that k_i = E S / l_i. Seed 002 eqs. (3)–(4).
+/// per-cable axial stiffness E·S (N) so that k_i = E S / l_i. Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4).
 ///
 /// ```
 /// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};

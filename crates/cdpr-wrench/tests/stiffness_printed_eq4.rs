@@ -1,4 +1,4 @@
-//! Seed 002 eq. (4) exactly as printed, block by block, against `passive_stiffness` and
+//! Picard, Caro, Plestan & Claveau 2020, eq. (4) exactly as printed, block by block, against `passive_stiffness` and
 //! `active_stiffness` (which implement a rearranged form, see the `stiffness` module docs):
 //!
 //! ```text

@@ -37,11 +37,11 @@ enum Command {
     Kinematics(cli::kinematics::Args),
     /// Forward kinematics: the platform pose from measured cable lengths, with its certificate.
     Forward(cli::forward::Args),
-    /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (seed 002 eq. (4)).
+    /// Stiffness matrix K = Kp + Ka at a pose under given cable tensions (Picard, Caro, Plestan & Claveau 2020, eq. (4)).
     Stiffness(cli::stiffness::Args),
     /// Cable tensions at a pose by any tension distribution method (closed form, l1, l2, SOTDA, ...).
     Tension(cli::tension::Args),
-    /// Maximum isotropic force (seed 001) at a pose, or its heat map over a grid.
+    /// Maximum isotropic force (Krut, Company & Pierrot 2004) at a pose, or its heat map over a grid.
     Isotropic(cli::isotropic::Args),
     /// Capacity margin of a required wrench set (box or ball) at a pose.
     Capacity(cli::capacity::Args),
@@ -55,7 +55,7 @@ enum Command {
     Synthesize(cli::synthesize::Args),
     /// Tensions along a path: profiles, infeasible samples, largest jumps.
     Trajectory(cli::trajectory::Args),
-    /// Platform displacement over the feasible polygon (seed 002 Fig. 4).
+    /// Platform displacement over the feasible polygon (Picard, Caro, Plestan & Claveau 2020, Fig. 4).
     StiffnessMap(cli::stiffness_map::Args),
     /// Writes a robot file in another format: `cdpr convert IN -o OUT.toml|OUT.wcrfx`.
     Convert(cli::convert::Args),

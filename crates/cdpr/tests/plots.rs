@@ -49,6 +49,7 @@ fn heat_map_and_line_plot_render() {
             points: vec![(0.0, 1.0), (0.5, f64::NAN), (1.0, 2.0), (2.0, 3.0)],
         }],
         reference_lines: vec![(0.5, "t_min".into()), (3.5, "t_max".into())],
+        gap_label: Some("infeasible".into()),
     };
     save(&lines, dir.path().join("lines.png")).unwrap();
 }

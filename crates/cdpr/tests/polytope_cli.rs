@@ -1,5 +1,5 @@
 //! `cdpr isotropic` and `cdpr capacity`: the JSON contract and values derived by hand for
-//! seed 001's regular robots (motors at 1000 mm, tensions in [50, 500] N).
+//! Krut, Company & Pierrot's (2004) regular robots (motors at 1000 mm, tensions in [50, 500] N).
 
 mod common;
 
@@ -11,7 +11,7 @@ fn f(v: &serde_json::Value) -> f64 {
 
 /// At the centre of the 3-motor robot the cables' free tension ranges s_i ∈ [−225, 225] (about
 /// the 275 N pretension) make the AWS a regular hexagon with apothem 225·√3 ≈ 389.71 N
-/// (seed 001 §IV-B); its largest centred ellipse is the inscribed circle.
+/// (Krut, Company & Pierrot 2004, §IV-B); its largest centred ellipse is the inscribed circle.
 #[test]
 fn isotropic_force_at_the_centre_of_krut_3() {
     let v = json(&[
@@ -115,7 +115,7 @@ fn grid_heat_map_is_written() {
     assert!(f(&v["stats"]["max"]) > 0.0);
 }
 
-/// `--pose --plot` draws seed 001 Fig. 4 (force polygon, centred circle and ellipse) for point2
+/// `--pose --plot` draws Krut, Company & Pierrot 2004, Fig. 4 (force polygon, centred circle and ellipse) for point2
 /// robots, in PNG and SVG, without changing the JSON; other robots get a clear error.
 #[test]
 fn force_polygon_plot_is_written_for_point2_robots_only() {

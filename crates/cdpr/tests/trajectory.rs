@@ -1,5 +1,5 @@
 //! `cdpr trajectory` and `cdpr stiffness-map` (issue 8): JSON contract, infeasible samples kept,
-//! continuity, per-waypoint wrenches, the stiffness-oriented study of seed 002.
+//! continuity, per-waypoint wrenches, the stiffness-oriented study of Picard, Caro, Plestan & Claveau 2020.
 
 mod common;
 
@@ -120,7 +120,7 @@ fn profiles_are_continuous_inside_the_workspace() {
     }
 }
 
-/// Seed 000 Fig. 6.6 section: the samples beyond the workspace are reported (null tensions with
+/// Thesis Fig. 6.6 section: the samples beyond the workspace are reported (null tensions with
 /// their s and a reason) and the steep rise before the boundary is flagged.
 #[test]
 fn infeasible_samples_are_reported_and_the_jump_flagged() {

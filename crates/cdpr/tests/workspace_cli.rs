@@ -1,5 +1,5 @@
 //! `cdpr workspace`, `cdpr dextrous` and `cdpr synthesize`: JSON contract, agreement with the
-//! library, hand-derived workspaces and published numbers of seed 000.
+//! library, hand-derived workspaces and published numbers of the thesis chapter on planar tendon-driven manipulators.
 
 mod common;
 
@@ -157,7 +157,7 @@ fn wrench_closure_triangle_by_grid_and_chord() {
     assert!(std::fs::read_to_string(&plot).unwrap().contains("area 2.0"));
 }
 
-/// Seed 000 §6.4.3: at φ = 0 the 3-cable workspace splits at the singular line x = 0 into two
+/// Thesis §6.4.3: at φ = 0 the 3-cable workspace splits at the singular line x = 0 into two
 /// regions; the chord area agrees with the grid estimate.
 #[test]
 fn chord_finds_the_two_regions_of_the_3_cable_robot() {
@@ -216,7 +216,7 @@ fn spatial_grid_reports_volume() {
     assert!(err.contains("chord"), "{err}");
 }
 
-/// Seed 000 Table 6.8 run 1: the optimum d* = [0.8205, 2.338, 4.595, 4.769] under L1 has
+/// Thesis Table 6.8 run 1: the optimum d* = [0.8205, 2.338, 4.595, 4.769] under L1 has
 /// A_d* = 1.1040 (690 points of the 51 × 51 grid over the frame), φ ∈ [−0.2, 0.2], m_sl = 21.
 #[test]
 fn dextrous_reproduces_table_6_8_run_1() {
@@ -347,7 +347,7 @@ fn dextrous_follows_the_gravity_moment_of_each_orientation() {
     assert_eq!(v["feasible_points"].as_u64().unwrap() as usize, expected);
 }
 
-/// Seed 000 Table 6.5 run 3: from d⁰ = [0.2814, 3.978, 4.278] (A_d⁰ = 0.1996) the thesis reaches
+/// Thesis Table 6.5 run 3: from d⁰ = [0.2814, 3.978, 4.278] (A_d⁰ = 0.1996) the thesis reaches
 /// A_d* = 0.3172; our synthesis must reproduce the start area exactly and end at least as high,
 /// with an area that the library's objective confirms.
 #[test]
@@ -526,4 +526,103 @@ fn stiffness_criterion_with_its_own_units() {
         "tension,stiffness:10,5",
     ]);
     assert!(err.contains("does not rotate"), "{err}");
+}
+
+/// Issue 13 §4: a workspace figure says what it shows (orientation, load, method in the header;
+/// axes with units), an empty result says so, and the dextrous workspace of a spatial robot is
+/// drawn as z-slices whose coinciding anchors (upper and lower frame corners seen from above)
+/// share one label.
+/// Runs a plotting command with `--plot DIR/NAME.svg` and returns the SVG text.
+fn svg_of(dir: &Path, name: &str, args: &[&str]) -> String {
+    let file = dir.join(format!("{name}.svg"));
+    let out = cdpr()
+        .args(args)
+        .args(["--plot", file.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    std::fs::read_to_string(&file).unwrap()
+}
+
+#[test]
+fn workspace_figures_say_what_they_show() {
+    let dir = tempfile::tempdir().unwrap();
+    let r3 = robot("tdpm-3.toml");
+    let svg = svg_of(
+        dir.path(),
+        "empty",
+        &["workspace", &r3, "--grid", "10", "--wrench", "0,-1e6,0"],
+    );
+    for text in [
+        "no feasible pose in the box",
+        "x (m)",
+        "orientation φ = 0 rad",
+        "load w_ext = [0, -1000000, 0] (N, N, N·m)",
+        "tensions exact",
+    ] {
+        assert!(svg.contains(text), "`{text}` missing from the SVG");
+    }
+    let r8 = robot("ipanema-like-8.toml");
+    let svg = svg_of(
+        dir.path(),
+        "slices",
+        &[
+            "dextrous",
+            &r8,
+            "--orientations",
+            "-0.05:0.05:2",
+            "--grid",
+            "8",
+        ],
+    );
+    assert_eq!(svg.matches("slice z = ").count(), 4, "four z-slices");
+    assert!(svg.contains("c1, c5"), "coinciding anchors share a label");
+    assert!(!svg.contains(">c5<"), "no label on top of another");
+}
+
+/// `--optimizer global`: from the start of the thesis' Table 6.6 run 4, whose published optimum
+/// (A_d* = 0.2504) is a local maximum far below the table's best (0.5228), a coarse-grid
+/// synthesis ends higher than the local optimiser, in the start's cyclic order, with the cables
+/// leaving the platform outwards.
+#[test]
+fn synthesize_global_leaves_the_local_maximum() {
+    let run = |optimizer: &str| {
+        json(&[
+            "synthesize",
+            &robot("tdpm-3.toml"),
+            "--orientations",
+            "-0.1:0.1:3",
+            "--wrench",
+            "5,-10,0",
+            "--grid",
+            "40",
+            "--start",
+            "1.864,2.621,4.251",
+            "--optimizer",
+            optimizer,
+            "--json",
+        ])
+    };
+    let local = run("dynamic-q-compass");
+    let global = run("global");
+    let design: Vec<f64> = global["design"].as_array().unwrap().iter().map(f).collect();
+    assert!(
+        f(&global["area"]) > f(&local["area"]) + 0.1,
+        "global {} vs local {}",
+        global["area"],
+        local["area"]
+    );
+    assert!(cdpr::workspace::synthesis::same_cyclic_order(
+        &design,
+        &[1.864, 2.621, 4.251]
+    ));
+    let platform = cdpr::workspace::synthesis::thesis_platform(3).unwrap();
+    assert!(cdpr::workspace::synthesis::cables_clear_platform(
+        &design, &platform
+    ));
+    assert_eq!(f(&global["constraint_violation"]), 0.0);
 }

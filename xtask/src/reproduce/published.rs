@@ -1,4 +1,4 @@
-//! Tables 6.5–6.10 of seed 000, transcribed as printed (angles kept as text so that their
+//! Tables 6.5–6.10 of the thesis chapter on planar tendon-driven manipulators, transcribed as printed (angles kept as text so that their
 //! printed precision, and hence their rounding box, is known).
 
 /// One optimisation run of a published table.

@@ -1,4 +1,4 @@
-//! Fixtures shared by the integration tests: the thesis robots (seed 000 Tables 6.1–6.3).
+//! Fixtures shared by the integration tests: the thesis robots (thesis Tables 6.1–6.3).
 #![allow(dead_code)]
 
 use cdpr_kinematics::{Cable, MotionPattern, Robot};

@@ -90,10 +90,10 @@ impl CompassSettings {
 const RESTART_DRAWS: usize = 64;
 
 /// splitmix64: a tiny deterministic generator for the restart offsets.
-struct SplitMix(u64);
+pub(crate) struct SplitMix(pub(crate) u64);
 
 impl SplitMix {
-    fn next_unit(&mut self) -> f64 {
+    pub(crate) fn next_unit(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -183,8 +183,22 @@ pub fn maximise<O: Objective + ?Sized>(
     penalty: f64,
     settings: &CompassSettings,
 ) -> SynthesisResult {
+    maximise_clear_of(objective, start, min_separation, penalty, settings, None)
+}
+
+/// [`maximise`], rejecting also the polls whose cables enter the polygon of the platform
+/// attachments `platform` at the reference pose ([`super::design::cables_clear_platform`]).
+pub fn maximise_clear_of<O: Objective + ?Sized>(
+    objective: &mut O,
+    start: &[f64],
+    min_separation: f64,
+    penalty: f64,
+    settings: &CompassSettings,
+    platform: Option<&[[f64; 2]]>,
+) -> SynthesisResult {
     let n = start.len();
     let mut merit = Merit::new(objective, start, min_separation, penalty);
+    merit.platform = platform.map(<[_]>::to_vec);
     let mut trial = vec![0.0; n];
     let directions = generating_set(n);
     let mut best = start.to_vec();

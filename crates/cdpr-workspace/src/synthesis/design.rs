@@ -1,4 +1,4 @@
-//! # Design parametrisation of the planar frame (seed 000 §6.6.1)
+//! # Design parametrisation of the planar frame (thesis §6.6.1)
 //!
 //! The frame anchors **c**^i of the planar manipulator lie on the 2 × 2 square frame centred at the
 //! origin. Anchor i sits where the ray from the origin at polar angle β^i meets the frame, so the
@@ -7,7 +7,7 @@
 //! frame, including the pair (n, 1) (eq. (6.29)).
 //!
 //! ## References
-//! - Seed 000 (thesis chapter 6, "The planar tendon-driven parallel manipulator"), §6.2 and
+//! - The thesis chapter on planar tendon-driven manipulators (chapter 6, "The planar tendon-driven parallel manipulator"), §6.2 and
 //!   §6.6.1, eq. (6.29); Tables 6.1, 6.2.
 
 use super::SynthesisError;
@@ -15,7 +15,7 @@ use cdpr_kinematics::{Cable, MotionPattern, Robot};
 use nalgebra::Vector3;
 use std::f64::consts::{PI, TAU};
 
-/// Half the side of the square frame (the frame is [−1, 1]², seed 000 §6.2).
+/// Half the side of the square frame (the frame is [−1, 1]², thesis §6.2).
 pub const FRAME_HALF_SIDE: f64 = 1.0;
 
 /// Frame anchor **c** = ρ(β) [cos β, sin β] with ρ(β) = 1 / max(|cos β|, |sin β|): the point where
@@ -27,7 +27,7 @@ pub fn frame_anchor(beta: f64) -> [f64; 2] {
 }
 
 /// Platform attachments **ā**^i of Table 6.1 (platform coordinates, z = 0) for the 3- or 4-cable
-/// manipulator of seed 000; `None` for other cable counts.
+/// manipulator of the thesis chapter on planar tendon-driven manipulators; `None` for other cable counts.
 pub fn thesis_platform(cables: usize) -> Option<Vec<[f64; 2]>> {
     let s = 0.1 / 2f64.sqrt();
     match cables {
@@ -115,6 +115,41 @@ pub fn cyclic_order(betas: &[f64]) -> Vec<usize> {
         order.rotate_left(first);
     }
     order
+}
+
+/// Whether every cable leaves its platform attachment away from the platform at the reference
+/// pose (platform origin at the frame centre, φ = 0): the direction c^i − ā^i must not point into
+/// the convex polygon of the attachments `platform` (one per angle of `betas`), i.e. not strictly
+/// inside the angle that the polygon makes at ā^i. A cable that does passes through the platform
+/// body, which the line model of the thesis chapter does not see: the published optima all
+/// satisfy this, and so do the designs of the global stage ([`super::multi_start`]).
+/// Attachments inside the polygon (not vertices) and degenerate platforms are not checked.
+pub fn cables_clear_platform(betas: &[f64], platform: &[[f64; 2]]) -> bool {
+    let n = platform.len();
+    if n < 3 || betas.len() != n {
+        return true;
+    }
+    // The attachments counter-clockwise around their centroid.
+    let cx = platform.iter().map(|p| p[0]).sum::<f64>() / n as f64;
+    let cy = platform.iter().map(|p| p[1]).sum::<f64>() / n as f64;
+    let mut ring: Vec<usize> = (0..n).collect();
+    ring.sort_by(|&a, &b| {
+        let t = |p: [f64; 2]| (p[1] - cy).atan2(p[0] - cx);
+        t(platform[a]).total_cmp(&t(platform[b]))
+    });
+    let cross = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
+    let sub = |u: [f64; 2], v: [f64; 2]| [u[0] - v[0], u[1] - v[1]];
+    (0..n).all(|k| {
+        let i = ring[k];
+        let v = platform[i];
+        let next = sub(platform[ring[(k + 1) % n]], v);
+        let prev = sub(platform[ring[(k + n - 1) % n]], v);
+        if cross(next, prev) <= 0.0 {
+            return true; // a reflex or flat corner: not a vertex of the convex polygon
+        }
+        let d = sub(frame_anchor(betas[i]), v);
+        !(cross(next, d) > 0.0 && cross(d, prev) > 0.0)
+    })
 }
 
 /// Whether two designs place the anchors in the same [`cyclic_order`].
@@ -223,6 +258,23 @@ mod tests {
         ));
         assert!(!same_cyclic_order(&[0.1, 2.0], &[0.1, 2.0, 3.0]));
         assert!(cyclic_order(&[]).is_empty());
+    }
+
+    #[test]
+    fn cables_clear_the_platform_at_the_published_optimum_but_not_when_rotated() {
+        let p = thesis_platform(3).unwrap();
+        // Table 6.5 run 3 optimum: cable 1 runs up-right from the upper-right attachment.
+        assert!(cables_clear_platform(&[0.7645, 3.477, 3.651], &p));
+        // The same anchors turned by π: cable 1 runs down-left from ā¹ across the platform.
+        assert!(!cables_clear_platform(&[3.9065, 6.8958, 7.0704], &p));
+        // Table 6.10 run 1 optimum (4 cables).
+        let p4 = thesis_platform(4).unwrap();
+        assert!(cables_clear_platform(&[0.7572, 2.922, 3.097, 5.449], &p4));
+        // Fewer than 3 attachments: nothing to enter.
+        assert!(cables_clear_platform(
+            &[0.0, 1.0],
+            &[[0.1, 0.0], [-0.1, 0.0]]
+        ));
     }
 
     #[test]

@@ -24,7 +24,7 @@
 //! - J. A. Snyman and A. M. Hay, "The Dynamic-Q optimization method: an alternative to SQP?",
 //!   *Computers & Mathematics with Applications* 44 (2002) 1589–1598.
 //! - J. A. Snyman, *Practical Mathematical Optimization*, Springer, 2005, §6.4.
-//! - Seed 000 §6.6.2 (ρ = 0.1, Γ = 0.05 for 3 cables and 0.1 for 4, central differences).
+//! - Thesis §6.6.2 (ρ = 0.1, Γ = 0.05 for 3 cables and 0.1 for 4, central differences).
 
 use super::design::linear_separations;
 use super::objective::{Merit, Objective};

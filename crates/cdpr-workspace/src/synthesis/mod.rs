@@ -1,4 +1,4 @@
-//! # Dimensional synthesis (seed 000 §6.6)
+//! # Dimensional synthesis (the thesis chapter on planar tendon-driven manipulators, §6.6)
 //!
 //! Place the frame anchors of a planar cable robot on the 2 × 2 square frame so that the dextrous
 //! workspace is as large as possible (eq. (6.29)):
@@ -7,13 +7,16 @@
 //!
 //! with design vector **d** = [β^1, …, β^n] (polar angles of the anchors, rad; see [`design`]).
 //! The objective is a grid-based area ([`objective::DextrousArea`]), hence piecewise constant and
-//! noisy, so two optimisers are offered:
+//! noisy and has several local maxima, so three optimisers are offered:
 //!
 //! - [`dynamic_q`]: the thesis' Dynamic-Q method (successive spherical quadratic approximations
 //!   with a move limit, gradients by central differences over a wide interval Γ that smooths the
 //!   grid noise);
 //! - [`compass_search`]: a derivative-free compass (pattern) search with restarts, robust on
-//!   plateaus; [`Method::DynamicQThenCompass`] polishes the Dynamic-Q answer with it.
+//!   plateaus; [`Method::DynamicQThenCompass`] polishes the Dynamic-Q answer with it;
+//! - [`multi_start`]: the global stage of [`Method::Global`]: quasi-random designs over the whole
+//!   admissible set of the start's cyclic order (a circle of rotations times a simplex of gaps
+//!   ≥ β_min), the best few polished by the compass search, the best of all kept.
 //!
 //! ## Constraint handling for eq. (6.29)
 //! The separation s_ij = min(δ, 2π − δ), δ = (β^j − β^i) mod 2π, is piecewise linear in **d**.
@@ -30,8 +33,9 @@
 //! around the frame only while the order is kept. No continuous path satisfying eq. (6.29)
 //! changes the order, so a gradient method such as Dynamic-Q never does; a compass poll or a
 //! restart offset could jump an anchor past its neighbour, making cables cross and leaving the
-//! new neighbours unconstrained. Such polls and offsets are rejected. To explore another
-//! topology, start from a design in that order.
+//! new neighbours unconstrained. Such polls and offsets are rejected, and the global stage
+//! samples only designs in the start's order. To explore another topology, start from a design
+//! in that order.
 //!
 //! ```
 //! use cdpr_workspace::synthesis::{synthesise, Method, SynthesisSettings};
@@ -44,7 +48,9 @@
 //! ```
 //!
 //! ## References
-//! - Seed 000 §6.6, eq. (6.29), Tables 6.5–6.10.
+//! - The thesis chapter on planar tendon-driven manipulators, §6.6, eq. (6.29), Tables 6.5–6.10.
+//! - A. H. G. Rinnooy Kan and G. T. Timmer, "Stochastic global optimization methods part I:
+//!   clustering methods", *Mathematical Programming* 39 (1987) 27–56 (multi-start).
 //! - J. A. Snyman and A. M. Hay, "The Dynamic-Q optimization method: an alternative to SQP?",
 //!   *Computers & Mathematics with Applications* 44 (2002) 1589–1598.
 //! - T. G. Kolda, R. M. Lewis and V. Torczon, "Optimization by direct search: new perspectives on
@@ -53,15 +59,17 @@
 pub mod compass_search;
 pub mod design;
 pub mod dynamic_q;
+pub mod multi_start;
 pub mod objective;
 mod projection;
 
 pub use compass_search::CompassSettings;
 pub use design::{
-    cyclic_order, frame_anchor, robot_from_design, same_cyclic_order, separation_violation,
-    thesis_platform,
+    cables_clear_platform, cyclic_order, frame_anchor, robot_from_design, same_cyclic_order,
+    separation_violation, thesis_platform,
 };
 pub use dynamic_q::DynamicQSettings;
+pub use multi_start::MultiStartSettings;
 pub use objective::{DextrousArea, Objective};
 
 use cdpr_kinematics::KinematicsError;
@@ -136,6 +144,10 @@ pub enum Method {
     /// Dynamic-Q, then compass search from its answer.
     #[default]
     DynamicQThenCompass,
+    /// [`Method::DynamicQThenCompass`] from the start, then the global stage
+    /// ([`multi_start`]): quasi-random designs of the start's topology, the best polished by the
+    /// compass search; the best of all is returned.
+    Global,
 }
 
 /// Settings of the synthesis (eq. (6.29)) and its optimisers.
@@ -152,6 +164,8 @@ pub struct SynthesisSettings {
     pub dynamic_q: DynamicQSettings,
     /// Compass-search settings.
     pub compass: CompassSettings,
+    /// Settings of the global stage ([`Method::Global`] only).
+    pub multi_start: MultiStartSettings,
 }
 
 impl Default for SynthesisSettings {
@@ -162,6 +176,7 @@ impl Default for SynthesisSettings {
             penalty: 1e3,
             dynamic_q: DynamicQSettings::default(),
             compass: CompassSettings::default(),
+            multi_start: MultiStartSettings::default(),
         }
     }
 }
@@ -180,7 +195,8 @@ impl SynthesisSettings {
             return Err(invalid("penalty", self.penalty, "need a finite μ > 0"));
         }
         self.dynamic_q.validate()?;
-        self.compass.validate()
+        self.compass.validate()?;
+        self.multi_start.validate()
     }
 }
 
@@ -273,7 +289,7 @@ pub fn synthesise<O: Objective + ?Sized>(
             settings.penalty,
             &settings.compass,
         )),
-        Method::DynamicQThenCompass => {
+        Method::DynamicQThenCompass | Method::Global => {
             let first = dynamic_q::maximise(
                 objective,
                 start,
@@ -291,6 +307,15 @@ pub fn synthesise<O: Objective + ?Sized>(
             second.evaluations += first.evaluations;
             second.iterations += first.iterations;
             // The compass search never returns a worse penalised value than its start.
+            if settings.method == Method::Global {
+                return Ok(multi_start::maximise(
+                    objective,
+                    second,
+                    settings.min_separation,
+                    settings.penalty,
+                    &settings.multi_start,
+                ));
+            }
             Ok(second)
         }
     }

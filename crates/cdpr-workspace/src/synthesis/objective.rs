@@ -1,10 +1,10 @@
-//! # Objective of the dimensional synthesis (seed 000 eq. (6.29))
+//! # Objective of the dimensional synthesis (thesis eq. (6.29))
 //!
 //! What the optimisers maximise: any [`Objective`] (closures included), and the thesis' objective
 //! [`DextrousArea`], the grid-based dextrous-workspace area of the robot built from a design.
 //!
 //! ## References
-//! - Seed 000 §6.5 (eq. (6.28)), §6.6 (eq. (6.29)).
+//! - Thesis §6.5 (eq. (6.28)), §6.6 (eq. (6.29)).
 
 use super::SynthesisError;
 use super::design::robot_from_design;
@@ -46,7 +46,7 @@ pub struct DextrousArea {
     pub grid: Grid,
 }
 
-/// Loads L1–L3 of seed 000 Table 6.3, [f_x, f_y, τ] applied at the platform origin.
+/// Loads L1–L3 of thesis Table 6.3, [f_x, f_y, τ] applied at the platform origin.
 pub const THESIS_LOADS: [[f64; 3]; 3] = [[0.0, -10.0, 0.0], [5.0, -10.0, 0.0], [5.0, -10.0, 1.0]];
 
 impl DextrousArea {
@@ -75,7 +75,7 @@ impl DextrousArea {
         })
     }
 
-    /// The setting of seed 000 §6.6.2 for the 3- or 4-cable manipulator under the external
+    /// The setting of thesis §6.6.2 for the 3- or 4-cable manipulator under the external
     /// wrench `load` = [f_x, f_y, τ] (e.g. [`THESIS_LOADS`]) with tension method `method`
     /// (`Exact` for 3 cables; `L1` or `ClosedForm` for 4): platform of Table 6.1,
     /// t ∈ [5, 100], l_min = 0.1, D_min = 10⁻³ (3 cables only, |det J|), grid over the whole
@@ -151,6 +151,9 @@ pub(crate) struct Merit<'a, O: ?Sized> {
     order: Vec<usize>,
     min_separation: f64,
     penalty: f64,
+    /// Platform attachments whose polygon no cable may enter at the reference pose (see
+    /// [`super::design::cables_clear_platform`]); `None` checks nothing.
+    pub platform: Option<Vec<[f64; 2]>>,
     memo: HashMap<Vec<u64>, f64>,
     /// Objective evaluations so far (memo hits excluded).
     pub evaluations: usize,
@@ -163,6 +166,7 @@ impl<'a, O: Objective + ?Sized> Merit<'a, O> {
             order: super::design::cyclic_order(start),
             min_separation,
             penalty,
+            platform: None,
             memo: HashMap::new(),
             evaluations: 0,
         }
@@ -182,9 +186,13 @@ impl<'a, O: Objective + ?Sized> Merit<'a, O> {
     }
 
     /// Whether `design` keeps the start's cyclic order of anchors (see
-    /// [`super::design::same_cyclic_order`]).
+    /// [`super::design::same_cyclic_order`]) and, if a platform is set, its cables clear it.
     pub fn admissible(&self, design: &[f64]) -> bool {
         super::design::cyclic_order(design) == self.order
+            && self
+                .platform
+                .as_deref()
+                .is_none_or(|p| super::design::cables_clear_platform(design, p))
     }
 
     /// φ(**d**) for an already computed area; +∞ for a design that is not [`Self::admissible`].
@@ -200,7 +208,7 @@ impl<'a, O: Objective + ?Sized> Merit<'a, O> {
 mod tests {
     use super::*;
 
-    /// Seed 000 Table 6.8 run 1: d* = [0.8205, 2.338, 4.595, 4.769] under L1 has A_d* = 1.1040
+    /// Thesis Table 6.8 run 1: d* = [0.8205, 2.338, 4.595, 4.769] under L1 has A_d* = 1.1040
     /// (690 points of the 51 × 51 grid); both ℓ1 implementations agree.
     #[test]
     fn reproduces_table_6_8_run_1_optimum() {
@@ -213,7 +221,7 @@ mod tests {
         }
     }
 
-    /// Seed 000 Table 6.5 run 3: d* = [0.7645, 3.477, 3.651] under L1 has A_d* = 0.3172 (793
+    /// Thesis Table 6.5 run 3: d* = [0.7645, 3.477, 3.651] under L1 has A_d* = 0.3172 (793
     /// points of the 101 × 101 grid) with exact tensions and |det J| ≥ 10⁻³.
     #[test]
     fn reproduces_table_6_5_run_3_optimum() {

@@ -1,4 +1,4 @@
-//! Fixtures: the thesis robots (seed 000 Tables 6.1–6.4) and simple geometric workspaces.
+//! Fixtures: the thesis robots (thesis Tables 6.1–6.4) and simple geometric workspaces.
 #![allow(dead_code)]
 
 use cdpr_kinematics::{Cable, MotionPattern, Robot};

@@ -1,11 +1,12 @@
-//! `cdpr dextrous`: the dextrous workspace over a range of orientations (seed 000 eq. 6.28).
+//! `cdpr dextrous`: the dextrous workspace over a range of orientations (thesis eq. 6.28).
 
 use super::workspace::{
-    CriteriaArgs, CriteriaSetup, box_json, default_method, dextrous, draw_pose, measure_json,
-    progress, region, resolution, rotation, save_plot, workspace_plot,
+    CriteriaArgs, CriteriaSetup, box_json, default_method, dextrous, draw_pose, load_text,
+    measure_json, progress, region, resolution, rotation, save_grid_plot,
 };
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::kinematics::MotionPattern;
+use cdpr::plot::tick;
 use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
 use nalgebra::{Rotation3, Unit, Vector3};
 use serde_json::json;
@@ -14,7 +15,7 @@ use std::str::FromStr;
 
 /// The long help of the command (`--help`), also its documentation.
 const LONG_HELP: &str = "\
-Dextrous workspace W^D[φ_min, φ_max] (seed 000 eq. 6.28): the positions where every
+Dextrous workspace W^D[φ_min, φ_max] (thesis eq. 6.28): the positions where every
 orientation of the range is feasible, i.e. the intersection of the constant-orientation
 workspaces of M_SL regularly spaced orientations φ_min … φ_max (endpoints included), computed
 on one grid of (M+1)² points (Algorithm 6.2 with step 4 tested for every orientation).
@@ -172,25 +173,40 @@ pub fn run(args: Args) -> Result<(), CliError> {
             _ => base * Rotation3::from_axis_angle(&axis, range.central()),
         };
         let pose = draw_pose(robot, args.draw_pose.as_deref(), &region, &central)?;
-        let fig = workspace_plot(
+        let w_ext = setup.external_wrench(&desc, &central)?;
+        let title = format!("{}: dextrous workspace (grid)", desc.name);
+        let load = load_text(motion, w_ext.as_slice(), method);
+        let about = match motion {
+            MotionPattern::Spatial => format!(" about the axis [{}]", {
+                let a = axis.into_inner();
+                format!("{}, {}, {}", tick(a.x), tick(a.y), tick(a.z))
+            }),
+            _ => String::new(),
+        };
+        let setting = format!(
+            "every orientation φ ∈ [{}, {}] rad{about} ({} slices); {load}",
+            tick(range.min),
+            tick(range.max),
+            range.slices
+        );
+        save_grid_plot(
             robot,
             &pose,
-            Some(ws),
-            Vec::new(),
-            format!(
-                "{}: dextrous workspace, φ ∈ [{}, {}] ({} slices)",
-                desc.name, range.min, range.max, range.slices
-            ),
-            vec![format!(
-                "dextrous {what} {:.4} {unit} ({} of {} points, m = {m}, {conv} convention); §6.5 \
-                 check {}",
-                ws.measure(conv),
-                ws.feasible_points,
-                ws.total_points,
-                if check.holds { "holds" } else { "fails" }
-            )],
-        );
-        save_plot(&fig, path)?;
+            ws,
+            title,
+            vec![
+                setting,
+                format!(
+                    "dextrous {what} {:.4} {unit} ({} of {} points, m = {m}, {conv} convention); \
+                     §6.5 check {}",
+                    ws.measure(conv),
+                    ws.feasible_points,
+                    ws.total_points,
+                    if check.holds { "holds" } else { "fails" }
+                ),
+            ],
+            path,
+        )?;
     }
     if args.json {
         let mut v = json!({

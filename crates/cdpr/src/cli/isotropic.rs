@@ -1,4 +1,4 @@
-//! `cdpr isotropic`: the maximum isotropic force (seed 001 §IV) at a pose, or its map.
+//! `cdpr isotropic`: the maximum isotropic force (Krut, Company & Pierrot 2004, §IV) at a pose, or its map.
 
 use super::{
     CliError, Numbers, external_wrench, load_robot, num, pose, pose_text, print_json, wrench_text,
@@ -17,7 +17,7 @@ use serde_json::{Value, json};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-/// Maximum isotropic force (Krut et al. 2004, seed 001): the largest force the platform can
+/// Maximum isotropic force (Krut, Company & Pierrot 2004): the largest force the platform can
 /// resist in EVERY direction with tensions in [t_min, t_max], i.e. the radius of the largest
 /// ball centred at the origin inside the available force polytope {W t} (eq. 19). It is signed:
 /// negative when the origin is outside the polytope (the pose cannot even hold a zero load).
@@ -35,9 +35,9 @@ use std::path::PathBuf;
 ///
 /// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--plot polygon.png] [--json]`;
 /// for point2 robots `--plot` draws the available force polygon with the largest centred circle
-/// and ellipse and the facet the circle touches (seed 001 Fig. 4).
+/// and ellipse and the facet the circle touches (Krut, Company & Pierrot 2004, Fig. 4).
 /// A map: `cdpr isotropic ROBOT.toml --grid 100 [--box ...] [--orientation PHI] [--z Z]
-/// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (seed 001 Figs. 9–10; white
+/// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (Krut, Company & Pierrot 2004, Figs. 9–10; white
 /// where the index is negative).
 ///
 /// The force polygon of --plot and the ellipse of --ellipse are those of the available wrench
@@ -93,10 +93,10 @@ pub struct Args {
     /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.
     /// Pose (point2 robots only): the available force polygon with the largest centred circle
     /// (radius = the index) and ellipse, the origin and the facet the circle touches
-    /// (seed 001 Fig. 4).
+    /// (Krut, Company & Pierrot 2004, Fig. 4).
     #[arg(long)]
     plot: Option<PathBuf>,
-    /// Pose: also the largest-area centred ellipse inside the force polygon (seed 001 §IV-C;
+    /// Pose: also the largest-area centred ellipse inside the force polygon (Krut, Company & Pierrot 2004, §IV-C;
     /// point2 robots only): semi-axes, angle of the major axis, area.
     #[arg(long, conflicts_with = "grid")]
     ellipse: bool,
@@ -113,7 +113,7 @@ fn definition(motion: MotionPattern) -> &'static str {
          the origin is outside"
     } else {
         "radius of the largest force ball centred at the origin inside the available force \
-         polytope {W t : t_min <= t <= t_max} (seed 001 eq. 19); negative when the origin is \
+         polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, eq. 19); negative when the origin is \
          outside"
     }
 }
@@ -176,10 +176,10 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         let mut fig = ForcePolygonPlot::operational(&aws, ellipse.flatten().as_ref())
             .ok_or("the force polygon is unbounded (an infinite t_max): nothing to draw")?;
         fig.title = format!(
-            "{}: available force polygon at ({})",
+            "{}: available force polygon {{W t}} at position ({})",
             robot.name,
             q.iter()
-                .map(|v| format!("{v}"))
+                .map(|v| cdpr::plot::tick(*v))
                 .collect::<Vec<_>>()
                 .join(", ")
         );
@@ -353,7 +353,10 @@ fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliEr
                     ""
                 }
             ),
-            labels: ("x".into(), "y".into()),
+            labels: (
+                super::workspace::length_axis("x"),
+                super::workspace::length_axis("y"),
+            ),
             value_label: "isotropic force (N)".into(),
             x_range: (x0, x1),
             y_range: (y0, y1),

@@ -7,7 +7,7 @@ use super::{
 use serde_json::json;
 use std::path::PathBuf;
 
-/// Inverse kinematics at a pose (seed 000 eqs. (6.2)–(6.4), (6.11); pulleys: Pott 2018).
+/// Inverse kinematics at a pose (thesis eqs. (6.2)–(6.4), (6.11); pulleys: Pott 2018).
 ///
 /// Prints each cable's length l_i (m) and unit vector (from the platform attachment towards the
 /// frame anchor, or towards the point where the cable leaves its pulley), and the DOF × n wrench

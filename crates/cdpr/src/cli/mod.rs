@@ -195,7 +195,7 @@ pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64
     }
 }
 
-/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (seed 002 eq. (1)).
+/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro, Plestan & Claveau 2020, eq. (1)).
 pub fn external_wrench(
     robot: &RobotDescription,
     pose: &Pose,

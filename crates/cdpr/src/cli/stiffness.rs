@@ -4,7 +4,7 @@ use super::{CliError, Numbers, load_robot, matrix_rows, pose, print_json, print_
 use serde_json::json;
 use std::path::PathBuf;
 
-/// Stiffness matrix K = Kp + Ka (seed 002 eqs. (3)–(4)), k_i = E·S / l_i.
+/// Stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)), k_i = E·S / l_i.
 ///
 /// Needs `axial_stiffness` (E·S, N) on every cable of the robot file, or --axial-stiffness.
 /// JSON fields: `stiffness` (rows of K), `passive` (Kp), `active` (Ka).

@@ -1,4 +1,4 @@
-//! `cdpr stiffness-map`: the stiffness-oriented study of seed 002 at one pose (Fig. 4).
+//! `cdpr stiffness-map`: the stiffness-oriented study of Picard, Caro, Plestan & Claveau 2020 at one pose (Fig. 4).
 
 use super::tension::{SotdaSearch, sotda_settings};
 use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json, wrench};
@@ -11,10 +11,10 @@ use nalgebra::{DVector, Vector2};
 use serde_json::json;
 use std::path::PathBuf;
 
-/// Platform displacement over the feasible polygon (seed 002 Fig. 4).
+/// Platform displacement over the feasible polygon (Picard, Caro, Plestan & Claveau 2020, Fig. 4).
 ///
 /// At one pose of a robot with redundancy n − DOF = 2, every equilibrium tension is
-/// t = t0 + N λ, λ in the feasible polygon (seed 002 eqs. (5)–(6)). For each tension the platform
+/// t = t0 + N λ, λ in the feasible polygon (Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6)). For each tension the platform
 /// moves by δX = K(t)⁻¹ δw under the load δw, with K = Kp + Ka (eq. (4), k_i = E·S / l_i from the
 /// robot file's `axial_stiffness`). This command evaluates |d · δp| on a grid over the polygon
 /// (Fig. 4 left), at the barycentre and at the SOTDA optimum (eq. (7)), along the intermediate
@@ -42,7 +42,7 @@ pub struct Args {
     /// External wrench w_e (DOF numbers; default zero), e.g. --wrench 0,50,0,0,0,0.
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
-    /// Direction d of the displacement (2 or 3 numbers; default +y as in seed 002).
+    /// Direction d of the displacement (2 or 3 numbers; default +y as in Picard, Caro, Plestan & Claveau 2020).
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
     /// Grid resolution per λ axis over the polygon's bounding box.

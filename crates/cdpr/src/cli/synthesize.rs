@@ -1,5 +1,5 @@
 //! `cdpr synthesize`: dimensional synthesis of a planar robot for maximal dextrous workspace
-//! (seed 000 §6.6, eq. 6.29).
+//! (thesis §6.6, eq. 6.29).
 
 use super::dextrous::Range;
 use super::workspace::{
@@ -22,7 +22,7 @@ use std::path::PathBuf;
 
 /// The long help of the command (`--help`), also its documentation.
 const LONG_HELP: &str = "\
-Dimensional synthesis (seed 000 §6.6): place the frame anchors on the 2 × 2 square frame
+Dimensional synthesis (thesis §6.6): place the frame anchors on the 2 × 2 square frame
 [−1, 1]² to maximise the dextrous workspace area A_d (eq. 6.29).
 
 The design is d = [β1, …, βn]: anchor i sits where the ray from the origin at polar angle βi
@@ -38,8 +38,11 @@ constant in d (grid noise), hence the optimisers:
   dynamic-q          the thesis' Dynamic-Q (spherical quadratic approximations, move limit
                      --move-limit ρ, central differences over the wide interval --fd-interval Γ);
   compass            derivative-free compass search with restarts (exact penalty);
-  dynamic-q-compass  (default, the most robust) Dynamic-Q, then the compass search polishes its
-                     answer.
+  dynamic-q-compass  (default) Dynamic-Q, then the compass search polishes its answer;
+  global             dynamic-q-compass, then a global stage: 128 quasi-random designs over
+                     every anchor placement with the start's cyclic order (and cables that leave
+                     the platform outwards), the best 3 polished by the compass search; the
+                     best design of all is returned (seeded, deterministic; slower).
 
 Thesis settings (Tables 6.5–6.10): 3 cables --orientations -0.1:0.1:3 --grid 100, 4 cables
 --orientations -0.2:0.2:21 --grid 50; loads L1 0,-10,0; L2 5,-10,0; L3 5,-10,1.
@@ -74,8 +77,8 @@ pub struct Args {
     /// Starting design β1,…,βn (rad), one angle per cable of the robot file.
     #[arg(long, allow_hyphen_values = true, value_name = "β1,…,βn")]
     start: Numbers,
-    /// Optimiser: dynamic-q, compass or dynamic-q-compass.
-    #[arg(long, default_value = "dynamic-q-compass", value_parser = ["dynamic-q", "compass", "dynamic-q-compass"])]
+    /// Optimiser: dynamic-q, compass, dynamic-q-compass or global.
+    #[arg(long, default_value = "dynamic-q-compass", value_parser = ["dynamic-q", "compass", "dynamic-q-compass", "global"])]
     optimizer: String,
     /// β_min (rad): minimum separation of consecutive anchors. Default π/18 (10°), the separation
     /// active at every published optimum.
@@ -182,10 +185,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         method: match args.optimizer.as_str() {
             "dynamic-q" => Optimizer::DynamicQ,
             "compass" => Optimizer::CompassSearch,
+            "global" => Optimizer::Global,
             _ => Optimizer::DynamicQThenCompass,
         },
         ..SynthesisSettings::default()
     };
+    settings.multi_start.platform = Some(problem.platform.clone());
     if let Some(b) = args.min_separation {
         settings.min_separation = b;
     }

@@ -14,7 +14,7 @@ use std::path::PathBuf;
 /// Methods (--method): exact (n = DOF, eq. 6.12), pinv (minimum norm, eq. 6.14), closed-form
 /// (Algorithm 6.1, redundancy 1, minimum ‖t‖₁), l1 / l1-max (eq. 6.19), l2 / l2-max (eq. 6.17),
 /// linf (minimum largest tension), improved-closed-form (Pott 2014), barycenter (centroid of the
-/// feasible polygon, redundancy 2), sotda (stiffness-oriented, seed 002: --direction, --nu).
+/// feasible polygon, redundancy 2), sotda (stiffness-oriented, Picard, Caro, Plestan & Claveau 2020: --direction, --nu).
 ///
 /// The external wrench is --wrench plus the platform's gravity from the robot file.
 /// Every "feasible" answer is certified (equilibrium residual and bounds to 1e-9 relative);
@@ -43,7 +43,7 @@ pub struct Args {
     /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
     #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
     nu: f64,
-    /// SOTDA: which points of the feasible polygon are evaluated. corners: seed 002's real-time
+    /// SOTDA: which points of the feasible polygon are evaluated. corners: Picard, Caro, Plestan & Claveau's (2020) real-time
     /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
     /// the whole polygon refined by a pattern search.
     #[arg(long, value_enum, default_value = "corners", conflicts_with = "full")]
@@ -59,7 +59,7 @@ pub struct Args {
 /// `--sotda-search`: the points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum SotdaSearch {
-    /// Seed 002's real-time variant: the vertices with a cable at t_max.
+    /// Picard, Caro, Plestan & Claveau's (2020) real-time variant: the vertices with a cable at t_max.
     Corners,
     /// Every vertex of the polygon.
     Vertices,

@@ -87,7 +87,7 @@ pub struct Args {
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
-    /// SOTDA: which points of the feasible polygon are evaluated. corners: seed 002's real-time
+    /// SOTDA: which points of the feasible polygon are evaluated. corners: Picard, Caro, Plestan & Claveau's (2020) real-time
     /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
     /// the whole polygon refined by a pattern search.
     #[arg(long, value_enum, default_value = "corners", conflicts_with = "full")]
@@ -331,10 +331,10 @@ pub fn profile_plot(
     let mut reference_lines = Vec::new();
     let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
     if lo.iter().all(|&v| v == lo[0]) {
-        reference_lines.push((lo[0], "t_min".to_string()));
+        reference_lines.push((lo[0], format!("t_min = {} N", cdpr::plot::tick(lo[0]))));
     }
     if hi.iter().all(|&v| v == hi[0]) && hi[0].is_finite() {
-        reference_lines.push((hi[0], "t_max".to_string()));
+        reference_lines.push((hi[0], format!("t_max = {} N", cdpr::plot::tick(hi[0]))));
     }
     let nu = if args.method == Method::Sotda {
         format!(", ν = {}", args.nu)
@@ -349,8 +349,12 @@ pub fn profile_plot(
             profile.feasible_count(),
             profile.s.len()
         ),
-        labels: ("path parameter s".into(), "tension".into()),
+        labels: (
+            "path parameter s (0 at the first waypoint, 1 at the last)".into(),
+            "cable tension (N)".into(),
+        ),
         series,
         reference_lines,
+        gap_label: Some("infeasible poses".into()),
     }
 }

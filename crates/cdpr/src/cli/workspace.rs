@@ -1,11 +1,11 @@
-//! `cdpr workspace`: the constant-orientation workspace by discretisation (seed 000 Algorithm 6.2)
+//! `cdpr workspace`: the constant-orientation workspace by discretisation (thesis Algorithm 6.2)
 //! or by the chord method (§6.4.3), and the helpers shared with `cdpr dextrous` and
 //! `cdpr synthesize` (criteria from the command line, grids with a progress bar, plots).
 
 use super::{CliError, Numbers, external_wrench, load_robot, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose, Robot};
-use cdpr::plot::WorkspacePlot;
+use cdpr::plot::{Figure, Panels, WorkspacePlot};
 use cdpr::polytope::RequiredWrenchSet;
 use cdpr::tension::Method;
 use cdpr::workspace::{
@@ -22,7 +22,7 @@ use std::path::{Path, PathBuf};
 /// The long help of the command (`--help`), also its documentation.
 const LONG_HELP: &str = "\
 Constant-orientation workspace: the platform positions where every criterion holds at a fixed
-orientation (seed 000 eq. 6.23).
+orientation (thesis eq. 6.23).
 
 Methods (--boundary):
   grid  (default) Algorithm 6.2: test the (M+1)² points of a regular grid (M intervals per
@@ -57,7 +57,7 @@ gives min_cable_length / min_jacobian_det):
   isotropic:F     maximum isotropic force ≥ F (N) on top of w_ext (Krut, Company & Pierrot
                   2004; force at zero moment if rotating): the platform, carrying its weight
                   and --wrench, resists an extra F newtons in every direction
-  stiffness:KT,KR stiffness K = Kp + Ka (seed 002) at the tensions of the tension criterion:
+  stiffness:KT,KR stiffness K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020) at the tensions of the tension criterion:
                   for every small displacement δ = (δp, δθ), δᵀKδ ≥ KT‖δp‖² + KR‖δθ‖², i.e.
                   sym(K) − diag(KT·I, KR·I) positive semidefinite; KT in N/m, KR in N·m/rad
                   (point robots: stiffness:KT). Needs axial_stiffness in the robot file and
@@ -752,43 +752,78 @@ pub fn draw_pose(
     }
 }
 
-/// The workspace figure: anchors, cables at `pose`, feasible cells (3-D: the z-slice nearest
-/// the pose), outlined (and filled) boundaries.
+/// A figure's title (robot and what is drawn) and the line under it: orientation (rad), load
+/// (N, N·m) and tension method, e.g. "orientation φ = 0.1 rad; load w_ext = [0, -10, 0] (N, N, N·m);
+/// tensions l2".
+pub fn plot_title(
+    robot: &str,
+    what: &str,
+    motion: MotionPattern,
+    orientation: &[f64],
+    w_ext: &[f64],
+    method: Method,
+) -> (String, String) {
+    let orientation = match motion {
+        MotionPattern::Planar => format!(
+            "orientation φ = {} rad; ",
+            cdpr::plot::tick(orientation.first().copied().unwrap_or(0.0))
+        ),
+        MotionPattern::Spatial => format!("orientation [{}] rad; ", tick_list(orientation)),
+        _ => String::new(),
+    };
+    (
+        format!("{robot}: {what}"),
+        format!("{orientation}{}", load_text(motion, w_ext, method)),
+    )
+}
+
+/// "load w_ext = [0, -10, 0] (N, N, N·m); tensions l2".
+pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String {
+    let units = match motion {
+        MotionPattern::Planar => "N, N, N·m",
+        MotionPattern::Spatial => "forces N, moments N·m",
+        _ => "N",
+    };
+    format!(
+        "load w_ext = [{}] ({units}); tensions {}",
+        tick_list(w_ext),
+        method.name()
+    )
+}
+
+fn tick_list(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| cdpr::plot::tick(*x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Axis label of a length coordinate (robot files are in SI units, docs/robot-file.md).
+pub fn length_axis(axis: &str) -> String {
+    format!("{axis} (m)")
+}
+
+/// What an empty grid or chord result draws in the middle of the chart.
+pub const EMPTY_WORKSPACE: &str = "no feasible pose in the box";
+
+/// The planar workspace figure: anchors, cables at `pose`, feasible cells, outlined (and
+/// filled) boundaries; a note in the middle when nothing is feasible.
 pub fn workspace_plot(
     robot: &Robot,
     pose: &Pose,
     ws: Option<&GridWorkspace>,
     boundaries: Vec<Vec<(f64, f64)>>,
     title: String,
-    mut notes: Vec<String>,
+    notes: Vec<String>,
 ) -> WorkspacePlot {
     let mut feasible_points = Vec::new();
     let mut cell = (0.0, 0.0);
     if let Some(ws) = ws {
-        let g = &ws.grid;
-        let m = g.resolution as f64;
-        let ext = g.region.extent();
-        cell = (ext.x / m, ext.y / m);
-        let p = g.points_per_axis();
-        let slice = if ws.dim == 3 {
-            let k =
-                (((pose.position.z - g.region.min.z) / ext.z * m).round()).clamp(0.0, m) as usize;
-            let z = ws.point(k * p * p).z;
-            notes.push(format!("z-slice at z = {z:.4} (of the 3-D grid)"));
-            k
-        } else {
-            0
-        };
-        let first = slice * p * p;
-        let count = p * p;
-        for idx in first..first + count {
-            if ws.feasible[idx] {
-                let u = ws.point(idx);
-                feasible_points.push((u.x, u.y));
-            }
-        }
+        cell = grid_cell(ws);
+        feasible_points = layer_points(ws, 0);
     }
     let fill = ws.is_none() && !boundaries.is_empty();
+    let empty = feasible_points.is_empty() && boundaries.is_empty();
     WorkspacePlot {
         title,
         feasible_points,
@@ -796,6 +831,8 @@ pub fn workspace_plot(
         boundaries,
         fill_boundaries: fill,
         notes,
+        axis_names: Some((length_axis("x"), length_axis("y"))),
+        empty_message: empty.then(|| EMPTY_WORKSPACE.to_string()),
         ..WorkspacePlot::default()
     }
     .with_robot(robot, pose)
@@ -837,8 +874,81 @@ pub fn is_html(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("html"))
 }
 
-/// Writes a plot and reports its file on stderr-free stdout text mode (callers print).
-pub fn save_plot(fig: &WorkspacePlot, path: &Path) -> Result<(), CliError> {
+/// The (Δx, Δy) spacing of a grid.
+fn grid_cell(ws: &GridWorkspace) -> (f64, f64) {
+    let m = ws.grid.resolution as f64;
+    let ext = ws.grid.region.extent();
+    (ext.x / m, ext.y / m)
+}
+
+/// The feasible (x, y) points of z-layer `k` of a grid (the only layer of a planar grid).
+fn layer_points(ws: &GridWorkspace, k: usize) -> Vec<(f64, f64)> {
+    let p = ws.grid.points_per_axis();
+    let first = if ws.dim == 3 { k * p * p } else { 0 };
+    (first..first + p * p)
+        .filter(|&idx| ws.feasible[idx])
+        .map(|idx| {
+            let u = ws.point(idx);
+            (u.x, u.y)
+        })
+        .collect()
+}
+
+/// Number of z-slices drawn for a 3-D workspace.
+pub const SLICES: usize = 4;
+
+/// The z-layers drawn for a 3-D grid of resolution m: the layers nearest the centres of
+/// [`SLICES`] equal bands of the box height, without repeats.
+pub fn slice_layers(m: usize) -> Vec<usize> {
+    let mut layers: Vec<usize> = (0..SLICES)
+        .map(|j| (((j as f64 + 0.5) / SLICES as f64) * m as f64).round() as usize)
+        .collect();
+    layers.dedup();
+    layers
+}
+
+/// A 3-D grid workspace as [`SLICES`] z-slices side by side (2 × 2), each with the frame anchors
+/// seen from above (coinciding anchors share a label) and the cables at `pose` moved to the
+/// slice height; the title and notes above all slices.
+pub fn workspace_slices(
+    robot: &Robot,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    notes: Vec<String>,
+) -> Panels<WorkspacePlot> {
+    let p = ws.grid.points_per_axis();
+    let panels = slice_layers(ws.grid.resolution)
+        .into_iter()
+        .map(|k| {
+            let z = ws.point(k * p * p).z;
+            let points = layer_points(ws, k);
+            let count = points.len();
+            let mut at = *pose;
+            at.position.z = z;
+            WorkspacePlot {
+                title: format!("slice z = {}", cdpr::plot::tick(z)),
+                notes: vec![format!("{count} of {} points feasible", p * p)],
+                empty_message: (count == 0).then(|| EMPTY_WORKSPACE.to_string()),
+                feasible_points: points,
+                cell: grid_cell(ws),
+                axis_names: Some((length_axis("x"), length_axis("y"))),
+                ..WorkspacePlot::default()
+            }
+            .with_robot(robot, &at)
+        })
+        .collect();
+    Panels {
+        title,
+        notes,
+        columns: 2,
+        panel_size: (640, 680),
+        panels,
+    }
+}
+
+/// Writes a plot (SVG or PNG by extension).
+pub fn save_plot(fig: &impl Figure, path: &Path) -> Result<(), CliError> {
     cdpr::plot::save(fig, path)?;
     Ok(())
 }
@@ -852,6 +962,25 @@ pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvent
     v["volume_convention"] = json!(convention.name());
     if ws.dim == 3 {
         v["volume"] = json!(a);
+    }
+}
+
+/// The grid workspace figure: one chart for planar robots, z-slices for 3-D ones.
+pub fn save_grid_plot(
+    robot: &Robot,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    notes: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    if ws.dim == 3 {
+        save_plot(&workspace_slices(robot, pose, ws, title, notes), path)
+    } else {
+        save_plot(
+            &workspace_plot(robot, pose, Some(ws), Vec::new(), title, notes),
+            path,
+        )
     }
 }
 
@@ -998,18 +1127,29 @@ pub fn run(args: Args) -> Result<(), CliError> {
             .count();
         let holes = ws.boundaries.len() - regions;
         if let (Some(path), Some(pose)) = (&args.plot, &pose) {
+            let (title, setting) = plot_title(
+                &desc.name,
+                "constant-orientation workspace (chord method)",
+                motion,
+                &orientation,
+                w_ext.as_slice(),
+                method,
+            );
             let fig = workspace_plot(
                 robot,
                 pose,
                 None,
                 polys.clone(),
-                format!("{}: chord-method workspace, φ = {phi}", desc.name),
-                vec![format!(
-                    "area {:.4}, {regions} region(s), {holes} hole(s), d = {}; {}",
-                    ws.area,
-                    args.chord,
-                    setup.labels().join(", ")
-                )],
+                title,
+                vec![
+                    setting,
+                    format!(
+                        "area {:.4}, {regions} region(s), {holes} hole(s), chord d = {}; {}",
+                        ws.area,
+                        args.chord,
+                        setup.labels().join(", ")
+                    ),
+                ],
             );
             save_plot(&fig, path)?;
         }
@@ -1097,26 +1237,32 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 path,
             )?;
         } else if let (Some(path), Some(pose)) = (&args.plot, &pose) {
-            let fig = workspace_plot(
+            let (title, setting) = plot_title(
+                &desc.name,
+                "constant-orientation workspace (grid)",
+                motion,
+                &orientation,
+                w_ext.as_slice(),
+                method,
+            );
+            save_grid_plot(
                 robot,
                 pose,
-                Some(&ws),
-                Vec::new(),
-                format!(
-                    "{}: constant-orientation workspace at orientation {} rad",
-                    desc.name,
-                    super::nums(&orientation)
-                ),
-                vec![format!(
-                    "{what} {:.4} {unit} ({} of {} points, m = {m}, {} convention); {}",
-                    ws.measure(args.volume_convention),
-                    ws.feasible_points,
-                    ws.total_points,
-                    args.volume_convention,
-                    setup.labels().join(", ")
-                )],
-            );
-            save_plot(&fig, path)?;
+                &ws,
+                title,
+                vec![
+                    setting,
+                    format!(
+                        "{what} {:.4} {unit} ({} of {} points, m = {m}, {} convention); {}",
+                        ws.measure(args.volume_convention),
+                        ws.feasible_points,
+                        ws.total_points,
+                        args.volume_convention,
+                        setup.labels().join(", ")
+                    ),
+                ],
+                path,
+            )?;
         }
         if args.json {
             let mut v = json!({

@@ -1,8 +1,8 @@
 //! A convex polygon in a plane with origin-centred inscribed shapes and marked points: the
-//! operational force polygon of seed 001 Fig. 4 (available force polygon {W t}, the largest
+//! operational force polygon of Krut, Company & Pierrot 2004, Fig. 4 (available force polygon {W t}, the largest
 //! centred circle, whose radius is the maximum isotropic force of eq. (19), the largest-area
 //! centred ellipse of §IV-C, and the facet the circle touches), or the feasible polygon of
-//! seed 002 Fig. 2 in λ coordinates with its barycentre, the stiffness-oriented solution and the
+//! Picard, Caro, Plestan & Claveau 2020, Fig. 2 in λ coordinates with its barycentre, the stiffness-oriented solution and the
 //! intermediate solutions.
 //!
 //! The axes have equal scales, so circles look round. The legend sits in a column to the right
@@ -98,11 +98,11 @@ fn ellipse_points(b: &[[f64; 2]; 2]) -> Vec<(f64, f64)> {
 }
 
 impl ForcePolygonPlot {
-    /// Seed 001 Fig. 4 for a 2-D available wrench set (point2 robots): the polygon from its
+    /// Krut, Company & Pierrot 2004, Fig. 4 for a 2-D available wrench set (point2 robots): the polygon from its
     /// vertices, the largest origin-centred circle (radius min_k d_k over the supporting
     /// half-spaces n_k · f ≤ d_k, the maximum isotropic force of eq. (19); drawn only when the
     /// origin is strictly inside), the facets whose offset equals that radius (to 10⁻⁷ of the
-    /// polygon's size) highlighted, the origin, and `ellipse` (seed 001 §IV-C) if given. Notes
+    /// polygon's size) highlighted, the origin, and `ellipse` (Krut, Company & Pierrot 2004, §IV-C) if given. Notes
     /// give the values. `None` unless the set is 2-D and bounded.
     pub fn operational(
         aws: &AvailableWrenchSet,
@@ -143,7 +143,7 @@ impl ForcePolygonPlot {
             }
         }
         let mut notes = vec![format!(
-            "{} vertices; largest centred circle: radius {:.1} (maximum isotropic force, eq. 19){}",
+            "{} vertices; largest centred circle: radius {:.1} N (maximum isotropic force, eq. 19){}",
             vertices.len(),
             r,
             if r > 0.0 {
@@ -167,11 +167,11 @@ impl ForcePolygonPlot {
         if let Some(e) = ellipse {
             let [a, b] = e.semi_axes;
             notes.push(if a - b <= 1e-6 * a {
-                format!("largest centred ellipse: the circle (semi-axes {a:.1}, {b:.1})")
+                format!("largest centred ellipse: the circle (semi-axes {a:.1} N, {b:.1} N)")
             } else {
                 format!(
-                    "largest centred ellipse: semi-axes {a:.1}, {b:.1}, major axis at {:.1}°, \
-                     area {:.0}",
+                    "largest centred ellipse: semi-axes {a:.1} N, {b:.1} N, major axis at {:.1}°, \
+                     area {:.0} N²",
                     e.angle.to_degrees(),
                     e.area()
                 )
@@ -182,7 +182,7 @@ impl ForcePolygonPlot {
             notes,
             polygon: vertices,
             polygon_label: "available force polygon {W t}".into(),
-            circle: (r > 0.0).then(|| (r, format!("largest centred circle, r = {r:.1}"))),
+            circle: (r > 0.0).then(|| (r, format!("largest centred circle, r = {r:.1} N"))),
             ellipse: ellipse.map(|e| {
                 let m = e.matrix;
                 (

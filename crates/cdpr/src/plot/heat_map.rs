@@ -1,11 +1,11 @@
-//! A scalar field on a regular grid, coloured, with a colour bar (seed 001 Figs. 9–10 style).
+//! A scalar field on a regular grid, coloured, with a colour bar (Krut, Company & Pierrot 2004, Figs. 9–10 style).
 
 use super::{DrawResult, Figure, colour_map};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Values on a regular (nx × ny) grid over `x_range × y_range`; cells whose value is NaN or
-/// below `blank_below` are left white (seed 001: white where the index is negative).
+/// below `blank_below` are left white (Krut, Company & Pierrot 2004: white where the index is negative).
 #[derive(Debug, Clone)]
 pub struct HeatMap {
     /// Title above the plot.
@@ -51,6 +51,16 @@ impl HeatMap {
             (lo, hi)
         }
     }
+}
+
+/// Pixel offset of a highlight label from its point: left of it (by the text's width, about
+/// 8.5 px per character at 15 px) in the right half of the chart, right of it otherwise; below
+/// it in the upper half, above it otherwise.
+fn highlight_offset(label: &str, right_half: bool, upper_half: bool) -> (i32, i32) {
+    let width = (8.5 * label.chars().count() as f64).ceil() as i32;
+    let dx = if right_half { -10 - width } else { 10 };
+    let dy = if upper_half { 8 } else { -24 };
+    (dx, dy)
 }
 
 impl Figure for HeatMap {
@@ -126,11 +136,14 @@ impl Figure for HeatMap {
         chart.draw_series(self.markers.iter().map(|&(x, y)| {
             EmptyElement::at((x, y)) + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
         }))?;
+        // Labels go on the side of the point with more room, so that none is clipped.
+        let (xmid, ymid) = (0.5 * (xs.0 + xs.1), 0.5 * (ys.0 + ys.1));
         for ((x, y), label) in &self.highlight {
+            let (dx, dy) = highlight_offset(label, *x > xmid, *y > ymid);
             chart.draw_series(std::iter::once(
                 EmptyElement::at((*x, *y))
                     + Circle::new((0, 0), 6, RED.filled())
-                    + Text::new(label.clone(), (8, -16), ("sans-serif", 15).into_font()),
+                    + Text::new(label.clone(), (dx, dy), ("sans-serif", 15).into_font()),
             ))?;
         }
         // Colour bar.
@@ -159,5 +172,23 @@ impl Figure for HeatMap {
             )
         }))?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::highlight_offset;
+
+    /// A label at a point in the right half is drawn to its left, ending before the point.
+    #[test]
+    fn highlight_labels_point_inwards() {
+        let label = "SOTDA optimum 18.730 mm";
+        let (dx, _) = highlight_offset(label, true, false);
+        assert!(
+            dx + (8.5 * label.chars().count() as f64) as i32 <= -8,
+            "{dx}"
+        );
+        assert_eq!(highlight_offset(label, false, false), (10, -24));
+        assert_eq!(highlight_offset(label, false, true).1, 8);
     }
 }

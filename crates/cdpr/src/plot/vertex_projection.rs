@@ -1,4 +1,4 @@
-//! Seed 001's pictures of Krut's vertex projection: the admissible joint force space, the box
+//! Krut, Company & Pierrot's (2004) pictures of Krut's vertex projection: the admissible joint force space, the box
 //! t_min ≤ t ≤ t_max of eq. (3) for three cables in an oblique view (Fig. 3), and the possible
 //! frontiers of step 4, the lines through pairs of projected box vertices with the borders of
 //! test (15) highlighted (Fig. 8).
@@ -199,7 +199,7 @@ where
     Ok(())
 }
 
-/// Seed 001 Fig. 8: candidate frontiers `normal · p = offset` through pairs of projected box
+/// Krut, Company & Pierrot 2004, Fig. 8: candidate frontiers `normal · p = offset` through pairs of projected box
 /// vertices, clipped to the plot, thin and grey, the borders of test (15) thick; the labelled
 /// points (the projected vertices) and the polygon they bound.
 #[derive(Debug, Clone, Default)]
@@ -342,7 +342,7 @@ impl Figure for CandidateLinesPlot {
     }
 }
 
-/// Seed 001 Fig. 3: the box t_min ≤ t ≤ t_max of three tensions in an oblique (orthographic,
+/// Krut, Company & Pierrot 2004, Fig. 3: the box t_min ≤ t ≤ t_max of three tensions in an oblique (orthographic,
 /// axonometric) view: the three visible faces shaded, hidden edges dashed, the eight vertices
 /// labelled with their tensions and the axes t₁, t₂, t₃ drawn from the origin.
 #[derive(Debug, Clone)]

@@ -1,4 +1,4 @@
-//! Workspace figures in the style of the thesis (seed 000 Figs. 6.4, 6.5, 6.8, 6.9): frame anchors,
+//! Workspace figures in the style of the thesis (thesis Figs. 6.4, 6.5, 6.8, 6.9): frame anchors,
 //! the cables drawn to the platform at one pose, the feasible region filled, boundaries outlined.
 
 use super::{DrawResult, Figure};
@@ -30,12 +30,15 @@ pub struct WorkspacePlot {
     /// The frame outline (e.g. the 2 × 2 square), drawn thin.
     pub frame: Vec<(f64, f64)>,
     /// Extra open polylines drawn as chained (dash-dot) lines, e.g. the section line of
-    /// seed 000 Fig. 6.6(a); they count in the view's extent.
+    /// thesis Fig. 6.6(a); they count in the view's extent.
     pub chained_lines: Vec<Vec<(f64, f64)>>,
     /// Points marked with a red ring, e.g. the bifurcation points of a chord boundary.
     pub markers: Vec<(f64, f64)>,
     /// Axis captions (default "x" and "y"), e.g. "y (m)" and "z (m)" for a section x = c.
     pub axis_names: Option<(String, String)>,
+    /// Drawn in a box near the top of the chart, e.g. "no feasible pose in the box": an empty
+    /// result says so instead of looking like a missing drawing.
+    pub empty_message: Option<String>,
 }
 
 const FILL: RGBColor = RGBColor(158, 202, 225);
@@ -66,8 +69,10 @@ impl Figure for WorkspacePlot {
             y0 = y0.min(y);
             y1 = y1.max(y);
         }
-        // Equal scales on both axes: a square view around the content.
-        let half = 0.5 * (x1 - x0).max(y1 - y0) * 1.08;
+        // Equal scales on both axes: a square view around the content, with room outside the
+        // outermost anchors for their labels.
+        let room = if self.anchors.is_empty() { 1.08 } else { 1.22 };
+        let half = 0.5 * (x1 - x0).max(y1 - y0) * room;
         let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
         // Title, then the note lines, then the chart.
         let titled = root.titled(&self.title, ("sans-serif", 20))?;
@@ -150,7 +155,7 @@ impl Figure for WorkspacePlot {
             p.push(self.platform[0]);
             chart.draw_series(std::iter::once(Polygon::new(
                 p.clone(),
-                RGBColor(250, 160, 60).filled(),
+                RGBColor(250, 160, 60).mix(0.55).filled(),
             )))?;
             chart.draw_series(std::iter::once(PathElement::new(p, BLACK.stroke_width(1))))?;
         }
@@ -159,22 +164,75 @@ impl Figure for WorkspacePlot {
                 .iter()
                 .map(|&p| Circle::new(p, 6, RGBColor(200, 30, 30).stroke_width(2))),
         )?;
-        // Anchors that coincide in the drawing (a spatial robot seen along an axis) share one
-        // label, "c1, c5", instead of overprinting each other.
-        let mut labels: Vec<((f64, f64), String)> = Vec::new();
-        for (i, &p) in self.anchors.iter().enumerate() {
-            match labels.iter_mut().find(|(q, _)| *q == p) {
-                Some((_, text)) => text.push_str(&format!(", c{}", i + 1)),
-                None => labels.push((p, format!("c{}", i + 1))),
-            }
-        }
-        chart.draw_series(labels.into_iter().map(|(p, text)| {
-            EmptyElement::at(p)
+        // Anchors that coincide in the drawing (e.g. the upper and lower anchors of a spatial
+        // frame seen from above) share one label; labels sit outside, away from the centroid.
+        let labels = anchor_labels(&self.anchors, 0.01 * half);
+        chart.draw_series(labels.into_iter().map(|((x, y), text, (ox, oy))| {
+            let dx = (ox * 16.0) as i32 - if ox < -0.3 { 7 * text.len() as i32 } else { 0 };
+            let dy = (-oy * 16.0) as i32 - 8;
+            EmptyElement::at((x, y))
                 + Rectangle::new([(-5, -5), (5, 5)], BLACK.filled())
-                + Text::new(text, (7, -18), ("sans-serif", 14).into_font())
+                + Text::new(text, (dx, dy), ("sans-serif", 14).into_font())
         }))?;
+        if let Some(message) = &self.empty_message {
+            let area = chart.plotting_area().strip_coord_spec();
+            let (w, h) = area.dim_in_pixel();
+            let font = ("sans-serif", 18).into_font();
+            let width = 9 * message.chars().count() as i32 + 24;
+            // Near the top, clear of the platform drawn at the centre.
+            let (x, y) = (w as i32 / 2 - width / 2, h as i32 / 8);
+            area.draw(&Rectangle::new(
+                [(x, y), (x + width, y + 36)],
+                WHITE.filled(),
+            ))?;
+            area.draw(&Rectangle::new(
+                [(x, y), (x + width, y + 36)],
+                RGBColor(200, 30, 30).stroke_width(2),
+            ))?;
+            area.draw(&Text::new(message.clone(), (x + 12, y + 8), font))?;
+        }
         Ok(())
     }
+}
+
+/// A drawn anchor position, its label, and the unit direction in which the label goes.
+type AnchorLabel = ((f64, f64), String, (f64, f64));
+
+/// One label per drawn anchor position: anchors closer than `tolerance` share a label
+/// ("c1, c5"); each label comes with the unit direction from the anchors' centroid to the anchor
+/// (where to put the text so that it points away from the frame's inside).
+fn anchor_labels(anchors: &[(f64, f64)], tolerance: f64) -> Vec<AnchorLabel> {
+    let mut groups: Vec<((f64, f64), Vec<usize>)> = Vec::new();
+    for (i, &p) in anchors.iter().enumerate() {
+        match groups
+            .iter_mut()
+            .find(|(q, _)| (q.0 - p.0).hypot(q.1 - p.1) <= tolerance)
+        {
+            Some((_, members)) => members.push(i),
+            None => groups.push((p, vec![i])),
+        }
+    }
+    let n = groups.len().max(1) as f64;
+    let cx = groups.iter().map(|g| g.0.0).sum::<f64>() / n;
+    let cy = groups.iter().map(|g| g.0.1).sum::<f64>() / n;
+    groups
+        .into_iter()
+        .map(|(p, members)| {
+            let text = members
+                .iter()
+                .map(|i| format!("c{}", i + 1))
+                .collect::<Vec<_>>()
+                .join(", ");
+            let (dx, dy) = (p.0 - cx, p.1 - cy);
+            let r = dx.hypot(dy);
+            let dir = if r > 0.0 {
+                (dx / r, dy / r)
+            } else {
+                (0.7, 0.7)
+            };
+            (p, text, dir)
+        })
+        .collect()
 }
 
 /// Splits a polyline into the drawn pieces of a dash–gap–dot–gap pattern with lengths
@@ -270,7 +328,23 @@ impl WorkspacePlot {
 
 #[cfg(test)]
 mod tests {
-    use super::chain_pattern;
+    use super::{anchor_labels, chain_pattern};
+
+    /// The 8 anchors of a spatial frame seen from above: 4 drawn positions, each labelled once
+    /// with both cables, the labels pointing away from the centre.
+    #[test]
+    fn coinciding_anchors_share_one_label() {
+        let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
+        let anchors: Vec<(f64, f64)> = corners.iter().chain(&corners).copied().collect();
+        let labels = anchor_labels(&anchors, 1e-3);
+        assert_eq!(labels.len(), 4);
+        assert_eq!(labels[0].1, "c1, c5");
+        assert_eq!(labels[3].1, "c4, c8");
+        let s = 0.5f64.sqrt();
+        assert!((labels[1].2.0 + s).abs() < 1e-12 && (labels[1].2.1 - s).abs() < 1e-12);
+        // Distinct anchors keep their own labels.
+        assert_eq!(anchor_labels(&corners, 1e-3).len(), 4);
+    }
 
     /// Dash 0.5, gap 0.2, dot 0.1 along a 1.25-long polyline with a corner at x = 0.6: drawn
     /// pieces [0, 0.5], [0.7, 0.8] and [1.0, 1.25] of arc length (the corner falls in a gap).

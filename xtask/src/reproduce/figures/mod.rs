@@ -12,7 +12,7 @@ use std::path::Path;
 pub struct Figure {
     /// File name inside `docs/figures/`.
     pub file: String,
-    /// Which published figure it regenerates, e.g. "Seed 000 Fig. 6.4".
+    /// Which published figure it regenerates, e.g. "Thesis Fig. 6.4".
     pub source: String,
     /// What the published figure shows and how ours compares (a sentence or two).
     pub caption: String,

@@ -1,4 +1,4 @@
-//! Figures of the polytope area: seed 001 Fig. 3 (the admissible joint force space, the tension
+//! Figures of the polytope area: Krut, Company & Pierrot 2004, Fig. 3 (the admissible joint force space, the tension
 //! box of the 3-motor robot), Fig. 4 (the operational force polygon of the 3-motor point robot
 //! with its largest centred circle and ellipse), Fig. 8 (the candidate frontiers of Krut's
 //! step 4 with the borders of test (15)), Fig. 9 (maximum isotropic force of
@@ -27,8 +27,8 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         .parent()
         .and_then(Path::parent)
         .ok_or("figures directory must be <root>/docs/figures")?;
-    let mut out = vec![seed001_fig3(root, dir)?, seed001_fig4(root, dir)?];
-    out.push(seed001_fig8(root, dir)?);
+    let mut out = vec![krut2004_fig3(root, dir)?, krut2004_fig4(root, dir)?];
+    out.push(krut2004_fig8(root, dir)?);
     out.extend(render(root, dir)?);
     Ok(out)
 }
@@ -143,29 +143,30 @@ fn fig4_panel(
     Ok((fig, text))
 }
 
-/// Seed 001 Fig. 4: the available force polygon of krut-3 at the centre and off-centre.
-fn seed001_fig4(root: &Path, out: &Path) -> Result<Figure, String> {
+/// Krut, Company & Pierrot 2004, Fig. 4: the available force polygon of krut-3 at the centre and off-centre.
+fn krut2004_fig4(root: &Path, out: &Path) -> Result<Figure, String> {
     let robot = RobotDescription::load(root.join("examples/robots/krut-3.toml"))
         .map_err(|e| e.to_string())?;
     let (centre, c_text) = fig4_panel(&robot, (0.0, 0.0))?;
     let (off, o_text) = fig4_panel(&robot, FIG4_POSE)?;
     let fig = Panels {
-        title: "Seed 001 Fig. 4: available force polygon {W t : 50 ≤ t ≤ 500 N} of the 3-motor \
+        notes: Vec::new(),
+        title: "Krut, Company & Pierrot 2004, Fig. 4: available force polygon {W t : 50 ≤ t ≤ 500 N} of the 3-motor \
                 robot (krut-3), largest centred circle and ellipse"
             .into(),
         columns: 2,
         panel_size: (1050, 820),
         panels: vec![centre, off],
     };
-    let file = "seed001_fig4_force_polygon.png";
+    let file = "krut2004-fig4-force-polygon.png";
     save(&fig, out.join(file)).map_err(|e| e.to_string())?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 001 Fig. 4".into(),
+        source: "Krut, Company & Pierrot 2004, Fig. 4".into(),
         caption: format!(
             "The paper sketches the admissible operational force polygon (n = 2) with a circle \
              (radius: the largest force the machine can resist in every direction) and an \
-             ellipse (the largest-area centred ellipse, §IV-C). Ours is computed for seed 001's \
+             ellipse (the largest-area centred ellipse, §IV-C). Ours is computed for Krut, Company & Pierrot's (2004) \
              3-motor point robot (examples/robots/krut-3.toml: motors at 1000 mm, 30°, 150°, \
              270°, t ∈ [50, 500] N) at the centre and at an off-centre pose of our choice: the \
              polygon {{W t}} from its vertices (hyperplane shifting; every vertex checked to be \
@@ -196,8 +197,8 @@ fn vertex_label(robot: &RobotDescription, bits: usize) -> String {
     format!("({})", t.join(", "))
 }
 
-/// Seed 001 Fig. 3: the admissible joint force space {t : t_min ≤ t ≤ t_max} of krut-3.
-fn seed001_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
+/// Krut, Company & Pierrot 2004, Fig. 3: the admissible joint force space {t : t_min ≤ t ≤ t_max} of krut-3.
+fn krut2004_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
     let robot = RobotDescription::load(root.join("examples/robots/krut-3.toml"))
         .map_err(|e| e.to_string())?;
     let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
@@ -205,7 +206,8 @@ fn seed001_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
         return Err(format!("krut-3 has {} cables", lo.len()));
     }
     let mut fig = TensionBoxPlot::new([lo[0], lo[1], lo[2]], [hi[0], hi[1], hi[2]]);
-    fig.title = "Seed 001 Fig. 3: admissible joint force space, m = 3 (krut-3)".into();
+    fig.title =
+        "Krut, Company & Pierrot 2004, Fig. 3: admissible joint force space, m = 3 (krut-3)".into();
     fig.notes = vec![
         format!(
             "the box t_min ≤ t ≤ t_max of eq. (3), t_j ∈ [{}, {}] N: 2³ = 8 vertices, 12 edges, \
@@ -220,14 +222,14 @@ fn seed001_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
             vertex_label(&robot, 0)
         ),
     ];
-    let file = "seed001_fig3_tension_box.png";
+    let file = "krut2004-fig3-tension-box.png";
     save(&fig, out.join(file)).map_err(|e| e.to_string())?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 001 Fig. 3".into(),
+        source: "Krut, Company & Pierrot 2004, Fig. 3".into(),
         caption: format!(
             "The paper draws the admissible joint force space, the box (3) t_min ≤ t ≤ t_max, \
-             for m = 3 motors. Ours is the box of seed 001's 3-motor robot \
+             for m = 3 motors. Ours is the box of Krut, Company & Pierrot's (2004) 3-motor robot \
              (examples/robots/krut-3.toml, t_j ∈ [{}, {}] N) in an oblique orthographic view \
              (azimuth {}° from t₁ towards t₂, elevation {}°), with the three visible faces \
              shaded, the three edges at the hidden vertex {} dashed, the 2³ = 8 vertices labelled \
@@ -246,9 +248,9 @@ fn seed001_fig3(root: &Path, out: &Path) -> Result<Figure, String> {
     })
 }
 
-/// Seed 001 Fig. 8: the projected box vertices of krut-3 at the centre, every candidate line
+/// Krut, Company & Pierrot 2004, Fig. 8: the projected box vertices of krut-3 at the centre, every candidate line
 /// through two of them (Krut's step 4) and the borders of test (15).
-fn seed001_fig8(root: &Path, out: &Path) -> Result<Figure, String> {
+fn krut2004_fig8(root: &Path, out: &Path) -> Result<Figure, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let robot =
         RobotDescription::load(root.join("examples/robots/krut-3.toml")).map_err(|e| err(&e))?;
@@ -344,7 +346,7 @@ fn seed001_fig8(root: &Path, out: &Path) -> Result<Figure, String> {
         .map(|v| (v[0], v[1]))
         .collect();
     let fig = CandidateLinesPlot {
-        title: "Seed 001 Fig. 8: all the possible frontiers of the force polygon (krut-3, centre)"
+        title: "Krut, Company & Pierrot 2004, Fig. 8: all the possible frontiers of the force polygon (krut-3, centre)"
             .into(),
         labels: ("f_x (N)".into(), "f_y (N)".into()),
         notes: vec![
@@ -388,15 +390,15 @@ fn seed001_fig8(root: &Path, out: &Path) -> Result<Figure, String> {
         points_label: "projected vertex W τ,\nlabelled τ = (t₁, t₂, t₃) in N".into(),
         origin: false,
     };
-    let file = "seed001_fig8_candidate_frontiers.png";
+    let file = "krut2004-fig8-candidate-frontiers.png";
     save(&fig, out.join(file)).map_err(|e| e.to_string())?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 001 Fig. 8".into(),
+        source: "Krut, Company & Pierrot 2004, Fig. 8".into(),
         caption: format!(
             "The paper draws every hyperplane through n = 2 of the 2^m projected box vertices \
              τ_r (step 4, a line for n = 2): the possible frontiers, among which the border test \
-             (15) keeps the sides. Ours is for seed 001's 3-motor robot \
+             (15) keeps the sides. Ours is for Krut, Company & Pierrot's (2004) 3-motor robot \
              (examples/robots/krut-3.toml, t ∈ [50, 500] N) at the centre pose, drawn in the \
              operational force plane f = W τ = U S τ_r (step 6: a linear image of the τ_r \
              plane, so points, lines and sides correspond), as listed by \
@@ -489,7 +491,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
         centres.push(m.centre);
         let fig = HeatMap {
             title: format!(
-                "Seed 001 Fig. {}: maximum isotropic force, {n} motors",
+                "Krut, Company & Pierrot 2004, Fig. {}: maximum isotropic force, {n} motors",
                 if n == 3 { 9 } else { 10 }
             ),
             labels: ("x (mm)".into(), "y (mm)".into()),
@@ -508,7 +510,9 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
             outlines: Vec::new(),
             highlight: vec![((0.0, 0.0), format!("{:.1} N", m.centre))],
         };
-        let file = format!("polytope-seed001-isotropic-{n}-motors.png");
+        // The paper's Fig. 9 is the 3-motor map, Fig. 10 the 4- to 6-motor ones.
+        let number = if n == 3 { 9 } else { 10 };
+        let file = format!("krut2004-fig{number}-isotropic-force-{n}-motors.png");
         save(&fig, out.join(&file)).map_err(|e| e.to_string())?;
         let common = format!(
             "Our map: {}² positions over [−1000, 1000]² mm, white where the index is negative \
@@ -524,7 +528,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
         figs.push(if n == 3 {
             Figure {
                 file,
-                source: "Seed 001 Fig. 9".into(),
+                source: "Krut, Company & Pierrot 2004, Fig. 9".into(),
                 caption: format!(
                     "The paper maps the maximum isotropic force f_min (eq. 19) of the 3-motor \
                      point robot over its workspace, drawing f_min < 0 in white; the theoretical \
@@ -537,7 +541,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
         } else {
             Figure {
                 file,
-                source: format!("Seed 001 Fig. 10 ({n} motors)"),
+                source: format!("Krut, Company & Pierrot 2004, Fig. 10 ({n} motors)"),
                 caption: format!(
                     "The paper maps f_min for {n} motors regularly spaced on a circle of radius \
                      l (here 1000 mm, first motor at 30°) and observes that more motors give a \
@@ -562,7 +566,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn seed001_maps_are_written_and_grow_with_the_motor_count() {
+    fn krut2004_maps_are_written_and_grow_with_the_motor_count() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
         // POLYTOPE_FIG_DIR keeps the images for inspection.
         let keep = std::env::var_os("POLYTOPE_FIG_DIR");
@@ -586,7 +590,7 @@ mod tests {
     /// Figs. 3 and 8: written, with the hand-derived counts of the centre pose (6 hexagon
     /// vertices ±450 w_j and 2 points at the origin: 15 + 12 + 1 pairs, 15 distinct lines).
     #[test]
-    fn seed001_figs_3_and_8_are_written_with_the_hand_derived_counts() {
+    fn krut2004_figs_3_and_8_are_written_with_the_hand_derived_counts() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
         // POLYTOPE_FIG_DIR keeps the images for inspection.
         let keep = std::env::var_os("POLYTOPE_FIG_DIR");
@@ -594,8 +598,8 @@ mod tests {
             std::env::temp_dir().join(format!("cdpr-fig38-{}", std::process::id()))
         });
         std::fs::create_dir_all(&out).unwrap();
-        let fig3 = seed001_fig3(root, &out).unwrap();
-        let fig8 = seed001_fig8(root, &out).unwrap();
+        let fig3 = krut2004_fig3(root, &out).unwrap();
+        let fig8 = krut2004_fig8(root, &out).unwrap();
         for f in [&fig3, &fig8] {
             assert!(std::fs::metadata(out.join(&f.file)).unwrap().len() > 10_000);
         }
@@ -623,11 +627,11 @@ mod tests {
     /// (hand-derived, see `render`), all six facets touch the circle and the ellipse is that
     /// circle; off-centre a single facet limits.
     #[test]
-    fn seed001_fig4_is_written_with_the_hand_derived_centre() {
+    fn krut2004_fig4_is_written_with_the_hand_derived_centre() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap();
         let out = std::env::temp_dir().join(format!("cdpr-fig4-{}", std::process::id()));
         std::fs::create_dir_all(&out).unwrap();
-        let fig = seed001_fig4(root, &out).unwrap();
+        let fig = krut2004_fig4(root, &out).unwrap();
         assert!(std::fs::metadata(out.join(&fig.file)).unwrap().len() > 10_000);
         let c = &fig.caption;
         assert!(

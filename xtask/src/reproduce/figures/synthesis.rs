@@ -1,4 +1,4 @@
-//! Figures of the synthesis area: seed 000 Figs. 6.10–6.15, the starting (a) and optimised (b)
+//! Figures of the synthesis area: thesis Figs. 6.10–6.15, the starting (a) and optimised (b)
 //! designs of representative runs of Tables 6.5–6.10 with their dextrous workspaces, re-evaluated
 //! from the published angles under the settled conventions (grid over the whole frame, printed
 //! cable order, |det J| ≥ D_min; exact tensions for 3 cables, closed-form minimum ℓ1 for 4).
@@ -63,6 +63,10 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
                         ws.area, ws.feasible_points
                     )],
                     frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+                    axis_names: Some((
+                        "x (thesis length unit)".into(),
+                        "y (thesis length unit)".into(),
+                    )),
                     ..WorkspacePlot::default()
                 }
                 .with_robot(&robot, &Pose::planar(0.0, 0.0, 0.0)),
@@ -79,13 +83,10 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
                 "closed-form minimum-ℓ1 tensions",
             )
         };
-        let file = format!(
-            "seed000_fig{}_synthesis_{n}cable_{}.png",
-            fig.replace('.', "_"),
-            load.to_lowercase()
-        );
+        let file = format!("thesis-fig{fig}-synthesis-{n}-cables-{load}.png");
         save(
             &Panels {
+                notes: Vec::new(),
                 title: format!(
                     "Fig. {fig}: {n}-cable TDPM, {load} (Table {} run {}): dextrous workspace φ ∈ {range}",
                     table.table, run.run
@@ -108,7 +109,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         };
         out.push(Figure {
             file,
-            source: format!("Seed 000 Fig. {fig}"),
+            source: format!("Thesis Fig. {fig}"),
             caption: format!(
                 "{n}-cable TDPM under {load}: (a) the starting design and (b) the optimised design \
                  of the representative run {} of Table {} with their [φ_min, φ_max] dextrous \

@@ -1,5 +1,5 @@
-//! Figures of the tension area: seed 002 Figs. 2, 4 and 5 (stiffness-oriented tension
-//! distribution on our ROWC-like robot) and seed 000 Figs. 6.3 (minimum norm vs constrained ℓ2
+//! Figures of the tension area: Picard, Caro, Plestan & Claveau 2020, Figs. 2, 4 and 5 (stiffness-oriented tension
+//! distribution on our ROWC-like robot) and thesis Figs. 6.3 (minimum norm vs constrained ℓ2
 //! workspaces) and 6.6 ((a) the workspace with a section line, (b) tensions along the section).
 
 use super::Figure;
@@ -25,10 +25,10 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         .ok_or("figures directory must be <root>/docs/figures")?;
     let rowc = RobotDescription::load(root.join("examples/robots/rowc-like-8.toml"))
         .map_err(|e| e.to_string())?;
-    let mut out = seed002_fig4(dir, &rowc)?;
-    out.extend(seed002_fig5(dir, &rowc)?);
-    out.extend(seed000_fig66(dir)?);
-    out.extend(seed000_fig63(dir)?);
+    let mut out = picard2020_fig4(dir, &rowc)?;
+    out.extend(picard2020_fig5(dir, &rowc)?);
+    out.extend(thesis_fig66(dir)?);
+    out.extend(thesis_fig63(dir)?);
     Ok(out)
 }
 
@@ -36,10 +36,10 @@ fn saved(fig: &impl cdpr::plot::Figure, dir: &Path, file: &str) -> Result<(), St
     save(fig, dir.join(file)).map_err(|e| e.to_string())
 }
 
-/// The seed-002 study at X0 with the 50 N lateral load: Fig. 2 (the feasible polygon with the
+/// The Picard, Caro, Plestan & Claveau (2020) study at X0 with the 50 N lateral load: Fig. 2 (the feasible polygon with the
 /// barycentre, the intermediate solution and the stiffness-oriented one), Fig. 4 left (heat
 /// map) and right (ν curve).
-fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, String> {
+fn picard2020_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, String> {
     let err = |e: &dyn std::fmt::Display| e.to_string();
     let pose = Pose::from_coordinates(MotionPattern::Spatial, &[1.5, 0.35, 0.59, 0.0, 0.0, 0.0])
         .map_err(|e| err(&e))?;
@@ -85,7 +85,7 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
     let lo = Vector2::new(lo_v[0], lo_v[1]);
     let (d_bary, d_opt) = (disp(&t_bary), disp(&t_opt));
     let reduction = 100.0 * (d_bary - d_opt) / d_bary;
-    let fig2 = seed002_fig2(dir, &problem, &polygon, &settings, &disp)?;
+    let fig2 = picard2020_fig2(dir, &problem, &polygon, &settings, &disp)?;
     // Grid over the polygon's bounding box.
     const G: usize = 70;
     let (mut a, mut b) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -129,7 +129,7 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
             ((lo.x, lo.y), format!("SOTDA {d_opt:.2} mm")),
         ],
     };
-    saved(&map, dir, "seed002_fig4_left.png")?;
+    saved(&map, dir, "picard2020-fig4-left-displacement-map.png")?;
     let curve: Vec<(f64, f64)> = (0..=20)
         .map(|k| {
             let nu = k as f64 / 20.0;
@@ -146,9 +146,10 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
             points: curve,
         }],
         reference_lines: Vec::new(),
+        gap_label: None,
     };
-    saved(&plot, dir, "seed002_fig4_right.png")?;
-    let setup = "our assumed ROWC-like robot (examples/robots/rowc-like-8.toml: the seed does not \
+    saved(&plot, dir, "picard2020-fig4-right-displacement-vs-nu.png")?;
+    let setup = "our assumed ROWC-like robot (examples/robots/rowc-like-8.toml: the paper does not \
                  publish the ROWC geometry), pose X0 = [1.5, 0.35, 0.59, 0, 0, 0], w_e = 50 N \
                  along y plus the 5 kg platform's weight, E·S = 60 000 N, t ∈ [10, 200] N";
     Ok(vec![
@@ -157,8 +158,8 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
             ..fig2
         },
         Figure {
-            file: "seed002_fig4_left.png".into(),
-            source: "Seed 002 Fig. 4 (left)".into(),
+            file: "picard2020-fig4-left-displacement-map.png".into(),
+            source: "Picard, Caro, Plestan & Claveau 2020, Fig. 4 (left)".into(),
             caption: format!(
                 "Platform displacement |δp_y| = |y·K(t)⁻¹ w_e| for every tension of the feasible \
                  polygon (λ-space, {G}×{G} grid), {setup}. The paper's simulation of ROWC shows a \
@@ -170,8 +171,8 @@ fn seed002_fig4(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
             ),
         },
         Figure {
-            file: "seed002_fig4_right.png".into(),
-            source: "Seed 002 Fig. 4 (right), simulated".into(),
+            file: "picard2020-fig4-right-displacement-vs-nu.png".into(),
+            source: "Picard, Caro, Plestan & Claveau 2020, Fig. 4 (right), simulated".into(),
             caption: format!(
                 "|δp_y| along the intermediate solutions t(ν) = t_bary + ν (t_opt − t_bary), \
                  {setup}. Like the paper's measurement, the displacement decreases with ν; our \
@@ -190,10 +191,10 @@ fn lambda_of(polygon: &FeasiblePolygon, t: &DVector<f64>) -> Vector2<f64> {
     Vector2::new(l[0], l[1])
 }
 
-/// Seed 002 Fig. 2: the feasible polygon in λ coordinates, its barycentre (ν = 0), the
+/// Picard, Caro, Plestan & Claveau 2020, Fig. 2: the feasible polygon in λ coordinates, its barycentre (ν = 0), the
 /// stiffness-oriented solution (ν = 1) and the intermediate solution ν = 0.5, each from the
 /// SOTDA solver with `settings` and that ν; `disp` gives |δp_y| (mm) of a tension vector.
-fn seed002_fig2(
+fn picard2020_fig2(
     dir: &Path,
     problem: &TensionProblem,
     polygon: &FeasiblePolygon,
@@ -276,7 +277,7 @@ fn seed002_fig2(
         ));
     }
     let fig = ForcePolygonPlot {
-        title: "Seed 002 Fig. 2: rowc-like-8 at X0, 50 N along y: intermediate solution in the \
+        title: "Picard, Caro, Plestan & Claveau 2020, Fig. 2: rowc-like-8 at X0, 50 N along y: intermediate solution in the \
                 feasible polygon"
             .into(),
         labels: ("λ1 (N)".into(), "λ2 (N)".into()),
@@ -300,11 +301,11 @@ fn seed002_fig2(
         points,
         ..ForcePolygonPlot::default()
     };
-    let file = "seed002_fig2.png";
+    let file = "picard2020-fig2-feasible-polygon.png";
     saved(&fig, dir, file)?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 002 Fig. 2".into(),
+        source: "Picard, Caro, Plestan & Claveau 2020, Fig. 2".into(),
         caption: format!(
             "The paper sketches the intermediate solution IS = G + ν (SO − G) between the \
              feasible polygon's barycentre G and the stiffness-oriented solution SO, which keeps \
@@ -360,12 +361,16 @@ fn profile_plot(title: String, profile: &TensionProfile, t_min: f64, t_max: f64)
                     .collect(),
             })
             .collect(),
-        reference_lines: vec![(t_min, "t_min".into()), (t_max, "t_max".into())],
+        reference_lines: vec![
+            (t_min, format!("t_min = {} N", cdpr::plot::tick(t_min))),
+            (t_max, format!("t_max = {} N", cdpr::plot::tick(t_max))),
+        ],
+        gap_label: Some("infeasible poses".into()),
     }
 }
 
-/// Seed 002 Fig. 5 right: SOTDA tension profiles for ν = 0 and 0.9 with t_max = 150 N, 30 N.
-fn seed002_fig5(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, String> {
+/// Picard, Caro, Plestan & Claveau 2020, Fig. 5 right: SOTDA tension profiles for ν = 0 and 0.9 with t_max = 150 N, 30 N.
+fn picard2020_fig5(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, String> {
     let path = PosePath::from_coordinates(
         MotionPattern::Spatial,
         &[
@@ -382,8 +387,8 @@ fn seed002_fig5(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
     let load = DVector::from_vec(vec![0.0, 30.0, 0.0, 0.0, 0.0, 0.0]);
     let mut out = Vec::new();
     for (nu, file) in [
-        (0.0, "seed002_fig5_right_nu0.png"),
-        (0.9, "seed002_fig5_right_nu09.png"),
+        (0.0, "picard2020-fig5-right-tensions-nu0.png"),
+        (0.9, "picard2020-fig5-right-tensions-nu0.9.png"),
     ] {
         let mut solver = TensionSolver::sotda(SotdaSettings {
             nu,
@@ -426,7 +431,7 @@ fn seed002_fig5(dir: &Path, rowc: &RobotDescription) -> Result<Vec<Figure>, Stri
         )?;
         out.push(Figure {
             file: file.into(),
-            source: format!("Seed 002 Fig. 5 (right), ν = {nu}"),
+            source: format!("Picard, Caro, Plestan & Claveau 2020, Fig. 5 (right), ν = {nu}"),
             caption: format!(
                 "SOTDA (corners, d = y) cable tensions along a straight path of our ROWC-like \
                  robot (the paper's path is only drawn, not given: ours runs from (0.8, 0.35, \
@@ -462,9 +467,9 @@ fn thesis_platform(c: f64) -> Result<Robot, String> {
     .map_err(|e| e.to_string())
 }
 
-/// Seed 000 Fig. 6.6: (a) the workspace with the section x = 0.54 and (b) the ℓ2 tensions
+/// Thesis Fig. 6.6: (a) the workspace with the section x = 0.54 and (b) the ℓ2 tensions
 /// along it, c = [±1, ±0.1], L1, φ = 0.
-fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
+fn thesis_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
     let robot = thesis_platform(0.1)?;
     let bounds = TensionBounds::uniform(4, 5.0, 100.0).map_err(|e| e.to_string())?;
     let l1 = DVector::from_vec(vec![0.0, -10.0, 0.0]);
@@ -490,19 +495,19 @@ fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
         5.0,
         100.0,
     );
-    plot.labels.0 = "y".into();
+    plot.labels.0 = "y (thesis length unit)".into();
     for s in &mut plot.series {
         for (p, &yk) in s.points.iter_mut().zip(&y) {
             p.0 = yk;
         }
     }
-    saved(&plot, dir, "seed000_fig6_6b.png")?;
-    let fig_a = seed000_fig66a(dir, &robot, &bounds, &l1, (y[first_out - 1], y[first_out]))?;
+    saved(&plot, dir, "thesis-fig6.6b-tensions-along-section.png")?;
+    let fig_a = thesis_fig66a(dir, &robot, &bounds, &l1, (y[first_out - 1], y[first_out]))?;
     Ok(vec![
         fig_a,
         Figure {
-            file: "seed000_fig6_6b.png".into(),
-            source: "Seed 000 Fig. 6.6(b)".into(),
+            file: "thesis-fig6.6b-tensions-along-section.png".into(),
+            source: "Thesis Fig. 6.6(b)".into(),
             caption: format!(
                 "Constrained ℓ2 tensions t1–t4 along x = 0.54, y ∈ [−0.2, 0.05] (2501 samples, \
              0.1 mm apart), 4-cable manipulator with c = [±1, ±0.1], Table 6.1 platform, load L1, \
@@ -528,11 +533,11 @@ fn seed000_fig66(dir: &Path) -> Result<Vec<Figure>, String> {
 /// The section line of Fig. 6.6.
 const SECTION_X: f64 = 0.54;
 
-/// Seed 000 Fig. 6.6(a): the φ = 0 workspace of the c = [±1, ±0.1] manipulator under L1
+/// Thesis Fig. 6.6(a): the φ = 0 workspace of the c = [±1, ±0.1] manipulator under L1
 /// (constrained ℓ2 tensions in `bounds`, l_min = 0.1) by the chord method, checked against a fine
 /// grid, with the section x = 0.54 of Fig. 6.6(b) as a chained line. `profile_exit` brackets
 /// where the 6.6(b) profile leaves the workspace (last feasible y, first infeasible y).
-fn seed000_fig66a(
+fn thesis_fig66a(
     dir: &Path,
     robot: &Robot,
     bounds: &TensionBounds,
@@ -613,7 +618,7 @@ fn seed000_fig66a(
         return Err("fig 6.6(a): the drawn pose is outside the workspace".into());
     }
     let fig = WorkspacePlot {
-        title: "Seed 000 Fig. 6.6(a): c = [±1, ±0.1], L1, φ = 0, constrained ℓ2, t ∈ [5, 100]"
+        title: "Thesis Fig. 6.6(a): c = [±1, ±0.1], L1, φ = 0, constrained ℓ2, t ∈ [5, 100]"
             .into(),
         notes: vec![
             format!(
@@ -637,14 +642,15 @@ fn seed000_fig66a(
         fill_boundaries: true,
         frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
         chained_lines: vec![vec![(SECTION_X, -1.0), (SECTION_X, 1.0)]],
+        axis_names: Some(("x (thesis length unit)".into(), "y (thesis length unit)".into())),
         ..WorkspacePlot::default()
     }
     .with_robot(robot, &Pose::planar(pose.0, pose.1, 0.0));
-    let file = "seed000_fig6_6a.png";
+    let file = "thesis-fig6.6a-workspace-section.png";
     saved(&fig, dir, file)?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.6(a)".into(),
+        source: "Thesis Fig. 6.6(a)".into(),
         caption: format!(
             "The φ = 0 constant-orientation workspace under load L1 (f_y = −10) of the 4-cable \
              manipulator with c¹ = [1, 0.1], c² = [−1, 0.1], c³ = [−1, −0.1], c⁴ = [1, −0.1] and \
@@ -673,8 +679,8 @@ fn seed000_fig66a(
     })
 }
 
-/// Seed 000 Fig. 6.3: constant-orientation workspaces with pinv (minimum norm) vs ℓ2 tensions.
-fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
+/// Thesis Fig. 6.3: constant-orientation workspaces with pinv (minimum norm) vs ℓ2 tensions.
+fn thesis_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
     let robot = thesis_platform(0.15)?;
     let bounds = TensionBounds::uniform(4, 5.0, 100.0).map_err(|e| e.to_string())?;
     let l1 = DVector::from_vec(vec![0.0, -10.0, 0.0]);
@@ -683,9 +689,9 @@ fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
     let (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
     let mut out = Vec::new();
     for (phi, file) in [
-        (0.0, "seed000_fig6_3_phi0.png"),
-        (0.2, "seed000_fig6_3_phi0.2.png"),
-        (0.4, "seed000_fig6_3_phi0.4.png"),
+        (0.0, "thesis-fig6.3-minimum-norm-vs-l2-phi0.png"),
+        (0.2, "thesis-fig6.3-minimum-norm-vs-l2-phi0.2.png"),
+        (0.4, "thesis-fig6.3-minimum-norm-vs-l2-phi0.4.png"),
     ] {
         // Simple parallel grid: rows split over two threads. 0 = neither, 1 = ℓ2 only, 2 = both.
         let mut values = vec![f64::NAN; NX * NY];
@@ -729,7 +735,10 @@ fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
         }
         let map = HeatMap {
             title: format!("c = [±1, ±0.15], L1, φ = {phi}: yellow pinv and ℓ2, purple ℓ2 only"),
-            labels: ("x".into(), "y".into()),
+            labels: (
+                "x (thesis length unit)".into(),
+                "y (thesis length unit)".into(),
+            ),
             value_label: "1 = ℓ2 only, 2 = pinv and ℓ2".into(),
             x_range: (x0, x1),
             y_range: (y0, y1),
@@ -743,7 +752,7 @@ fn seed000_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
         saved(&map, dir, file)?;
         out.push(Figure {
             file: file.into(),
-            source: format!("Seed 000 Fig. 6.3, φ = {phi}"),
+            source: format!("Thesis Fig. 6.3, φ = {phi}"),
             caption: format!(
                 "Constant-orientation workspaces of the 4-cable manipulator with c = [±1, ±0.15], \
                  Table 6.1 platform, t ∈ [5, 100], load L1 (the thesis does not name the load; we \
@@ -770,24 +779,24 @@ mod tests {
     /// the boundary crossing x = 0.54 where the 6.6(b) profile leaves the workspace) and
     /// Fig. 2's (ν = 0 is the centroid, ν = 0.5 the midpoint, all points feasible) pass.
     #[test]
-    fn seed000_fig66_and_seed002_fig2_are_written() {
+    fn thesis_fig66_and_picard2020_fig2_are_written() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
         let dir = std::env::temp_dir().join(format!("cdpr-fig66-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let figs = super::seed000_fig66(&dir).unwrap();
-        assert_eq!(figs[0].file, "seed000_fig6_6a.png");
+        let figs = super::thesis_fig66(&dir).unwrap();
+        assert_eq!(figs[0].file, "thesis-fig6.6a-workspace-section.png");
         assert!(
             figs[0].caption.contains("1 region(s)"),
             "{}",
             figs[0].caption
         );
         let rowc = RobotDescription::load(root.join("examples/robots/rowc-like-8.toml")).unwrap();
-        let figs = super::seed002_fig4(&dir, &rowc).unwrap();
-        assert_eq!(figs[0].file, "seed002_fig2.png");
+        let figs = super::picard2020_fig4(&dir, &rowc).unwrap();
+        assert_eq!(figs[0].file, "picard2020-fig2-feasible-polygon.png");
         for f in [
-            "seed000_fig6_6a.png",
-            "seed000_fig6_6b.png",
-            "seed002_fig2.png",
+            "thesis-fig6.6a-workspace-section.png",
+            "thesis-fig6.6b-tensions-along-section.png",
+            "picard2020-fig2-feasible-polygon.png",
         ] {
             assert!(
                 std::fs::metadata(dir.join(f)).unwrap().len() > 10_000,

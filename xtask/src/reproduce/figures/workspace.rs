@@ -1,4 +1,4 @@
-//! Figures of the workspace area: seed 000 Figs. 6.4 and 6.5 (constant-orientation workspaces of
+//! Figures of the workspace area: thesis Figs. 6.4 and 6.5 (constant-orientation workspaces of
 //! the 3- and 4-cable manipulators by discretisation, Algorithm 6.2) and Figs. 6.8 and 6.9 (the
 //! same workspaces by the chord method, §6.4.3), each a 3 × 3 grid of panels: rows L1–L3
 //! (Table 6.3), columns three orientations φ.
@@ -17,7 +17,7 @@ use nalgebra::DVector;
 use std::path::Path;
 
 /// Orientations of the columns: Fig. 6.4 (3 cables) as printed; Fig. 6.5 (4 cables) does not
-/// list its cases in the seed text, we choose φ ∈ {−0.2, 0, 0.2} (the synthesis range).
+/// list its cases in the thesis chapter, we choose φ ∈ {−0.2, 0, 0.2} (the synthesis range).
 const PHI_3: [f64; 3] = [0.0, 0.05, 0.1];
 const PHI_4: [f64; 3] = [-0.2, 0.0, 0.2];
 const LOADS: [&str; 3] = ["L1", "L2", "L3"];
@@ -39,7 +39,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     let chord4 = chords(&r4.robot, 4, &PHI_4)?;
     let mut out = Vec::new();
 
-    let file = "seed000_fig6_4_workspaces_3cable_grid.png";
+    let file = "thesis-fig6.4-workspaces-3-cables-grid.png";
     draw(
         dir,
         file,
@@ -51,7 +51,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     )?;
     out.push(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.4".into(),
+        source: "Thesis Fig. 6.4".into(),
         caption: format!(
             "Constant-orientation workspaces of the 3-cable TDPM (Tables 6.1, 6.2; t ∈ [5, 100], \
              l_min = 0.1, |det J| ≥ 10⁻³, exact tensions) by discretisation with m = 50 over the \
@@ -63,7 +63,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         ),
     });
 
-    let file = "seed000_fig6_5_workspaces_4cable_grid.png";
+    let file = "thesis-fig6.5-workspaces-4-cables-grid.png";
     draw(
         dir,
         file,
@@ -75,11 +75,11 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     )?;
     out.push(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.5".into(),
+        source: "Thesis Fig. 6.5".into(),
         caption: format!(
             "Constant-orientation workspaces of the 4-cable TDPM by discretisation, m = 50 over \
              the anchors' bounding box [−1, 1] × [−0.5, 0.5], constrained ℓ2 tensions (eq. 6.17), \
-             l_min = 0.1. The seed text does not list the cases of this figure: we chose \
+             l_min = 0.1. The thesis chapter does not list the cases of this figure: we chose \
              φ = −0.2, 0, 0.2 (columns) × L1–L3 (rows). As the thesis observes, the 4-cable \
              workspace is larger than the 3-cable one and less sensitive to orientation and \
              load. The flat edges at y = −0.5 are the search box of Algorithm 6.2 step 2 (the \
@@ -88,7 +88,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         ),
     });
 
-    let file = "seed000_fig6_8_workspaces_3cable_chord.png";
+    let file = "thesis-fig6.8-workspaces-3-cables-chord.png";
     draw(
         dir,
         file,
@@ -100,7 +100,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     )?;
     out.push(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.8".into(),
+        source: "Thesis Fig. 6.8".into(),
         caption: format!(
             "The cases of Fig. 6.4 by the chord method: d = 0.05, except d = 0.03 at φ = 0 under \
              L2 and L3 and d = 0.02 for L1 at φ = 0.05 (the thesis uses 0.02 for the small \
@@ -114,7 +114,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
         ),
     });
 
-    let file = "seed000_fig6_9_workspaces_4cable_chord.png";
+    let file = "thesis-fig6.9-workspaces-4-cables-chord.png";
     draw(
         dir,
         file,
@@ -126,7 +126,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     )?;
     out.push(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.9".into(),
+        source: "Thesis Fig. 6.9".into(),
         caption: format!(
             "The cases of our Fig. 6.5 by the chord method with d = 0.05 (d = 0.02 for L3 at \
              φ = −0.2, as in the thesis), constrained ℓ2 tensions. The thesis needed 30 s per \
@@ -141,7 +141,7 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     Ok(out)
 }
 
-/// Seed 000 Fig. 6.2: the 3- and 4-cable manipulators of Tables 6.1 and 6.2, drawn from the
+/// Thesis Fig. 6.2: the 3- and 4-cable manipulators of Tables 6.1 and 6.2, drawn from the
 /// robot files at one pose.
 fn manipulators_figure(dir: &Path, r3: &Robot, r4: &Robot) -> Result<Figure, String> {
     const POSE: (f64, f64, f64) = (0.2, -0.1, 0.3);
@@ -189,21 +189,26 @@ fn manipulators_figure(dir: &Path, r3: &Robot, r4: &Robot) -> Result<Figure, Str
                 .map(|c| (c.attachment_point.x, c.attachment_point.y))
                 .collect(),
             frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+            axis_names: Some((
+                "x (thesis length unit)".into(),
+                "y (thesis length unit)".into(),
+            )),
             ..WorkspacePlot::default()
         }
         .with_robot(robot, &pose))
     };
     let fig = Panels {
+        notes: Vec::new(),
         title: "Fig. 6.2: the planar tendon-driven manipulators (Tables 6.1, 6.2)".into(),
         columns: 2,
         panel_size: (620, 660),
         panels: vec![panel(r3)?, panel(r4)?],
     };
-    let file = "seed000_fig6_2_manipulators.png";
+    let file = "thesis-fig6.2-manipulators.png";
     save(&fig, dir.join(file)).map_err(|e| e.to_string())?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.2".into(),
+        source: "Thesis Fig. 6.2".into(),
         caption: format!(
             "The 3- and 4-cable manipulators of the thesis, drawn from examples/robots/tdpm-3.toml \
              and tdpm-4.toml: frame anchors c^i (Table 6.2) on the 2 × 2 frame, platform \
@@ -238,7 +243,7 @@ fn bifurcation_cases(robot: &Robot) -> Result<[ChordWorkspace; 3], String> {
     ])
 }
 
-/// Seed 000 Fig. 6.7: why the chord method needs its bifurcation-point procedure. The 3-cable
+/// Thesis Fig. 6.7: why the chord method needs its bifurcation-point procedure. The 3-cable
 /// workspace under L1 at φ = 0.05 by chords of d = 0.1 (twice the thesis' d, so that the effect
 /// shows), (a) without refinement and (b) with the chord halved near sharp turns (Appendix C,
 /// reconstructed: `ChordSettings::refinement_levels`), against a fine reference (d = 0.005).
@@ -291,11 +296,16 @@ fn bifurcation_figure(dir: &Path, robot: &Robot) -> Result<Figure, String> {
                 w.evaluations
             )],
             frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+            axis_names: Some((
+                "x (thesis length unit)".into(),
+                "y (thesis length unit)".into(),
+            )),
             ..WorkspacePlot::default()
         }
         .with_robot(robot, &Pose::planar(0.0, 0.0, FIG67_PHI))
     };
     let fig = Panels {
+        notes: Vec::new(),
         title:
             "Fig. 6.7: bifurcation points and the chord method (3 cables, L1, φ = 0.05, d = 0.2)"
                 .into(),
@@ -310,11 +320,11 @@ fn bifurcation_figure(dir: &Path, robot: &Robot) -> Result<Figure, String> {
             ),
         ],
     };
-    let file = "seed000_fig6_7_bifurcation_points.png";
+    let file = "thesis-fig6.7-bifurcation-points.png";
     save(&fig, dir.join(file)).map_err(|e| e.to_string())?;
     Ok(Figure {
         file: file.into(),
-        source: "Seed 000 Fig. 6.7".into(),
+        source: "Thesis Fig. 6.7".into(),
         caption: format!(
             "The chord method maps the boundary with chords of fixed length d, so a boundary \
              corner (a bifurcation point, where two constraints meet) is cut off (thesis \
@@ -323,7 +333,7 @@ fn bifurcation_figure(dir: &Path, robot: &Robot) -> Result<Figure, String> {
              line: a fine reference boundary (d = 0.005, A = {:.4}, {} regions). (a) Chords of d \
              only: A = {:.4}, {:.2} % off, {} region(s) ({} walk(s) abandoned: a region thinner \
              than the chord cannot be followed). (b) With our reconstruction of the thesis' bifurcation \
-             procedure (its Appendix C is not in the seed): the chord is halved, down to d/2⁶, \
+             procedure (its Appendix C is not in the thesis chapter): the chord is halved, down to d/2⁶, \
              where the boundary turns by more than 0.3 rad, and the vertex that remains at the \
              finest chord is reported as a bifurcation point: A = {:.4}, {:.2} % off, {} \
              bifurcation point(s) marked.",
@@ -447,6 +457,10 @@ fn draw(
                     boundaries,
                     notes: vec![note],
                     frame: vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)],
+                    axis_names: Some((
+                        "x (thesis length unit)".into(),
+                        "y (thesis length unit)".into(),
+                    )),
                     ..WorkspacePlot::default()
                 }
                 .with_robot(robot, &Pose::planar(0.0, 0.0, phi)),
@@ -454,6 +468,7 @@ fn draw(
         }
     }
     let fig = Panels {
+        notes: Vec::new(),
         title: title.into(),
         columns: 3,
         panel_size: PANEL,
