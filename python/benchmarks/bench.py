@@ -18,7 +18,8 @@
    t_min ≤ t ≤ t_max solved pose by pose with scipy's SLSQP (scipy.optimize.minimize), given W
    and w precomputed (so the scipy side is not charged for kinematics). Both answers are compared.
 
-Timings are medians of repeated runs (time.perf_counter).
+Timings are medians of repeated runs (time.perf_counter, and process CPU time for [1]);
+per-call figures are the fastest of repeated runs (the least disturbed on a busy machine).
 """
 
 import argparse
@@ -59,8 +60,15 @@ def median_time(f, repeat):
 
 
 def per_call(f, calls=20000, repeat=7):
-    """Median over `repeat` runs of the mean time of one call (s)."""
-    return median_time(lambda: [f() for _ in range(calls)], repeat) / calls
+    """Fastest of `repeat` runs of the mean time of one call (s): the least disturbed by other
+    processes on a busy machine."""
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        for _ in range(calls):
+            f()
+        times.append(time.perf_counter() - t0)
+    return min(times) / calls
 
 
 def scipy_l2(w, w_ext, t_min, t_max):
@@ -95,23 +103,27 @@ def main():
 
     # 1. IK + W of a large batch, alternating with the plain Rust loop (same process).
     q = poses_8(robot, args.ik_poses)
-    ours, rust = [], []
+    ours, rust, ours_cpu, rust_cpu = [], [], [], []
     for _ in range(args.repeat):
-        t0 = time.perf_counter()
+        c0, t0 = time.process_time(), time.perf_counter()
         robot.inverse_kinematics(q)
         ours.append(time.perf_counter() - t0)
+        ours_cpu.append(time.process_time() - c0)
+        c0 = time.process_time()
         rust.append(_ik_reference_loop(robot, q))
+        rust_cpu.append(time.process_time() - c0)
     t_ik, t_rust = statistics.median(ours), statistics.median(rust)
-    print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables): median "
+    c_ik, c_rust = statistics.median(ours_cpu), statistics.median(rust_cpu)
+    print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables): median wall "
           f"{t_ik * 1e3:.1f} ms = {t_ik / args.ik_poses * 1e9:.0f} ns/pose; the Rust loop on one "
           f"thread {t_rust * 1e3:.1f} ms = {t_rust / args.ik_poses * 1e9:.0f} ns/pose; "
-          f"package / Rust = {t_ik / t_rust:.2f}")
+          f"package / Rust = {t_ik / t_rust:.2f} (wall), {c_ik / c_rust:.2f} (CPU time: "
+          f"{c_ik * 1e3:.0f} ms vs {c_rust * 1e3:.0f} ms)")
 
     # 2. Per-call overhead of one pose: the call minus the Rust loop's time per pose.
     one = q[0].copy()
     small = q[:100_000]
-    per_pose = statistics.median(_ik_reference_loop(robot, small) for _ in range(args.repeat))
-    per_pose /= len(small)
+    per_pose = min(_ik_reference_loop(robot, small) for _ in range(args.repeat)) / len(small)
     t_call = per_call(lambda: robot.inverse_kinematics(one))
     t_dof = per_call(lambda: robot.dof)
     t_np = per_call(lambda: np.empty(3))

@@ -14,6 +14,7 @@ from . import sweep
 from ._cdpr import (
     METHODS,
     CapacityResult,
+    ForwardResult,
     IsotropicResult,
     KinematicsResult,
     Robot,
@@ -27,6 +28,7 @@ from ._cdpr import (
 __all__ = [
     "METHODS",
     "CapacityResult",
+    "ForwardResult",
     "IsotropicResult",
     "KinematicsResult",
     "Robot",

@@ -22,6 +22,15 @@ class KinematicsResult:
     wrench_matrix: FloatArray
     attachment_points: FloatArray
 
+class ForwardResult:
+    pose: FloatArray
+    residual: Union[FloatArray, float]
+    iterations: Union[IntArray, int]
+    converged: Union[BoolArray, bool]
+    status: Union[List[str], str]
+    min_singular_value: Union[FloatArray, float]
+    solutions: Optional[FloatArray]
+
 class TensionResult:
     tensions: FloatArray
     feasible: Union[BoolArray, bool]
@@ -133,7 +142,14 @@ class Robot:
     def warnings(self) -> List[str]: ...
     def gravity_wrench(self, poses: ArrayLike) -> FloatArray: ...
     def inverse_kinematics(self, poses: ArrayLike) -> KinematicsResult: ...
-    def forward_kinematics(self, lengths: ArrayLike, guess: Optional[ArrayLike] = None) -> None: ...
+    def forward_kinematics(
+        self,
+        lengths: ArrayLike,
+        guess: Optional[ArrayLike] = None,
+        *,
+        tolerance: float = 1e-9,
+        max_iterations: int = 100,
+    ) -> ForwardResult: ...
     def tensions(
         self,
         poses: ArrayLike,

@@ -10,6 +10,7 @@
 //! `RuntimeError` so that no panic unwinds into the interpreter.
 
 mod arrays;
+mod forward;
 mod kinematics;
 mod polytope;
 mod robot;
@@ -175,6 +176,7 @@ fn thread_count() -> usize {
 fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<robot::Robot>()?;
     m.add_class::<kinematics::KinematicsResult>()?;
+    m.add_class::<forward::ForwardResult>()?;
     m.add_class::<tension::TensionResult>()?;
     m.add_class::<polytope::CapacityResult>()?;
     m.add_class::<polytope::IsotropicResult>()?;

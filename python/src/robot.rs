@@ -424,21 +424,21 @@ impl Robot {
         )
     }
 
-    /// Forward kinematics: the pose at which the cables have the given lengths.
-    ///
-    /// Not available yet: the solver is being written in ``cdpr-kinematics`` (issue 14); this
-    /// method raises ``NotImplementedError`` until it lands.
-    #[pyo3(signature = (lengths, guess=None))]
+    /// Forward kinematics: the pose whose cable lengths are ``lengths`` (m; ``(n,)`` or a batch
+    /// ``(N, n)``), by Levenberg–Marquardt (Pott 2018) from ``guess`` (``(DOF,)`` for every row
+    /// or ``(N, DOF)``) or, without one, from a fixed set of starts (every distinct solution in
+    /// ``solutions``). A pose solves the lengths when max |l_i − L_i| ≤ ``tolerance`` (m).
+    /// Unsolved lengths are answers (``status``), not errors.
+    #[pyo3(signature = (lengths, guess=None, *, tolerance=1e-9, max_iterations=100))]
     fn forward_kinematics(
         &self,
+        py: Python<'_>,
         lengths: &Bound<'_, PyAny>,
         guess: Option<&Bound<'_, PyAny>>,
-    ) -> PyResult<()> {
-        let _ = (lengths, guess);
-        Err(pyo3::exceptions::PyNotImplementedError::new_err(
-            "forward_kinematics is not available yet: the forward-kinematics solver of \
-             cdpr-kinematics (issue 14) has not landed in this build",
-        ))
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> PyResult<crate::forward::ForwardResult> {
+        crate::forward::forward_kinematics(self, py, lengths, guess, tolerance, max_iterations)
     }
 
     /// Capacity margin (Guay et al. 2014) of a required wrench set at one pose or a batch.

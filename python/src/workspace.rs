@@ -37,7 +37,8 @@ use pyo3::prelude::*;
 /// fields above plus the closed, outward-oriented triangle mesh of the boundary (marching cubes
 /// with vertices bisected onto the boundary): ``vertices`` (V, 3) (m), ``faces`` (T, 3) vertex
 /// indices, ``surface_area`` (m², box caps included), and ``volume`` from the divergence
-/// theorem (m³; ``area`` is the same number). Always: ``criteria`` (labels), ``method`` (tension method),
+/// theorem (m³; ``area`` stays the grid's count, as ``cdpr workspace --boundary mesh`` gives
+/// it). Always: ``criteria`` (labels), ``method`` (tension method),
 /// ``external_wrench`` (DOF,), ``box`` (the region searched).
 #[pyclass(module = "cdpr", frozen, get_all)]
 pub struct WorkspaceResult {
@@ -429,7 +430,6 @@ pub fn workspace(
             out.vertices = Some(to_numpy(py, &[mesh.vertices.len(), 3], v).unbind());
             out.faces = Some(to_numpy(py, &[mesh.triangles.len(), 3], f).unbind());
             out.surface_area = Some(mesh.surface_area);
-            out.area = mesh.volume;
             out.volume = Some(mesh.volume);
         }
         "chord" => {

@@ -165,10 +165,34 @@ def test_trajectory_matches_cli(cli, robot_path):
         robot.trajectory([a])
 
 
-def test_forward_kinematics_says_it_is_not_there_yet(robot_path):
-    robot = cdpr.Robot.load(robot_path("tdpm-4"))
-    with pytest.raises(NotImplementedError, match="forward"):
-        robot.forward_kinematics(robot.inverse_kinematics([0, 0, 0]).lengths)
+@pytest.mark.parametrize("name", ["tdpm-4", "ipanema-like-8"])
+def test_forward_kinematics_matches_cli_and_inverts_ik(cli, robot_path, name):
+    path = robot_path(name)
+    robot = cdpr.Robot.load(path)
+    truth = random_poses(robot, 5, seed=10)
+    lengths = robot.inverse_kinematics(truth).lengths
+    guess = truth + 0.05  # one guess per row, near the truth (a local solver)
+    res = robot.forward_kinematics(lengths, guess)
+    assert res.pose.shape == truth.shape and res.residual.shape == (5,)
+    np.testing.assert_allclose(res.pose, truth, atol=1e-7)
+    assert list(res.status) == ["solved"] * 5 and np.all(res.residual <= 1e-9)
+    np.testing.assert_allclose(robot.inverse_kinematics(res.pose).lengths, lengths, atol=1e-9)
+    for k in range(2):
+        ref = cli("forward", path, lengths=lengths[k], guess=guess[k])
+        np.testing.assert_allclose(res.pose[k], ref["pose"], atol=1e-12)
+        assert res.status[k] == ref["status"] and res.iterations[k] == ref["iterations"]
+        assert res.residual[k] == pytest.approx(ref["residual"], abs=1e-15)
+        assert res.min_singular_value[k] == pytest.approx(ref["min_singular_value"], rel=1e-9)
+    # Without a guess: the multi-start of `cdpr forward`, every distinct solution.
+    one = robot.forward_kinematics(lengths[0])
+    ref = cli("forward", path, lengths=lengths[0])
+    assert one.status == ref["status"] and isinstance(one.residual, float)
+    np.testing.assert_allclose(one.pose, ref["pose"], atol=1e-9)
+    assert one.solutions.shape == (len(ref["solutions"]), robot.dof)
+    with pytest.raises(ValueError, match=r"lengths: expected shape"):
+        robot.forward_kinematics(lengths[:, :2])
+    with pytest.raises(ValueError, match="finite"):
+        robot.forward_kinematics(np.full(robot.n_cables, np.nan))
 
 
 def test_workspace_mesh_is_closed_and_measures_the_grid(robot_path):
@@ -188,6 +212,17 @@ def test_workspace_mesh_is_closed_and_measures_the_grid(robot_path):
     assert res.volume == pytest.approx(grid.volume, rel=0.25)
     with pytest.raises(ValueError, match="space|spatial|point3"):
         cdpr.Robot.load(robot_path("tdpm-4")).workspace(boundary="mesh")
+
+
+def test_workspace_mesh_matches_cli(cli, robot_path):
+    path = robot_path("ipanema-like-8")
+    res = cdpr.Robot.load(path).workspace(resolution=6, boundary="mesh", criteria="tension")
+    ref = cli("workspace", path, grid=6, boundary="mesh", criteria="tension")
+    assert res.volume == pytest.approx(ref["volume"], rel=1e-12)
+    assert res.area == pytest.approx(ref["area"], rel=1e-12)
+    assert res.surface_area == pytest.approx(ref["surface_area"], rel=1e-12)
+    np.testing.assert_allclose(res.vertices, ref["vertices"], atol=1e-12)
+    np.testing.assert_array_equal(res.faces, ref["triangles"])
 
 
 DATA = pathlib.Path(__file__).resolve().parents[2] / "crates" / "cdpr-io" / "tests" / "data"

@@ -1,0 +1,159 @@
+//! # Forward kinematics over a batch
+//!
+//! From measured cable lengths to the platform pose by Levenberg–Marquardt
+//! ([`cdpr_kinematics::ForwardKinematics`]; Pott 2018), from a guess or, without one, from the
+//! solver's fixed set of starts (every distinct solution kept, the best first). Every answer is
+//! certified: the residual max |l_i(pose) − L_i| recomputed at the pose, the iterations, the
+//! status, and the smallest singular value of the Jacobian (the `cdpr forward` command).
+
+use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::robot::Robot;
+use crate::{map_poses, run_batch, value_error};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, Pose};
+use numpy::PyArrayDyn;
+use pyo3::prelude::*;
+
+/// Forward-kinematics answers.
+///
+/// ``pose`` (N, DOF): the best pose found (motion-pattern coordinates, m and rad);
+/// ``residual`` (N,): max |l_i(pose) − L_i| (m); ``iterations`` (N,); ``converged`` (N,) bool;
+/// ``status``: list of ``"solved"``, ``"no pose within tolerance"`` or ``"did not converge"``;
+/// ``min_singular_value`` (N,): σ_min of the Jacobian at the pose (pose error ≲ length error /
+/// σ_min); ``solutions``: for one set of lengths without a guess, every distinct pose found
+/// (S, DOF), best first (else None). One set of lengths in gives scalars and ``pose`` (DOF,).
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct ForwardResult {
+    pub pose: Py<PyArrayDyn<f64>>,
+    pub residual: Py<PyAny>,
+    pub iterations: Py<PyAny>,
+    pub converged: Py<PyAny>,
+    pub status: Py<PyAny>,
+    pub min_singular_value: Py<PyAny>,
+    pub solutions: Option<Py<PyArrayDyn<f64>>>,
+}
+
+#[pymethods]
+impl ForwardResult {
+    fn __repr__(&self, py: Python<'_>) -> String {
+        format!(
+            "ForwardResult(status={}, residual={})",
+            self.status.bind(py),
+            self.residual.bind(py)
+        )
+    }
+}
+
+pub fn forward_kinematics(
+    robot: &Robot,
+    py: Python<'_>,
+    lengths: &Bound<'_, PyAny>,
+    guess: Option<&Bound<'_, PyAny>>,
+    tolerance: f64,
+    max_iterations: usize,
+) -> PyResult<ForwardResult> {
+    let geo = robot.geometry();
+    let motion = geo.motion();
+    let (dof, n) = (geo.dof(), geo.cable_count());
+    let settings = ForwardSettings {
+        tolerance,
+        max_iterations,
+    };
+    // Validates the settings and n ≥ DOF once, with the library's message.
+    ForwardKinematics::new(geo, settings).map_err(value_error)?;
+    let rows = Rows::new(lengths, n, "lengths", "measured cable lengths, m")?;
+    let count = rows.count;
+    let data = rows.array.data();
+    let garr = guess.map(|g| FloatArray::new(g, "guess")).transpose()?;
+    let guesses: Option<(Vec<Pose>, bool)> = match &garr {
+        None => None,
+        Some(a) => {
+            let per_row = match a.shape() {
+                [d] if *d == dof => false,
+                [c, d] if *d == dof && *c == count && !rows.single => true,
+                s => {
+                    return Err(value_error(format!(
+                        "guess: expected shape ({dof},) or ({count}, {dof}) ({}), got {}",
+                        robot.pose_hint(),
+                        shape_string(s)
+                    )));
+                }
+            };
+            a.check_finite("guess")?;
+            let poses = a
+                .data()
+                .chunks(dof)
+                .map(|q| Pose::from_coordinates(motion, q))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| value_error(format!("guess: {e}")))?;
+            Some((poses, per_row))
+        }
+    };
+    let multistart = guesses.is_none();
+    let widths: [usize; 0] = [];
+    let answers: Vec<Vec<ForwardSolution>> = run_batch(py, count, || {
+        map_poses(
+            count,
+            &widths,
+            Vec::new(),
+            || ForwardKinematics::new(geo, settings).expect("validated above"),
+            |fk, k, _, _| {
+                let l = &data[k * n..(k + 1) * n];
+                let prefix = |e| format!("lengths[{k}]: {e}");
+                match &guesses {
+                    Some((g, per_row)) => {
+                        let g = if *per_row { &g[k] } else { &g[0] };
+                        fk.solve(l, g).map(|s| vec![s]).map_err(prefix)
+                    }
+                    None => fk.solve_multistart(l).map_err(prefix),
+                }
+            },
+        )
+        .map_err(value_error)
+    })?;
+    let best: Vec<&ForwardSolution> = answers.iter().map(|a| &a[0]).collect();
+    let poses: Vec<f64> = best
+        .iter()
+        .flat_map(|s| s.pose.coordinates(motion))
+        .collect();
+    let scalar = |v: Vec<f64>| -> PyResult<Py<PyAny>> {
+        Ok(if rows.single {
+            v[0].into_pyobject(py)?.into_any().unbind()
+        } else {
+            to_numpy(py, &[count], v).into_any().unbind()
+        })
+    };
+    let iterations: Vec<i64> = best.iter().map(|s| s.iterations as i64).collect();
+    let converged: Vec<bool> = best.iter().map(|s| s.converged).collect();
+    let status: Vec<&str> = best.iter().map(|s| s.status.name()).collect();
+    Ok(ForwardResult {
+        pose: to_numpy(py, &batch_shape(rows.single, count, &[dof]), poses).unbind(),
+        residual: scalar(best.iter().map(|s| s.residual).collect())?,
+        min_singular_value: scalar(best.iter().map(|s| s.min_singular_value).collect())?,
+        iterations: if rows.single {
+            iterations[0].into_pyobject(py)?.into_any().unbind()
+        } else {
+            to_numpy(py, &[count], iterations).into_any().unbind()
+        },
+        converged: if rows.single {
+            converged[0]
+                .into_pyobject(py)?
+                .to_owned()
+                .into_any()
+                .unbind()
+        } else {
+            to_numpy(py, &[count], converged).into_any().unbind()
+        },
+        status: if rows.single {
+            status[0].into_pyobject(py)?.into_any().unbind()
+        } else {
+            status.into_pyobject(py)?.into_any().unbind()
+        },
+        solutions: (rows.single && multistart).then(|| {
+            let all: Vec<f64> = answers[0]
+                .iter()
+                .flat_map(|s| s.pose.coordinates(motion))
+                .collect();
+            to_numpy(py, &[answers[0].len(), dof], all).unbind()
+        }),
+    })
+}
