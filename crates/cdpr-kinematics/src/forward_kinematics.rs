@@ -32,7 +32,7 @@
 //!   2004, *Methods for non-linear least squares problems* (stopping rules).
 
 use crate::{KinematicsError, MotionPattern, Pose, PoseKinematics, Robot};
-use nalgebra::{Rotation3, Vector3};
+use nalgebra::{Matrix6, Rotation3, Vector3};
 
 /// Settings of the forward-kinematics solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -467,48 +467,21 @@ fn cholesky_solve(a: &Square, b: &[f64; MAX_DOF], d: usize) -> Option<[f64; MAX_
     y.iter().all(|v| v.is_finite()).then_some(y)
 }
 
-/// Smallest eigenvalue of the symmetric `d × d` matrix `a`, by cyclic Jacobi rotations.
-// Index loops read as the textbook algorithm on these small fixed arrays.
-#[allow(clippy::needless_range_loop)]
-fn smallest_eigenvalue(mut a: Square, d: usize) -> f64 {
-    for _sweep in 0..30 {
-        let mut off = 0.0;
-        let mut norm = 0.0;
-        for i in 0..d {
-            for j in 0..d {
-                norm += a[i][j] * a[i][j];
-                if i != j {
-                    off += a[i][j] * a[i][j];
-                }
-            }
+/// Smallest eigenvalue of the symmetric `d × d` matrix `a` (Householder tridiagonalisation and
+/// implicit QL of nalgebra, on a stack 6 × 6 matrix). For d < 6 the unused diagonal is padded
+/// with trace + 1, above every eigenvalue of the positive semi-definite block.
+fn smallest_eigenvalue(a: Square, d: usize) -> f64 {
+    let trace: f64 = (0..d).map(|k| a[k][k]).sum();
+    let m = Matrix6::from_fn(|i, j| {
+        if i < d && j < d {
+            a[i][j]
+        } else if i == j {
+            trace.abs() + 1.0
+        } else {
+            0.0
         }
-        if off <= 1e-30 * norm {
-            break;
-        }
-        for p in 0..d {
-            for q in p + 1..d {
-                if a[p][q] == 0.0 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let c = 1.0 / (t * t + 1.0).sqrt();
-                let s = t * c;
-                for k in 0..d {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for k in 0..d {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-            }
-        }
-    }
-    (0..d).map(|k| a[k][k]).fold(f64::INFINITY, f64::min)
+    });
+    m.symmetric_eigenvalues().min()
 }
 
 /// x ⊕ δ: the pose moved by the twist δ of the motion pattern (position first, then the

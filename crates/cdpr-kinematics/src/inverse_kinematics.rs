@@ -32,31 +32,35 @@ pub struct CableState {
     pub length: f64,
     /// ℓ^i / ‖ℓ^i‖: the direction in which the cable pulls the platform.
     pub unit: Vector3<f64>,
-    /// ‖ℓ^i‖: the free (straight) length (m); equal to `length` without a pulley.
-    pub free_length: f64,
-    /// (cos γ, sin γ) of the pulley's swivel angle γ ((1, 0) without a pulley); γ itself is
-    /// [`CableState::swivel_angle`] (computed on demand: an `atan2` the hot path does not need).
-    pub swivel_direction: [f64; 2],
-    /// Wrap angle β of the cable on the pulley (rad); 0 without a pulley.
-    pub wrap_angle: f64,
-    /// Where the cable leaves the frame towards the platform: the tangent point **C** with a
-    /// pulley, the frame anchor without.
-    pub exit_point: Vector3<f64>,
-    /// e_n, the unit normal of the pulley plane (zero without a pulley): the direction in which
-    /// the attachment moves when the pulley swivels.
-    pub plane_normal: Vector3<f64>,
-    /// s_C / s, the distances of the tangent point and of the attachment from the swivel axis
-    /// (0 without a pulley). With it the free-segment direction varies as
-    /// δu = −(1/l_f) (I − u uᵀ − (s_C/s) e_n e_nᵀ) δB (the pulley stiffness).
-    pub swivel_ratio: f64,
     /// **a**^i = **T**(φ) **ā**^i: attachment relative to the platform origin, eq. (6.3).
     pub attachment: Vector3<f64>,
     /// **u** + **a**^i: the attachment point in base coordinates.
     pub attachment_point: Vector3<f64>,
 }
 
-impl CableState {
-    /// Swivel angle γ = atan2(p_y, p_x) of the pulley (rad, in (−π, π]); 0 without a pulley.
+/// What the swivel-pulley model adds to a [`CableState`] (Pott 2018; module `pulley`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PulleyState {
+    /// l_f = ‖ℓ^i‖: the free (straight) length (m).
+    pub free_length: f64,
+    /// (cos γ, sin γ) of the swivel angle γ; γ itself is [`PulleyState::swivel_angle`]
+    /// (computed on demand: an `atan2` the hot path does not need).
+    pub swivel_direction: [f64; 2],
+    /// Wrap angle β of the cable on the pulley (rad), in (0, 2π).
+    pub wrap_angle: f64,
+    /// The tangent point **C** where the cable leaves the pulley (m).
+    pub exit_point: Vector3<f64>,
+    /// e_n, the unit normal of the pulley plane: the direction in which the attachment moves
+    /// when the pulley swivels.
+    pub plane_normal: Vector3<f64>,
+    /// s_C / s, the distances of the tangent point and of the attachment from the swivel axis.
+    /// With it the free-segment direction varies as δu = −(1/l_f) (I − u uᵀ − (s_C/s) e_n e_nᵀ) δB
+    /// (the pulley stiffness).
+    pub swivel_ratio: f64,
+}
+
+impl PulleyState {
+    /// Swivel angle γ = atan2(p_y, p_x) of the pulley (rad, in (−π, π]).
     pub fn swivel_angle(&self) -> f64 {
         self.swivel_direction[1].atan2(self.swivel_direction[0])
     }
@@ -69,6 +73,9 @@ impl CableState {
 pub struct PoseKinematics {
     motion: MotionPattern,
     cables: Vec<CableState>,
+    /// One entry per cable when the robot has pulleys (`None` for its straight cables); empty
+    /// otherwise, so that straight robots write nothing more than before pulleys existed.
+    pulleys: Vec<Option<PulleyState>>,
 }
 
 impl PoseKinematics {
@@ -77,6 +84,11 @@ impl PoseKinematics {
         Self {
             motion: robot.motion(),
             cables: vec![CableState::default(); robot.cable_count()],
+            pulleys: if robot.has_pulleys() {
+                vec![None; robot.cable_count()]
+            } else {
+                Vec::new()
+            },
         }
     }
 
@@ -93,6 +105,36 @@ impl PoseKinematics {
     /// Number of cables n.
     pub fn cable_count(&self) -> usize {
         self.cables.len()
+    }
+
+    /// The pulley state of cable `i`, `None` for a straight cable.
+    pub fn pulley(&self, i: usize) -> Option<&PulleyState> {
+        self.pulleys.get(i).and_then(Option::as_ref)
+    }
+
+    /// Free (straight) length of cable `i` (m): l_f with a pulley, l_i without.
+    pub fn free_length(&self, i: usize) -> f64 {
+        self.pulley(i)
+            .map_or(self.cables[i].length, |p| p.free_length)
+    }
+
+    /// Swivel angle γ of cable `i`'s pulley (rad), 0 without a pulley.
+    pub fn swivel_angle(&self, i: usize) -> f64 {
+        self.pulley(i).map_or(0.0, PulleyState::swivel_angle)
+    }
+
+    /// Wrap angle β of cable `i` on its pulley (rad), 0 without a pulley.
+    pub fn wrap_angle(&self, i: usize) -> f64 {
+        self.pulley(i).map_or(0.0, |p| p.wrap_angle)
+    }
+
+    /// Where cable `i` leaves the frame towards the platform: the tangent point **C** with a
+    /// pulley, the frame anchor (attachment point + ℓ^i) without.
+    pub fn exit_point(&self, i: usize) -> Vector3<f64> {
+        self.pulley(i).map_or_else(
+            || self.cables[i].attachment_point + self.cables[i].vector,
+            |p| p.exit_point,
+        )
     }
 
     /// Cable lengths l_i.
@@ -144,6 +186,10 @@ impl Robot {
         }
         kin.motion = self.motion();
         kin.cables.resize(self.cable_count(), CableState::default());
+        kin.pulleys.clear();
+        if self.has_pulleys() {
+            kin.pulleys.resize(self.cable_count(), None);
+        }
         let r = pose.rotation.matrix();
         // One threshold per pose: lengths are compared with the size of the robot and the pose.
         let threshold = DEGENERATE_LENGTH * self.length_scale().max(pose.position.norm());
@@ -162,15 +208,17 @@ impl Robot {
                     vector: c.free_vector,
                     length: c.length,
                     unit: c.free_vector / c.free_length,
+                    attachment,
+                    attachment_point,
+                };
+                kin.pulleys[i] = Some(PulleyState {
                     free_length: c.free_length,
                     swivel_direction: c.swivel_direction,
                     wrap_angle: c.wrap_angle,
                     exit_point: c.exit_point,
                     plane_normal: c.plane_normal,
                     swivel_ratio: c.swivel_ratio,
-                    attachment,
-                    attachment_point,
-                };
+                });
                 continue;
             }
             let vector = cable.frame - attachment_point;
@@ -183,12 +231,6 @@ impl Robot {
                 vector,
                 length,
                 unit: vector / length,
-                free_length: length,
-                swivel_direction: [1.0, 0.0],
-                wrap_angle: 0.0,
-                exit_point: cable.frame,
-                plane_normal: Vector3::zeros(),
-                swivel_ratio: 0.0,
                 attachment,
                 attachment_point,
             };

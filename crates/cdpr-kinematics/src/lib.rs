@@ -29,7 +29,7 @@
 //!
 //! A cable may run over a swivel [`Pulley`] at the frame (Pott 2018; the WireCenter model): its
 //! length is then the arc wrapped on the pulley plus the free segment, its unit vector that of
-//! the free segment, and [`CableState`] reports the swivel and wrap angles. W keeps its form and
+//! the free segment, and [`PulleyState`] reports the swivel and wrap angles. W keeps its form and
 //! J = Wᵀ stays the derivative of the total length, so every layer above works unchanged.
 //! [`ForwardKinematics`] goes back from measured lengths to the pose (Levenberg–Marquardt, with a
 //! certificate) for either cable model.
@@ -57,7 +57,7 @@ pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
     closest_cables, min_cable_distance, platform_interference, segment_distance,
 };
-pub use inverse_kinematics::{CableState, PoseKinematics};
+pub use inverse_kinematics::{CableState, PoseKinematics, PulleyState};
 pub use motion::MotionPattern;
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever

@@ -158,6 +158,8 @@ pub struct Robot {
     cables: Vec<Cable>,
     /// max(1, ‖c^i‖, ‖ā^i‖): the length scale for degeneracy tests.
     length_scale: f64,
+    /// Whether any cable has a pulley.
+    has_pulleys: bool,
 }
 
 impl Robot {
@@ -216,10 +218,12 @@ impl Robot {
             .iter()
             .flat_map(|c| [c.frame.norm(), c.platform.norm()])
             .fold(1.0, f64::max);
+        let has_pulleys = cables.iter().any(|c| c.pulley.is_some());
         Ok(Self {
             motion,
             cables,
             length_scale,
+            has_pulleys,
         })
     }
 
@@ -280,7 +284,7 @@ impl Robot {
 
     /// Whether any cable runs over a pulley (the pulley model then differs from the standard one).
     pub fn has_pulleys(&self) -> bool {
-        self.cables.iter().any(|c| c.pulley.is_some())
+        self.has_pulleys
     }
 
     /// The same robot with every pulley removed: the standard model, each cable a straight
@@ -290,6 +294,7 @@ impl Robot {
         for c in &mut r.cables {
             c.pulley = None;
         }
+        r.has_pulleys = false;
         r
     }
 
@@ -299,6 +304,7 @@ impl Robot {
             motion: self.motion,
             cables: order.iter().map(|&i| self.cables[i]).collect(),
             length_scale: self.length_scale,
+            has_pulleys: self.has_pulleys,
         }
     }
 }

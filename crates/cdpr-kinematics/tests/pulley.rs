@@ -67,21 +67,23 @@ proptest! {
     #[test]
     fn tangent_point_geometry((robot, pose) in arb_pulley_robot_and_pose(0..=2)) {
         let kin = robot.inverse_kinematics(&pose).unwrap();
-        for (c, s) in robot.cables().iter().zip(kin.cables()) {
+        for (i, (c, s)) in robot.cables().iter().zip(kin.cables()).enumerate() {
             let p = c.pulley.unwrap();
+            let ps = kin.pulley(i).unwrap();
+            let (exit_point, free_length, wrap_angle) = (ps.exit_point, ps.free_length, ps.wrap_angle);
             let q = p.orientation;
             let d = q.transpose() * (s.attachment_point - c.frame);
             let radial = q * Vector3::new(d.x, d.y, 0.0).normalize();
             let centre = c.frame + p.radius * radial;
-            prop_assert!(((s.exit_point - centre).norm() - p.radius).abs() < 1e-12);
-            prop_assert!((s.exit_point - centre).dot(&s.unit).abs() < 1e-12);
+            prop_assert!(((exit_point - centre).norm() - p.radius).abs() < 1e-12);
+            prop_assert!((exit_point - centre).dot(&s.unit).abs() < 1e-12);
             // In the pulley plane: normal k × radial.
             let normal = p.axis().cross(&radial);
-            prop_assert!((s.exit_point - c.frame).dot(&normal).abs() < 1e-12);
-            prop_assert!(((s.exit_point - s.attachment_point).norm() - s.free_length).abs() < 1e-12);
-            prop_assert!((s.length - (p.radius * s.wrap_angle + s.free_length)).abs() < 1e-15);
+            prop_assert!((exit_point - c.frame).dot(&normal).abs() < 1e-12);
+            prop_assert!(((exit_point - s.attachment_point).norm() - free_length).abs() < 1e-12);
+            prop_assert!((s.length - (p.radius * wrap_angle + free_length)).abs() < 1e-15);
             prop_assert!(s.length >= (s.attachment_point - c.frame).norm() - 1e-12);
-            prop_assert!(s.wrap_angle > 0.0 && s.wrap_angle < std::f64::consts::TAU);
+            prop_assert!(wrap_angle > 0.0 && wrap_angle < std::f64::consts::TAU);
             prop_assert!((s.unit.norm() - 1.0).abs() < 1e-14);
         }
     }
@@ -108,7 +110,7 @@ proptest! {
     fn straight_cables_are_bit_identical((robot, pose) in arb_robot_and_pose(0..=3)) {
         let kin = robot.inverse_kinematics(&pose).unwrap();
         let r = pose.rotation.matrix();
-        for (c, s) in robot.cables().iter().zip(kin.cables()) {
+        for (i, (c, s)) in robot.cables().iter().zip(kin.cables()).enumerate() {
             let attachment = r * c.platform;
             let attachment_point = pose.position + attachment;
             let vector = c.frame - attachment_point;
@@ -118,9 +120,9 @@ proptest! {
             prop_assert_eq!(s.unit, vector / length);
             prop_assert_eq!(s.attachment, attachment);
             prop_assert_eq!(s.attachment_point, attachment_point);
-            prop_assert_eq!(s.free_length.to_bits(), length.to_bits());
-            prop_assert_eq!(s.exit_point, c.frame);
-            prop_assert_eq!((s.swivel_angle(), s.wrap_angle), (0.0, 0.0));
+            prop_assert!(kin.pulley(i).is_none());
+            prop_assert_eq!(kin.free_length(i).to_bits(), length.to_bits());
+            prop_assert_eq!((kin.swivel_angle(i), kin.wrap_angle(i)), (0.0, 0.0));
         }
     }
 
@@ -131,8 +133,8 @@ proptest! {
         pose in arb_pose(MotionPattern::Planar),
     ) {
         let kin = robot.inverse_kinematics(&pose).unwrap();
-        for s in kin.cables() {
-            prop_assert!(s.unit.z.abs() < 1e-14 && s.exit_point.z.abs() < 1e-14);
+        for (i, s) in kin.cables().iter().enumerate() {
+            prop_assert!(s.unit.z.abs() < 1e-14 && kin.exit_point(i).z.abs() < 1e-14);
         }
     }
 }
@@ -145,18 +147,18 @@ fn ipanema_with_pulleys_at_the_centre_by_hand() {
     let kin = robot
         .inverse_kinematics(&Pose::spatial(Vector3::new(0.0, 0.0, 1.0), 0.0, 0.0, 0.0))
         .unwrap();
-    let c = kin.cables()[0];
+    let (c, pc) = (kin.cables()[0], *kin.pulley(0).unwrap());
     let (s, h, rho) = ((1.9f64 * 1.9 + 1.4 * 1.4).sqrt(), -1.05f64, 0.1);
     let bm = ((s - rho).powi(2) + h * h).sqrt();
     let lf = (bm * bm - rho * rho).sqrt();
     // s ≥ ρ: the form of β applies.
     let beta = (lf / bm).acos() + (h / bm).acos();
-    assert!((c.wrap_angle - beta).abs() < 1e-14);
-    assert!((c.free_length - lf).abs() < 1e-14);
+    assert!((pc.wrap_angle - beta).abs() < 1e-14);
+    assert!((pc.free_length - lf).abs() < 1e-14);
     assert!((c.length - (rho * beta + lf)).abs() < 1e-14);
-    assert!((c.swivel_angle() - (-1.4f64).atan2(-1.9)).abs() < 1e-15);
+    assert!((pc.swivel_angle() - (-1.4f64).atan2(-1.9)).abs() < 1e-15);
     // The top cables wrap more than a quarter turn (the cable arrives going up).
-    assert!(c.wrap_angle > std::f64::consts::FRAC_PI_2);
+    assert!(pc.wrap_angle > std::f64::consts::FRAC_PI_2);
 }
 
 #[test]
@@ -260,9 +262,10 @@ proptest! {
             let minus = robot.inverse_kinematics(&Pose::new(pose.position - e, pose.rotation)).unwrap();
             for (i, s) in kin.cables().iter().enumerate() {
                 let fd = (plus.cables()[i].unit - minus.cables()[i].unit) / (2.0 * h);
+                let ps = kin.pulley(i).unwrap();
                 let p = nalgebra::Matrix3::identity() - s.unit * s.unit.transpose()
-                    - s.swivel_ratio * s.plane_normal * s.plane_normal.transpose();
-                let analytic = -(p * e / h) / s.free_length;
+                    - ps.swivel_ratio * ps.plane_normal * ps.plane_normal.transpose();
+                let analytic = -(p * e / h) / ps.free_length;
                 prop_assert!((fd - analytic).norm() < 1e-7, "cable {i}, axis {j}: {fd} vs {analytic}");
             }
         }

@@ -38,8 +38,7 @@
 //! the plane normal e_n swivels the pulley by δB·e_n / s, which carries the tangent point by
 //! (s_C / s) δB·e_n along e_n (s, s_C: distances of the attachment and of the tangent point from
 //! the swivel axis). This is exact, not an approximation: the finite-difference property test
-//! runs on pulley robots too. Without a pulley s_C / s = 0 and l_f = l, and K is bit-identical
-//! to the straight-cable formula.
+//! runs on pulley robots too. Straight cables use the straight-cable formula unchanged.
 //!
 //! ## References
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4); Behzadipour & Khajepour (2006).
@@ -78,17 +77,27 @@ fn spatial_parts(
     }
     let mut kp = Matrix6::zeros();
     let mut ka = Matrix6::zeros();
-    for ((c, &t), &es) in kin.cables().iter().zip(tensions).zip(axial_stiffness) {
+    for (i, ((c, &t), &es)) in kin
+        .cables()
+        .iter()
+        .zip(tensions)
+        .zip(axial_stiffness)
+        .enumerate()
+    {
         let k = es / c.length;
         let (u, b) = (c.unit, c.attachment);
         let bh = hat(&b);
         let g =
             nalgebra::Vector6::from_iterator(u.iter().copied().chain(b.cross(&u).iter().copied()));
         kp += k * g * g.transpose();
-        // Pulley cables: the swivel carries the tangent point along e_n (module docs).
-        let e = c.plane_normal;
-        let p = Matrix3::identity() - u * u.transpose() - c.swivel_ratio * e * e.transpose();
-        let s = t / c.free_length;
+        let mut p = Matrix3::identity() - u * u.transpose();
+        let mut s = t / c.length;
+        if let Some(pulley) = kin.pulley(i) {
+            // The swivel carries the tangent point along e_n (module docs).
+            let e = pulley.plane_normal;
+            p -= pulley.swivel_ratio * e * e.transpose();
+            s = t / pulley.free_length;
+        }
         let pbt = p * bh.transpose();
         let mut blk = Matrix6::zeros();
         blk.fixed_view_mut::<3, 3>(0, 0).copy_from(&(s * p));

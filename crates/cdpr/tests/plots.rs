@@ -106,3 +106,25 @@ fn force_polygon_of_a_box_by_hand() {
     let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 0.0, 1.0).unwrap()).unwrap();
     assert!(ForcePolygonPlot::operational(&aws, None).is_none());
 }
+
+#[test]
+fn pulley_cable_figure_renders_the_library_geometry() {
+    use cdpr::plot::PulleyCablePlot;
+    use nalgebra::Vector3;
+    let plot =
+        PulleyCablePlot::new("pulley", 0.3, Vector3::z(), Vector3::new(0.75, 0.95, -0.6)).unwrap();
+    // B below the pulley plane's centre height: more than a quarter turn of wrap.
+    assert!(
+        plot.wrap_angle > std::f64::consts::FRAC_PI_2 && plot.wrap_angle < std::f64::consts::PI
+    );
+    assert!((plot.swivel_angle - 0.95f64.atan2(0.75)).abs() < 1e-15);
+    // The tangent point lies on the circle of radius ρ about M = ρ (cos γ, sin γ, 0).
+    let m = Vector3::new(plot.swivel_angle.cos(), plot.swivel_angle.sin(), 0.0) * 0.3;
+    assert!(((plot.exit_point - m).norm() - 0.3).abs() < 1e-12);
+    let dir = tempfile::tempdir().unwrap();
+    let path = std::env::var_os("CDPR_KEEP_PLOT")
+        .map(std::path::PathBuf::from)
+        .unwrap_or_else(|| dir.path().join("pulley.png"));
+    save(&plot, &path).unwrap();
+    assert!(std::fs::metadata(&path).unwrap().len() > 5000);
+}

@@ -42,6 +42,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let pose = pose(&robot, &args.pose)?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
     let model = kinematics_model(&robot);
+    let n = kin.cable_count();
     let w = kin.wrench_matrix();
     let dim = robot.robot.motion().space_dim();
     let vec_of = |v: &nalgebra::Vector3<f64>| v.iter().take(dim).copied().collect::<Vec<f64>>();
@@ -56,12 +57,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "pose": args.pose.0,
             "kinematics": model.name(),
             "lengths": kin.lengths().collect::<Vec<_>>(),
-            "free_lengths": kin.cables().iter().map(|c| c.free_length).collect::<Vec<_>>(),
-            "swivel_angles": kin.cables().iter().map(|c| c.swivel_angle()).collect::<Vec<_>>(),
-            "wrap_angles": kin.cables().iter().map(|c| c.wrap_angle).collect::<Vec<_>>(),
+            "free_lengths": (0..n).map(|i| kin.free_length(i)).collect::<Vec<_>>(),
+            "swivel_angles": (0..n).map(|i| kin.swivel_angle(i)).collect::<Vec<_>>(),
+            "wrap_angles": (0..n).map(|i| kin.wrap_angle(i)).collect::<Vec<_>>(),
             "unit_vectors": kin.cables().iter().map(|c| vec_of(&c.unit)).collect::<Vec<_>>(),
             "attachment_points": kin.cables().iter().map(|c| vec_of(&c.attachment_point)).collect::<Vec<_>>(),
-            "exit_points": kin.cables().iter().map(|c| vec_of(&c.exit_point)).collect::<Vec<_>>(),
+            "exit_points": (0..n).map(|i| vec_of(&kin.exit_point(i))).collect::<Vec<_>>(),
             "wrench_matrix": matrix_rows(&w),
             "jacobian_determinant": kin.jacobian_determinant(),
             "closest_cables": closest.map(|c| [c.cables.0 + 1, c.cables.1 + 1]),
@@ -100,9 +101,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     "{:>6} {:>12.6} {:>12.6} {:>6.4} rad {:>6.4} rad  {}",
                     i + 1,
                     c.length,
-                    c.free_length,
-                    c.swivel_angle(),
-                    c.wrap_angle,
+                    kin.free_length(i),
+                    kin.swivel_angle(i),
+                    kin.wrap_angle(i),
                     u.join(" ")
                 );
             } else {

@@ -1,6 +1,7 @@
 //! The papers' figures, regenerated into `docs/figures/` and listed in `docs/reproduction.md`.
 //! One file per area; each returns the figures it wrote.
 
+mod kinematics;
 mod polytope;
 mod synthesis;
 mod tension;
@@ -23,6 +24,7 @@ pub fn run(root: &Path) -> Result<Vec<Figure>, String> {
     let dir = root.join("docs/figures");
     std::fs::create_dir_all(&dir).map_err(|e| format!("creating {}: {e}", dir.display()))?;
     let mut all = Vec::new();
+    all.extend(kinematics::figures(&dir)?);
     all.extend(tension::figures(&dir)?);
     all.extend(workspace::figures(&dir)?);
     all.extend(synthesis::figures(&dir)?);
