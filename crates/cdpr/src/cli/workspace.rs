@@ -912,6 +912,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             args.plot.as_deref(),
             args.draw_pose.as_deref(),
             args.json,
+            args.volume_convention,
         );
     }
     let eval = setup.evaluator(&desc, robot.clone(), &rot)?;
