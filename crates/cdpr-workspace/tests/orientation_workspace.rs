@@ -105,12 +105,9 @@ fn total_within_every_constant_within_maximal() {
     }
 }
 
-/// Custom criterion x ≤ 0.5 sin(r_z) (the platform x axis' y component, scaled), rotations
-/// about z only: over r_z ∈ [−20°, 20°] the total workspace is x ≤ −0.5 sin 20°, the maximal
-/// x ≤ 0.5 sin 20°, the limiting orientation is r_z = −20° (the first sample) and the
-/// boundary points lie at x = −0.5 sin 20°.
-#[test]
-fn hand_case_half_spaces() {
+/// The evaluator of the criterion x ≤ 0.5 sin(r_z) and the five rotations r_z = −20°, −10°, …,
+/// 20° about z.
+fn half_spaces() -> (PoseEvaluator, Vec<cdpr_workspace::SampledOrientation>) {
     let criterion = Criterion::Custom(CustomCriterion::new("x below 0.5 sin rz", |ctx| {
         let r = ctx.pose.rotation * Vector3::x();
         ctx.pose.position.x <= 0.5 * r.y
@@ -122,7 +119,16 @@ fn hand_case_half_spaces() {
     )
     .unwrap();
     let set: OrientationSet = "euler:rz=-20..20,n=5".parse().unwrap();
-    let o = set.orientations().unwrap();
+    (eval, set.orientations().unwrap())
+}
+
+/// Custom criterion x ≤ 0.5 sin(r_z) (the platform x axis' y component, scaled), rotations
+/// about z only: over r_z ∈ [−20°, 20°] the total workspace is x ≤ −0.5 sin 20°, the maximal
+/// x ≤ 0.5 sin 20°, the limiting orientation is r_z = −20° (the first sample) and the
+/// boundary points lie at x = −0.5 sin 20°.
+#[test]
+fn hand_case_half_spaces() {
+    let (eval, o) = half_spaces();
     let g = Grid::new(
         10,
         Region::cuboid(Vector3::repeat(-0.5), Vector3::repeat(0.5)),
@@ -195,21 +201,7 @@ fn non_spatial_robots_and_bad_sets_are_errors() {
 #[test]
 fn hand_case_on_the_boundary_mesh() {
     use cdpr_workspace::{MeshSettings, MeshVertex, orientation_boundary_mesh};
-    let criterion = Criterion::Custom(CustomCriterion::new("x below 0.5 sin rz", |ctx| {
-        let r = ctx.pose.rotation * Vector3::x();
-        ctx.pose.position.x <= 0.5 * r.y
-    }));
-    let eval = PoseEvaluator::new(
-        cube_robot(),
-        TensionBounds::uniform(8, 1.0, 2.0).unwrap(),
-        vec![criterion],
-    )
-    .unwrap();
-    let o = "euler:rz=-20..20,n=5"
-        .parse::<OrientationSet>()
-        .unwrap()
-        .orientations()
-        .unwrap();
+    let (eval, o) = half_spaces();
     let g = Grid::new(
         7,
         Region::cuboid(Vector3::repeat(-0.5), Vector3::repeat(0.5)),
