@@ -638,7 +638,7 @@ pub struct OrientationGridWorkspace {
 /// }).collect();
 /// let robot = Robot::new(MotionPattern::Spatial, cables).unwrap();
 /// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(8, 1.0, 100.0).unwrap(),
-///                               vec![Criterion::WrenchClosure]).unwrap();
+///                               vec![Criterion::MinCableLength(0.1)]).unwrap();
 /// let set: OrientationSet = "euler:rz=-10..10,n=3".parse().unwrap();
 /// let test = OrientationTest::uniform(OrientationWorkspaceKind::Total, &eval,
 ///                                     &set.orientations().unwrap()).unwrap();
