@@ -124,10 +124,47 @@ fn batch_from_coordinates(c: &mut Criterion) {
     g.finish();
 }
 
+/// The interference criterion's two tests at one pose of the 8-cable robot: the 28 cable-pair
+/// segment distances, and 8 cable segments against a box platform (6 faces).
+fn interference(c: &mut Criterion) {
+    let robot = ipanema_like_8();
+    let poses = spatial_poses(1000);
+    let kins: Vec<PoseKinematics> = poses
+        .iter()
+        .map(|p| robot.inverse_kinematics(p).unwrap())
+        .collect();
+    let shape = cdpr_kinematics::ConvexPolyhedron::cuboid(
+        nalgebra::Vector3::new(0.2, 0.2, 0.1),
+        nalgebra::Vector3::zeros(),
+    )
+    .unwrap();
+    let mut g = c.benchmark_group("interference");
+    let mut k = 0;
+    g.bench_function("min_cable_distance/spatial_8", |b| {
+        b.iter(|| {
+            k = (k + 1) % kins.len();
+            black_box(cdpr_kinematics::min_cable_distance(black_box(&kins[k])))
+        })
+    });
+    g.bench_function("platform_penetration/spatial_8_box", |b| {
+        b.iter(|| {
+            k = (k + 1) % kins.len();
+            black_box(cdpr_kinematics::platform_interference(
+                black_box(&kins[k]),
+                &shape,
+                &poses[k].position,
+                &poses[k].rotation,
+            ))
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     inverse_kinematics,
     forward_kinematics,
-    batch_from_coordinates
+    batch_from_coordinates,
+    interference
 );
 criterion_main!(benches);

@@ -362,16 +362,45 @@ pub fn boundary_mesh(
         ev.is_feasible_finite_rotation(&Pose::new(u, rotation))
     });
     let ws = GridWorkspace::from_verdicts(*grid, 3, verdicts);
-    Ok(mesh_from_verdicts(eval, rotation, ws, settings))
+    Ok(mesh_from_verdicts(
+        eval,
+        |ev: &mut PoseEvaluator, u| ev.is_feasible_finite_rotation(&Pose::new(u, rotation)),
+        ws,
+        settings,
+    ))
+}
+
+/// The boundary mesh of any set of positions given by a per-point predicate `feasible(state,
+/// u)` (e.g. an [`crate::OrientationTest`] for total-orientation and maximal workspaces): the
+/// same steps as [`boundary_mesh`], `state` cloned once per rayon task.
+pub fn boundary_mesh_of<S, F>(
+    state: &S,
+    feasible: F,
+    grid: &Grid,
+    settings: &MeshSettings,
+) -> Result<BoundaryMesh, WorkspaceError>
+where
+    S: Clone + Send + Sync,
+    F: Fn(&mut S, Vector3<f64>) -> bool + Sync,
+{
+    grid.validate(3)?;
+    settings.validate()?;
+    let verdicts = map_grid(state, grid, 3, &feasible);
+    let ws = GridWorkspace::from_verdicts(*grid, 3, verdicts);
+    Ok(mesh_from_verdicts(state, feasible, ws, settings))
 }
 
 /// Steps 2–4 of the module documentation, from the grid verdicts.
-fn mesh_from_verdicts(
-    eval: &PoseEvaluator,
-    rotation: Rotation3<f64>,
+fn mesh_from_verdicts<S, F>(
+    state: &S,
+    feasible_at: F,
     ws: GridWorkspace,
     settings: &MeshSettings,
-) -> BoundaryMesh {
+) -> BoundaryMesh
+where
+    S: Clone + Send + Sync,
+    F: Fn(&mut S, Vector3<f64>) -> bool + Sync,
+{
     let grid = ws.grid;
     let m = grid.resolution;
     let p = m + 1;
@@ -396,7 +425,7 @@ fn mesh_from_verdicts(
     let bisected: Vec<([f64; 3], MeshVertex, usize)> = crossings
         .par_chunks(64)
         .map_init(
-            || eval.clone(),
+            || state.clone(),
             |ev, chunk| {
                 chunk
                     .iter()
@@ -414,7 +443,7 @@ fn mesh_from_verdicts(
                             let mid = 0.5 * (lo + hi);
                             u[axis] = mid;
                             evaluations += 1;
-                            if ev.is_feasible_finite_rotation(&Pose::new(u, rotation)) {
+                            if feasible_at(ev, u) {
                                 lo = mid;
                             } else {
                                 hi = mid;

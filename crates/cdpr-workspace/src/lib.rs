@@ -87,7 +87,9 @@ mod region;
 pub mod synthesis;
 pub mod wrench_closure;
 
-pub use boundary_mesh::{BoundaryMesh, BoxFace, MeshSettings, MeshVertex, Shell, boundary_mesh};
+pub use boundary_mesh::{
+    BoundaryMesh, BoxFace, MeshSettings, MeshVertex, Shell, boundary_mesh, boundary_mesh_of,
+};
 pub use chord::{
     ChordSettings, ChordWorkspace, InteriorPoint, Polygon, Section, chord_section, chord_workspace,
 };
@@ -106,8 +108,8 @@ pub use evaluator::PoseEvaluator;
 /// nalgebra version your own project pins.
 pub use nalgebra;
 pub use orientation_workspace::{
-    LimitingOrientation, OrientationGridWorkspace, OrientationSet, OrientationSyntaxError,
-    OrientationTest, OrientationWorkspaceKind, SampledOrientation, orientation_workspace,
-    tilt_torsion_rotation,
+    LimitingOrientation, OrientationGridWorkspace, OrientationMesh, OrientationSet,
+    OrientationSyntaxError, OrientationTest, OrientationWorkspaceKind, SampledOrientation,
+    orientation_boundary_mesh, orientation_workspace, tilt_torsion_rotation,
 };
 pub use region::Region;

@@ -35,6 +35,11 @@
 //! fails closest to the inside point is the limiting ("worst") orientation there, and that
 //! crossing is the boundary point ([`LimitingOrientation`]).
 //!
+//! On the boundary mesh ([`orientation_boundary_mesh`]) the same test is the per-point
+//! predicate of [`boundary_mesh_of`]: every vertex lies on the total (maximal) boundary to the
+//! mesh tolerance, and each boundary vertex of a total-orientation workspace gets its limiting
+//! orientation: of the orientations failing just beyond it, the first to fail along its edge.
+//!
 //! Each position test is an [`OrientationTest`]: per orientation its own evaluator (the
 //! gravity moment of an offset centre of mass turns with the platform) — the per-point
 //! predicate the boundary mesh and the grid both use.
@@ -47,6 +52,7 @@
 //!   and control of PKMs" (tilt-and-torsion angles).
 //! - Thesis §6.5, eq. (6.28) (dextrous workspace).
 
+use crate::boundary_mesh::{BoundaryMesh, MeshSettings, MeshVertex, boundary_mesh_of};
 use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
@@ -632,7 +638,7 @@ pub struct OrientationGridWorkspace {
 /// }).collect();
 /// let robot = Robot::new(MotionPattern::Spatial, cables).unwrap();
 /// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(8, 1.0, 100.0).unwrap(),
-///                               vec![Criterion::WrenchClosure]).unwrap();
+///                               vec![Criterion::MinCableLength(0.1)]).unwrap();
 /// let set: OrientationSet = "euler:rz=-10..10,n=3".parse().unwrap();
 /// let test = OrientationTest::uniform(OrientationWorkspaceKind::Total, &eval,
 ///                                     &set.orientations().unwrap()).unwrap();
@@ -656,6 +662,73 @@ pub fn orientation_workspace(
         workspace,
         limiting,
     })
+}
+
+/// The boundary mesh of an orientation workspace, with the limiting orientation per vertex.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OrientationMesh {
+    /// The mesh (vertices on the total-orientation or maximal boundary to its tolerance).
+    pub mesh: BoundaryMesh,
+    /// Total-orientation workspaces: per mesh vertex on the boundary (a grid-edge crossing),
+    /// the index of the limiting orientation — among those failing a tolerance ε beyond the
+    /// vertex along its edge, the one that starts failing closest to the edge's feasible end;
+    /// `None` for box-cap corners and for maximal workspaces.
+    pub limiting: Vec<Option<usize>>,
+}
+
+/// The total-orientation or maximal workspace of `test` as a boundary mesh
+/// ([`boundary_mesh_of`] with the test as the per-point predicate), with the limiting
+/// orientation at every boundary vertex of a total-orientation workspace.
+pub fn orientation_boundary_mesh(
+    test: &OrientationTest,
+    grid: &Grid,
+    settings: &MeshSettings,
+) -> Result<OrientationMesh, WorkspaceError> {
+    let mesh = boundary_mesh_of(
+        test,
+        |t: &mut OrientationTest, u| t.is_feasible(u),
+        grid,
+        settings,
+    )?;
+    let limiting = match test.kind {
+        OrientationWorkspaceKind::Maximal => vec![None; mesh.vertices.len()],
+        OrientationWorkspaceKind::Total => {
+            let eps = mesh.tolerance;
+            mesh.vertices
+                .par_iter()
+                .zip(&mesh.origins)
+                .map_init(
+                    || test.clone(),
+                    |t, (v, origin)| {
+                        let MeshVertex::Crossing {
+                            feasible_end,
+                            infeasible_end,
+                            ..
+                        } = origin
+                        else {
+                            return None;
+                        };
+                        let (a, b) = (Vector3::from(*feasible_end), Vector3::from(*infeasible_end));
+                        let dir = (b - a).normalize();
+                        let outside = Vector3::from(*v) + dir * eps;
+                        let failing: Vec<usize> = (0..t.len())
+                            .filter(|&k| !t.is_feasible_at(k, outside))
+                            .collect();
+                        match failing.as_slice() {
+                            [] => None,
+                            [k] => Some(*k),
+                            _ => failing
+                                .iter()
+                                .map(|&k| (t.crossing(k, a, outside), k))
+                                .min_by(|x, y| x.0.total_cmp(&y.0))
+                                .map(|(_, k)| k),
+                        }
+                    },
+                )
+                .collect()
+        }
+    };
+    Ok(OrientationMesh { mesh, limiting })
 }
 
 /// The 6-neighbours of grid point `idx` (flat index, x fastest) inside the grid.

@@ -105,12 +105,9 @@ fn total_within_every_constant_within_maximal() {
     }
 }
 
-/// Custom criterion x ≤ 0.5 sin(r_z) (the platform x axis' y component, scaled), rotations
-/// about z only: over r_z ∈ [−20°, 20°] the total workspace is x ≤ −0.5 sin 20°, the maximal
-/// x ≤ 0.5 sin 20°, the limiting orientation is r_z = −20° (the first sample) and the
-/// boundary points lie at x = −0.5 sin 20°.
-#[test]
-fn hand_case_half_spaces() {
+/// The evaluator of the criterion x ≤ 0.5 sin(r_z) and the five rotations r_z = −20°, −10°, …,
+/// 20° about z.
+fn half_spaces() -> (PoseEvaluator, Vec<cdpr_workspace::SampledOrientation>) {
     let criterion = Criterion::Custom(CustomCriterion::new("x below 0.5 sin rz", |ctx| {
         let r = ctx.pose.rotation * Vector3::x();
         ctx.pose.position.x <= 0.5 * r.y
@@ -122,7 +119,16 @@ fn hand_case_half_spaces() {
     )
     .unwrap();
     let set: OrientationSet = "euler:rz=-20..20,n=5".parse().unwrap();
-    let o = set.orientations().unwrap();
+    (eval, set.orientations().unwrap())
+}
+
+/// Custom criterion x ≤ 0.5 sin(r_z) (the platform x axis' y component, scaled), rotations
+/// about z only: over r_z ∈ [−20°, 20°] the total workspace is x ≤ −0.5 sin 20°, the maximal
+/// x ≤ 0.5 sin 20°, the limiting orientation is r_z = −20° (the first sample) and the
+/// boundary points lie at x = −0.5 sin 20°.
+#[test]
+fn hand_case_half_spaces() {
+    let (eval, o) = half_spaces();
     let g = Grid::new(
         10,
         Region::cuboid(Vector3::repeat(-0.5), Vector3::repeat(0.5)),
@@ -186,4 +192,46 @@ fn non_spatial_robots_and_bad_sets_are_errors() {
         .unwrap();
     assert!(OrientationTest::uniform(OrientationWorkspaceKind::Total, &eval, &o).is_err());
     assert!(OrientationTest::new(OrientationWorkspaceKind::Total, vec![], vec![]).is_err());
+}
+
+/// The hand case on the boundary mesh: the total-orientation workspace is the slab
+/// x ≤ −0.5 sin 20° of the unit box (volume 0.5 − 0.5 sin 20°, exact since the boundary is
+/// flat), the maximal one x ≤ 0.5 sin 20°; every boundary vertex of the total mesh is limited
+/// by r_z = −20° and lies on the plane.
+#[test]
+fn hand_case_on_the_boundary_mesh() {
+    use cdpr_workspace::{MeshSettings, MeshVertex, orientation_boundary_mesh};
+    let (eval, o) = half_spaces();
+    let g = Grid::new(
+        7,
+        Region::cuboid(Vector3::repeat(-0.5), Vector3::repeat(0.5)),
+    );
+    let s20 = 0.5 * 20f64.to_radians().sin();
+    for (kind, volume) in [
+        (OrientationWorkspaceKind::Total, 0.5 - s20),
+        (OrientationWorkspaceKind::Maximal, 0.5 + s20),
+    ] {
+        let test = OrientationTest::uniform(kind, &eval, &o).unwrap();
+        let m = orientation_boundary_mesh(&test, &g, &MeshSettings::default()).unwrap();
+        assert!(
+            (m.mesh.volume - volume).abs() < 1e-7,
+            "{kind:?}: {}",
+            m.mesh.volume
+        );
+        assert_eq!(m.mesh.edge_defects(), 0);
+        for (v, (origin, limit)) in m
+            .mesh
+            .vertices
+            .iter()
+            .zip(m.mesh.origins.iter().zip(&m.limiting))
+        {
+            match (origin, kind) {
+                (MeshVertex::Crossing { .. }, OrientationWorkspaceKind::Total) => {
+                    assert_eq!(*limit, Some(0));
+                    assert!((v[0] + s20).abs() < 1e-8, "{v:?}");
+                }
+                _ => assert_eq!(*limit, None),
+            }
+        }
+    }
 }

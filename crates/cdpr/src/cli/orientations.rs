@@ -9,7 +9,7 @@ use cdpr::kinematics::MotionPattern;
 use cdpr::plot::HeatMap;
 use cdpr::workspace::{
     Grid, OrientationSet, OrientationTest, OrientationWorkspaceKind, Region, SampledOrientation,
-    orientation_workspace,
+    VolumeConvention, orientation_workspace,
 };
 use nalgebra::{Rotation3, Vector3};
 use serde_json::{Value, json};
@@ -283,6 +283,7 @@ pub fn run_workspace(
     plot: Option<&Path>,
     draw_pose: Option<&[f64]>,
     json_out: bool,
+    convention: VolumeConvention,
 ) -> Result<(), CliError> {
     let grid = Grid::new(m, *region);
     let (test, samples) = orientation_test(desc, setup, set, kind)?;
@@ -306,11 +307,13 @@ pub fn run_workspace(
         kind.name(),
         samples.len()
     );
+    let volume = w.measure(convention);
     let summary = format!(
-        "volume {:.4} m³ ({} of {} points, m = {m}); {}",
-        w.area,
+        "volume {:.4} m³ ({} of {} points, m = {m}, {} convention); {}",
+        volume,
         w.feasible_points,
         w.total_points,
+        convention,
         setup.labels().join(", ")
     );
     if let Some(path) = plot {
@@ -326,7 +329,7 @@ pub fn run_workspace(
         )?;
     }
     if json_out {
-        return print_json(&json!({
+        let mut v = json!({
             "robot": desc.name,
             "method": "grid",
             "kind": kind.name(),
@@ -338,8 +341,6 @@ pub fn run_workspace(
             "box": super::workspace::box_json(region, 3),
             "resolution": m,
             "dimension": 3,
-            "area": w.area,
-            "volume": w.area,
             "feasible_points": w.feasible_points,
             "total_points": w.total_points,
             "cell_area": w.cell_area,
@@ -351,7 +352,9 @@ pub fn run_workspace(
                 "angles_deg": degrees(&samples[k]),
                 "boundary_points": n,
             })).collect::<Vec<_>>(),
-        }));
+        });
+        super::workspace::measure_json(&mut v, w, convention);
+        return print_json(&v);
     }
     println!("{title}");
     println!(
@@ -367,7 +370,7 @@ pub fn run_workspace(
         kind.name(),
         w.cell_area
     );
-    println!("volume {:.6} m³", w.area);
+    println!("volume {volume:.6} m³ ({convention} convention)");
     if !ranked.is_empty() {
         println!(
             "limiting orientations at {} boundary grid points ({}, degrees):",

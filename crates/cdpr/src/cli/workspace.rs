@@ -867,6 +867,35 @@ pub fn save_scene_plot(
     Ok(())
 }
 
+/// The 3-D figure of a boundary mesh (`--boundary mesh`): the certified surface in place of the
+/// grid cells.
+#[allow(dead_code)] // for the --boundary mesh command (cli/workspace_mesh.rs on its branch)
+pub fn save_mesh_scene_plot(
+    desc: &RobotDescription,
+    pose: &Pose,
+    mesh: &cdpr::workspace::BoundaryMesh,
+    title: String,
+    legend: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let r = &mesh.grid.grid.region;
+    let scene = cdpr::plot::Scene {
+        title,
+        vertices: mesh.vertices.clone(),
+        triangles: mesh.triangles.clone(),
+        region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
+        legend,
+        mesh_label: format!(
+            "boundary mesh (vertices on the boundary to {:.1e} m)",
+            mesh.tolerance
+        ),
+        ..cdpr::plot::Scene::default()
+    }
+    .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
 /// Whether `path` names an HTML page (only 3-D workspaces have one).
 pub fn is_html(path: &Path) -> bool {
     path.extension()
@@ -1041,6 +1070,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             args.plot.as_deref(),
             args.draw_pose.as_deref(),
             args.json,
+            args.volume_convention,
         );
     }
     let eval = setup.evaluator(&desc, robot.clone(), &rot)?;
