@@ -45,6 +45,8 @@ struct Row {
     margin: Option<f64>,
     volume: f64,
     volume_unit: &'static str,
+    /// The same workspace with straight cables (`--kinematics standard`), for files with pulleys.
+    volume_straight: Option<f64>,
     feasible_points: u64,
     total_points: u64,
     stiffness: Option<(f64, f64)>,
@@ -189,11 +191,25 @@ fn robot_row(bin: &Path, root: &Path, path: &Path) -> Result<Row, String> {
         ws_args.extend(s(&["--orientation", zero]));
     }
     ws_args.extend(s(&["--plot", &format!("docs/{picture}"), "--json"]));
-    let w = cmd(ws_args)?;
+    let w = cmd(ws_args.clone())?;
     let (volume, volume_unit) = if dim == 3 {
         (w["volume"].as_f64().unwrap_or(f64::NAN), "m³")
     } else {
         (w["area"].as_f64().unwrap_or(f64::NAN), "m²")
+    };
+    // With pulleys, the same workspace with straight cables.
+    let has_pulleys = desc.robot.cables().iter().any(|c| c.pulley.is_some());
+    let volume_straight = if has_pulleys {
+        let mut a: Vec<String> = ws_args
+            .iter()
+            .take_while(|x| x.as_str() != "--plot")
+            .cloned()
+            .collect();
+        a.extend(s(&["--kinematics", "standard", "--json"]));
+        let w = cmd(a)?;
+        w[if dim == 3 { "volume" } else { "area" }].as_f64()
+    } else {
+        None
     };
     // Stiffness at the home pose under those tensions, where the file gives E·S.
     let stiffness = match (&tensions_vec, &desc.axial_stiffness) {
@@ -235,6 +251,7 @@ fn robot_row(bin: &Path, root: &Path, path: &Path) -> Result<Row, String> {
         margin,
         volume,
         volume_unit,
+        volume_straight,
         feasible_points: w["feasible_points"].as_u64().unwrap_or(0),
         total_points: w["total_points"].as_u64().unwrap_or(0),
         stiffness,
@@ -287,11 +304,12 @@ fn markdown(rows: &[Row]) -> String {
     );
     let _ = writeln!(
         s,
-        "**Pulleys.** Files with swivel pulleys (WireCenter's, CASPR CAROCA's rotating pulleys) \
-         are read with them (*pulleys* column), but the pulley kinematics (wrapped arc, tangent \
-         leaving point) is not in cdpr yet: every number here uses straight cables from the pulley \
-         point **a**, the standard model. The change against straight cables will be added when \
-         the pulley model lands.\n"
+        "**Pulleys.** Files with swivel pulleys (every WireCenter file, CASPR CAROCA's rotating \
+         pulleys) are evaluated with the pulley model (Pott 2018: each cable wraps its pulley and \
+         leaves it tangentially; cdpr's default when a file has pulleys), and their workspace is \
+         also computed with straight cables from the pulley points (`--kinematics standard`, \
+         the second workspace command): the WFW column gives both and the change the pulleys \
+         make.\n"
     );
     let _ = writeln!(
         s,
@@ -326,12 +344,25 @@ fn markdown(rows: &[Row]) -> String {
             None => "infeasible".into(),
         };
         let margin = r.margin.map(fmt).unwrap_or_else(|| "—".into());
-        let wfw = format!(
+        let mut wfw = format!(
             "{} {} ({:.0} %)",
             fmt(r.volume),
             r.volume_unit,
             100.0 * r.feasible_points as f64 / r.total_points.max(1) as f64
         );
+        if let Some(v) = r.volume_straight {
+            let change = if v > 0.0 {
+                format!("{:+.1} %", 100.0 * (r.volume - v) / v)
+            } else {
+                "—".into()
+            };
+            let _ = write!(
+                wfw,
+                "; straight cables {} {}, pulleys {change}",
+                fmt(v),
+                r.volume_unit
+            );
+        }
         let k = match r.stiffness {
             Some((a, b)) => format!("{} – {}", fmt(a), fmt(b)),
             None => "—".into(),
