@@ -6,6 +6,8 @@
 //!   the thesis chapter (every published design re-evaluated, our optimiser re-run from every published
 //!   start), written to `docs/reproduction.md` and `target/reproduce/tables.json`, with every
 //!   convention the thesis leaves open settled by experiment;
+//! - `gallery`: docs/robots.md, what cdpr computes for every published robot shipped in
+//!   examples/robots/ (see `xtask/src/gallery.rs`); also run at the end of `reproduce`;
 //! - `bench [--quick] [--no-run] [FILTER]`: run the criterion suite of `benches/` and print each
 //!   benchmark's median against the performance target from the issues (pass/miss), also
 //!   written to `target/bench/summary.md` (see `xtask/src/bench.rs`);
@@ -14,13 +16,13 @@
 
 mod bench;
 mod fuzz;
+mod gallery;
 mod reproduce;
 
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str =
-    "usage: cargo xtask <reproduce | bench | fuzz> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz> [options]   (`cargo xtask <command> --help`)";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -28,7 +30,14 @@ fn main() -> ExitCode {
         .parent()
         .expect("xtask lives one level below the workspace root");
     match args.first().map(String::as_str) {
-        Some("reproduce") => match reproduce::run(root) {
+        Some("reproduce") => match reproduce::run(root).and_then(|()| gallery::run(root)) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
+        Some("gallery") => match gallery::run(root) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
                 eprintln!("error: {e}");

@@ -61,9 +61,32 @@ fn caspr_and_converted_toml_give_the_same_kinematics() {
 #[test]
 fn wcrfx_kinematics_and_tension_run() {
     let ipanema = data("wirecenter/IPAnema.wcrfx");
-    let k = json(&["kinematics", &ipanema, "--pose", "0,0,1,0,0,0", "--json"]);
+    // Straight cables: chain 1, base (-2, 1.5, 2), platform (-0.06, 0.06, 0), at (0, 0, 1).
+    let k = json(&[
+        "kinematics",
+        &ipanema,
+        "--pose",
+        "0,0,1,0,0,0",
+        "--kinematics",
+        "standard",
+        "--json",
+    ]);
     let l0 = k["lengths"][0].as_f64().unwrap();
     assert!((l0 - (1.94f64.powi(2) + 1.44f64.powi(2) + 1.0).sqrt()).abs() < 1e-12);
+    // The file's pulleys (radius 0.1 m, Q = I), Pott 2018: b = P - a = (1.94, -1.44, -1) in the
+    // pulley frame, ρ = |b_xy|, BM = √((ρ - r)² + b_z²), free length l_f = √(BM² - r²), wrap
+    // β = acos(l_f / BM) + acos(b_z / BM), l = β r + l_f.
+    let k = json(&["kinematics", &ipanema, "--pose", "0,0,1,0,0,0", "--json"]);
+    let l0 = k["lengths"][0].as_f64().unwrap();
+    let (r, rho, bz) = (0.1f64, (1.94f64.powi(2) + 1.44f64.powi(2)).sqrt(), -1.0f64);
+    let bm = ((rho - r).powi(2) + bz * bz).sqrt();
+    let lf = (bm * bm - r * r).sqrt();
+    let beta = (lf / bm).acos() + (bz / bm).acos();
+    assert!(
+        (l0 - (beta * r + lf)).abs() < 1e-9,
+        "{l0} vs {}",
+        beta * r + lf
+    );
     let t = json(&["tension", &ipanema, "--pose", "0,0,1,0,0,0", "--json"]);
     assert!(t["feasible"].is_boolean(), "{t}");
 }
