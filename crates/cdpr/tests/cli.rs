@@ -457,6 +457,7 @@ fn capacity_force_and_moment_radii() {
         "1",
     ]);
     assert!(err.contains("--moment-radius"), "{err}");
+}
 
 /// Issue 13 §1: every command that takes `--method` (and stiffness-map, which always uses sotda)
 /// rejects a method that does not apply to the robot with exit code 2 and one message, before
