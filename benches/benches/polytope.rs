@@ -3,9 +3,12 @@
 //!   for the 8-cable spatial robot, per pose (W given; target ≤ 10 µs);
 //! - `isotropic_force/seed001_point2`: the maximum isotropic force of Krut, Company & Pierrot's (2004) 3-motor robot,
 //!   per pose, inverse kinematics and W included (target ≤ 200 ns);
-//! - `available_wrench_set/*`: full facet lists by both methods, for reference.
+//! - `available_wrench_set/*`: full facet lists by both methods, for reference;
+//!   `hyperplane_shifting_10_spatial` (10 cables, 6 DOF, 504 half-spaces): target ≤ 100 µs.
 
-use cdpr_benches::{ipanema_like_8, krut_poses, krut_three_motor, spatial_poses};
+use cdpr_benches::{
+    ipanema_like_8, krut_poses, krut_three_motor, spatial_poses, ten_cable_spatial,
+};
 use cdpr_polytope::{
     CapacityMargin, CapacityMarginEvaluator, IsotropicForce, RequiredWrenchSet,
     hyperplane_shifting, krut_vertex_projection,
@@ -91,6 +94,15 @@ fn available_wrench_set(c: &mut Criterion) {
     let b8 = TensionBounds::uniform(8, 1.0, 1000.0).unwrap();
     g.bench_function("hyperplane_shifting_8_spatial", |b| {
         b.iter(|| hyperplane_shifting::available_wrench_set(black_box(&w8), &b8).unwrap())
+    });
+    // Issue 13 §7: 504 half-spaces merged into facets (target ≤ 100 µs for the whole call).
+    let w10 = ten_cable_spatial()
+        .inverse_kinematics(&spatial_poses(1)[0])
+        .unwrap()
+        .wrench_matrix();
+    let b10 = TensionBounds::uniform(10, 1.0, 1000.0).unwrap();
+    g.bench_function("hyperplane_shifting_10_spatial", |b| {
+        b.iter(|| hyperplane_shifting::available_wrench_set(black_box(&w10), &b10).unwrap())
     });
     g.finish();
 }

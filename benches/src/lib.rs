@@ -56,3 +56,22 @@ pub fn krut_poses(count: usize) -> Vec<Pose> {
         })
         .collect()
 }
+
+/// A 10-cable spatial robot (6 DOF, redundancy 4): the 8-cable robot of
+/// [`ipanema_like_8`] plus two cables from the middle of its long sides to the platform's
+/// centre line. Hyperplane shifting gives 2·C(10, 5) = 504 supporting half-spaces.
+pub fn ten_cable_spatial() -> Robot {
+    let base = ipanema_like_8();
+    let mut cables = base.cables().to_vec();
+    cables.push(Cable {
+        frame: Vector3::new(0.0, 1.5, 2.0),
+        platform: Vector3::new(0.0, 0.12, 0.05),
+        pulley: None,
+    });
+    cables.push(Cable {
+        frame: Vector3::new(0.0, -1.5, 0.0),
+        platform: Vector3::new(0.0, -0.12, -0.05),
+        pulley: None,
+    });
+    Robot::new(MotionPattern::Spatial, cables).expect("valid 10-cable robot")
+}

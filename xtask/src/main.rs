@@ -12,17 +12,21 @@
 //!   benchmark's median against the performance target from the issues (pass/miss), also
 //!   written to `target/bench/summary.md` (see `xtask/src/bench.rs`);
 //! - `fuzz [--seconds N] [--target NAME]`: run the cargo-fuzz targets of `fuzz/` for N seconds
-//!   each on stable Rust (`--sanitizer none`); exit code 1 if one crashed (see `xtask/src/fuzz.rs`).
+//!   each on stable Rust (`--sanitizer none`); exit code 1 if one crashed (see `xtask/src/fuzz.rs`);
+//! - `soak [--problems N] [--json]`: every tension method on N random problems, every answer
+//!   checked independently (compensated residual, an LP solved with Clarabel directly); exit
+//!   code 1 on a false answer of a complete method (see `xtask/src/soak.rs`).
 
 mod bench;
 mod fuzz;
 mod gallery;
 mod reproduce;
+mod soak;
 
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak> [options]   (`cargo xtask <command> --help`)";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -46,6 +50,7 @@ fn main() -> ExitCode {
         },
         Some("bench") => bench::run(root, &args[1..]),
         Some("fuzz") => fuzz::run(root, &args[1..]),
+        Some("soak") => soak::run(&args[1..]),
         Some("-h" | "--help" | "help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

@@ -103,6 +103,51 @@ pub fn available_wrench_set(
     w: &DMatrix<f64>,
     bounds: &TensionBounds,
 ) -> Result<AvailableWrenchSet, PolytopeError> {
+    input::check(w, bounds)?;
+    // Extreme scales (|W| or |t| beyond 2^±64) are brought near 1 by powers of two, which are
+    // exact: AWS(k_w W, k_t t) = k_w k_t · AWS(W, t). The tolerances of steps 1–6 are relative,
+    // but products of tiny or huge numbers underflow or overflow (issue 13: W = s·W₀ with
+    // s = 10²⁰⁰ or 10⁻¹⁶⁰ gave no facets and an isotropic force of +∞).
+    let kw = power_of_two_scale(w.amax());
+    let kt = power_of_two_scale(
+        bounds
+            .min()
+            .iter()
+            .chain(bounds.max().iter())
+            .fold(0.0f64, |a, &b| a.max(b.abs())),
+    );
+    if kw == 1.0 && kt == 1.0 {
+        return available_wrench_set_unscaled(w, bounds);
+    }
+    let ws = w * kw;
+    let bs = TensionBounds::new(
+        (bounds.min() * kt).as_slice().to_vec(),
+        (bounds.max() * kt).as_slice().to_vec(),
+    )
+    .map_err(|e| PolytopeError::SolverFailure {
+        detail: format!("rescaled tension bounds: {e}"),
+    })?;
+    available_wrench_set_unscaled(&ws, &bs)?.rescaled(1.0 / kw, 1.0 / kt)
+}
+
+/// 2^−e with 2^e the power of two nearest to `magnitude`, when `magnitude` lies outside
+/// [2⁻⁶⁴, 2⁶⁴]; 1 otherwise (and for 0).
+fn power_of_two_scale(magnitude: f64) -> f64 {
+    if magnitude > 0.0
+        && magnitude.is_finite()
+        && !(2f64.powi(-64)..=2f64.powi(64)).contains(&magnitude)
+    {
+        2f64.powi(-(magnitude.log2().round() as i32))
+    } else {
+        1.0
+    }
+}
+
+/// Steps 1–6 on data of moderate scale.
+fn available_wrench_set_unscaled(
+    w: &DMatrix<f64>,
+    bounds: &TensionBounds,
+) -> Result<AvailableWrenchSet, PolytopeError> {
     let p = ProjectedBox::new(w, bounds, MAX_CANDIDATES)?;
     let mut borders: Vec<(Vec6, usize)> = Vec::new(); // (outward a, a vertex on the border)
     p.for_each_candidate(|idx, verdict| {
@@ -110,10 +155,17 @@ pub fn available_wrench_set(
             borders.push((a, idx[0]));
         }
     });
-    let raw = borders
+    let raw: Vec<Facet> = borders
         .iter()
         .filter_map(|(a, v)| p.operational(a, *v))
         .collect();
+    if raw.is_empty() {
+        // A full-dimensional bounded polytope has facets: none found is a numerical failure,
+        // never an AWS without facets (whose isotropic force would be +∞).
+        return Err(PolytopeError::SolverFailure {
+            detail: "Krut's vertex projection found no border hyperplane".into(),
+        });
+    }
     Ok(AvailableWrenchSet::from_halfspaces(
         p.dof(),
         raw,

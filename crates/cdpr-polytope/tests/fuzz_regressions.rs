@@ -876,3 +876,34 @@ fn thin_facet_among_generators_of_very_different_sizes() {
     let b = TensionBounds::uniform(6, -0.001, 0.002).unwrap();
     both_methods_give(&w, &b, 7.240582290327277e-07);
 }
+
+/// Issue 13 §1: Krut's vertex projection at extreme scales. W = s·[[1, −1, 0, 0], [0, 0, 1, −1]],
+/// t ∈ [1, 10]: the AWS is the square [−9s, 9s]² and the isotropic force is 9·s (hyperplane
+/// shifting agrees). For s ≥ 10²⁰⁰ or ≤ 10⁻¹⁶⁰ the method returned no facets and +∞ as Ok.
+#[test]
+fn krut_vertex_projection_at_extreme_scales() {
+    use cdpr_kinematics::MotionPattern;
+    use cdpr_polytope::{hyperplane_shifting, isotropic_force, krut_vertex_projection};
+    let b = cdpr_tension::TensionBounds::uniform(4, 1.0, 10.0).unwrap();
+    for s in [
+        1e-300, 1e-200, 1e-160, 1e-100, 1e-20, 1.0, 1e20, 1e100, 1e200, 1e300,
+    ] {
+        let w = nalgebra::DMatrix::from_row_slice(2, 4, &[s, -s, 0.0, 0.0, 0.0, 0.0, s, -s]);
+        let krut = krut_vertex_projection::available_wrench_set(&w, &b).unwrap();
+        let shift = hyperplane_shifting::available_wrench_set(&w, &b).unwrap();
+        assert_eq!(krut.facets().len(), 4, "s = {s:e}");
+        for f in krut.facets() {
+            assert!(
+                (f.offset / (9.0 * s) - 1.0).abs() < 1e-12,
+                "s = {s:e}: {f:?}"
+            );
+        }
+        assert_eq!(krut.vertices().unwrap().len(), 4, "s = {s:e}");
+        let (fk, fs) = (
+            isotropic_force(&krut, MotionPattern::Point2).unwrap(),
+            isotropic_force(&shift, MotionPattern::Point2).unwrap(),
+        );
+        assert!((fk / (9.0 * s) - 1.0).abs() < 1e-12, "s = {s:e}: {fk:e}");
+        assert!((fs / (9.0 * s) - 1.0).abs() < 1e-12, "s = {s:e}: {fs:e}");
+    }
+}

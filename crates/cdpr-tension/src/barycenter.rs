@@ -5,7 +5,7 @@
 //! finite number of operations (Lamaury & Gouttefarde 2013 walk the polygon's edges; we clip
 //! it, see [`crate::FeasiblePolygon`]). The area centroid commutes with affine maps, so the
 //! result does not depend on the choice of the null-space basis. A degenerate (zero-area)
-//! polygon gives the mean of its vertices. Other redundancies: [`Infeasibility::NotApplicable`].
+//! polygon gives the mean of its vertices. Other redundancies: [`crate::TensionError::MethodNotApplicable`].
 //!
 //! ## References
 //! - Lamaury & Gouttefarde (2013), *A tension distribution method with improved computational

@@ -16,6 +16,11 @@ pub const EQUILIBRIUM_TOLERANCE: f64 = 1e-9;
 /// Relative tolerance of the tension bounds.
 pub const BOUND_TOLERANCE: f64 = 1e-9;
 
+/// Tolerance (relative to max(1, |bound|)) with which the feasible-set constructions (the
+/// interval of Algorithm 6.1, the feasible polygon) keep a point on a bound: a tenth of
+/// [`BOUND_TOLERANCE`], so a kept point passes the certificate after snapping.
+pub(crate) const SET_TOLERANCE: f64 = 1e-10;
+
 /// What [`certify`] measured.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Certificate {

@@ -28,7 +28,7 @@
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators (ch. 6), eqs. (6.15)–(6.20), Algorithm 6.1.
 
-use crate::certificate::bound_violation;
+use crate::certificate::{SET_TOLERANCE, bound_violation};
 use crate::null_space::SINGULARITY_RATIO;
 use crate::outcome::validate;
 use crate::{Infeasibility, TensionError, TensionProblem};
@@ -62,7 +62,8 @@ impl FeasibleInterval {
     }
 }
 
-/// The feasible interval of a redundancy-1 problem, or why there is none.
+/// The feasible interval of a redundancy-1 problem, or why there is none (another redundancy
+/// is the error [`TensionError::RedundancyMismatch`]).
 ///
 /// ```
 /// use cdpr_tension::{feasible_interval, TensionBounds, TensionProblem};
@@ -79,6 +80,14 @@ pub fn feasible_interval(
     problem: &TensionProblem,
 ) -> Result<Result<FeasibleInterval, Infeasibility>, TensionError> {
     validate(problem)?;
+    let r = problem.redundancy();
+    if r != 1 {
+        return Err(TensionError::RedundancyMismatch {
+            what: "feasible interval",
+            needs: 1,
+            redundancy: r,
+        });
+    }
     let mut s = ClosedForm::default();
     Ok(s.interval(problem).map(|(lo, hi)| {
         let particular = DVector::from_column_slice(&s.m_vec);
@@ -276,13 +285,7 @@ impl ClosedForm {
 
     /// Algorithm 6.1: the feasible interval of t^B (callers ensure r = 1).
     pub fn interval(&mut self, problem: &TensionProblem) -> Result<(f64, f64), Infeasibility> {
-        let r = problem.redundancy();
-        if r != 1 {
-            return Err(Infeasibility::NotApplicable {
-                method: "closed-form",
-                redundancy: r,
-            });
-        }
+        debug_assert_eq!(problem.redundancy(), 1);
         self.parametrise(problem)?;
         interval_of(&self.m_vec, &self.n_vec, problem).map(|iv| (iv.lo, iv.hi))
     }
@@ -302,13 +305,7 @@ impl ClosedForm {
             (3, 4) => return solve_small::<3>(problem, maximize, t),
             _ => {}
         }
-        let r = problem.redundancy();
-        if r != 1 {
-            return Err(Infeasibility::NotApplicable {
-                method: "closed-form",
-                redundancy: r,
-            });
-        }
+        debug_assert_eq!(problem.redundancy(), 1);
         self.parametrise(problem)?;
         let iv = interval_of(&self.m_vec, &self.n_vec, problem)?;
         write_end(&self.m_vec, &self.n_vec, &iv, maximize, t)
@@ -445,7 +442,7 @@ pub(crate) fn solve_small<const M: usize>(
         slope += ni;
         if ni.abs() <= 1e-14 {
             // t_i does not depend on t^B: it must satisfy its bounds by itself.
-            if bound_violation(tl, th, mi) > 1e-12 {
+            if bound_violation(tl, th, mi) > SET_TOLERANCE {
                 return Err(Infeasibility::NoFeasibleTension);
             }
             continue;
@@ -470,7 +467,7 @@ pub(crate) fn solve_small<const M: usize>(
         let worst = (0..n)
             .map(|i| bound_violation(tmin[i], tmax[i], s.m[i] + s.n[i] * mid))
             .fold(f64::NEG_INFINITY, f64::max);
-        if worst > 1e-12 {
+        if worst > SET_TOLERANCE {
             return Err(Infeasibility::NoFeasibleTension);
         }
         (lo, hi, i_lo, i_hi) = (mid, mid, n, n);
@@ -513,7 +510,7 @@ fn interval_of(m: &[f64], n: &[f64], problem: &TensionProblem) -> Result<Interva
     for (i, (((&mi, &ni), &tl), &th)) in m.iter().zip(n).zip(tmin).zip(tmax).enumerate() {
         if ni.abs() <= 1e-14 {
             // t_i does not depend on t^B: it must satisfy its bounds by itself.
-            if bound_violation(tl, th, mi) > 1e-12 {
+            if bound_violation(tl, th, mi) > SET_TOLERANCE {
                 return Err(Infeasibility::NoFeasibleTension);
             }
             continue;
@@ -537,12 +534,12 @@ fn interval_of(m: &[f64], n: &[f64], problem: &TensionProblem) -> Result<Interva
     }
     if lo > hi {
         // Empty, unless only by rounding: accept the midpoint if it violates no bound by
-        // more than 10⁻¹² (relative), the tolerance of the polygon clipping too.
+        // more than `SET_TOLERANCE` (relative), the tolerance of the polygon clipping too.
         let mid = 0.5 * (lo + hi);
         let worst = (0..n.len())
             .map(|i| bound_violation(tmin[i], tmax[i], m[i] + n[i] * mid))
             .fold(f64::NEG_INFINITY, f64::max);
-        if worst > 1e-12 {
+        if worst > SET_TOLERANCE {
             return Err(Infeasibility::NoFeasibleTension);
         }
         return Ok(Interval {

@@ -24,6 +24,7 @@
 //!   efficiency*, Cable-Driven Parallel Robots, pp. 71–85.
 //! - Sutherland & Hodgman (1974), *Reentrant polygon clipping*, CACM 17(1).
 
+use crate::certificate::SET_TOLERANCE;
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
 use crate::{Infeasibility, TensionBounds, TensionError, TensionProblem};
@@ -199,7 +200,7 @@ impl Region {
     /// only a candidate: every answer is certified afterwards.
     #[inline]
     fn tolerance(&self, bound: f64) -> f64 {
-        (1e-10 * bound.abs().max(1.0)).max(1e-14 * self.scale)
+        (SET_TOLERANCE * bound.abs().max(1.0)).max(1e-14 * self.scale)
     }
 
     /// Keeps the part of the region on the line a·λ = b (within `tol`): a fixed cable
@@ -546,8 +547,8 @@ pub struct FeasiblePolygon {
 }
 
 impl FeasiblePolygon {
-    /// The feasible polygon of `problem`, or why there is none (empty, singular W, r ≠ 2, or
-    /// unbounded because of an infinite t_max). Errors on bad input.
+    /// The feasible polygon of `problem`, or why there is none (empty, singular W, or
+    /// unbounded because of an infinite t_max). Errors on bad input and r ≠ 2.
     ///
     /// ```
     /// use cdpr_tension::{FeasiblePolygon, TensionBounds, TensionProblem};
@@ -564,10 +565,11 @@ impl FeasiblePolygon {
         validate(problem)?;
         let r = problem.redundancy();
         if r != 2 {
-            return Ok(Err(Infeasibility::NotApplicable {
-                method: "feasible polygon",
+            return Err(TensionError::RedundancyMismatch {
+                what: "feasible polygon",
+                needs: 2,
                 redundancy: r,
-            }));
+            });
         }
         let mut ns = NullSpace::default();
         if let Err(condition) = ns.compute(problem.wrench_matrix, problem.external_wrench) {

@@ -42,18 +42,13 @@ pub(crate) struct ImprovedClosedForm {
 }
 
 impl ImprovedClosedForm {
-    /// Pott (2014) into `t` (callers ensure r ≥ 0).
+    /// Pott (2014) into `t` (callers ensure r ≥ 0 and finite t_max, see
+    /// [`crate::TensionError::NeedsFiniteBounds`]).
     pub fn solve(&mut self, problem: &TensionProblem, t: &mut [f64]) -> Result<(), Infeasibility> {
         const METHOD: &str = "improved-closed-form";
         let w = problem.wrench_matrix;
         let (m, n) = w.shape();
         let (lo, hi) = (problem.bounds.min(), problem.bounds.max());
-        if hi.iter().any(|v| !v.is_finite()) {
-            return Err(Infeasibility::NotApplicable {
-                method: METHOD,
-                redundancy: problem.redundancy(),
-            });
-        }
         self.active.clear();
         self.active.resize(n, true);
         self.rhs.resize(m, 0.0);

@@ -84,7 +84,7 @@ pub use closed_form::{FeasibleInterval, feasible_interval};
 pub use error::TensionError;
 pub use feasible_polygon::FeasiblePolygon;
 pub use interior_point::{Objective, interior_point};
-pub use method::Method;
+pub use method::{Method, RequiredRedundancy};
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.

@@ -101,9 +101,95 @@ impl Method {
     }
 }
 
+/// The redundancy r = n − DOF a method needs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum RequiredRedundancy {
+    /// Exactly this r.
+    Exactly(usize),
+    /// Any r ≥ 0 (at least as many cables as degrees of freedom).
+    AtLeastZero,
+}
+
+impl RequiredRedundancy {
+    /// Whether redundancy `r` satisfies the requirement.
+    #[inline]
+    pub fn admits(self, r: isize) -> bool {
+        match self {
+            Self::Exactly(k) => r == k as isize,
+            Self::AtLeastZero => r >= 0,
+        }
+    }
+}
+
 impl fmt::Debug for Method {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
+    }
+}
+
+impl fmt::Display for RequiredRedundancy {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Exactly(k) => write!(f, "{k}"),
+            Self::AtLeastZero => f.write_str("≥ 0"),
+        }
+    }
+}
+
+impl Method {
+    /// The redundancy r = n − DOF the method is defined for: exact 0, closed-form 1
+    /// (Algorithm 6.1), barycenter and sotda 2, every other method any r ≥ 0.
+    pub fn required_redundancy(self) -> RequiredRedundancy {
+        match self {
+            Self::Exact => RequiredRedundancy::Exactly(0),
+            Self::ClosedForm => RequiredRedundancy::Exactly(1),
+            Self::Barycenter | Self::Sotda => RequiredRedundancy::Exactly(2),
+            _ => RequiredRedundancy::AtLeastZero,
+        }
+    }
+
+    /// Whether the method applies at redundancy r = n − DOF.
+    #[inline]
+    pub fn applies_to(self, redundancy: isize) -> bool {
+        self.required_redundancy().admits(redundancy)
+    }
+
+    /// The methods that apply at redundancy r, in the order of [`Method::ALL`].
+    pub fn applicable(redundancy: isize) -> Vec<Method> {
+        Self::ALL
+            .into_iter()
+            .filter(|m| m.applies_to(redundancy))
+            .collect()
+    }
+
+    /// `Ok` if the method applies at redundancy r, else the usage error
+    /// [`TensionError::MethodNotApplicable`] (check once, before a grid or a trajectory runs).
+    ///
+    /// ```
+    /// use cdpr_tension::Method;
+    /// let e = Method::ClosedForm.check_redundancy(2).unwrap_err();
+    /// assert!(e.to_string().starts_with(
+    ///     "method closed-form needs redundancy 1; this robot has n − DOF = 2; methods that apply: pinv, l1,"
+    /// ));
+    /// assert!(Method::L1.check_redundancy(5).is_ok());
+    /// ```
+    pub fn check_redundancy(self, redundancy: isize) -> Result<(), TensionError> {
+        if self.applies_to(redundancy) {
+            Ok(())
+        } else {
+            Err(self.not_applicable(redundancy))
+        }
+    }
+
+    /// The usage error for redundancy r (cold: it allocates the list of applicable methods).
+    #[cold]
+    pub(crate) fn not_applicable(self, redundancy: isize) -> TensionError {
+        TensionError::MethodNotApplicable {
+            method: self,
+            needs: self.required_redundancy(),
+            redundancy,
+            applicable: Self::applicable(redundancy),
+        }
     }
 }
 
@@ -140,5 +226,51 @@ mod tests {
             "l3".parse::<Method>(),
             Err(TensionError::UnknownMethod(_))
         ));
+    }
+
+    #[test]
+    fn applicability_by_redundancy() {
+        use Method::*;
+        assert_eq!(
+            Method::applicable(0),
+            vec![Exact, Pinv, L1, L1Max, L2, L2Max, Linf, ImprovedClosedForm]
+        );
+        assert_eq!(
+            Method::applicable(1),
+            vec![
+                Pinv,
+                ClosedForm,
+                L1,
+                L1Max,
+                L2,
+                L2Max,
+                Linf,
+                ImprovedClosedForm
+            ]
+        );
+        assert_eq!(
+            Method::applicable(2),
+            vec![
+                Pinv,
+                L1,
+                L1Max,
+                L2,
+                L2Max,
+                Linf,
+                ImprovedClosedForm,
+                Barycenter,
+                Sotda
+            ]
+        );
+        assert!(Method::applicable(-1).is_empty());
+        assert_eq!(
+            ClosedForm.check_redundancy(2).unwrap_err().to_string(),
+            "method closed-form needs redundancy 1; this robot has n − DOF = 2; methods that apply: \
+             pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda"
+        );
+        assert_eq!(
+            L1.check_redundancy(-1).unwrap_err().to_string(),
+            "method l1 needs redundancy ≥ 0; this robot has n − DOF = -1; methods that apply: none"
+        );
     }
 }

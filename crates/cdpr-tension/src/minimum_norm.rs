@@ -21,6 +21,7 @@
 use crate::certificate::bound_violation;
 use crate::null_space::{NullSpace, SINGULARITY_RATIO};
 use crate::{Infeasibility, TensionBounds, TensionProblem};
+use nalgebra::DVector;
 
 /// Eq. (6.12) (r = 0) or eq. (6.14) (r > 0) into `t`; checks the bounds.
 pub(crate) fn minimum_norm(
@@ -130,6 +131,7 @@ fn check_bounds_slow(bounds: &TensionBounds, t: &[f64]) -> Result<(), Infeasibil
         return Err(Infeasibility::BoundsViolated {
             cable: worst.0,
             tension: t[worst.0],
+            tensions: DVector::from_vec(Vec::new()),
         });
     }
     Ok(())

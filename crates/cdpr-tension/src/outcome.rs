@@ -66,25 +66,22 @@ pub struct TensionSolution {
 pub enum Infeasibility {
     /// The feasible set {t : W t + w_ext = 0, t_min ≤ t ≤ t_max} is empty.
     NoFeasibleTension,
-    /// exact / pinv: the unique or minimum-norm solution breaks a bound of `cable`.
+    /// exact / pinv: the unique (6.12) or minimum-norm (6.14) solution balances the wrench but
+    /// breaks a bound of `cable`.
     BoundsViolated {
         /// Cable with the largest relative violation (0-based).
         cable: usize,
         /// Its tension.
         tension: f64,
+        /// The whole solution t = −W⁺ w_ext (W t + w_ext = 0, bounds not met); filled by
+        /// [`crate::TensionSolver::solve`] (empty from the non-allocating calls).
+        tensions: DVector<f64>,
     },
     /// W is rank-deficient or ill-conditioned (`condition` = 1/Hadamard ratio, see
     /// `null_space` docs; singular above 10¹⁰).
     SingularPose {
         /// Condition estimate (∞ for an exactly rank-deficient W).
         condition: f64,
-    },
-    /// The method does not apply at this redundancy r = n − DOF.
-    NotApplicable {
-        /// Method name.
-        method: &'static str,
-        /// r = n − DOF.
-        redundancy: isize,
     },
     /// A maximisation over an unbounded feasible set (some t_max = ∞).
     Unbounded {
@@ -118,7 +115,7 @@ impl fmt::Display for Infeasibility {
             Self::NoFeasibleTension => f.write_str(
                 "no tensions within the bounds balance the external wrench (empty feasible set)",
             ),
-            Self::BoundsViolated { cable, tension } => write!(
+            Self::BoundsViolated { cable, tension, .. } => write!(
                 f,
                 "the solution needs tension {tension} in cable {}, outside its bounds",
                 cable + 1
@@ -126,16 +123,6 @@ impl fmt::Display for Infeasibility {
             Self::SingularPose { condition } => write!(
                 f,
                 "the wrench matrix is singular at this pose (condition ≈ {condition:.3e})"
-            ),
-            Self::NotApplicable { method, redundancy } => write!(
-                f,
-                "method {method} does not apply to redundancy n − DOF = {redundancy}{}",
-                match *method {
-                    "exact" => " (needs 0)",
-                    "closed-form" => " (needs 1)",
-                    "barycenter" | "sotda" => " (needs 2)",
-                    _ => " (needs n ≥ DOF)",
-                }
             ),
             Self::Unbounded { method } => write!(
                 f,
@@ -176,6 +163,16 @@ impl TensionOutcome {
     pub fn tensions(&self) -> Option<&DVector<f64>> {
         match self {
             Self::Feasible(s) => Some(&s.tensions),
+            Self::Infeasible(_) => None,
+        }
+    }
+
+    /// Tensions that balance the wrench: the certified ones if feasible, else the exact / pinv
+    /// solution t = −W⁺ w_ext that breaks a bound ([`Infeasibility::BoundsViolated`]).
+    pub fn balancing_tensions(&self) -> Option<&DVector<f64>> {
+        match self {
+            Self::Feasible(s) => Some(&s.tensions),
+            Self::Infeasible(Infeasibility::BoundsViolated { tensions, .. }) => Some(tensions),
             Self::Infeasible(_) => None,
         }
     }

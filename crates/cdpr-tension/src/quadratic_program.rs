@@ -19,7 +19,7 @@ use crate::certificate::bound_violation;
 use crate::feasible_polygon::Region;
 use crate::linear_program::write_tensions;
 use crate::null_space::NullSpace;
-use crate::{Infeasibility, TensionBounds};
+use crate::{Infeasibility, Method, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector};
 
 /// l2 (`maximize = false`) or l2-max on a built, non-empty region (r ≤ 2).
@@ -55,16 +55,66 @@ pub(crate) fn solve_on_region(
 /// Maximum cap on the number of vertex candidates for r ≥ 3.
 const MAX_CANDIDATES: f64 = 2e5;
 
-/// l2-max for any redundancy r ≥ 1 by vertex enumeration in λ-space (allocates).
+/// Whether the feasible set {t = t0 + N λ : t_min ≤ t ≤ t_max} is unbounded, decided from the
+/// set (issue 13): a closed convex set is unbounded exactly when its recession cone
+/// {d ∈ null(W) : d ≥ 0, d_i = 0 where t_max,i < ∞} has a non-zero ray. The largest Σ d over
+/// that cone cut by d ≤ 1 is an LP (l1-max on a tension problem with w_ext = 0 and bounds
+/// [0, 0] or [0, 1]); the set is unbounded iff its optimum is positive. Callers ensure the set is
+/// non-empty and some t_max is infinite. `None` when the LP itself fails.
+fn has_recession_ray(w: &DMatrix<f64>, bounds: &TensionBounds) -> Option<bool> {
+    let n = w.ncols();
+    let hi: Vec<f64> = bounds
+        .max()
+        .iter()
+        .map(|v| if v.is_finite() { 0.0 } else { 1.0 })
+        .collect();
+    let cone = TensionBounds::new(vec![0.0; n], hi).ok()?;
+    let zero = DVector::zeros(w.nrows());
+    let problem = TensionProblem::new(w, &zero, &cone);
+    match TensionSolver::new(Method::L1Max).solve(&problem).ok()? {
+        crate::TensionOutcome::Feasible(s) => Some(s.tensions.sum() > 1e-9 * n as f64),
+        crate::TensionOutcome::Infeasible(_) => None,
+    }
+}
+
+/// l2-max at r ≥ 3: with an infinite t_max, first whether the set is empty (l1 on the same
+/// problem) or unbounded ([`has_recession_ray`]); a bounded set then has its vertices among
+/// the candidates of [`l2_max_by_vertices`] (an infinite bound is never active at a vertex).
+pub(crate) fn l2_max_high_redundancy(
+    problem: &TensionProblem,
+    ns: &NullSpace,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    if problem.bounds.max().iter().any(|v| !v.is_finite()) {
+        let l1 = TensionSolver::new(Method::L1).solve(problem).map_err(|e| {
+            Infeasibility::SolverFailure {
+                detail: format!("l2-max: feasibility test: {e}"),
+            }
+        })?;
+        if let crate::TensionOutcome::Infeasible(reason) = l1 {
+            return Err(reason);
+        }
+        match has_recession_ray(problem.wrench_matrix, problem.bounds) {
+            Some(true) => return Err(Infeasibility::Unbounded { method: "l2-max" }),
+            Some(false) => {}
+            None => {
+                return Err(Infeasibility::SolverFailure {
+                    detail: "l2-max: the recession-cone LP failed".to_string(),
+                });
+            }
+        }
+    }
+    l2_max_by_vertices(ns, problem.bounds, t)
+}
+
+/// l2-max for any redundancy r ≥ 1 by vertex enumeration in λ-space (allocates). The set must
+/// be bounded (see [`l2_max_high_redundancy`]); an infinite t_max is never a vertex's bound.
 pub(crate) fn l2_max_by_vertices(
     ns: &NullSpace,
     bounds: &TensionBounds,
     t: &mut [f64],
 ) -> Result<(), Infeasibility> {
     let (n, r) = (ns.n, ns.r());
-    if bounds.max().iter().any(|v| !v.is_finite()) {
-        return Err(Infeasibility::Unbounded { method: "l2-max" });
-    }
     let mut count = 2f64.powi(r as i32);
     for k in 0..r {
         count *= (n - k) as f64 / (k + 1) as f64;
@@ -82,6 +132,9 @@ pub(crate) fn l2_max_by_vertices(
         let a = DMatrix::from_fn(r, r, |i, j| nmat[(subset[i], j)]);
         if let Some(lu) = Some(a.lu()).filter(|lu| lu.is_invertible()) {
             for mask in 0..(1usize << r) {
+                if (0..r).any(|i| mask >> i & 1 == 1 && !bounds.max()[subset[i]].is_finite()) {
+                    continue;
+                }
                 let rhs = DVector::from_fn(r, |i, _| {
                     let c = subset[i];
                     let b = if mask >> i & 1 == 1 {

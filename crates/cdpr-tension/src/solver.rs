@@ -46,12 +46,14 @@ use crate::{
 use nalgebra::DVector;
 
 /// Algorithm 6.1 for DOF = M ≤ 3 and n = M + 1, then the certificate (fixed sizes throughout).
+/// `maximize`: the larger-Σt end (l1-max).
 #[inline(always)]
 fn closed_form_small<const M: usize>(
     p: &TensionProblem,
+    maximize: bool,
     t: &mut [f64],
 ) -> Result<f64, Infeasibility> {
-    closed_form::solve_small::<M>(p, false, t)?;
+    closed_form::solve_small::<M>(p, maximize, t).map_err(|e| rename_unbounded(e, maximize))?;
     snap_and_certify_fixed::<M>(p.wrench_matrix, p.external_wrench, p.bounds, t)
         .map_err(certificate_failed)
 }
@@ -66,6 +68,17 @@ fn copy_tensions(dst: &mut [f64], src: &[f64]) {
         }
     } else {
         dst.copy_from_slice(src);
+    }
+}
+
+/// Algorithm 6.1 serves l1 and l1-max at r = 1: an unbounded end is reported under l1-max.
+#[cold]
+fn rename_unbounded(e: Infeasibility, maximize: bool) -> Infeasibility {
+    match e {
+        Infeasibility::Unbounded { .. } if maximize => {
+            Infeasibility::Unbounded { method: "l1-max" }
+        }
+        e => e,
     }
 }
 
@@ -146,13 +159,23 @@ impl TensionSolver {
         self.fallbacks
     }
 
-    /// Solves `problem`. Errors only on bad input; infeasibility is an outcome.
+    /// Solves `problem`. Errors on bad input and on a method that does not apply to the
+    /// problem ([`TensionError::MethodNotApplicable`], [`TensionError::NeedsFiniteBounds`]);
+    /// infeasibility is an outcome.
     pub fn solve(&mut self, problem: &TensionProblem) -> Result<TensionOutcome, TensionError> {
         Ok(match self.run(problem)? {
             Ok(residual) => TensionOutcome::Feasible(TensionSolution {
                 tensions: DVector::from_column_slice(&self.t),
                 residual,
             }),
+            Err(Infeasibility::BoundsViolated { cable, tension, .. }) => {
+                // exact / pinv left t = −W⁺ w_ext in the buffer: hand it out.
+                TensionOutcome::Infeasible(Infeasibility::BoundsViolated {
+                    cable,
+                    tension,
+                    tensions: DVector::from_column_slice(&self.t),
+                })
+            }
             Err(reason) => TensionOutcome::Infeasible(reason),
         })
     }
@@ -186,16 +209,26 @@ impl TensionSolver {
     fn run(&mut self, p: &TensionProblem) -> Result<Result<f64, Infeasibility>, TensionError> {
         validate(p)?;
         let (m, n) = p.wrench_matrix.shape();
+        let r = n as isize - m as isize;
+        if !self.method.applies_to(r) {
+            return Err(self.method.not_applicable(r));
+        }
         // Lean path of Algorithm 6.1 for DOF ≤ 3 (the thesis' planar 4-cable robot): fixed-size
-        // solve and certificate, no dispatch (the same answer as the general path).
-        if self.method == Method::ClosedForm && n == m + 1 && m <= 3 {
+        // solve and certificate, no dispatch (the same answer as the general path). At r = 1
+        // Algorithm 6.1 is also the exact solver of l1 (min Σ t) and l1-max (max Σ t): Σ t is
+        // linear on the feasible interval, so its optimum is the better end (issue 13 §7).
+        if matches!(self.method, Method::ClosedForm | Method::L1 | Method::L1Max)
+            && n == m + 1
+            && m <= 3
+        {
             if self.t.len() != n {
                 self.t.resize(n, 0.0);
             }
+            let maximize = self.method == Method::L1Max;
             return Ok(match m {
-                1 => closed_form_small::<1>(p, &mut self.t),
-                2 => closed_form_small::<2>(p, &mut self.t),
-                _ => closed_form_small::<3>(p, &mut self.t),
+                1 => closed_form_small::<1>(p, maximize, &mut self.t),
+                2 => closed_form_small::<2>(p, maximize, &mut self.t),
+                _ => closed_form_small::<3>(p, maximize, &mut self.t),
             });
         }
         self.run_general(p, m, n)
@@ -211,6 +244,14 @@ impl TensionSolver {
     ) -> Result<Result<f64, Infeasibility>, TensionError> {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
+        }
+        if self.method == Method::ImprovedClosedForm
+            && let Some(cable) = p.bounds.max().iter().position(|v| !v.is_finite())
+        {
+            return Err(TensionError::NeedsFiniteBounds {
+                method: self.method,
+                cable,
+            });
         }
         if self.t.len() != n {
             self.t.resize(n, 0.0);
@@ -300,20 +341,16 @@ impl TensionSolver {
     fn dispatch(&mut self, p: &TensionProblem) -> Result<Result<(), Infeasibility>, TensionError> {
         let r = p.redundancy();
         let method = self.method;
-        let na = Err(Infeasibility::NotApplicable {
-            method: method.name(),
-            redundancy: r,
-        });
-        if r < 0 {
-            return Ok(na);
-        }
         Ok(match method {
-            Method::Exact if r != 0 => na,
             Method::Exact | Method::Pinv => minimum_norm(&mut self.ns, p, &mut self.t),
-            Method::ClosedForm if r != 1 => na,
             Method::ClosedForm => self.closed.solve(p, false, &mut self.t),
+            Method::L1 | Method::L1Max if r == 1 => {
+                let maximize = method == Method::L1Max;
+                self.closed
+                    .solve(p, maximize, &mut self.t)
+                    .map_err(|e| rename_unbounded(e, maximize))
+            }
             Method::ImprovedClosedForm => self.icf.solve(p, &mut self.t),
-            Method::Barycenter | Method::Sotda if r != 2 => na,
             Method::L1 | Method::L1Max | Method::L2 | Method::Linf if r > 2 => {
                 let objective = match method {
                     Method::L1 => Objective::L1,
@@ -352,7 +389,7 @@ impl TensionSolver {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
-                quadratic_program::l2_max_by_vertices(&self.ns, p.bounds, &mut self.t)
+                quadratic_program::l2_max_high_redundancy(p, &self.ns, &mut self.t)
             }
             _ => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {

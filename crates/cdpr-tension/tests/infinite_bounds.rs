@@ -89,7 +89,12 @@ proptest! {
         };
         let mut complete_verdicts = Vec::new();
         for m in Method::ALL.into_iter().filter(|m| *m != Method::Sotda) {
-            let o = solve(m, &p);
+            // Inapplicable methods (wrong redundancy; the improved closed form with t_max = ∞)
+            // are usage errors.
+            let Ok(o) = TensionSolver::new(m).solve(&p) else {
+                prop_assert!(!m.applies_to(r) || m == Method::ImprovedClosedForm, "{m} (r = {r})");
+                continue;
+            };
             if let TensionOutcome::Feasible(s) = &o {
                 check(&p, &s.tensions)?;
             }
@@ -151,13 +156,7 @@ fn regression_planar_four_cables_pure_moment() {
         .tensions()
         .expect("closed form is feasible")
         .clone();
-    for m in [
-        Method::L1,
-        Method::L2,
-        Method::Linf,
-        Method::Pinv,
-        Method::ImprovedClosedForm,
-    ] {
+    for m in [Method::L1, Method::L2, Method::Linf, Method::Pinv] {
         let o = solve(m, &p);
         if let TensionOutcome::Infeasible(reason) = &o {
             assert!(
@@ -171,6 +170,11 @@ fn regression_planar_four_cables_pure_moment() {
             assert!(t.iter().all(|&v| v >= 1.0), "{m}: {t}");
         }
     }
+    assert!(
+        TensionSolver::new(Method::ImprovedClosedForm)
+            .solve(&p)
+            .is_err()
+    );
     // One cable is slack at t_min in every minimiser (r = 1: a vertex of the interval).
     assert!(tc.iter().any(|&v| (v - 1.0).abs() <= 1e-12), "{tc}");
     for m in [Method::L1, Method::L2, Method::Linf] {
@@ -181,4 +185,34 @@ fn regression_planar_four_cables_pure_moment() {
         solve(Method::L1Max, &p).infeasibility(),
         Some(Infeasibility::Unbounded { .. })
     ));
+}
+
+/// Issue 13 §1: l2-max at redundancy ≥ 3 answered "unbounded" whenever some t_max = ∞,
+/// without looking at the set. t1 + t2 − t3 + t4 = 1, t ∈ [1, 10]³ × [1, ∞): t4 = 1 − t1 − t2 +
+/// t3 ≤ 9, so the set is bounded; max ‖t‖² = 183 at (9, 1, 10, 1), (1, 9, 10, 1) and
+/// (1, 1, 10, 9) (l1-max returns (9, 1, 10, 1)).
+#[test]
+fn l2_max_decides_boundedness_from_the_set() {
+    let w = DMatrix::from_row_slice(1, 4, &[1.0, 1.0, -1.0, 1.0]);
+    let we = DVector::from_vec(vec![-1.0]);
+    let b = TensionBounds::new(vec![1.0; 4], vec![10.0, 10.0, 10.0, f64::INFINITY]).unwrap();
+    let p = TensionProblem::new(&w, &we, &b);
+    let out = solve(Method::L2Max, &p);
+    let t = out.tensions().unwrap_or_else(|| panic!("{out:?}"));
+    assert!((t.norm_squared() - 183.0).abs() < 1e-9, "{t}");
+    assert!((&w * t + &we).amax() < 1e-12);
+    // t1 + t2 + t3 + t4 = −10 with t ≥ 1: empty, not unbounded.
+    let w = DMatrix::from_row_slice(1, 4, &[1.0; 4]);
+    let we = DVector::from_vec(vec![10.0]);
+    let b = TensionBounds::new(vec![1.0; 4], vec![f64::INFINITY; 4]).unwrap();
+    let out = solve(Method::L2Max, &TensionProblem::new(&w, &we, &b));
+    assert_eq!(out.infeasibility(), Some(&Infeasibility::NoFeasibleTension));
+    // t1 + t2 − t3 − t4 = 0, t ≥ 1 (all t_max = ∞): t1 = t3 → ∞ is a ray: unbounded.
+    let w = DMatrix::from_row_slice(1, 4, &[1.0, 1.0, -1.0, -1.0]);
+    let we = DVector::from_vec(vec![0.0]);
+    let out = solve(Method::L2Max, &TensionProblem::new(&w, &we, &b));
+    assert!(
+        matches!(out.infeasibility(), Some(Infeasibility::Unbounded { .. })),
+        "{out:?}"
+    );
 }

@@ -247,6 +247,10 @@ proptest! {
             let mut s = TensionSolver::new(*method);
             for c in &cases {
                 let p = TensionProblem::new(&c.w, &c.we, &c.b);
+                if !method.applies_to(p.redundancy()) {
+                    prop_assert!(s.is_feasible(&p).is_err() && s.solve(&p).is_err());
+                    continue;
+                }
                 let v = s.is_feasible(&p).unwrap();
                 prop_assert_eq!(v, s.solve(&p).unwrap().is_feasible());
                 prop_assert_eq!(v, TensionSolver::new(*method).solve(&p).unwrap().is_feasible());
@@ -288,6 +292,30 @@ proptest! {
             }
             prop_assert!(out.is_feasible(), "{}: {:?}", method, out);
             check(&p, out.tensions().unwrap());
+        }
+    }
+
+    /// Issue 13 §7: at r = 1, l1 and l1-max take Algorithm 6.1's path (the same arithmetic as
+    /// closed-form, so identical tensions) and reach the optimum of the general LP (Clarabel,
+    /// an independent interior-point solver) and of every random feasible point.
+    #[test]
+    fn l1_at_redundancy_1_is_algorithm_6_1(case in arb_case(1..=1), seed in prop::collection::vec(0.0f64..1.0, 20)) {
+        let p = TensionProblem::new(&case.w, &case.we, &case.b);
+        let (l1, l1max, cf) = (solve(Method::L1, &p), solve(Method::L1Max, &p), solve(Method::ClosedForm, &p));
+        prop_assert_eq!(&l1, &cf);
+        let oracle = interior_point(&p, Objective::L1).unwrap();
+        prop_assert_eq!(l1.is_feasible(), oracle.is_ok(), "{:?} vs {:?}", l1, oracle);
+        prop_assert_eq!(l1max.is_feasible(), oracle.is_ok());
+        let Ok(t_ip) = oracle else { return Ok(()) };
+        let (a, b) = (l1.tensions().unwrap(), l1max.tensions().unwrap());
+        check(&p, a);
+        check(&p, b);
+        prop_assert!(rel_eq(a.sum(), t_ip.sum(), 1e-7), "{} vs {}", a.sum(), t_ip.sum());
+        let t_max = interior_point(&p, Objective::L1Max).unwrap().unwrap();
+        prop_assert!(rel_eq(b.sum(), t_max.sum(), 1e-7), "{} vs {}", b.sum(), t_max.sum());
+        for q in random_feasible(&p, &seed) {
+            let tol = 1e-9 * q.amax().max(1.0) * q.len() as f64;
+            prop_assert!(a.sum() <= q.sum() + tol && b.sum() >= q.sum() - tol);
         }
     }
 }

@@ -139,13 +139,53 @@ fn exact_by_hand_and_singular() {
     // Exact needs n = DOF.
     let w3 = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, -1.0, 0.0, 1.0, -1.0]);
     let b3 = TensionBounds::uniform(3, 0.0, 10.0).unwrap();
-    let out = solve(Method::Exact, &TensionProblem::new(&w3, &we, &b3));
-    assert_eq!(
-        out,
-        TensionOutcome::Infeasible(Infeasibility::NotApplicable {
-            method: "exact",
-            redundancy: 1
-        })
+    let err = TensionSolver::new(Method::Exact)
+        .solve(&TensionProblem::new(&w3, &we, &b3))
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        cdpr_tension::TensionError::MethodNotApplicable {
+            method: Method::Exact,
+            redundancy: 1,
+            ..
+        }
+    ));
+    assert!(
+        err.to_string()
+            .starts_with("method exact needs redundancy 0; this robot has n − DOF = 1")
     );
-    assert!(out.infeasibility().unwrap().to_string().contains("needs 0"));
+}
+
+/// Issue 13 §1: pinv is the unconstrained minimum-norm solution. When it breaks a bound the
+/// outcome still hands out t = −W⁺ w_ext (it balances the wrench) and names the cable.
+/// Two opposed cables, t1 − t2 = 3: W⁺ = (½, −½)ᵀ, t = (1.5, −1.5), cable 2 below t_min = 0.
+#[test]
+fn pinv_hands_out_its_solution_when_a_bound_breaks() {
+    let w = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+    let we = DVector::from_vec(vec![-3.0]);
+    let b = TensionBounds::uniform(2, 0.0, 10.0).unwrap();
+    let p = TensionProblem::new(&w, &we, &b);
+    let out = solve(Method::Pinv, &p);
+    assert!(!out.is_feasible());
+    assert!(out.tensions().is_none());
+    let t = out.balancing_tensions().unwrap();
+    assert!(
+        (t - DVector::from_vec(vec![1.5, -1.5])).amax() < 1e-15,
+        "{t}"
+    );
+    assert!((&w * t + &we).amax() < 1e-15);
+    match out.infeasibility().unwrap() {
+        Infeasibility::BoundsViolated { cable, tension, .. } => {
+            assert_eq!(*cable, 1);
+            assert!((tension + 1.5).abs() < 1e-15);
+        }
+        other => panic!("{other:?}"),
+    }
+    assert!(out.infeasibility().unwrap().to_string().contains("cable 2"));
+    // Exact (n = DOF) likewise: t = −W⁻¹ w_ext = (3, 4) breaks t_max = 3.5 of cable 2.
+    let w2 = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1.0]);
+    let we2 = DVector::from_vec(vec![-3.0, -4.0]);
+    let b2 = TensionBounds::uniform(2, 0.0, 3.5).unwrap();
+    let out = solve(Method::Exact, &TensionProblem::new(&w2, &we2, &b2));
+    assert_eq!(out.balancing_tensions().unwrap().as_slice(), &[3.0, 4.0]);
 }

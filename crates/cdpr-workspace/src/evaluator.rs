@@ -15,7 +15,9 @@ use crate::wrench_closure::WrenchClosureTest;
 use crate::{Criterion, PoseContext, WorkspaceError};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
 use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
-use cdpr_tension::{Method, StiffnessData, TensionBounds, TensionProblem, TensionSolver};
+use cdpr_tension::{
+    Method, StiffnessData, TensionBounds, TensionError, TensionProblem, TensionSolver,
+};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 
 /// Tests poses against composable workspace criteria (thesis eq. (6.23) and more).
@@ -69,7 +71,9 @@ struct Scratch {
 
 impl PoseEvaluator {
     /// An evaluator for `robot` with tension limits `bounds` (one pair per cable) and the
-    /// criteria a pose must all satisfy. Errors on wrong sizes or non-finite limits.
+    /// criteria a pose must all satisfy. Errors on wrong sizes or non-finite limits, and on a
+    /// tension method that does not apply to the robot (`WorkspaceError::Tension` with
+    /// `TensionError::MethodNotApplicable` or `NeedsFiniteBounds`).
     pub fn new(
         robot: Robot,
         bounds: TensionBounds,
@@ -87,7 +91,19 @@ impl PoseEvaluator {
         let mut needs_tensions = false;
         for (k, c) in criteria.iter().enumerate() {
             match c {
-                Criterion::TensionFeasible { wrench, .. } => {
+                Criterion::TensionFeasible { wrench, method } => {
+                    // A method that does not apply is a usage error, found here once rather
+                    // than as an empty workspace (issue 13).
+                    method.check_redundancy(n as isize - dof as isize)?;
+                    if *method == Method::ImprovedClosedForm
+                        && let Some(cable) = bounds.max().iter().position(|v| !v.is_finite())
+                    {
+                        return Err(TensionError::NeedsFiniteBounds {
+                            method: *method,
+                            cable,
+                        }
+                        .into());
+                    }
                     if wrench.len() != dof {
                         return Err(WorkspaceError::DimensionMismatch {
                             what: "external wrench (one entry per DOF)",

@@ -164,7 +164,8 @@ fn tension_json_contract_and_infeasible_is_success() {
         "--json",
     ]);
     assert_eq!(v["feasible"], false);
-    assert!(v["tensions"].is_null());
+    // The minimum-norm solution itself (issue 13: it balances the wrench, breaks a bound).
+    assert_eq!(v["tensions"].as_array().unwrap().len(), 4);
     assert!(v["reason"].as_str().unwrap().contains("cable"));
     // Barycentre on the 8-cable robot also reports the feasible polygon.
     let v = run(&[
@@ -456,4 +457,152 @@ fn capacity_force_and_moment_radii() {
         "1",
     ]);
     assert!(err.contains("--moment-radius"), "{err}");
+}
+
+/// Issue 13 §1: every command that takes `--method` (and stiffness-map, which always uses sotda)
+/// rejects a method that does not apply to the robot with exit code 2 and one message, before
+/// any pose is evaluated (the workspace grid below would take hours; it used to print
+/// `volume 0.000000` and exit 0).
+#[test]
+fn inapplicable_methods_exit_2_up_front() {
+    let r8 = robot("ipanema-like-8.toml");
+    let r4 = robot("tdpm-4.toml");
+    let r2 = "methods that apply: pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda";
+    let r1 =
+        "methods that apply: pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form";
+    let cases: Vec<(Vec<&str>, String)> = vec![
+        (
+            vec![
+                "tension",
+                &r8,
+                "--pose",
+                "0,0,1,0,0,0",
+                "--method",
+                "closed-form",
+            ],
+            format!("method closed-form needs redundancy 1; this robot has n − DOF = 2; {r2}"),
+        ),
+        (
+            vec!["workspace", &r8, "--grid", "400", "--method", "closed-form"],
+            format!("method closed-form needs redundancy 1; this robot has n − DOF = 2; {r2}"),
+        ),
+        (
+            vec![
+                "dextrous",
+                &r4,
+                "--orientations",
+                "-0.1:0.1:3",
+                "--method",
+                "barycenter",
+            ],
+            format!("method barycenter needs redundancy 2; this robot has n − DOF = 1; {r1}"),
+        ),
+        (
+            vec![
+                "trajectory",
+                &r4,
+                "--from",
+                "0,0,0",
+                "--to",
+                "0.1,0,0",
+                "--method",
+                "exact",
+            ],
+            format!("method exact needs redundancy 0; this robot has n − DOF = 1; {r1}"),
+        ),
+        (
+            vec![
+                "synthesize",
+                &r4,
+                "--orientations",
+                "-0.1:0.1:3",
+                "--start",
+                "0.5,2.5,3.8,5.5",
+                "--method",
+                "sotda",
+            ],
+            format!("method sotda needs redundancy 2; this robot has n − DOF = 1; {r1}"),
+        ),
+        (
+            vec!["stiffness-map", &r4, "--pose", "0,0,0"],
+            format!("method sotda needs redundancy 2; this robot has n − DOF = 1; {r1}"),
+        ),
+    ];
+    for (args, message) in cases {
+        let out = cdpr().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(out.stdout.is_empty(), "{args:?}");
+        assert_eq!(
+            String::from_utf8_lossy(&out.stderr).trim(),
+            format!("error: {message}"),
+            "{args:?}"
+        );
+    }
+}
+
+/// Issue 13 §1: `tension --method pinv --json` gives t = −W⁺ w_ext in `tensions` even when a
+/// bound breaks; `feasible` is false and `reason` names the cable.
+#[test]
+fn pinv_json_keeps_its_tensions() {
+    // tdpm-4 under a large downward load: the minimum-norm solution pushes on a cable.
+    let out = cdpr()
+        .args([
+            "tension",
+            &robot("tdpm-4.toml"),
+            "--pose",
+            "0,0,0",
+            "--wrench",
+            "0,1000,0",
+            "--method",
+            "pinv",
+            "--json",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["feasible"], false, "{v}");
+    let t: Vec<f64> = v["tensions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(t.len(), 4);
+    assert!(v["reason"].as_str().unwrap().contains("cable "), "{v}");
+    // It balances the wrench: W t + w_ext = 0 with W from `kinematics`.
+    let k: serde_json::Value = serde_json::from_slice(
+        &cdpr()
+            .args([
+                "kinematics",
+                &robot("tdpm-4.toml"),
+                "--pose",
+                "0,0,0",
+                "--json",
+            ])
+            .output()
+            .unwrap()
+            .stdout,
+    )
+    .unwrap();
+    let we: Vec<f64> = v["external_wrench"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    for (row, e) in k["wrench_matrix"].as_array().unwrap().iter().zip(&we) {
+        let s: f64 = row
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(&t)
+            .map(|(a, b)| a.as_f64().unwrap() * b)
+            .sum();
+        assert!((s + e).abs() < 1e-9 * 1000.0, "{s} + {e}");
+    }
 }

@@ -167,6 +167,24 @@ pub fn kinematics_model(robot: &RobotDescription) -> KinematicsModel {
     }
 }
 
+/// A usage error (exit 2) when `method` does not apply to the robot: its redundancy
+/// n − DOF ("method closed-form needs redundancy 1; this robot has n − DOF = 2; methods that
+/// apply: …"), or an infinite t_max for the improved closed form. Every command that takes
+/// `--method` calls it before any pose is evaluated.
+pub fn check_method(
+    robot: &RobotDescription,
+    method: cdpr::tension::Method,
+) -> Result<(), CliError> {
+    let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
+    method.check_redundancy(r)?;
+    if method == cdpr::tension::Method::ImprovedClosedForm
+        && let Some(cable) = robot.bounds.max().iter().position(|v| !v.is_finite())
+    {
+        return Err(cdpr::tension::TensionError::NeedsFiniteBounds { method, cable }.into());
+    }
+    Ok(())
+}
+
 /// Loads a robot file (TOML, CASPR or WireCenter, by extension; `--cable-set` applied), applies
 /// `--kinematics` (`standard` drops the pulleys) and prints the file's warnings on stderr.
 pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {

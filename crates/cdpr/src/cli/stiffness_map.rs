@@ -1,7 +1,9 @@
 //! `cdpr stiffness-map`: the stiffness-oriented study of Picard, Caro, Plestan & Claveau 2020 at one pose (Fig. 4).
 
 use super::tension::{SotdaSearch, sotda_settings};
-use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json, wrench};
+use super::{
+    CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json, wrench,
+};
 use cdpr::plot::HeatMap;
 use cdpr::tension::{
     FeasiblePolygon, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
@@ -66,6 +68,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    check_method(&robot, cdpr::tension::Method::Sotda)?;
     if !(2..=2000).contains(&args.grid) {
         return Err("--grid must lie in [2, 2000]".into());
     }

@@ -1,6 +1,6 @@
 //! `cdpr tension`: a tension distribution at one pose.
 
-use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json};
+use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json};
 use cdpr::tension::{
     FeasiblePolygon, Method, SotdaSettings, SotdaVariant, StiffnessData, TensionOutcome,
     TensionProblem, TensionSolver,
@@ -126,6 +126,7 @@ pub fn polygon_json(problem: &TensionProblem) -> Result<serde_json::Value, CliEr
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    check_method(&robot, args.method)?;
     let pose = pose(&robot, &args.pose)?;
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
@@ -172,7 +173,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "external_wrench": w_ext.as_slice(),
             "method": args.method.name(),
             "feasible": outcome.is_feasible(),
-            "tensions": outcome.tensions().map(|t| t.as_slice().to_vec()),
+            // exact / pinv: t = −W⁺ w_ext even when it breaks a bound (`feasible` false,
+            // `reason` names the cable).
+            "tensions": outcome.balancing_tensions().map(|t| t.as_slice().to_vec()),
             "residual": match &outcome { TensionOutcome::Feasible(s) => Some(s.residual), _ => None },
             "reason": outcome.infeasibility().map(|r| r.to_string()),
         });
@@ -213,7 +216,27 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     println!("displacement along the direction: {d:.6e} m");
                 }
             }
-            TensionOutcome::Infeasible(r) => println!("infeasible: {r}"),
+            TensionOutcome::Infeasible(r) => {
+                println!("infeasible: {r}");
+                if let Some(t) = outcome.balancing_tensions() {
+                    println!(
+                        "the solution t = −W⁺ w_ext (balances the wrench, breaks the bounds):"
+                    );
+                    println!(
+                        "{:>6} {:>14} {:>10} {:>10}",
+                        "cable", "tension", "t_min", "t_max"
+                    );
+                    for (i, t) in t.iter().enumerate() {
+                        println!(
+                            "{:>6} {:>14.6} {:>10} {:>10}",
+                            i + 1,
+                            t,
+                            robot.bounds.min()[i],
+                            robot.bounds.max()[i]
+                        );
+                    }
+                }
+            }
         }
         Ok(())
     }

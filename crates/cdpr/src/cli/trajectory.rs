@@ -13,7 +13,7 @@
 //! Between waypoints the wrench is interpolated linearly in the path parameter s.
 
 use super::tension::{SotdaSearch, sotda_settings};
-use super::{CliError, Numbers, load_robot, pose, print_json, wrench};
+use super::{CliError, Numbers, check_method, load_robot, pose, print_json, wrench};
 use cdpr::kinematics::{Path, PathSample, Pose, Sampling};
 use cdpr::plot::{LinePlot, Series};
 use cdpr::tension::profile::{TensionProfile, tension_profile};
@@ -152,6 +152,7 @@ fn interpolate(s_way: &[f64], wrenches: &[DVector<f64>], s: f64) -> DVector<f64>
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    check_method(&robot, args.method)?;
     let motion = robot.robot.motion();
     let default_wrench = wrench(&robot, args.wrench.as_deref())?;
     let (poses, wrenches): (Vec<Pose>, Vec<DVector<f64>>) = match (&args.waypoints, &args.from) {

@@ -2,7 +2,7 @@
 //! or by the chord method (§6.4.3), and the helpers shared with `cdpr dextrous` and
 //! `cdpr synthesize` (criteria from the command line, grids with a progress bar, plots).
 
-use super::{CliError, Numbers, external_wrench, load_robot, print_json};
+use super::{CliError, Numbers, check_method, external_wrench, load_robot, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose, Robot};
 use cdpr::plot::{Figure, Panels, WorkspacePlot};
@@ -279,6 +279,7 @@ impl CriteriaSetup {
         desc: &RobotDescription,
         method: Method,
     ) -> Result<Self, CliError> {
+        check_method(desc, method)?;
         let dof = desc.robot.dof();
         let limits = desc.limits;
         let specs = match &args.criteria {
