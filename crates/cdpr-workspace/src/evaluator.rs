@@ -452,7 +452,7 @@ impl PoseEvaluator {
                         solver.is_feasible(&problem)?
                     }
                 }
-                Criterion::Stiffness { min_eigenvalue } => {
+                stiffness @ (Criterion::Stiffness { .. } | Criterion::StiffnessFloor { .. }) => {
                     let Some(es) = axial_stiffness.as_deref() else {
                         return Err(WorkspaceError::MissingAxialStiffness {
                             criterion: "stiffness",
@@ -467,37 +467,28 @@ impl PoseEvaluator {
                             es,
                             &mut scratch.stiffness,
                         )?;
-                        let lambda_min = min_symmetric_eigenvalue(&scratch.stiffness);
-                        lambda_min >= *min_eigenvalue
-                    }
-                }
-                Criterion::StiffnessFloor {
-                    translational,
-                    rotational,
-                } => {
-                    let Some(es) = axial_stiffness.as_deref() else {
-                        return Err(WorkspaceError::MissingAxialStiffness {
-                            criterion: "stiffness",
-                        });
-                    };
-                    scratch.tensions_valid && {
-                        cdpr_wrench::write_stiffness_matrix(
-                            &scratch.kin,
-                            scratch.tensions.as_slice(),
-                            es,
-                            &mut scratch.stiffness,
-                        )?;
-                        // sym(K − D) = sym(K) − D: subtract the floors on the diagonal.
-                        let rows = robot.motion().translation_dof();
-                        let k = &mut scratch.stiffness;
-                        for i in 0..k.nrows() {
-                            k[(i, i)] -= if i < rows {
-                                *translational
-                            } else {
-                                *rotational
-                            };
+                        let kk = &mut scratch.stiffness;
+                        match stiffness {
+                            Criterion::StiffnessFloor {
+                                translational,
+                                rotational,
+                            } => {
+                                // sym(K − D) = sym(K) − D: subtract the floors on the diagonal.
+                                let rows = robot.motion().translation_dof();
+                                for i in 0..kk.nrows() {
+                                    kk[(i, i)] -= if i < rows {
+                                        *translational
+                                    } else {
+                                        *rotational
+                                    };
+                                }
+                                min_symmetric_eigenvalue(kk) >= 0.0
+                            }
+                            Criterion::Stiffness { min_eigenvalue } => {
+                                min_symmetric_eigenvalue(kk) >= *min_eigenvalue
+                            }
+                            _ => unreachable!("matched a stiffness criterion"),
                         }
-                        min_symmetric_eigenvalue(k) >= 0.0
                     }
                 }
             };

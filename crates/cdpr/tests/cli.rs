@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{cdpr, robot};
+use common::{cdpr, json, robot};
 
 #[test]
 fn kinematics_json_has_the_contract_fields() {
@@ -378,8 +378,8 @@ fn tension_help_lists_every_method() {
 }
 
 /// Issue 13 §1: `isotropic` includes the platform's weight, as `capacity` does. A point2 robot
-/// with 3 distant cables along ±x and +y... here 4 cables ±x, ±y far away, t ∈ [1, 10] N:
-/// the force set is [−9, 9]² N; a 0.5 kg platform (4.903325 N down) leaves 9 − 4.903325 N.
+/// with 4 cables along ±x, ±y from far away, t ∈ [1, 10] N: the force set is [−9, 9]² N; a
+/// 0.5 kg platform (4.903325 N down) leaves 9 − 4.903325 N in every direction.
 #[test]
 fn isotropic_includes_the_weight() {
     let dir = tempfile::tempdir().unwrap();
@@ -392,20 +392,12 @@ fn isotropic_includes_the_weight() {
     )
     .unwrap();
     let file = file.display().to_string();
-    let out = cdpr()
-        .args(["isotropic", &file, "--pose", "0,0", "--json"])
-        .output()
-        .unwrap();
-    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let v = json(&["isotropic", &file, "--pose", "0,0", "--json"]);
     let f = v["isotropic_force"].as_f64().unwrap();
     assert!((f - (9.0 - 0.5 * 9.80665)).abs() < 1e-6, "{f}");
     assert!((v["external_wrench"][1].as_f64().unwrap() + 0.5 * 9.80665).abs() < 1e-12);
     // The capacity margin of the weight alone is the same number (a ball of radius 0).
-    let out = cdpr()
-        .args(["capacity", &file, "--pose", "0,0", "--json"])
-        .output()
-        .unwrap();
-    let c: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let c = json(&["capacity", &file, "--pose", "0,0", "--json"]);
     assert!((c["capacity_margin"].as_f64().unwrap() - f).abs() < 1e-6);
     let text = cdpr()
         .args(["isotropic", &file, "--pose", "0,0"])

@@ -88,7 +88,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         ("--moment-radius", args.moment_radius),
     ] {
         if let Some(v) = v.filter(|v| !(v.is_finite() && *v >= 0.0)) {
-            return Err(format!("{name} must be a finite number ≥ 0, got {v}").into());
+            return Err(format!("{name}: the radius must be a finite number ≥ 0, got {v}").into());
         }
     }
     if args.moment_radius.is_some() && !motion.has_orientation() {

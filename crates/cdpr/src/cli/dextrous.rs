@@ -1,8 +1,8 @@
 //! `cdpr dextrous`: the dextrous workspace over a range of orientations (thesis eq. 6.28).
 
 use super::workspace::{
-    CriteriaArgs, CriteriaSetup, box_json, default_method, dextrous, draw_pose, load_text,
-    measure_json, progress, region, resolution, rotation, save_grid_plot,
+    CriteriaArgs, CriteriaSetup, box_json, box_numbers, default_method, dextrous, draw_pose,
+    load_text, measure_json, progress, region, resolution, rotation, save_grid_plot,
 };
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::kinematics::MotionPattern;
@@ -231,7 +231,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         return print_json(&v);
     }
     println!(
-        "robot {}: dextrous workspace for φ ∈ [{}, {}], {} slices",
+        "robot {}: dextrous workspace for φ ∈ [{}, {}] rad, {} slices",
         desc.name, range.min, range.max, range.slices
     );
     println!(
@@ -242,7 +242,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     println!(
         "grid m = {m} over {} m: {} of {} points feasible at every orientation, cell {what} \
          {:.6e} {unit}",
-        box_json(&region, dim),
+        super::nums(&box_numbers(&region, dim)),
         ws.feasible_points,
         ws.total_points,
         ws.cell_area

@@ -108,13 +108,13 @@ pub struct Args {
 /// What the index means for this motion pattern (JSON `definition`).
 fn definition(motion: MotionPattern) -> &'static str {
     if motion.has_orientation() {
-        "force at zero moment: radius of the largest force ball centred at the origin inside the \
-         moment = 0 slice of the available wrench set {W t : t_min <= t <= t_max}; negative when \
-         the origin is outside"
+        "force at zero moment: radius of the largest force ball centred at -w_ext (the origin \
+         without load) inside the moment = 0 slice of the available wrench set \
+         {W t : t_min <= t <= t_max}; negative when -w_ext is outside"
     } else {
-        "radius of the largest force ball centred at the origin inside the available force \
-         polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, eq. 19); negative when the origin is \
-         outside"
+        "radius of the largest force ball centred at -w_ext (the origin without load) inside the \
+         available force polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, \
+         eq. 19); negative when -w_ext is outside"
     }
 }
 
@@ -219,11 +219,11 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
     println!("maximum isotropic force on top of w_ext: {force:.6} N");
     println!("  ({})", definition(motion));
     println!(
-        "wrench-space ball radius: {radius:.6} ({})",
+        "wrench-space ball radius: {radius:.6} {}",
         if forces == w_ext.len() {
             "N"
         } else {
-            "N and N·m combined, length scale 1 m"
+            "(N and N·m combined, length scale 1 m)"
         }
     );
     println!("available wrench set: {} facets", aws.facets().len());

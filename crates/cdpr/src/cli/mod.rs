@@ -222,7 +222,7 @@ pub fn external_wrench(
     Ok(wrench(robot, w)? + robot.platform.gravity_wrench(robot.robot.motion(), pose))
 }
 
-/// A number as a person reads it: at most 10 significant digits (so that round-off such as
+/// A number as a person reads it: at most 9 significant digits (so that round-off such as
 /// −98.10000000000001 prints as −98.1), never `-0`, scientific notation only for very large or
 /// very small magnitudes, `inf`/`-inf`/`NaN` spelled out.
 pub fn num(v: f64) -> String {
@@ -232,8 +232,8 @@ pub fn num(v: f64) -> String {
     if v.is_infinite() {
         return if v > 0.0 { "inf".into() } else { "-inf".into() };
     }
-    // Round to 10 significant digits through the shortest decimal of the rounded value.
-    let r: f64 = format!("{v:.9e}").parse().unwrap_or(v);
+    // Round to 9 significant digits through the shortest decimal of the rounded value.
+    let r: f64 = format!("{v:.8e}").parse().unwrap_or(v);
     if r == 0.0 {
         return "0".into();
     }
@@ -284,7 +284,11 @@ pub fn matrix_rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
 pub fn print_matrix(title: &str, m: &DMatrix<f64>) {
     println!("{title}");
     for r in m.row_iter() {
-        let cells: Vec<String> = r.iter().map(|v| format!("{v:>12.6}")).collect();
+        // A value that rounds to zero prints as 0, never -0.
+        let cells: Vec<String> = r
+            .iter()
+            .map(|&v| format!("{:>12.6}", if v.abs() < 5e-7 { 0.0 } else { v }))
+            .collect();
         println!("  {}", cells.join(" "));
     }
 }
@@ -307,6 +311,7 @@ mod tests {
         assert_eq!(num(-98.10000000000001), "-98.1");
         assert_eq!(num(0.1 + 0.2), "0.3");
         assert_eq!(num(1966.5), "1966.5");
+        assert_eq!(num(-0.49999999994), "-0.5");
         assert_eq!(num(f64::INFINITY), "inf");
         assert_eq!(num(1e155), "1e155");
         assert_eq!(num(2.5e-7), "2.5e-7");

@@ -51,7 +51,10 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "active": matrix_rows(&ka),
         }))
     } else {
-        print_matrix("stiffness K = Kp + Ka:", &k);
+        print_matrix(
+            "stiffness K = Kp + Ka (N/m on translations, N·m/rad on rotations, N coupling):",
+            &k,
+        );
         print_matrix("passive Kp:", &kp);
         print_matrix("active Ka:", &ka);
         Ok(())

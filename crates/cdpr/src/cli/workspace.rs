@@ -1014,13 +1014,18 @@ pub fn save_grid_plot(
     }
 }
 
+/// The box's bounds XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
+pub fn box_numbers(r: &Region, dim: usize) -> Vec<f64> {
+    let mut b = vec![r.min.x, r.max.x, r.min.y, r.max.y];
+    if dim == 3 {
+        b.extend([r.min.z, r.max.z]);
+    }
+    b
+}
+
 /// Box as JSON numbers.
 pub fn box_json(r: &Region, dim: usize) -> Value {
-    if dim == 2 {
-        json!([r.min.x, r.max.x, r.min.y, r.max.y])
-    } else {
-        json!([r.min.x, r.max.x, r.min.y, r.max.y, r.min.z, r.max.z])
-    }
+    json!(box_numbers(r, dim))
 }
 
 /// The options that `--boundary mesh` and `--section` check.
@@ -1314,9 +1319,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
             return print_json(&v);
         }
         println!(
-            "robot {}: constant-orientation workspace at orientation {} rad, w_ext {}",
+            "robot {}: constant-orientation workspace at orientation {}, w_ext {}",
             desc.name,
-            super::nums(&orientation),
+            if orientation.is_empty() {
+                "(none: a point robot)".to_string()
+            } else {
+                format!("{} rad", super::nums(&orientation))
+            },
             super::wrench_text(w_ext.as_slice(), motion.translation_dof())
         );
         println!(
@@ -1326,7 +1335,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         );
         println!(
             "grid m = {m} over {} m: {} of {} points feasible, cell {what} {:.6e} {unit}",
-            box_json(&region, dim),
+            super::nums(&box_numbers(&region, dim)),
             ws.feasible_points,
             ws.total_points,
             ws.cell_area
