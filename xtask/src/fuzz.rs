@@ -303,7 +303,10 @@ mod tests {
             .unwrap()
             .unwrap();
         assert_eq!((o.seconds, o.targets.len()), (5, 1));
-        assert_eq!(parse(&a(&[])).unwrap().unwrap().targets.len(), TARGETS.len());
+        assert_eq!(
+            parse(&a(&[])).unwrap().unwrap().targets.len(),
+            TARGETS.len()
+        );
         assert!(parse(&a(&["--target", "nope"])).is_err());
         assert!(parse(&a(&["--seconds"])).is_err());
         assert!(parse(&a(&["--help"])).unwrap().is_none());

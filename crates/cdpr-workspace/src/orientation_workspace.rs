@@ -624,27 +624,24 @@ pub struct OrientationGridWorkspace {
 /// orientation at every boundary grid point of a total-orientation workspace.
 ///
 /// ```
-/// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+/// use cdpr_kinematics::reference_robots::ipanema_like_8;
 /// use cdpr_tension::TensionBounds;
 /// use cdpr_workspace::{
 ///     orientation_workspace, Criterion, Grid, OrientationSet, OrientationTest,
 ///     OrientationWorkspaceKind, PoseEvaluator, Region,
 /// };
 /// use nalgebra::Vector3;
-/// let f = [[1.0, 1.0, 1.0], [-1.0, 1.0, 1.0], [-1.0, -1.0, 1.0], [1.0, -1.0, 1.0],
-///          [1.0, 1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, -1.0], [1.0, -1.0, -1.0]];
-/// let cables = f.iter().map(|c| Cable {
-///     frame: Vector3::from(*c), platform: Vector3::from(*c) * 0.1, pulley: None,
-/// }).collect();
-/// let robot = Robot::new(MotionPattern::Spatial, cables).unwrap();
-/// let eval = PoseEvaluator::new(robot, TensionBounds::uniform(8, 1.0, 100.0).unwrap(),
-///                               vec![Criterion::MinCableLength(0.1)]).unwrap();
-/// let set: OrientationSet = "euler:rz=-10..10,n=3".parse().unwrap();
+/// // An 8-cable robot with crossed cables (4 m × 3 m × 2 m frame): wrench-closed at its centre
+/// // for torsions within ±5° (not at ±10°: `cdpr orientations` shows it).
+/// let eval = PoseEvaluator::new(ipanema_like_8(), TensionBounds::uniform(8, 1.0, 100.0).unwrap(),
+///                               vec![Criterion::WrenchClosure]).unwrap();
+/// let set: OrientationSet = "euler:rz=-5..5,n=3".parse().unwrap();
 /// let test = OrientationTest::uniform(OrientationWorkspaceKind::Total, &eval,
 ///                                     &set.orientations().unwrap()).unwrap();
-/// let grid = Grid::new(4, Region::cuboid(Vector3::repeat(-0.8), Vector3::repeat(0.8)));
+/// let centre = Vector3::new(0.0, 0.0, 1.0);
+/// let grid = Grid::new(4, Region::cuboid(centre.add_scalar(-0.8), centre.add_scalar(0.8)));
 /// let ws = orientation_workspace(&test, &grid).unwrap();
-/// assert!(ws.workspace.feasible[62]); // the centre
+/// assert!(ws.workspace.feasible[62]); // the centre of the 5 × 5 × 5 grid
 /// ```
 pub fn orientation_workspace(
     test: &OrientationTest,

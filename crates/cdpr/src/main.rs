@@ -62,6 +62,13 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // Rust ignores SIGPIPE, so printing into a closed pipe (`cdpr trajectory … | head`) would
+    // panic; the default action ends the program quietly, as other command-line tools do.
+    #[cfg(unix)]
+    // SAFETY: called first thing in `main`, before any other thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let mut options = cdpr::io::LoadOptions::default();
     options.cable_set = cli.cable_set;

@@ -397,3 +397,40 @@ fn stiffness_map_writes_a_plot_and_a_table() {
     assert_eq!(v["feasible"], false);
     assert!(v["reason"].is_string());
 }
+
+/// A reader that stops early (`cdpr trajectory … | head -1`) ends the program quietly: no panic
+/// on the broken pipe (Rust ignores SIGPIPE unless `main` restores it).
+#[cfg(unix)]
+#[test]
+fn a_closed_pipe_ends_the_output_without_a_panic() {
+    use std::io::{BufRead, BufReader};
+    use std::process::{Command, Stdio};
+    let r = robot("rowc-like-8.toml");
+    let mut child = Command::new(assert_cmd::cargo::cargo_bin("cdpr"))
+        .args([
+            "trajectory",
+            r.as_str(),
+            "--from",
+            "0.8,0.35,0.59,0,0,0",
+            "--to",
+            "2.2,0.35,1.4,0,0,0.05",
+            "--samples",
+            "20000",
+            "--wrench",
+            LOAD,
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut first)
+        .unwrap();
+    assert!(!first.is_empty());
+    // The reader is dropped here: the pipe is closed while cdpr still has lines to print.
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{stderr}");
+}
