@@ -159,13 +159,13 @@ pub fn capacity_margin(
 /// What the isotropic force means for a motion pattern (as `cdpr isotropic` says).
 fn definition(robot: &Robot) -> &'static str {
     if robot.motion_pattern().has_orientation() {
-        "force at zero moment: radius of the largest force ball centred at the origin inside the \
-         moment = 0 slice of the available wrench set {W t : t_min <= t <= t_max}; negative when \
-         the origin is outside"
+        "force at zero moment: radius of the largest force ball centred at -w_ext (the origin \
+         without load) inside the moment = 0 slice of the available wrench set \
+         {W t : t_min <= t <= t_max}; negative when -w_ext is outside"
     } else {
-        "radius of the largest force ball centred at the origin inside the available force \
-         polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, eq. 19); negative \
-         when the origin is outside"
+        "radius of the largest force ball centred at -w_ext (the origin without load) inside the \
+         available force polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, \
+         eq. 19); negative when -w_ext is outside"
     }
 }
 

@@ -237,3 +237,42 @@ fn usage_errors() {
     ]);
     assert!(err.contains("--points"), "{err}");
 }
+
+/// `--boundary mesh --plot`: the figure shows the certified surface (the mesh's own label), as an
+/// interactive page for .html and as an isometric view with sections for .png.
+#[test]
+fn mesh_plots_draw_the_boundary_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tetra_file(dir.path());
+    for name in ["ws.html", "ws.svg"] {
+        let out = dir.path().join(name);
+        let o = out.display().to_string();
+        let run = cdpr()
+            .args([
+                "workspace",
+                file.as_str(),
+                "--boundary",
+                "mesh",
+                "--criteria",
+                "wrench-closure",
+                "--box",
+                "0.5,1.5,0.5,1.5,0.5,1.5",
+                "--grid",
+                "6",
+                "--plot",
+                o.as_str(),
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let text = std::fs::read_to_string(&out).unwrap();
+        assert!(
+            text.contains("boundary mesh (vertices on the boundary"),
+            "{name}"
+        );
+    }
+}

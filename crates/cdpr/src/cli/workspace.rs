@@ -870,7 +870,6 @@ pub fn save_scene_plot(
 
 /// The 3-D figure of a boundary mesh (`--boundary mesh`): the certified surface in place of the
 /// grid cells.
-#[allow(dead_code)] // for the --boundary mesh command (cli/workspace_mesh.rs on its branch)
 pub fn save_mesh_scene_plot(
     desc: &RobotDescription,
     pose: &Pose,

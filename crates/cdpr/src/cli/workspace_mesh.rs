@@ -1,9 +1,7 @@
 //! `cdpr workspace --boundary mesh` and `--section AXIS=VALUE`: the boundary of a 3-D workspace as
 //! a closed triangle mesh (its volume, files), and exact plane sections by the chord method.
 
-use super::workspace::{
-    CriteriaSetup, box_json, draw_pose, measure_json, save_plot, workspace_plot,
-};
+use super::workspace::{CriteriaSetup, box_json, draw_pose, measure_json, save_plot};
 use super::{CliError, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
@@ -202,26 +200,32 @@ pub fn run_mesh(
         .map(|f| f.name())
         .collect();
     if let Some(path) = r.plot {
+        // The certified surface itself: an isometric view with three sections (.svg/.png) or
+        // the interactive page (.html), not the grid cells.
         let pose = draw_pose(robot, r.draw_pose, r.region, r.rotation)?;
-        let fig = workspace_plot(
-            robot,
+        super::workspace::save_mesh_scene_plot(
+            desc,
             &pose,
-            Some(ws),
-            Vec::new(),
-            format!(
-                "{}: constant-orientation workspace {:?}",
-                desc.name, r.orientation
-            ),
+            &mesh,
+            if r.orientation.is_empty() {
+                format!("{}: constant-orientation workspace", desc.name)
+            } else {
+                format!(
+                    "{}: constant-orientation workspace, orientation {}",
+                    desc.name,
+                    super::pose_text(r.orientation, 0)
+                )
+            },
             vec![format!(
-                "volume {:.4} m³ (boundary mesh, m = {}); grid count {:.4} m³ ({}); {}",
-                mesh.volume,
+                "volume {} m³ (boundary mesh, m = {}); grid count {} m³ ({}); {}",
+                super::num(mesh.volume),
                 r.m,
-                grid_volume,
+                super::num(grid_volume),
                 r.volume_convention,
                 r.setup.labels().join(", ")
             )],
-        );
-        save_plot(&fig, path)?;
+            path,
+        )?;
     }
     if r.json {
         let mut faces = serde_json::Map::new();
