@@ -144,3 +144,39 @@ fn usage_errors() {
         assert!(err.contains(says), "{args:?}: {err}");
     }
 }
+
+/// `--orientations … --boundary mesh`: a one-orientation set gives the constant-orientation
+/// boundary mesh's volume, and total ⊆ maximal holds for the mesh volumes.
+#[test]
+fn orientation_workspaces_as_boundary_meshes() {
+    let r = robot("ipanema-like-8.toml");
+    let mesh = |extra: &[&str]| {
+        let mut a = vec![
+            "workspace",
+            r.as_str(),
+            "--boundary",
+            "mesh",
+            "--grid",
+            "6",
+            "--criteria",
+            "wrench-closure",
+            "--json",
+        ];
+        a.extend_from_slice(extra);
+        json(&a)
+    };
+    let constant = mesh(&[]);
+    let one = mesh(&["--orientations", "euler:rz=0"]);
+    assert_eq!(one["method"], "mesh");
+    assert_eq!(one["watertight"], true);
+    let v = |j: &serde_json::Value| j["volume"].as_f64().unwrap();
+    assert!(
+        (v(&one) - v(&constant)).abs() <= 1e-9 * v(&constant),
+        "{one}"
+    );
+    let total = mesh(&["--orientations", "euler:rz=-3..3,n=3"]);
+    let maximal = mesh(&["--orientations", "euler:rz=-3..3,n=3", "--kind", "maximal"]);
+    assert!(v(&total) <= v(&constant) + 1e-9 && v(&constant) <= v(&maximal) + 1e-9);
+    assert!(v(&total) < v(&maximal), "{total} {maximal}");
+    assert!(!total["limiting_summary"].as_array().unwrap().is_empty());
+}

@@ -8,8 +8,8 @@ use cdpr::RobotDescription;
 use cdpr::kinematics::MotionPattern;
 use cdpr::plot::HeatMap;
 use cdpr::workspace::{
-    Grid, OrientationSet, OrientationTest, OrientationWorkspaceKind, Region, SampledOrientation,
-    VolumeConvention, orientation_workspace,
+    Grid, MeshSettings, OrientationSet, OrientationTest, OrientationWorkspaceKind, Region,
+    SampledOrientation, VolumeConvention, orientation_boundary_mesh, orientation_workspace,
 };
 use nalgebra::{Rotation3, Vector3};
 use serde_json::{Value, json};
@@ -265,6 +265,121 @@ pub fn run(args: Args) -> Result<(), CliError> {
         println!("{y:>8.1}° {}", row.join(""));
     }
     if let Some(p) = &args.plot {
+        println!("plot written to {}", p.display());
+    }
+    Ok(())
+}
+
+/// `cdpr workspace --orientations SET [--kind total|maximal] --boundary mesh`: the certified
+/// boundary mesh of the total-orientation or maximal workspace, with the limiting orientation at
+/// every boundary vertex of a total-orientation workspace.
+#[allow(clippy::too_many_arguments)]
+pub fn run_workspace_mesh(
+    desc: &RobotDescription,
+    setup: &CriteriaSetup,
+    set: &OrientationSet,
+    kind: OrientationWorkspaceKind,
+    region: &Region,
+    m: usize,
+    plot: Option<&Path>,
+    draw_pose: Option<&[f64]>,
+    json_out: bool,
+) -> Result<(), CliError> {
+    let grid = Grid::new(m, *region);
+    let (test, samples) = orientation_test(desc, setup, set, kind)?;
+    let om = orientation_boundary_mesh(&test, &grid, &MeshSettings::default())?;
+    let mesh = &om.mesh;
+    let mut per: Vec<usize> = vec![0; samples.len()];
+    for k in om.limiting.iter().flatten() {
+        per[*k] += 1;
+    }
+    let mut ranked: Vec<(usize, usize)> = per
+        .iter()
+        .enumerate()
+        .filter(|(_, n)| **n > 0)
+        .map(|(k, n)| (k, *n))
+        .collect();
+    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let title = format!(
+        "{}: {} workspace over {set} ({} orientations)",
+        desc.name,
+        kind.name(),
+        samples.len()
+    );
+    let watertight = mesh.edge_defects() == 0;
+    let summary = format!(
+        "volume {} m³ (boundary mesh, m = {m}); {}",
+        super::num(mesh.volume),
+        setup.labels().join(", ")
+    );
+    if let Some(path) = plot {
+        let pose =
+            super::workspace::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
+        super::workspace::save_mesh_scene_plot(
+            desc,
+            &pose,
+            mesh,
+            title.clone(),
+            vec![summary.clone()],
+            path,
+        )?;
+    }
+    if json_out {
+        return print_json(&json!({
+            "robot": desc.name,
+            "method": "mesh",
+            "kind": kind.name(),
+            "orientation_set": set.to_string(),
+            "orientation_count": samples.len(),
+            "angle_names": set.angle_names(),
+            "criteria": setup.labels(),
+            "tension_method": setup.method.name(),
+            "box": super::workspace::box_json(region, 3),
+            "resolution": m,
+            "dimension": 3,
+            "volume": mesh.volume,
+            "surface_area": mesh.surface_area,
+            "components": mesh.components,
+            "vertices": mesh.vertices.len(),
+            "triangles": mesh.triangles.len(),
+            "tolerance": mesh.tolerance,
+            "watertight": watertight,
+            "feasible_points": mesh.grid.feasible_points,
+            "total_points": mesh.grid.total_points,
+            "limiting_summary": ranked.iter().map(|&(k, n)| json!({
+                "angles_deg": degrees(&samples[k]),
+                "boundary_vertices": n,
+            })).collect::<Vec<_>>(),
+        }));
+    }
+    println!("{title}");
+    println!(
+        "criteria: {} (tensions: {})",
+        setup.labels().join(", "),
+        setup.method.name()
+    );
+    println!(
+        "boundary mesh from a grid of m = {m}: volume {} m³, surface {} m², {} component(s), \
+         {} vertices, {} triangles{}",
+        super::num(mesh.volume),
+        super::num(mesh.surface_area),
+        mesh.components,
+        mesh.vertices.len(),
+        mesh.triangles.len(),
+        if watertight {
+            ", closed"
+        } else {
+            ", NOT closed (please report)"
+        }
+    );
+    for &(k, n) in ranked.iter().take(5) {
+        let a = degrees(&samples[k]);
+        println!(
+            "  limiting ({:.2}, {:.2}, {:.2})° at {n} vertices",
+            a[0], a[1], a[2]
+        );
+    }
+    if let Some(p) = plot {
         println!("plot written to {}", p.display());
     }
     Ok(())

@@ -95,7 +95,10 @@ outwards — is reported per boundary grid point) or `maximal` (some orientation
 JSON adds `kind`, `orientation_set`, `orientation_count`, `angle_names`,
 `limiting_orientations` ([{`point` (m, on the boundary to 1e-9 of a grid edge),
 `angles_deg`}]) and `limiting_summary` ([{`angles_deg`, `boundary_points`}], most frequent
-first). `cdpr orientations` gives the feasible orientations at one position.
+first). With --boundary mesh the workspace of the set is a certified boundary mesh instead
+(JSON `volume` (m³), `surface_area` (m²), `components`, `vertices`, `triangles`, `watertight`,
+and `limiting_summary` ([{`angles_deg`, `boundary_vertices`}]) per mesh vertex).
+`cdpr orientations` gives the feasible orientations at one position.
 
 --plot FILE.svg|png draws the frame anchors, the cables and platform at --draw-pose (default:
 the centre of the box at the orientation), the feasible cells filled and the chord boundaries
@@ -1053,18 +1056,35 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let m = resolution(args.grid, dim, 50)?;
     super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
     if let Some(set) = &args.orientations {
-        if args.boundary != "grid" {
-            return Err("--orientations runs on the grid (--boundary grid)".into());
-        }
-        if args.section.is_some() || args.points.is_some() {
+        if args.boundary == "chord" {
             return Err(
-                "--section and --points apply to one orientation, not --orientations".into(),
+                "--orientations runs on the grid or the boundary mesh (--boundary grid|mesh)"
+                    .into(),
+            );
+        }
+        if args.section.is_some() || args.points.is_some() || args.mesh.is_some() {
+            return Err(
+                "--section, --points and --mesh apply to one orientation, not --orientations"
+                    .into(),
             );
         }
         let kind = match args.kind.as_deref() {
             Some("maximal") => OrientationWorkspaceKind::Maximal,
             _ => OrientationWorkspaceKind::Total,
         };
+        if args.boundary == "mesh" {
+            return super::orientations::run_workspace_mesh(
+                &desc,
+                &setup,
+                set,
+                kind,
+                &region,
+                m,
+                args.plot.as_deref(),
+                args.draw_pose.as_deref(),
+                args.json,
+            );
+        }
         return super::orientations::run_workspace(
             &desc,
             &setup,
