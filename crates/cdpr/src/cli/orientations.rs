@@ -270,6 +270,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
     Ok(())
 }
 
+/// How often each of `count` sampled orientations is the limiting one: `(orientation, times)`
+/// for those that are, most frequent first (ties by index).
+fn rank_limiting(limiting: impl Iterator<Item = usize>, count: usize) -> Vec<(usize, usize)> {
+    let mut per = vec![0usize; count];
+    for k in limiting {
+        per[k] += 1;
+    }
+    let mut ranked: Vec<(usize, usize)> = per
+        .into_iter()
+        .enumerate()
+        .filter(|&(_, n)| n > 0)
+        .collect();
+    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    ranked
+}
+
 /// `cdpr workspace --orientations SET [--kind total|maximal] --boundary mesh`: the certified
 /// boundary mesh of the total-orientation or maximal workspace, with the limiting orientation at
 /// every boundary vertex of a total-orientation workspace.
@@ -289,17 +305,7 @@ pub fn run_workspace_mesh(
     let (test, samples) = orientation_test(desc, setup, set, kind)?;
     let om = orientation_boundary_mesh(&test, &grid, &MeshSettings::default())?;
     let mesh = &om.mesh;
-    let mut per: Vec<usize> = vec![0; samples.len()];
-    for k in om.limiting.iter().flatten() {
-        per[*k] += 1;
-    }
-    let mut ranked: Vec<(usize, usize)> = per
-        .iter()
-        .enumerate()
-        .filter(|(_, n)| **n > 0)
-        .map(|(k, n)| (k, *n))
-        .collect();
-    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let ranked = rank_limiting(om.limiting.iter().flatten().copied(), samples.len());
     let title = format!(
         "{}: {} workspace over {set} ({} orientations)",
         desc.name,
@@ -404,17 +410,7 @@ pub fn run_workspace(
     let (test, samples) = orientation_test(desc, setup, set, kind)?;
     let ws = orientation_workspace(&test, &grid)?;
     let names = set.angle_names();
-    let mut per: Vec<usize> = vec![0; samples.len()];
-    for l in &ws.limiting {
-        per[l.orientation] += 1;
-    }
-    let mut ranked: Vec<(usize, usize)> = per
-        .iter()
-        .enumerate()
-        .filter(|(_, n)| **n > 0)
-        .map(|(k, n)| (k, *n))
-        .collect();
-    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    let ranked = rank_limiting(ws.limiting.iter().map(|l| l.orientation), samples.len());
     let w = &ws.workspace;
     let title = format!(
         "{}: {} workspace over {set} ({} orientations)",
