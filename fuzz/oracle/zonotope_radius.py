@@ -3,7 +3,7 @@
 generators (cables with t_min < t_max and a non-zero column) gives a facet normal (a perpendicular
 or a cross product, exact), and the support function sum_j max(c.w_j t_min_j, c.w_j t_max_j) is
 exact; only the final division by |c| is rounded. Independent of the Rust code; used for the
-expected values of crates/cdpr-polytope/tests/fuzz_regressions.rs.
+expected values of crates/cdpr-polytope/tests/it/fuzz_regressions.rs.
 
 Usage: echo '{"W": [[row 1], [row 2]], "tmin": [...], "tmax": [...]}' | python3 zonotope_radius.py
 """

@@ -29,7 +29,7 @@
 //! L̇ = −u · (ṙ + ω × R b̄) (the arc gained is the tangent-point motion along the free segment,
 //! and the swivel moves C perpendicular to u). The wrench matrix therefore keeps its form,
 //! column i = [u; (R b̄) × u] with the free-segment u, and W = Jᵀ with l̇ = −J q̇ exactly as for
-//! straight cables (`tests/pulley.rs` checks it against finite differences of L).
+//! straight cables (`tests/it/pulley.rs` checks it against finite differences of L).
 //!
 //! **Degenerate poses** (errors for that pose): **B** inside the pulley circle (BM ≤ ρ, no
 //! tangent) and **B** on the swivel axis (s = 0, γ undefined).

@@ -18,7 +18,7 @@
 //! heuristic, not a complete solver). A violation means more than the certificate's tolerance
 //! (10⁻⁹ relative). This is the iteration of Pott (2014) as also implemented in CASPR
 //! (`id_cf_icfm`, absolute violation, 10⁻⁶ absolute tolerance); cdpyr instead saturates the
-//! violating cable of largest |t_i|. `tests/improved_closed_form.rs` compares this
+//! violating cable of largest |t_i|. `tests/it/improved_closed_form.rs` compares this
 //! implementation with a direct transcription of the iteration (pseudo-inverse per step).
 //! Needs finite t_max. Each step solves one DOF × DOF Cholesky system on reused buffers.
 //!

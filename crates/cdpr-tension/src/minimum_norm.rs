@@ -4,7 +4,7 @@
 //! minimum-norm solution t^mn = −W⁺ w_ext = −Wᵀ(W Wᵀ)⁻¹ w_ext (eq. (6.14), Fattah & Agrawal),
 //! i.e. t^nul = 0 in eq. (6.13). The bounds are only checked: the thesis' Fig. 6.3 shows how much
 //! workspace this loses compared with the constrained ℓ₂ approach (see
-//! `tests/minimum_norm_vs_l2.rs`). Both are computed from the pivoted QR of Wᵀ (see the
+//! `tests/it/minimum_norm_vs_l2.rs`). Both are computed from the pivoted QR of Wᵀ (see the
 //! null-space docs), which also detects singular poses.
 //!
 //! **Small fast path.** For n = DOF ≤ 3 (the thesis' 3-cable planar robot, point robots) eq.

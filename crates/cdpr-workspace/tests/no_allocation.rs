@@ -1,5 +1,6 @@
 //! The evaluator does not allocate per pose (after its first use): counted with a global
 //! allocator wrapper.
+#[path = "it/common/mod.rs"]
 mod common;
 
 use cdpr_kinematics::Pose;

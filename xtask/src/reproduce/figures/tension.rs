@@ -763,7 +763,7 @@ fn thesis_fig63(dir: &Path) -> Result<Vec<Figure>, String> {
                  minimum-norm one (checked at every point), and the minimum-norm workspace \
                  shrinks fastest with φ; black squares: frame anchors. The thesis computed this \
                  figure with the chord method (§6.3.2); a fine grid shows the same sets, and both \
-                 tension methods at every point. The test `tests/minimum_norm_vs_l2.rs` counts the \
+                 tension methods at every point. The test `tests/it/minimum_norm_vs_l2.rs` counts the \
                  points of a coarser grid over the anchors' box [−1, 1] × [−0.15, 0.15] only."
             ),
         });

@@ -1,7 +1,7 @@
 //! `cdpr trajectory` and `cdpr stiffness-map` (issue 8): JSON contract, infeasible samples kept,
 //! continuity, per-waypoint wrenches, the stiffness-oriented study of Picard, Caro, Plestan & Claveau 2020.
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

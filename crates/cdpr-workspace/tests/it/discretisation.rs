@@ -1,5 +1,5 @@
 //! Algorithm 6.2 (thesis §6.4.2): grids, areas, determinism and independent cross-checks.
-mod common;
+use crate::common;
 
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use cdpr_tension::{Method, TensionBounds};

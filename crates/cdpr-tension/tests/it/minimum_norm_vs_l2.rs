@@ -2,7 +2,7 @@
 //! workspace of the 4-cable robot with c = [±1, ±0.15] (Table 6.1 platform, t ∈ [5, 100],
 //! load L1, φ = 0) compared with the constrained ℓ₂ approach (eq. (6.17)).
 
-mod common;
+use crate::common;
 
 use cdpr_kinematics::Pose;
 use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};

@@ -1,5 +1,5 @@
 //! Dextrous workspace, eq. (6.28), and the §6.5 check of the two-extremes shortcut.
-mod common;
+use crate::common;
 
 use cdpr_tension::{Method, TensionBounds};
 use cdpr_workspace::{

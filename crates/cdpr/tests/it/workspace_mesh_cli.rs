@@ -1,7 +1,7 @@
 //! `cdpr workspace --boundary mesh`, `--mesh`, `--points` and `--section`: JSON contract, a
 //! hand-computed volume, files, usage errors.
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 use serde_json::Value;

@@ -1,7 +1,7 @@
 //! `cdpr isotropic` and `cdpr capacity`: the JSON contract and values derived by hand for
 //! Krut, Company & Pierrot's (2004) regular robots (motors at 1000 mm, tensions in [50, 500] N).
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

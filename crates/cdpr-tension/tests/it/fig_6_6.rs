@@ -11,7 +11,7 @@
 //! of 0.004). These tests pin down exactly that: the boundary at y ≈ 0, the steep rise, and
 //! continuity (differences across ±ε vanish as ε → 0) everywhere along the feasible section.
 
-mod common;
+use crate::common;
 
 use cdpr_kinematics::Pose;
 use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};

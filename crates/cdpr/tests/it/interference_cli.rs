@@ -2,7 +2,7 @@
 //! oracle), and `--criteria interference[:D]` removes poses where cables cross or pass through
 //! the platform (hand cases on the crossed 8-cable robot).
 
-mod common;
+use crate::common;
 
 use common::{json, robot};
 use nalgebra::Vector3;

@@ -2,7 +2,7 @@
 //! files (with `--cable-set`), `cdpr convert` writes TOML and .wcrfx whose results are
 //! identical, and errors name the file, line and element.
 
-mod common;
+use crate::common;
 use common::{cdpr, json};
 use std::path::PathBuf;
 

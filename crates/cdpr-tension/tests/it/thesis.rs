@@ -1,7 +1,7 @@
 //! Hand-derived values: the thesis 4-cable robot (Tables 6.1–6.3, t ∈ [5, 100] as Table 6.4) and
 //! a point robot whose optima can be written down.
 
-mod common;
+use crate::common;
 
 use cdpr_kinematics::Pose;
 use cdpr_tension::{

@@ -1,7 +1,7 @@
 //! `cdpr workspace`, `cdpr dextrous` and `cdpr synthesize`: JSON contract, agreement with the
 //! library, hand-derived workspaces and published numbers of the thesis chapter on planar tendon-driven manipulators.
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

@@ -1,7 +1,7 @@
 //! `--kinematics pulley|standard`, the pulley fields of `cdpr kinematics` and `cdpr forward`
 //! (issue 14 contract).
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

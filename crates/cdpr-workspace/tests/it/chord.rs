@@ -1,5 +1,5 @@
 //! The chord method (thesis §6.4.3, Algorithm 6.3).
-mod common;
+use crate::common;
 
 use cdpr_kinematics::Pose;
 use cdpr_tension::Method;

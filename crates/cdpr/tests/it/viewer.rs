@@ -3,7 +3,7 @@
 //! three sections, on meshes built here (an octahedron, the grid surface of a ball) and through
 //! the CLI on the 8-cable example.
 
-mod common;
+use crate::common;
 
 use cdpr::kinematics::Pose;
 use cdpr::plot::{Scene, grid_surface};

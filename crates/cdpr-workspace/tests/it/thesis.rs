@@ -1,6 +1,6 @@
 //! Thesis §6.4: the workspaces of Figs. 6.4 (3-cable) and 6.5 (4-cable), as far as the text
 //! describes them (the figures themselves are not part of the thesis chapter).
-mod common;
+use crate::common;
 
 use cdpr_tension::{Method, TensionBounds};
 use cdpr_workspace::{Criterion, Grid, GridWorkspace, PoseEvaluator, planar_workspace};

@@ -1,6 +1,6 @@
 //! The `cdpr` binary: output formats, exit codes, error messages.
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

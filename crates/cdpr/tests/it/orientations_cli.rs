@@ -2,7 +2,7 @@
 //! one-orientation set equals `--orientation`; total ⊆ constant ⊆ maximal in counts; the map
 //! and the per-orientation verdicts agree; non-spatial robots and bad sets are usage errors.
 
-mod common;
+use crate::common;
 
 use common::{cdpr, json, robot};
 

@@ -2,7 +2,7 @@
 //! polyhedral workspaces, closure and orientation on every test robot, vertices on the boundary,
 //! several components, cavities and tunnels.
 
-mod common;
+use crate::common;
 
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot, reference_robots::ipanema_like_8};
 use cdpr_tension::{Method, TensionBounds};

@@ -1,6 +1,6 @@
 //! Criteria: wrench closure (fast null-space tests vs the linear programme), the Jacobian
 //! determinant floor (6.24), the stiffness floor, composition.
-mod common;
+use crate::common;
 
 use cdpr_kinematics::strategies::{arb_pose, arb_robot};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};

@@ -1,0 +1,7 @@
+//! Integration tests of `cdpr-io`, compiled as one test binary (one link instead of
+//! one per file). Each module is one former `tests/*.rs` file.
+
+mod corpus;
+mod platform_shape;
+mod pulley_keys;
+mod readers;
