@@ -28,11 +28,51 @@ use std::process::ExitCode;
 
 const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak> [options]   (`cargo xtask <command> --help`)";
 
+const REPRODUCE_HELP: &str = "cargo xtask reproduce: regenerates the reproduction of the thesis chapter on \
+planar tendon-driven manipulators (Tables 6.5-6.10), Krut, Company & Pierrot 2004 and Picard, Caro, \
+Plestan & Claveau 2020 (docs/reproduction.md and docs/figures/), then the published-robot gallery \
+(docs/robots.md). It takes no options.";
+
+const GALLERY_HELP: &str = "cargo xtask gallery: regenerates the published-robot gallery (docs/robots.md \
+and its pictures) from examples/robots/caspr-*.toml and wirecenter-*.toml. It takes no options.";
+
+/// `reproduce` and `gallery` take no options: `Some(Ok(help))` for `--help`, `Some(Err(usage
+/// error))` for any other argument (they used to be ignored, so `reproduce --help` started the
+/// whole reproduction), `None` to run the command.
+fn no_option_command(args: &[String]) -> Option<Result<&'static str, String>> {
+    let help = match args.first().map(String::as_str) {
+        Some("reproduce") => REPRODUCE_HELP,
+        Some("gallery") => GALLERY_HELP,
+        _ => return None,
+    };
+    let extra = args.get(1)?;
+    Some(if matches!(extra.as_str(), "-h" | "--help") {
+        Ok(help)
+    } else {
+        Err(format!(
+            "error: `cargo xtask {}` takes no arguments, got `{extra}`\n\n{help}",
+            args[0]
+        ))
+    })
+}
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let root = Path::new(env!("CARGO_MANIFEST_DIR"))
         .parent()
         .expect("xtask lives one level below the workspace root");
+    if let Some(answer) = no_option_command(&args) {
+        return match answer {
+            Ok(help) => {
+                println!("{help}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("{e}");
+                ExitCode::from(2)
+            }
+        };
+    }
     match args.first().map(String::as_str) {
         Some("reproduce") => match reproduce::run(root).and_then(|()| gallery::run(root)) {
             Ok(()) => ExitCode::SUCCESS,
@@ -59,5 +99,36 @@ fn main() -> ExitCode {
             eprintln!("{USAGE}");
             ExitCode::from(2)
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn args(a: &[&str]) -> Vec<String> {
+        a.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn reproduce_and_gallery_teach_on_help_and_refuse_arguments() {
+        assert!(no_option_command(&args(&["reproduce"])).is_none());
+        assert!(no_option_command(&args(&["gallery"])).is_none());
+        assert!(no_option_command(&args(&["soak", "--help"])).is_none());
+        let help = no_option_command(&args(&["reproduce", "--help"]))
+            .unwrap()
+            .unwrap();
+        assert!(help.contains("docs/reproduction.md"), "{help}");
+        let help = no_option_command(&args(&["gallery", "-h"]))
+            .unwrap()
+            .unwrap();
+        assert!(help.contains("docs/robots.md"), "{help}");
+        let err = no_option_command(&args(&["reproduce", "--fast"]))
+            .unwrap()
+            .unwrap_err();
+        assert!(
+            err.contains("takes no arguments") && err.contains("--fast"),
+            "{err}"
+        );
     }
 }

@@ -78,11 +78,11 @@ fn grid_json_of_krut_4() {
         "--grid",
         "2",
         "--box",
-        "-100,100,-100,100",
+        "-0.1,0.1,-0.1,0.1",
         "--json",
     ]);
     assert_eq!(f(&v["stats"]["positive_fraction"]), 1.0);
-    assert!((f(&v["grid"]["x"][0]) + 100.0).abs() < 1e-12);
+    assert!((f(&v["grid"]["x"][0]) + 0.1).abs() < 1e-12);
 }
 
 #[test]
@@ -127,7 +127,7 @@ fn force_polygon_plot_is_written_for_point2_robots_only() {
             "isotropic",
             &k3,
             "--pose",
-            "300,-200",
+            "0.3,-0.2",
             "--plot",
             file.to_str().unwrap(),
             "--json",

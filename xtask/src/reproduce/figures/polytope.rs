@@ -3,8 +3,8 @@
 //! with its largest centred circle and ellipse), Fig. 8 (the candidate frontiers of Krut's
 //! step 4 with the borders of test (15)), Fig. 9 (maximum isotropic force of
 //! the 3-motor robot over the plane) and Fig. 10 (4, 5 and 6 motors regularly spaced on a
-//! circle), from `examples/robots/krut-{3,4,5,6}.toml` (motors at 1000 mm, tensions in
-//! [50, 500] N).
+//! circle), from `examples/robots/krut-{3,4,5,6}.toml` (motors at l = 1000 mm = 1 m, tensions in
+//! [50, 500] N; lengths in metres).
 
 use super::Figure;
 use cdpr::RobotDescription;
@@ -16,10 +16,10 @@ use cdpr::polytope::{
 };
 use std::path::Path;
 
-/// Grid intervals per side: 121 × 121 poses over [−1000, 1000]² mm.
+/// Grid intervals per side: 121 × 121 poses over [−1, 1]² m (the paper: l = 1000 mm).
 const GRID: usize = 120;
-/// Half-width of the mapped square (the motors' circle radius, mm).
-const HALF: f64 = 1000.0;
+/// Half-width of the mapped square (the motors' circle radius, m).
+const HALF: f64 = 1.0;
 
 /// Writes this area's figures into `dir`.
 pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
@@ -33,9 +33,9 @@ pub fn figures(dir: &Path) -> Result<Vec<Figure>, String> {
     Ok(out)
 }
 
-/// The off-centre pose of Fig. 4 (mm): inside the workspace, where the polygon is far from
+/// The off-centre pose of Fig. 4 (m): inside the workspace, where the polygon is far from
 /// centred on the origin.
-const FIG4_POSE: (f64, f64) = (300.0, -200.0);
+const FIG4_POSE: (f64, f64) = (0.3, -0.2);
 
 /// One pose of Fig. 4: the figure panel, the index f_min (eq. 19), the ellipse and the panel's
 /// caption text.
@@ -118,13 +118,13 @@ fn fig4_panel(
         })
         .count();
     fig.title = if x == 0.0 && y == 0.0 {
-        "centre (0, 0) mm".into()
+        "centre (0, 0) m".into()
     } else {
-        format!("off-centre ({x}, {y}) mm")
+        format!("off-centre ({x}, {y}) m")
     };
     let [a, b] = ellipse.semi_axes;
     let text = format!(
-        "at ({x}, {y}) mm the polygon has {} vertices, f_min = {f_min:.1} N, the circle touches \
+        "at ({x}, {y}) m the polygon has {} vertices, f_min = {f_min:.1} N, the circle touches \
          {} facet(s) (outward normals {}), and the ellipse has semi-axes {a:.1} and {b:.1} N{}",
         vertices.len(),
         touching.len(),
@@ -167,7 +167,7 @@ fn krut2004_fig4(root: &Path, out: &Path) -> Result<Figure, String> {
             "The paper sketches the admissible operational force polygon (n = 2) with a circle \
              (radius: the largest force the machine can resist in every direction) and an \
              ellipse (the largest-area centred ellipse, §IV-C). Ours is computed for Krut, Company & Pierrot's (2004) \
-             3-motor point robot (examples/robots/krut-3.toml: motors at 1000 mm, 30°, 150°, \
+             3-motor point robot (examples/robots/krut-3.toml: motors at l = 1000 mm = 1 m, 30°, 150°, \
              270°, t ∈ [50, 500] N) at the centre and at an off-centre pose of our choice: the \
              polygon {{W t}} from its vertices (hyperplane shifting; every vertex checked to be \
              the image of a tension-box corner), the origin-centred circle of radius f_min \
@@ -494,7 +494,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
                 "Krut, Company & Pierrot 2004, Fig. {}: maximum isotropic force, {n} motors",
                 if n == 3 { 9 } else { 10 }
             ),
-            labels: ("x (mm)".into(), "y (mm)".into()),
+            labels: ("x (m)".into(), "y (m)".into()),
             value_label: "maximum isotropic force (N)".into(),
             x_range: (-HALF, HALF),
             y_range: (-HALF, HALF),
@@ -515,7 +515,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
         let file = format!("krut2004-fig{number}-isotropic-force-{n}-motors.png");
         save(&fig, out.join(&file)).map_err(|e| e.to_string())?;
         let common = format!(
-            "Our map: {}² positions over [−1000, 1000]² mm, white where the index is negative \
+            "Our map: {}² positions over [−1, 1]² m, white where the index is negative \
              (the pose cannot hold even a zero load with t ≥ 50 N) or undefined (at a motor); \
              tensions in [50, 500] N. Centre value {:.1} N (hand-derived zonotope apothem {:.1} N), \
              maximum {:.1} N, {:.0} % of the square has a non-negative index.",
@@ -544,7 +544,7 @@ fn render(root: &Path, out: &Path) -> Result<Vec<Figure>, String> {
                 source: format!("Krut, Company & Pierrot 2004, Fig. 10 ({n} motors)"),
                 caption: format!(
                     "The paper maps f_min for {n} motors regularly spaced on a circle of radius \
-                     l (here 1000 mm, first motor at 30°) and observes that more motors give a \
+                     l (here 1000 mm = 1 m, first motor at 30°) and observes that more motors give a \
                      larger index in the middle of the workspace and that the workspace is not \
                      exactly a regular polygon because tensions must stay above t_min > 0. \
                      {common} Our centre values grow with n as in the paper: {}.",
