@@ -32,7 +32,7 @@
 //!   2004, *Methods for non-linear least squares problems* (stopping rules).
 
 use crate::{KinematicsError, MotionPattern, Pose, PoseKinematics, Robot};
-use nalgebra::{Matrix6, Rotation3, Vector3};
+use nalgebra::{Rotation3, Vector3};
 
 /// Settings of the forward-kinematics solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,9 +113,10 @@ pub struct ForwardSolution {
     pub min_singular_value: f64,
 }
 
-/// Largest DOF of any motion pattern: the size of the fixed normal-equation buffers.
+/// Largest DOF of any motion pattern.
 const MAX_DOF: usize = 6;
-type Square = [[f64; MAX_DOF]; MAX_DOF];
+/// A D × D matrix on the stack (row-major); the solver is compiled once per DOF (2, 3, 6).
+type Square<const D: usize> = [[f64; D]; D];
 
 /// A reusable forward-kinematics solver for one robot: no allocation per solve.
 ///
@@ -277,9 +278,19 @@ impl<'a> ForwardKinematics<'a> {
     }
 
     /// The Levenberg–Marquardt loop from `x`, whose kinematics are in `self.kin`.
-    fn iterate(&mut self, lengths: &[f64], mut x: Pose) -> ForwardSolution {
+    fn iterate(&mut self, lengths: &[f64], x: Pose) -> ForwardSolution {
+        match self.robot.motion().dof() {
+            2 => self.iterate_fixed::<2>(lengths, x),
+            3 => self.iterate_fixed::<3>(lengths, x),
+            MAX_DOF => self.iterate_fixed::<MAX_DOF>(lengths, x),
+            d => unreachable!("no motion pattern has {d} degrees of freedom"),
+        }
+    }
+
+    /// [`Self::iterate`] for a motion pattern with D degrees of freedom.
+    fn iterate_fixed<const D: usize>(&mut self, lengths: &[f64], mut x: Pose) -> ForwardSolution {
         let motion = self.robot.motion();
-        let d = motion.dof();
+        let d = D;
         let scale = self.robot.length_scale();
         // Below this step (m, rad) nothing changes at the precision of the lengths.
         let step_tolerance = 1e-13 * scale;
@@ -288,8 +299,8 @@ impl<'a> ForwardKinematics<'a> {
         let mut nu = 2.0;
         let mut iterations = 0;
         let mut converged = false;
-        let mut a: Square = [[0.0; MAX_DOF]; MAX_DOF];
-        let mut rhs = [0.0; MAX_DOF];
+        let mut a: Square<D> = [[0.0; D]; D];
+        let mut rhs = [0.0; D];
         while iterations < self.settings.max_iterations {
             if max_residual(&self.kin, lengths) <= f64::EPSILON * scale {
                 converged = true;
@@ -305,12 +316,12 @@ impl<'a> ForwardKinematics<'a> {
                 damped[k][k] += mu * a[k][k].max(1e-12 * diag_max);
             }
             iterations += 1;
-            let Some(delta) = cholesky_solve(&damped, &rhs, d) else {
+            let Some(delta) = cholesky_solve(&damped, &rhs) else {
                 mu = if mu == 0.0 { 1e-6 } else { mu * nu };
                 nu *= 2.0;
                 continue;
             };
-            let step = delta[..d].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let step = delta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let trial = displaced(motion, &x, &delta);
             let accepted = match self.robot.update_kinematics(&trial, &mut self.trial) {
                 Ok(()) => {
@@ -346,7 +357,8 @@ impl<'a> ForwardKinematics<'a> {
         }
         let residual = max_residual(&self.kin, lengths);
         normal_equations(&self.kin, lengths, &mut a, &mut rhs);
-        let min_singular_value = smallest_eigenvalue(a, d).max(0.0).sqrt();
+        // σ_min(J)² = λ_min(JᵀJ) = λ_min(W Wᵀ), once, at the returned pose.
+        let min_singular_value = smallest_eigenvalue(&a).max(0.0).sqrt();
         let status = match (converged, residual <= self.settings.tolerance) {
             (_, true) => ForwardStatus::Solved,
             (true, false) => ForwardStatus::NoPoseWithinTolerance,
@@ -389,35 +401,49 @@ fn half_squared_residual(kin: &PoseKinematics, lengths: &[f64]) -> f64 {
         .sum::<f64>()
 }
 
-/// A = W Wᵀ and rhs = W r (r = l − L), in the first DOF rows and columns.
+/// A = W Wᵀ and rhs = W r (r = l − L).
 // Index loops read as the textbook algorithm on these small fixed arrays.
 #[allow(clippy::needless_range_loop)]
-fn normal_equations(kin: &PoseKinematics, lengths: &[f64], a: &mut Square, rhs: &mut [f64; 6]) {
+fn normal_equations<const D: usize>(
+    kin: &PoseKinematics,
+    lengths: &[f64],
+    a: &mut Square<D>,
+    rhs: &mut [f64; D],
+) {
     let motion = kin.motion();
-    let d = motion.dof();
-    *a = [[0.0; MAX_DOF]; MAX_DOF];
-    *rhs = [0.0; MAX_DOF];
+    *a = [[0.0; D]; D];
+    *rhs = [0.0; D];
     for (c, &target) in kin.cables().iter().zip(lengths) {
-        let col = wrench_column(motion, &c.unit, &c.attachment);
+        let col: [f64; D] = wrench_column(motion, &c.unit, &c.attachment);
         let r = c.length - target;
-        for i in 0..d {
+        // Constant bounds with the triangle as a condition: the compiler unrolls all of it.
+        for i in 0..D {
             rhs[i] += col[i] * r;
-            for j in 0..=i {
-                a[i][j] += col[i] * col[j];
+            for j in 0..D {
+                if j <= i {
+                    a[i][j] += col[i] * col[j];
+                }
             }
         }
     }
-    for i in 0..d {
-        for j in 0..i {
-            a[j][i] = a[i][j];
+    for i in 0..D {
+        for j in 0..D {
+            if j > i {
+                a[i][j] = a[j][i];
+            }
         }
     }
 }
 
-/// Column of W for one cable (the same as `PoseKinematics::write_wrench_matrix`).
+/// Column of W for one cable (the same as `PoseKinematics::write_wrench_matrix`); D is the
+/// motion pattern's DOF.
 #[inline]
-fn wrench_column(motion: MotionPattern, u: &Vector3<f64>, b: &Vector3<f64>) -> [f64; MAX_DOF] {
-    match motion {
+fn wrench_column<const D: usize>(
+    motion: MotionPattern,
+    u: &Vector3<f64>,
+    b: &Vector3<f64>,
+) -> [f64; D] {
+    let full = match motion {
         MotionPattern::Point2 => [u.x, u.y, 0.0, 0.0, 0.0, 0.0],
         MotionPattern::Planar => [u.x, u.y, b.x * u.y - b.y * u.x, 0.0, 0.0, 0.0],
         MotionPattern::Point3 => [u.x, u.y, u.z, 0.0, 0.0, 0.0],
@@ -425,19 +451,31 @@ fn wrench_column(motion: MotionPattern, u: &Vector3<f64>, b: &Vector3<f64>) -> [
             let m = b.cross(u);
             [u.x, u.y, u.z, m.x, m.y, m.z]
         }
-    }
+    };
+    std::array::from_fn(|i| full[i])
 }
 
-/// Solves A δ = b for symmetric positive definite A (first `d` rows); `None` if not SPD.
+/// The Cholesky factor L (lower triangular, L Lᵀ = A − shift · I) of a symmetric matrix;
+/// `None` if A − shift · I is not positive definite (a pivot ≤ 0, NaN or infinite).
 // Index loops read as the textbook algorithm on these small fixed arrays.
 #[allow(clippy::needless_range_loop)]
-fn cholesky_solve(a: &Square, b: &[f64; MAX_DOF], d: usize) -> Option<[f64; MAX_DOF]> {
-    let mut l: Square = [[0.0; MAX_DOF]; MAX_DOF];
-    for i in 0..d {
-        for j in 0..=i {
+#[inline]
+fn cholesky<const D: usize>(a: &Square<D>, shift: f64) -> Option<Square<D>> {
+    let mut l: Square<D> = [[0.0; D]; D];
+    // Constant loop bounds with the triangles as conditions: the compiler unrolls all of it.
+    for i in 0..D {
+        for j in 0..D {
+            if j > i {
+                continue;
+            }
             let mut s = a[i][j];
-            for k in 0..j {
-                s -= l[i][k] * l[j][k];
+            if i == j {
+                s -= shift;
+            }
+            for k in 0..D {
+                if k < j {
+                    s -= l[i][k] * l[j][k];
+                }
             }
             if i == j {
                 if s.is_nan() || s <= 0.0 || s.is_infinite() {
@@ -449,17 +487,25 @@ fn cholesky_solve(a: &Square, b: &[f64; MAX_DOF], d: usize) -> Option<[f64; MAX_
             }
         }
     }
-    let mut y = [0.0; MAX_DOF];
-    for i in 0..d {
-        let mut s = b[i];
+    Some(l)
+}
+
+/// Solves A δ = b for symmetric positive definite A; `None` if not SPD.
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+fn cholesky_solve<const D: usize>(a: &Square<D>, b: &[f64; D]) -> Option<[f64; D]> {
+    let l = cholesky(a, 0.0)?;
+    let mut y = *b;
+    for i in 0..D {
+        let mut s = y[i];
         for k in 0..i {
             s -= l[i][k] * y[k];
         }
         y[i] = s / l[i][i];
     }
-    for i in (0..d).rev() {
+    for i in (0..D).rev() {
         let mut s = y[i];
-        for k in i + 1..d {
+        for k in i + 1..D {
             s -= l[k][i] * y[k];
         }
         y[i] = s / l[i][i];
@@ -467,26 +513,84 @@ fn cholesky_solve(a: &Square, b: &[f64; MAX_DOF], d: usize) -> Option<[f64; MAX_
     y.iter().all(|v| v.is_finite()).then_some(y)
 }
 
-/// Smallest eigenvalue of the symmetric `d × d` matrix `a` (Householder tridiagonalisation and
-/// implicit QL of nalgebra, on a stack 6 × 6 matrix). For d < 6 the unused diagonal is padded
-/// with trace + 1, above every eigenvalue of the positive semi-definite block.
-fn smallest_eigenvalue(a: Square, d: usize) -> f64 {
-    let trace: f64 = (0..d).map(|k| a[k][k]).sum();
-    let m = Matrix6::from_fn(|i, j| {
-        if i < d && j < d {
-            a[i][j]
-        } else if i == j {
-            trace.abs() + 1.0
-        } else {
-            0.0
+/// Smallest eigenvalue λ₁ of the symmetric positive semi-definite D × D matrix `a`, by
+/// Laguerre's method on its characteristic polynomial p(λ) = det(A − λI), from λ = 0.
+///
+/// With M = A − λI = L Lᵀ (Cholesky) and X = L⁻¹, the roots' distances dᵢ = λᵢ − λ give
+/// G = Σ 1/dᵢ = tr M⁻¹ = ‖X‖²_F and H = Σ 1/dᵢ² = tr M⁻² = ‖XᵀX‖²_F, and the step is
+///
+/// ```text
+///   λ ← λ + D / (G + √((D − 1)(D H − G²)))
+/// ```
+///
+/// For a polynomial with real roots Laguerre's iterates from below the smallest root increase
+/// monotonically towards it and never pass it (Wilkinson 1965, §7.10): each iterate is a lower
+/// bound, and the Cholesky factorisation that exists there confirms it. Convergence is cubic,
+/// and exact in one step when every eigenvalue is equal. The loop stops when the step no
+/// longer changes λ by more than 4 ε λ, or when the factorisation fails at the new λ, which then
+/// lies at λ₁ within the factorisation's backward error (about D ε ‖A‖). Returns 0 when A
+/// itself has no Cholesky factor (singular to working precision).
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+fn smallest_eigenvalue<const D: usize>(a: &Square<D>) -> f64 {
+    let n = D as f64;
+    let mut lambda = 0.0;
+    let Some(mut l) = cholesky(a, 0.0) else {
+        return 0.0;
+    };
+    for _ in 0..64 {
+        // X = L⁻¹ (lower triangular), column by column.
+        let mut x: Square<D> = [[0.0; D]; D];
+        for j in 0..D {
+            x[j][j] = 1.0 / l[j][j];
+            for i in j + 1..D {
+                let mut s = 0.0;
+                for k in j..i {
+                    s -= l[i][k] * x[k][j];
+                }
+                x[i][j] = s / l[i][i];
+            }
         }
-    });
-    m.symmetric_eigenvalues().min()
+        // M⁻¹ = XᵀX; G = tr M⁻¹, H = ‖M⁻¹‖²_F.
+        let (mut g, mut h) = (0.0, 0.0);
+        for i in 0..D {
+            for j in 0..=i {
+                let mut m = 0.0;
+                for k in i..D {
+                    m += x[k][i] * x[k][j];
+                }
+                if i == j {
+                    g += m;
+                    h += m * m;
+                } else {
+                    h += 2.0 * m * m;
+                }
+            }
+        }
+        let step = n / (g + ((n - 1.0) * (n * h - g * g)).max(0.0).sqrt());
+        let next = lambda + step;
+        if step.is_nan() {
+            return lambda;
+        }
+        if step <= 4.0 * f64::EPSILON * next {
+            return next;
+        }
+        match cholesky(a, next) {
+            Some(factor) => {
+                l = factor;
+                lambda = next;
+            }
+            // In exact arithmetic next ≤ λ₁; a failed factorisation puts it within the
+            // rounding of the factorisation of λ₁.
+            None => return next,
+        }
+    }
+    lambda
 }
 
 /// x ⊕ δ: the pose moved by the twist δ of the motion pattern (position first, then the
 /// rotation vector in base coordinates, applied on the left as in the Jacobian).
-fn displaced(motion: MotionPattern, pose: &Pose, delta: &[f64; MAX_DOF]) -> Pose {
+fn displaced(motion: MotionPattern, pose: &Pose, delta: &[f64]) -> Pose {
     let (dp, dphi) = match motion {
         MotionPattern::Point2 => (Vector3::new(delta[0], delta[1], 0.0), None),
         MotionPattern::Planar => (
@@ -570,20 +674,56 @@ mod tests {
 
     #[test]
     fn cholesky_and_jacobi_by_hand() {
-        let mut a: Square = [[0.0; MAX_DOF]; MAX_DOF];
-        a[0] = [4.0, 2.0, 0.0, 0.0, 0.0, 0.0];
-        a[1] = [2.0, 3.0, 0.0, 0.0, 0.0, 0.0];
-        a[2][2] = 9.0;
-        let b = [2.0, 1.0, 3.0, 0.0, 0.0, 0.0];
-        let x = cholesky_solve(&a, &b, 3).unwrap();
+        let mut a: Square<3> = [[4.0, 2.0, 0.0], [2.0, 3.0, 0.0], [0.0, 0.0, 9.0]];
+        let b = [2.0, 1.0, 3.0];
+        let x = cholesky_solve(&a, &b).unwrap();
         // [[4, 2], [2, 3]] x = [2, 1] → x = (0.5, 0); 9 x₂ = 3.
         assert!((x[0] - 0.5).abs() < 1e-15 && x[1].abs() < 1e-15);
         assert!((x[2] - 1.0 / 3.0).abs() < 1e-15);
         // Eigenvalues of [[4, 2], [2, 3]]: (7 ± √17) / 2; and 9.
         let expected = (7.0 - 17f64.sqrt()) / 2.0;
-        assert!((smallest_eigenvalue(a, 3) - expected).abs() < 1e-14);
+        assert!((smallest_eigenvalue(&a) - expected).abs() < 1e-14);
         a[0][0] = -1.0;
-        assert!(cholesky_solve(&a, &b, 3).is_none());
+        assert!(cholesky_solve(&a, &b).is_none());
+    }
+
+    /// λ_min by Laguerre's method against nalgebra's symmetric eigenvalues (QL) for
+    /// A = V diag(λ) Vᵀ with random rotations V and spectra that are well separated, clustered
+    /// (equal, paired), spread over 12 decades, and rank deficient.
+    #[test]
+    fn smallest_eigenvalue_matches_a_full_eigen_solve() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        };
+        let spectra: [[f64; 6]; 7] = [
+            [0.3, 1.0, 2.0, 3.0, 5.0, 8.0],
+            [2.0; 6],
+            [1e-3, 1e-3, 1.0, 1.0, 4.0, 4.0],
+            [1e-6, 1e-4, 1e-2, 1.0, 1e2, 1e4],
+            [0.7, 0.7 + 1e-9, 3.0, 3.0, 3.0, 9.0],
+            [1e-12, 1.0, 1.0, 2.0, 3.0, 4.0],
+            [0.0, 1.0, 2.0, 3.0, 4.0, 5.0],
+        ];
+        for spectrum in spectra {
+            for _ in 0..50 {
+                let q = nalgebra::Matrix6::from_fn(|_, _| next()).qr().q();
+                let m = q * nalgebra::Matrix6::from_diagonal(&spectrum.into()) * q.transpose();
+                let m = (m + m.transpose()) / 2.0;
+                let a: Square<6> = std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]));
+                let ours = smallest_eigenvalue(&a);
+                let reference = m.symmetric_eigenvalues().min();
+                let scale = spectrum[5];
+                assert!(
+                    (ours - reference).abs() <= 1e-13 * scale,
+                    "{spectrum:?}: {ours} vs {reference}"
+                );
+                assert!(ours >= 0.0 && ours <= spectrum[0] + 1e-13 * scale);
+            }
+        }
     }
 
     #[test]

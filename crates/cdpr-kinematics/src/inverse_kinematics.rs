@@ -207,7 +207,7 @@ impl Robot {
                 *state = CableState {
                     vector: c.free_vector,
                     length: c.length,
-                    unit: c.free_vector / c.free_length,
+                    unit: c.unit,
                     attachment,
                     attachment_point,
                 };

@@ -47,7 +47,7 @@
 
 use crate::Pulley;
 use nalgebra::{Matrix3, Vector3};
-use std::f64::consts::TAU;
+use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4, FRAC_PI_8, TAU};
 
 /// Largest deviation |QᵀQ − I| accepted for a pulley frame.
 pub(crate) const ORTHONORMAL_TOLERANCE: f64 = 1e-6;
@@ -143,6 +143,8 @@ pub(crate) struct PulleyCable {
     pub exit_point: Vector3<f64>,
     /// **C** − **B**: the free segment from the attachment to the tangent point.
     pub free_vector: Vector3<f64>,
+    /// (**C** − **B**) / l_f = −(sin β **r̂** + cos β **k**), unit by construction.
+    pub unit: Vector3<f64>,
     /// l_f = ‖C − B‖.
     pub free_length: f64,
     /// L = ρ β + l_f.
@@ -159,6 +161,13 @@ pub(crate) struct PulleyCable {
 
 /// The module's equations for the cable through `a` over `pulley` to the attachment point `b`.
 /// `threshold` (m) is the distance below which s or l_f count as zero.
+///
+/// No transcendental function is called: γ enters only through (cos γ, sin γ) = (p_x, p_y) / s,
+/// β through its cosine and sine (module equations) and once as an angle, by [`wrap_angle`].
+/// The free-segment direction is the pulley-plane tangent at **C**: with the radial direction
+/// **r̂** = Q R_z(γ) e_x, **C** − **M** = ρ (−cos β **r̂** + sin β **k**) and
+/// **B** − **M** = x **r̂** + h **k**, so (**C** − **B**) / l_f = −(sin β **r̂** + cos β **k**)
+/// (substitute cos β and sin β and use l_f² = BM² − ρ²).
 #[inline]
 pub(crate) fn pulley_cable(
     a: &Vector3<f64>,
@@ -186,20 +195,19 @@ pub(crate) fn pulley_cable(
     let inv_bm2 = 1.0 / bm2;
     let cos_beta = (free_length * h - rho * x) * inv_bm2;
     let sin_beta = (free_length * x + rho * h) * inv_bm2;
-    let mut wrap_angle = sin_beta.atan2(cos_beta);
-    if wrap_angle < 0.0 {
-        wrap_angle += TAU;
-    }
+    let wrap_angle = wrap_angle(cos_beta, sin_beta);
     let inv_s = 1.0 / s;
     let (cos_gamma, sin_gamma) = (p.x * inv_s, p.y * inv_s);
     let radial = rho * (1.0 - cos_beta);
     let (e1, e2, k) = (q.column(0), q.column(1), q.column(2));
-    // C = a + Q R_z(γ) (radial, 0, ρ sin β), with Q R_z(γ) e_x = cos γ e₁ + sin γ e₂.
+    // r̂ = Q R_z(γ) e_x = cos γ e₁ + sin γ e₂.
     let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
-    let exit_point = a + radial_direction * radial + k * (rho * sin_beta);
+    let unit = -(radial_direction * sin_beta + k * cos_beta);
+    let free_vector = unit * free_length;
     Ok(PulleyCable {
-        exit_point,
-        free_vector: exit_point - b,
+        exit_point: b + free_vector,
+        free_vector,
+        unit,
         free_length,
         length: rho * wrap_angle + free_length,
         swivel_direction: [cos_gamma, sin_gamma],
@@ -207,6 +215,55 @@ pub(crate) fn pulley_cable(
         plane_normal: e2 * cos_gamma - e1 * sin_gamma,
         swivel_ratio: radial * inv_s,
     })
+}
+
+/// (θ_k, cos θ_k, sin θ_k) for θ_k = kπ/32, k = 0, …, 8, correctly rounded (computed with
+/// 200-bit arithmetic; the unit test checks them against the standard library).
+const OCTANT_TABLE: [(f64, f64, f64); 9] = [
+    (0.0, 1.0, 0.0),
+    (0.09817477042468103, 0.9951847266721969, 0.0980171403295606),
+    (0.19634954084936207, 0.9807852804032304, 0.19509032201612828),
+    (0.2945243112740431, 0.9569403357322088, 0.2902846772544624),
+    (FRAC_PI_8, 0.9238795325112867, 0.3826834323650898),
+    (0.4908738521234052, 0.881921264348355, 0.47139673682599764),
+    (0.5890486225480862, 0.8314696123025452, 0.5555702330196022),
+    (0.6872233929727672, 0.773010453362737, 0.6343932841636455),
+    (FRAC_PI_4, FRAC_1_SQRT_2, FRAC_1_SQRT_2),
+];
+
+/// The angle β ∈ [0, 2π) of the unit vector (cos β, sin β), without a libm call: the point is
+/// folded into the first octant (φ ∈ [0, π/4], sin φ = min(|c|, |s|)), rotated back by the
+/// nearest table angle θ_k = kπ/32, and the remaining |φ − θ_k| ≤ 0.056 is the arcsine of its
+/// sine by its Taylor series to the 11th power (truncation below 1e-18 rad). Absolute error a
+/// few units in the last place of 2π (the unit test compares with `f64::atan2`).
+#[inline]
+pub(crate) fn wrap_angle(cos_beta: f64, sin_beta: f64) -> f64 {
+    let (ac, as_) = (cos_beta.abs(), sin_beta.abs());
+    let steep = as_ > ac;
+    let (m, big) = if steep { (ac, as_) } else { (as_, ac) };
+    // A rough arcsine (error < 0.006 rad for m ≤ 0.71) picks the table angle.
+    let m2 = m * m;
+    let rough = m * (1.0 + m2 * (1.0 / 6.0 + m2 * 0.075));
+    let k = ((rough * (32.0 / std::f64::consts::PI) + 0.5) as i32).clamp(0, 8) as usize;
+    let (theta, ck, sk) = OCTANT_TABLE[k];
+    // sin(φ − θ_k), then its arcsine.
+    let t = m * ck - big * sk;
+    let t2 = t * t;
+    let series = 1.0
+        + t2 * (1.0 / 6.0
+            + t2 * (3.0 / 40.0 + t2 * (5.0 / 112.0 + t2 * (35.0 / 1152.0 + t2 * (63.0 / 2816.0)))));
+    let phi = theta + t * series;
+    let quadrant = if steep {
+        std::f64::consts::FRAC_PI_2 - phi
+    } else {
+        phi
+    };
+    let half = if cos_beta < 0.0 {
+        std::f64::consts::PI - quadrant
+    } else {
+        quadrant
+    };
+    if sin_beta < 0.0 { TAU - half } else { half }
 }
 
 #[cfg(test)]
@@ -315,6 +372,51 @@ mod tests {
         let m = Vector3::new(1.0, 0.0, 0.0);
         assert_relative_eq!((c.exit_point - m).norm(), 1.0, epsilon = 1e-14);
         assert!((c.exit_point - m).dot(&c.free_vector).abs() < 1e-13);
+    }
+
+    #[test]
+    fn octant_table_is_correctly_rounded() {
+        for (k, &(theta, c, s)) in OCTANT_TABLE.iter().enumerate() {
+            let exact = k as f64 * std::f64::consts::PI / 32.0;
+            assert!((theta - exact).abs() <= f64::EPSILON * exact, "θ_{k}");
+            assert!((c - theta.cos()).abs() <= f64::EPSILON, "cos θ_{k}");
+            assert!((s - theta.sin()).abs() <= f64::EPSILON, "sin θ_{k}");
+        }
+    }
+
+    /// `wrap_angle` against `f64::atan2` (mapped to [0, 2π)) around the whole circle, at the
+    /// octant and table boundaries and at ±0: within 4 units in the last place of 2π.
+    #[test]
+    fn wrap_angle_equals_atan2() {
+        let reference = |c: f64, s: f64| {
+            let a = s.atan2(c);
+            if a < 0.0 { a + TAU } else { a }
+        };
+        let mut worst = 0.0f64;
+        let mut check = |angle: f64| {
+            let (s, c) = angle.sin_cos();
+            let (ours, exact) = (wrap_angle(c, s), reference(c, s));
+            // Near 0 ≡ 2π either representative is the same angle.
+            let error = (ours - exact).abs().min(TAU - (ours - exact).abs());
+            worst = worst.max(error);
+            assert!(
+                error <= 4.0 * f64::EPSILON * TAU,
+                "β = {angle}: {ours} vs {exact}"
+            );
+        };
+        let n = 200_000;
+        for i in 0..n {
+            check(TAU * (i as f64 + 0.37) / n as f64);
+        }
+        for k in 0..=64 {
+            let edge = k as f64 * std::f64::consts::PI / 64.0;
+            for d in [-1e-9, -1e-15, 0.0, 1e-15, 1e-9] {
+                check(edge + d);
+            }
+        }
+        assert_eq!(wrap_angle(1.0, 0.0), 0.0);
+        assert_eq!(wrap_angle(1.0, -0.0), 0.0);
+        assert!(worst < 4.0 * f64::EPSILON * TAU);
     }
 
     #[test]

@@ -4,4 +4,5 @@
 mod corpus;
 mod platform_shape;
 mod pulley_keys;
+mod pulley_reference;
 mod readers;
