@@ -79,6 +79,8 @@ pub fn capacity_margin(
     wrench_box: Option<Vec<f64>>,
     wrench_ball: Option<f64>,
 ) -> PyResult<CapacityResult> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the capacity margin (wrench closure)")
+        .map_err(value_error)?;
     let geo = robot.geometry();
     let (dof, motion) = (geo.dof(), geo.motion());
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
@@ -175,6 +177,8 @@ pub fn isotropic(
     poses: &Bound<'_, PyAny>,
     wrenches: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<IsotropicResult> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the isotropic force (wrench closure)")
+        .map_err(value_error)?;
     let geo = robot.geometry();
     let (dof, motion) = (geo.dof(), geo.motion());
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;

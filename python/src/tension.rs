@@ -118,6 +118,8 @@ pub fn sotda_settings(
 
 /// A solver for `method` (SOTDA with its settings), checking the robot has what it needs.
 pub fn solver(robot: &Robot, method: Method, sotda: SotdaSettings) -> PyResult<TensionSolver> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "tension distribution")
+        .map_err(value_error)?;
     if method == Method::Sotda {
         if robot.desc.axial_stiffness.is_none() {
             return Err(value_error(

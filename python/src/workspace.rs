@@ -285,6 +285,8 @@ pub fn workspace(
     let desc = &robot.desc;
     let motion = geo.motion();
     let (dof, dim) = (geo.dof(), motion.space_dim());
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the wrench-feasible workspace")
+        .map_err(value_error)?;
     let method = match method {
         Some(m) => parse_method(m)?,
         None if geo.cable_count() == dof => Method::Exact,

@@ -115,17 +115,6 @@ impl RobotDescription {
         let mut warnings = Vec::new();
         let (set_node, raw) = read_cables(&cables_xml, cable_set)?;
         let motion = body.motion;
-        if raw.len() < motion.dof() {
-            return Err(cables_xml.error(
-                set_node,
-                None,
-                format!(
-                    "{} cables, a `{motion}` robot needs at least {}",
-                    raw.len(),
-                    motion.dof()
-                ),
-            ));
-        }
         let mut cables = Vec::with_capacity(raw.len());
         let mut shifted = false;
         for c in &raw {

@@ -525,17 +525,6 @@ impl RobotDescription {
         }
         let mut warnings = Vec::new();
         let cables_raw = raw.cables.get_ref();
-        if cables_raw.len() < motion.dof() {
-            return Err(ctx.invalid(
-                raw.cables.span(),
-                "cables",
-                format!(
-                    "{} cables, a `{motion}` robot needs at least {} (one per degree of freedom)",
-                    cables_raw.len(),
-                    motion.dof()
-                ),
-            ));
-        }
         let (mut cables, mut mins, mut maxs, mut stiff, mut names) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, c) in cables_raw.iter().enumerate() {

@@ -98,17 +98,6 @@ impl RobotDescription {
         let chains: Vec<Node> = XmlFile::elements(geometry)
             .filter(|n| n.has_tag_name("chain"))
             .collect();
-        if chains.len() < motion.dof() {
-            return Err(x.error(
-                geometry,
-                None,
-                format!(
-                    "{} <chain>s, a `{motion}` robot needs at least {}",
-                    chains.len(),
-                    motion.dof()
-                ),
-            ));
-        }
         let mut cables = Vec::new();
         let mut names = Vec::new();
         let (mut dropped_pulleys, mut shifted) = (false, false);

@@ -54,7 +54,6 @@ const NOT_MODELLED: &[(&str, Option<&str>, &str)] = &[
     ),
     ("Passive_springs_planar_cables.xml", None, "joint"),
     ("Myorob_shoulder_cables.xml", None, "joint"),
-    ("2DIPAnema2.wcrfx", None, "geometry"),
 ];
 
 fn not_modelled(path: &Path, set: Option<&str>) -> Option<&'static str> {

@@ -175,6 +175,7 @@ pub fn check_method(
     robot: &RobotDescription,
     method: cdpr::tension::Method,
 ) -> Result<(), CliError> {
+    cdpr::wrench::require_enough_cables(&robot.robot, "tension distribution")?;
     let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
     method.check_redundancy(r)?;
     if method == cdpr::tension::Method::ImprovedClosedForm

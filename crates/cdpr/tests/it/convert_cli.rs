@@ -132,3 +132,36 @@ fn errors_name_file_line_and_element() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("per-cable tension bounds differ"));
 }
+
+/// 2DIPAnema2 declares 3R3T (spatial, 6 DOF) for 4 cables: `kinematics` gives its lengths and
+/// the 6 × 4 W; the analyses that balance a wrench exit 2 naming n and DOF.
+#[test]
+fn fewer_cables_than_dof_kinematics_works_analyses_refuse() {
+    let robot = data("wirecenter/2DIPAnema2.wcrfx");
+    let pose = "0.01,-0.02,0,0,0,0.1";
+    let r = json(&["kinematics", &robot, "--pose", pose, "--json"]);
+    assert_eq!(r["lengths"].as_array().unwrap().len(), 4);
+    let w = r["wrench_matrix"].as_array().unwrap();
+    assert_eq!((w.len(), w[0].as_array().unwrap().len()), (6, 4));
+    for args in [
+        vec!["tension", robot.as_str(), "--pose", pose],
+        vec![
+            "capacity",
+            robot.as_str(),
+            "--pose",
+            pose,
+            "--wrench-ball",
+            "1",
+        ],
+        vec!["isotropic", robot.as_str(), "--pose", pose],
+        vec!["workspace", robot.as_str(), "--grid", "3"],
+    ] {
+        let out = cdpr().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("needs at least as many cables as degrees of freedom (n ≥ DOF); this spatial robot has n = 4 cables for DOF = 6"),
+            "{args:?}: {err}"
+        );
+    }
+}
