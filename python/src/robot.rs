@@ -250,6 +250,8 @@ impl Robot {
                 cable_names: vec![None; n],
                 inertia: None,
                 home_pose: None,
+                passive_springs: None,
+                passive_spring_names: Vec::new(),
                 warnings,
             }),
         })

@@ -151,6 +151,12 @@ pub fn trajectory(
         let path = Path::new(motion, poses.clone()).map_err(value_error)?;
         let samples = path.sample(sampling).map_err(value_error)?;
         let s_way = waypoint_s(robot, &poses);
+        // Weight and passive springs at each sample, checked before the profile (a spring of
+        // zero length is an error naming the sample).
+        for sample in &samples {
+            desc.load_wrench(&sample.pose)
+                .map_err(|e| value_error(format!("at s = {}: {e}", sample.s)))?;
+        }
         let profile = tension_profile(
             geo,
             &samples,
@@ -159,7 +165,9 @@ pub fn trajectory(
             desc.axial_stiffness.as_deref(),
             |sample: &PathSample| {
                 interpolate(&s_way, &wrench_rows, sample.s)
-                    + desc.platform.gravity_wrench(motion, &sample.pose)
+                    + desc
+                        .load_wrench(&sample.pose)
+                        .expect("checked at every sample above")
             },
         )
         .map_err(value_error)?;

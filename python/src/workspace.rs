@@ -306,6 +306,8 @@ pub fn workspace(
         Some(w) => cdpr_wrench::wrench_from_slice(motion, w).map_err(value_error)?,
         None => DVector::zeros(dof),
     };
+    desc.require_no_passive_springs("workspace")
+        .map_err(value_error)?;
     let w_ext = w + desc
         .platform
         .gravity_wrench(motion, &Pose::new(Vector3::zeros(), rot));

@@ -263,3 +263,21 @@ def test_fewer_cables_than_dof_kinematics_works_analyses_refuse(cli):
         robot.capacity_margin(q, np.zeros(6), wrench_ball=1.0)
     with pytest.raises(ValueError, match=message):
         robot.isotropic_force(q)
+
+
+def test_passive_springs_are_part_of_the_external_wrench(cli):
+    # CASPR's Passive_springs_planar: 4 cables and 4 passive springs (K = 5 N/m, l0 = 1 m); the
+    # springs' force at each pose enters w_ext as in `cdpr tension`.
+    path = DATA / "caspr/planar_manipulators/Passive_springs_planar/Passive_springs_planar_cables.xml"
+    robot = cdpr.Robot.load(path)
+    poses = np.array([[0.2, -0.1, 0.3], [-0.3, 0.4, -0.2]])
+    res = robot.tensions(poses)
+    for k, q in enumerate(poses):
+        ref = cli("tension", path, pose=q)
+        np.testing.assert_allclose(res.external_wrench[k], ref["external_wrench"], atol=1e-12)
+        np.testing.assert_allclose(res.tensions[k], ref["tensions"], atol=1e-9)
+        springs = cli("kinematics", path, pose=q)["passive_springs"]
+        weight = np.array([0.0, -3.0 * 9.81, 0.0])
+        np.testing.assert_allclose(res.external_wrench[k], weight + springs["wrench"], atol=1e-12)
+    with pytest.raises(ValueError, match="4 passive spring"):
+        robot.workspace(resolution=4)

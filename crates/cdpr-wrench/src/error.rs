@@ -34,6 +34,16 @@ pub enum WrenchError {
         /// The value given.
         value: f64,
     },
+    /// A passive spring with K ≤ 0 or l₀ < 0.
+    #[error("passive spring {}: {what} = {value} is out of range (K > 0, l0 ≥ 0)", spring + 1)]
+    NonPositiveSpring {
+        /// Spring index (0-based).
+        spring: usize,
+        /// Which parameter.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// An analysis that balances wrenches (tensions, wrench closure, feasibility, capacity)
     /// asked of a robot with fewer cables than degrees of freedom: W (DOF × n) cannot have
     /// rank DOF, so no wrench set is spanned. Kinematics (lengths, W) still applies.

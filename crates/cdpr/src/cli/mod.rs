@@ -214,13 +214,15 @@ pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64
     }
 }
 
-/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro, Plestan & Claveau 2020, eq. (1)).
+/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro,
+/// Plestan & Claveau 2020, eq. (1)) plus the passive springs' wrench w_s, if the robot has any
+/// ([`RobotDescription::load_wrench`]).
 pub fn external_wrench(
     robot: &RobotDescription,
     pose: &Pose,
     w: Option<&[f64]>,
 ) -> Result<DVector<f64>, CliError> {
-    Ok(wrench(robot, w)? + robot.platform.gravity_wrench(robot.robot.motion(), pose))
+    Ok(wrench(robot, w)? + robot.load_wrench(pose)?)
 }
 
 /// A number as a person reads it: at most 9 significant digits (so that round-off such as

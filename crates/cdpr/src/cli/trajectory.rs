@@ -221,7 +221,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
     } else {
         TensionSolver::new(args.method)
     };
-    let gravity = |p: &Pose| robot.platform.gravity_wrench(motion, p);
+    // Weight and passive springs at each sample (checked here: a spring of zero length is an
+    // error naming the sample, not a panic in the profile).
+    for sample in &samples {
+        robot
+            .load_wrench(&sample.pose)
+            .map_err(|e| format!("at s = {}: {e}", sample.s))?;
+    }
+    let gravity = |p: &Pose| robot.load_wrench(p).expect("checked at every sample above");
     let profile = tension_profile(
         &robot.robot,
         &samples,
