@@ -6,10 +6,12 @@
 
 1. Inverse kinematics + wrench matrix of 10⁶ poses of the 8-cable spatial robot
    (examples/robots/ipanema-like-8.toml), one batch call, alternating with the plain Rust loop
-   doing the same work on one thread with fresh buffers (`cdpr._cdpr._ik_reference_loop`: no
-   numpy, no Python inside; the same loop as the criterion bench
-   `cargo bench -p cdpr-benches --bench kinematics -- kinematics_batch`, which reuses its
-   buffers).
+   doing the same work on one thread (`cdpr._cdpr._ik_reference_loop`: no numpy, no Python
+   inside; the same loop as the criterion bench
+   `cargo bench -p cdpr-benches --bench kinematics -- kinematics_batch`). Twice: into fresh
+   memory (new arrays; the Rust loop allocates its buffers inside its clock) and into reused
+   memory (`out=` the previous result; the Rust loop's buffers written before its clock, as
+   criterion's are).
 2. Per-call overhead of a single-pose call: the time of `robot.inverse_kinematics(q)` for one
    pose minus the Rust loop's time per pose (measured in the same run), with a trivial native
    call and np.empty(3) printed for scale on a loaded machine.
@@ -31,7 +33,7 @@ import time
 import numpy as np
 
 import cdpr
-from cdpr._cdpr import _ik_reference_loop
+from cdpr._cdpr import _ik_reference_buffers, _ik_reference_loop
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 ROBOT = REPO / "examples" / "robots" / "ipanema-like-8.toml"
@@ -101,29 +103,45 @@ def main():
     print(f"cdpr package, {cdpr.thread_count()} rayon thread(s) "
           f"(RAYON_NUM_THREADS={os.environ.get('RAYON_NUM_THREADS', 'unset')}); robot {robot}")
 
-    # 1. IK + W of a large batch, alternating with the plain Rust loop (same process).
+    # 1. IK + W of a large batch, alternating with the plain Rust loop (same process), twice:
+    # (a) into fresh memory: the package's new arrays against the Rust loop allocating its
+    #     buffers inside its clock; each result is kept alive until the clock stops (the Rust
+    #     loop frees its buffers after its clock too);
+    # (b) into reused memory: `out=` the previous result against the Rust loop with buffers it
+    #     wrote before (`_ik_reference_buffers`; criterion's `kinematics_batch` reuses them too).
+    # Writing 104 floats per pose (832 MB for 10⁶ poses) into fresh pages makes the kernel
+    # zero them on first touch: that cost, not the kinematics, dominates (a).
     q = poses_8(robot, args.ik_poses)
-    ours, rust, ours_cpu, rust_cpu = [], [], [], []
-    for _ in range(args.repeat):
-        c0, t0 = time.process_time(), time.perf_counter()
-        robot.inverse_kinematics(q)
-        ours.append(time.perf_counter() - t0)
-        ours_cpu.append(time.process_time() - c0)
-        c0 = time.process_time()
-        rust.append(_ik_reference_loop(robot, q))
-        rust_cpu.append(time.process_time() - c0)
-    t_ik, t_rust = statistics.median(ours), statistics.median(rust)
-    c_ik, c_rust = statistics.median(ours_cpu), statistics.median(rust_cpu)
-    print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables): median wall "
-          f"{t_ik * 1e3:.1f} ms = {t_ik / args.ik_poses * 1e9:.0f} ns/pose; the Rust loop on one "
-          f"thread {t_rust * 1e3:.1f} ms = {t_rust / args.ik_poses * 1e9:.0f} ns/pose; "
-          f"package / Rust = {t_ik / t_rust:.2f} (wall), {c_ik / c_rust:.2f} (CPU time: "
-          f"{c_ik * 1e3:.0f} ms vs {c_rust * 1e3:.0f} ms)")
+    reused = robot.inverse_kinematics(q)
+    buffers = _ik_reference_buffers(robot, len(q))
+    for label, reuse in (("fresh output memory", False), ("reused output (out=)", True)):
+        ours, rust, ours_cpu, rust_cpu = [], [], [], []
+        for _ in range(args.repeat):
+            c0, t0 = time.process_time(), time.perf_counter()
+            res = robot.inverse_kinematics(q, out=reused) if reuse else robot.inverse_kinematics(q)
+            ours.append(time.perf_counter() - t0)
+            ours_cpu.append(time.process_time() - c0)
+            del res
+            c0 = time.process_time()
+            rust.append(_ik_reference_loop(robot, q, buffers if reuse else None))
+            rust_cpu.append(time.process_time() - c0)
+        t_ik, t_rust = statistics.median(ours), statistics.median(rust)
+        c_ik, c_rust = statistics.median(ours_cpu), statistics.median(rust_cpu)
+        print(f"[1] inverse_kinematics, {args.ik_poses} poses (IK + W, 8 cables), {label}: "
+              f"median wall {t_ik * 1e3:.1f} ms = {t_ik / args.ik_poses * 1e9:.0f} ns/pose; the "
+              f"Rust loop on one thread {t_rust * 1e3:.1f} ms = "
+              f"{t_rust / args.ik_poses * 1e9:.0f} ns/pose; package / Rust = {t_ik / t_rust:.2f} "
+              f"(wall), {c_ik / c_rust:.2f} (CPU time: {c_ik * 1e3:.0f} ms vs "
+              f"{c_rust * 1e3:.0f} ms)")
+    del reused, buffers
 
-    # 2. Per-call overhead of one pose: the call minus the Rust loop's time per pose.
+    # 2. Per-call overhead of one pose: the call minus the Rust loop's time per pose, the loop
+    # writing into buffers it has already touched (a single pose's 832 bytes of output come
+    # from numpy's small-block cache, not from fresh pages).
     one = q[0].copy()
     small = q[:100_000]
-    per_pose = min(_ik_reference_loop(robot, small) for _ in range(args.repeat)) / len(small)
+    warm = _ik_reference_buffers(robot, len(small))
+    per_pose = min(_ik_reference_loop(robot, small, warm) for _ in range(args.repeat)) / len(small)
     t_call = per_call(lambda: robot.inverse_kinematics(one))
     t_dof = per_call(lambda: robot.dof)
     t_np = per_call(lambda: np.empty(3))

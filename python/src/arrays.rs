@@ -6,7 +6,10 @@
 
 use crate::value_error;
 use numpy::ndarray::{ArrayD, IxDyn};
-use numpy::{IntoPyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::{
+    IntoPyArray, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyReadwriteArrayDyn,
+    PyUntypedArrayMethods,
+};
 use pyo3::prelude::*;
 use pyo3::sync::PyOnceLock;
 use pyo3::types::PyDict;
@@ -194,4 +197,30 @@ pub fn batch_shape(single: bool, count: usize, rest: &[usize]) -> Vec<usize> {
     }
     s.extend_from_slice(rest);
     s
+}
+
+/// An output array the caller passed (`out=`), borrowed for writing: float64, C-contiguous,
+/// writable, exactly `shape`, and not overlapping an array this call reads (numpy's borrow
+/// checker refuses a write borrow of memory that is borrowed for reading).
+pub fn out_array<'py>(
+    array: &Bound<'py, PyArrayDyn<f64>>,
+    shape: &[usize],
+    what: &str,
+) -> PyResult<PyReadwriteArrayDyn<'py, f64>> {
+    if array.shape() != shape {
+        return Err(value_error(format!(
+            "out.{what}: expected shape {}, got {}",
+            shape_string(shape),
+            shape_string(array.shape())
+        )));
+    }
+    let rw = array.try_readwrite().map_err(|e| {
+        value_error(format!(
+            "out.{what}: not writable, or it shares memory with an input ({e})"
+        ))
+    })?;
+    if rw.as_slice().is_err() {
+        return Err(value_error(format!("out.{what}: must be C-contiguous")));
+    }
+    Ok(rw)
 }

@@ -185,6 +185,8 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<trajectory::TrajectoryResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
     m.add_function(wrap_pyfunction!(kinematics::_ik_reference_loop, m)?)?;
+    m.add_function(wrap_pyfunction!(kinematics::_ik_reference_buffers, m)?)?;
+    m.add_class::<kinematics::IkBuffers>()?;
     m.add("METHODS", tension::method_names())?;
     Ok(())
 }

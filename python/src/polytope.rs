@@ -79,8 +79,10 @@ pub fn capacity_margin(
     wrench_box: Option<Vec<f64>>,
     wrench_ball: Option<f64>,
 ) -> PyResult<CapacityResult> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the capacity margin (wrench closure)")
+        .map_err(value_error)?;
     let geo = robot.geometry();
-    let (dof, motion) = (geo.dof(), geo.motion());
+    let dof = geo.dof();
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
@@ -112,7 +114,9 @@ pub fn capacity_margin(
             |kin, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
                 let centre = DVector::from_column_slice(wr.at(k))
-                    + desc.platform.gravity_wrench(motion, &pose);
+                    + desc
+                        .load_wrench(&pose)
+                        .map_err(|e| format!("poses[{k}]: {e}"))?;
                 let required = match (&wrench_box, wrench_ball) {
                     (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
                     (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
@@ -175,6 +179,8 @@ pub fn isotropic(
     poses: &Bound<'_, PyAny>,
     wrenches: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<IsotropicResult> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the isotropic force (wrench closure)")
+        .map_err(value_error)?;
     let geo = robot.geometry();
     let (dof, motion) = (geo.dof(), geo.motion());
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
@@ -203,7 +209,9 @@ pub fn isotropic(
                     unreachable!("two outputs")
                 };
                 let w_ext = DVector::from_column_slice(wr.at(k))
-                    + desc.platform.gravity_wrench(motion, &pose);
+                    + desc
+                        .load_wrench(&pose)
+                        .map_err(|e| format!("poses[{k}]: {e}"))?;
                 f[j] = isotropic_force_under_load(&aws, motion, &w_ext).map_err(at(k))?;
                 r[j] = aws
                     .supporting_halfspaces()
@@ -231,6 +239,10 @@ pub fn stiffness(
     tensions: &Bound<'_, PyAny>,
     axial_stiffness: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<StiffnessResult> {
+    robot
+        .desc
+        .require_no_passive_springs("stiffness (cables only; the springs' K would add to it)")
+        .map_err(value_error)?;
     let geo = robot.geometry();
     let (dof, n) = (geo.dof(), geo.cable_count());
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;

@@ -250,6 +250,8 @@ impl Robot {
                 cable_names: vec![None; n],
                 inertia: None,
                 home_pose: None,
+                passive_springs: None,
+                passive_spring_names: Vec::new(),
                 warnings,
             }),
         })
@@ -383,12 +385,18 @@ impl Robot {
     ///
     /// Raises ``ValueError`` for a wrong shape, a non-finite coordinate, or a pose where a
     /// cable has zero length (its direction is undefined), naming the pose.
+    ///
+    /// ``out``: a result of an earlier call with the same number of poses; its arrays are
+    /// overwritten and it is returned (no new memory for a large batch). Its arrays must keep
+    /// their shapes and must not share memory with ``poses``.
+    #[pyo3(signature = (poses, *, out=None))]
     fn inverse_kinematics(
         &self,
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
-    ) -> PyResult<crate::kinematics::KinematicsResult> {
-        crate::kinematics::inverse_kinematics(self, py, poses)
+        out: Option<Bound<'_, crate::kinematics::KinematicsResult>>,
+    ) -> PyResult<Py<crate::kinematics::KinematicsResult>> {
+        crate::kinematics::inverse_kinematics(self, py, poses, out)
     }
 
     /// Tension distributions at one pose or a batch.

@@ -9,7 +9,7 @@ use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writa
 use crate::kinematics::pose_at;
 use crate::robot::Robot;
 use crate::{map_poses, row, run_batch, value_error};
-use cdpr_kinematics::{MotionPattern, PoseKinematics};
+use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{
     Method, SotdaSettings, SotdaVariant, StiffnessData, TensionProblem, TensionSolver,
 };
@@ -118,6 +118,8 @@ pub fn sotda_settings(
 
 /// A solver for `method` (SOTDA with its settings), checking the robot has what it needs.
 pub fn solver(robot: &Robot, method: Method, sotda: SotdaSettings) -> PyResult<TensionSolver> {
+    cdpr_wrench::require_enough_cables(robot.geometry(), "tension distribution")
+        .map_err(value_error)?;
     if method == Method::Sotda {
         if robot.desc.axial_stiffness.is_none() {
             return Err(value_error(
@@ -179,7 +181,6 @@ pub fn tensions(
     sotda_search: &str,
 ) -> PyResult<TensionResult> {
     let geo = robot.geometry();
-    let motion: MotionPattern = geo.motion();
     let (dof, n) = (geo.dof(), geo.cable_count());
     let method = parse_method(method)?;
     let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?;
@@ -217,7 +218,9 @@ pub fn tensions(
                     unreachable!("four outputs")
                 };
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                let g = desc.platform.gravity_wrench(motion, &pose);
+                let g = desc
+                    .load_wrench(&pose)
+                    .map_err(|e| format!("poses[{k}]: {e}"))?;
                 for (o, (a, g)) in b.w_ext.iter_mut().zip(wr.at(k).iter().zip(g.iter())) {
                     *o = a + g;
                 }

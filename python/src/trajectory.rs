@@ -11,7 +11,7 @@ use crate::robot::Robot;
 use crate::tension::{parse_method, solver, sotda_settings};
 use crate::value_error;
 use cdpr_kinematics::{Path, PathSample, Pose, Sampling};
-use cdpr_tension::profile::tension_profile;
+use cdpr_tension::profile::{WaypointWrenches, tension_profile};
 use nalgebra::DVector;
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
@@ -47,35 +47,6 @@ impl TrajectoryResult {
             self.discontinuities
         )
     }
-}
-
-/// Path parameter of each waypoint (cumulative pose distance / total), as the CLI computes it.
-fn waypoint_s(robot: &Robot, poses: &[Pose]) -> Vec<f64> {
-    let motion = robot.motion_pattern();
-    let total = Path::new(motion, poses.to_vec())
-        .map(|p| p.length())
-        .unwrap_or(0.0);
-    (0..poses.len())
-        .map(|k| match k {
-            0 => 0.0,
-            _ if total == 0.0 => 1.0,
-            _ => Path::new(motion, poses[..=k].to_vec())
-                .map(|p| p.length() / total)
-                .unwrap_or(1.0),
-        })
-        .collect()
-}
-
-/// Linear interpolation of per-waypoint wrenches at path parameter s.
-fn interpolate(s_way: &[f64], wrenches: &[DVector<f64>], s: f64) -> DVector<f64> {
-    let k = s_way.partition_point(|&c| c <= s).clamp(1, s_way.len() - 1) - 1;
-    let span = s_way[k + 1] - s_way[k];
-    let tau = if span > 0.0 {
-        ((s - s_way[k]) / span).clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    &wrenches[k] * (1.0 - tau) + &wrenches[k + 1] * tau
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -150,7 +121,14 @@ pub fn trajectory(
     let (samples, profile) = crate::parallel(py, || {
         let path = Path::new(motion, poses.clone()).map_err(value_error)?;
         let samples = path.sample(sampling).map_err(value_error)?;
-        let s_way = waypoint_s(robot, &poses);
+        let way =
+            WaypointWrenches::new(motion, &poses, wrench_rows.clone()).map_err(value_error)?;
+        // Weight and passive springs at each sample, checked before the profile (a spring of
+        // zero length is an error naming the sample).
+        for sample in &samples {
+            desc.load_wrench(&sample.pose)
+                .map_err(|e| value_error(format!("at s = {}: {e}", sample.s)))?;
+        }
         let profile = tension_profile(
             geo,
             &samples,
@@ -158,8 +136,10 @@ pub fn trajectory(
             &mut solver,
             desc.axial_stiffness.as_deref(),
             |sample: &PathSample| {
-                interpolate(&s_way, &wrench_rows, sample.s)
-                    + desc.platform.gravity_wrench(motion, &sample.pose)
+                way.at(sample.s)
+                    + desc
+                        .load_wrench(&sample.pose)
+                        .expect("checked at every sample above")
             },
         )
         .map_err(value_error)?;

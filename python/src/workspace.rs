@@ -285,6 +285,8 @@ pub fn workspace(
     let desc = &robot.desc;
     let motion = geo.motion();
     let (dof, dim) = (geo.dof(), motion.space_dim());
+    cdpr_wrench::require_enough_cables(robot.geometry(), "the wrench-feasible workspace")
+        .map_err(value_error)?;
     let method = match method {
         Some(m) => parse_method(m)?,
         None if geo.cable_count() == dof => Method::Exact,
@@ -304,6 +306,8 @@ pub fn workspace(
         Some(w) => cdpr_wrench::wrench_from_slice(motion, w).map_err(value_error)?,
         None => DVector::zeros(dof),
     };
+    desc.require_no_passive_springs("workspace")
+        .map_err(value_error)?;
     let w_ext = w + desc
         .platform
         .gravity_wrench(motion, &Pose::new(Vector3::zeros(), rot));

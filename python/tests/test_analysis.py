@@ -243,3 +243,41 @@ def test_every_robot_file_format_loads_and_matches_cli(cli, model):
     np.testing.assert_allclose(kin.wrench_matrix, ref["wrench_matrix"], atol=1e-12)
     back = pickle.loads(pickle.dumps(robot))
     np.testing.assert_array_equal(back.inverse_kinematics(q).lengths, kin.lengths)
+
+
+def test_fewer_cables_than_dof_kinematics_works_analyses_refuse(cli):
+    # 2DIPAnema2 declares 3R3T (spatial, 6 DOF) for 4 cables: IK as the CLI, wrench analyses a
+    # ValueError naming n and DOF.
+    path = DATA / "wirecenter" / "2DIPAnema2.wcrfx"
+    robot = cdpr.Robot.load(path)
+    assert (robot.dof, robot.n_cables) == (6, 4)
+    q = np.array([0.01, -0.02, 0.0, 0.0, 0.0, 0.1])
+    kin = robot.inverse_kinematics(q)
+    ref = cli("kinematics", path, pose=q)
+    np.testing.assert_allclose(kin.lengths, ref["lengths"], rtol=1e-12)
+    assert kin.wrench_matrix.shape == (6, 4)
+    message = "n = 4 cables for DOF = 6"
+    with pytest.raises(ValueError, match=message):
+        robot.tensions(q)
+    with pytest.raises(ValueError, match=message):
+        robot.capacity_margin(q, np.zeros(6), wrench_ball=1.0)
+    with pytest.raises(ValueError, match=message):
+        robot.isotropic_force(q)
+
+
+def test_passive_springs_are_part_of_the_external_wrench(cli):
+    # CASPR's Passive_springs_planar: 4 cables and 4 passive springs (K = 5 N/m, l0 = 1 m); the
+    # springs' force at each pose enters w_ext as in `cdpr tension`.
+    path = DATA / "caspr/planar_manipulators/Passive_springs_planar/Passive_springs_planar_cables.xml"
+    robot = cdpr.Robot.load(path)
+    poses = np.array([[0.2, -0.1, 0.3], [-0.3, 0.4, -0.2]])
+    res = robot.tensions(poses)
+    for k, q in enumerate(poses):
+        ref = cli("tension", path, pose=q)
+        np.testing.assert_allclose(res.external_wrench[k], ref["external_wrench"], atol=1e-12)
+        np.testing.assert_allclose(res.tensions[k], ref["tensions"], atol=1e-9)
+        springs = cli("kinematics", path, pose=q)["passive_springs"]
+        weight = np.array([0.0, -3.0 * 9.81, 0.0])
+        np.testing.assert_allclose(res.external_wrench[k], weight + springs["wrench"], atol=1e-12)
+    with pytest.raises(ValueError, match="4 passive spring"):
+        robot.workspace(resolution=4)

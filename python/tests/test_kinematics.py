@@ -87,3 +87,21 @@ def test_misaligned_arrays_are_read(robot_path, count):
     odd[...] = poses
     assert not odd.flags.aligned
     np.testing.assert_array_equal(robot.inverse_kinematics(odd).lengths, robot.inverse_kinematics(poses).lengths)
+
+
+@pytest.mark.parametrize("count", [5, 3000])
+def test_out_reuses_the_arrays_of_an_earlier_result(robot_path, count):
+    robot = cdpr.Robot.load(robot_path("ipanema-like-8"))
+    first, second = random_poses(robot, count, seed=2), random_poses(robot, count, seed=3)
+    out = robot.inverse_kinematics(first)
+    lengths = out.lengths
+    res = robot.inverse_kinematics(second, out=out)
+    assert res is out and res.lengths is lengths  # written in place, no new arrays
+    fresh = robot.inverse_kinematics(second)
+    for name in ("lengths", "unit_vectors", "wrench_matrix", "attachment_points"):
+        np.testing.assert_array_equal(getattr(res, name), getattr(fresh, name))
+    # A result of another batch size (or a single pose for a batch) is refused.
+    with pytest.raises(ValueError, match=r"out.lengths: expected shape \(4, 8\)"):
+        robot.inverse_kinematics(second[:4], out=out)
+    with pytest.raises(ValueError, match="expected shape"):
+        robot.inverse_kinematics(second[0], out=out)

@@ -9,11 +9,13 @@
 //! |---|---|
 //! | joint `SPATIAL_EULER_XYZ` (x y z α β γ, R = R_x(α) R_y(β) R_z(γ)) | `spatial` (same Euler convention) |
 //! | joint `PLANAR_XY` (x y θ) | `planar` |
+//! | joint `PLANAR_YZ` (y z θ, θ about x) | `planar` with (x, y, z) → (y, z, x): file y, z are cdpr's x, y (a rotation, so θ is φ) |
 //! | joint `T_XYZ` / `P_XY` (translations) | `point3` / `point2` |
 //! | `q_initial` | `home_pose` |
 //! | `<mass>`, `<com_location>`, `<inertia ref="com"/"joint">` | platform mass, centre of mass, inertia about the centre of mass |
-//! | gravity 9.81 m/s² along −z | `platform.gravity` = (0, 0, −9.81); zero for planar and `P_XY` models (−z is normal to their plane) |
+//! | gravity 9.81 m/s² along −z | `platform.gravity` = (0, 0, −9.81); zero for `PLANAR_XY` and `P_XY` models (−z is normal to their plane); (0, −9.81) for `PLANAR_YZ` (a vertical plane) |
 //! | `cable_ideal`, `cable_linear_spring` | a cable; `force_min`/`force_max` → its tension bounds |
+//! | `cable_passive_linear_spring` (`K` N/m, `l0` m) | a passive spring ([`cdpr_wrench::PassiveSprings`]): not a cable; its force K (l − l₀) at each pose adds to the external wrench ([`RobotDescription::load_wrench`]) |
 //! | `cable_linear_spring` `K` (N/m) | axial stiffness E·S = K · l(q_initial) (the same k = E·S/l at the initial pose) |
 //! | `attachment_reference="joint"` | platform attachment = `location` (joint frame = platform frame) |
 //! | `attachment_reference="com"` | platform attachment = `com_location` + `location` |
@@ -28,9 +30,7 @@
 //! zero, so e₁ is a convention; lengths and W do not depend on it.
 //!
 //! Not modelled (a clear error naming the element and its line): multi-body models, joints
-//! other than the four above, `cable_passive_linear_spring` (a passive spring's force
-//! K (l − l₀) follows from the pose: it is not an actuated cable), VSD cables, cables with more
-//! than two attachments.
+//! other than the five above, VSD cables, cables with more than two attachments.
 //!
 //! ## References
 //! - Lau, Eden, Tan & Oetomo, *CASPR: a comprehensive cable-robot analysis and simulation
@@ -41,7 +41,7 @@ use crate::xml::XmlFile;
 use crate::{RobotDescription, RobotFileError};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Pulley, Robot};
 use cdpr_tension::TensionBounds;
-use cdpr_wrench::Platform;
+use cdpr_wrench::{PassiveSprings, Platform};
 use nalgebra::{Matrix3, Vector3};
 use roxmltree::Node;
 use std::path::{Path, PathBuf};
@@ -72,9 +72,40 @@ pub(crate) fn companion_paths(path: &Path) -> Result<(PathBuf, PathBuf, String),
     ))
 }
 
-/// The single rigid body of a model.
+/// The plane of a planar joint, and how file coordinates map to cdpr's plane z = 0.
+#[derive(Clone, Copy, PartialEq)]
+enum Plane {
+    /// `PLANAR_XY` (and every non-planar joint): coordinates as written.
+    Xy,
+    /// `PLANAR_YZ` (q = y, z, θ about x): (x, y, z) → (y, z, x), a cyclic permutation (a
+    /// rotation), so CASPR's θ about +x is cdpr's φ about +z.
+    Yz,
+}
+
+impl Plane {
+    fn map(self, v: Vector3<f64>) -> Vector3<f64> {
+        match self {
+            Self::Xy => v,
+            Self::Yz => Vector3::new(v.y, v.z, v.x),
+        }
+    }
+
+    /// The file's axis normal to the plane, and the joint's name for messages.
+    fn normal(self) -> (&'static str, &'static str) {
+        match self {
+            Self::Xy => ("z", "planar"),
+            Self::Yz => ("x", "PLANAR_YZ"),
+        }
+    }
+}
+
+/// The single rigid body of a model (in cdpr's coordinates: see [`Plane`]).
 struct Body {
     motion: MotionPattern,
+    plane: Plane,
+    /// CASPR's gravity (9.81 m/s² along −z of the file) in cdpr's coordinates, restricted to
+    /// the plane of a planar model.
+    gravity: Vector3<f64>,
     mass: f64,
     centre_of_mass: Vector3<f64>,
     inertia: Option<Matrix3<f64>>,
@@ -93,8 +124,17 @@ struct RawCable<'a, 'i> {
     min: f64,
     max: f64,
     spring: Option<f64>,
+    /// A passive spring (`cable_passive_linear_spring`): its K and l₀.
+    passive: Option<PassiveSpring>,
     /// `attachment_reference="com"`: the platform location is relative to the centre of mass.
     from_com: bool,
+}
+
+/// K (N/m) and l₀ (m) of a `cable_passive_linear_spring`.
+#[derive(Clone, Copy)]
+struct PassiveSpring {
+    stiffness: f64,
+    free_length: f64,
 }
 
 impl RobotDescription {
@@ -115,32 +155,25 @@ impl RobotDescription {
         let mut warnings = Vec::new();
         let (set_node, raw) = read_cables(&cables_xml, cable_set)?;
         let motion = body.motion;
-        if raw.len() < motion.dof() {
-            return Err(cables_xml.error(
-                set_node,
-                None,
-                format!(
-                    "{} cables, a `{motion}` robot needs at least {}",
-                    raw.len(),
-                    motion.dof()
-                ),
-            ));
-        }
-        let mut cables = Vec::with_capacity(raw.len());
+        let (mut cables, mut springs) = (Vec::with_capacity(raw.len()), Vec::new());
         let mut shifted = false;
+        let (axis, joint) = body.plane.normal();
         for c in &raw {
-            let mut frame = c.frame;
+            let mut frame = body.plane.map(c.frame);
             let mut platform = if c.from_com {
-                body.centre_of_mass + c.platform
+                body.centre_of_mass + body.plane.map(c.platform)
             } else {
-                c.platform
+                body.plane.map(c.platform)
             };
             if motion.space_dim() == 2 {
                 if frame.z != 0.0 {
                     return Err(cables_xml.error(
                         c.frame_node,
                         None,
-                        format!("z = {} off the plane of a planar (z = 0) model", frame.z),
+                        format!(
+                            "{axis} = {} off the plane of a {joint} ({axis} = 0) model",
+                            frame.z
+                        ),
                     ));
                 }
                 if platform.z != 0.0 {
@@ -148,7 +181,7 @@ impl RobotDescription {
                         c.platform_node,
                         None,
                         format!(
-                            "platform attachment z = {} off the plane of a planar (z = 0) model",
+                            "platform attachment {axis} = {} off the plane of a {joint} ({axis} = 0) model",
                             platform.z
                         ),
                     ));
@@ -167,12 +200,43 @@ impl RobotDescription {
                     format!("a rotating pulley on a `{motion}` model (pulleys are modelled for spatial robots)"),
                 ));
             }
-            cables.push(Cable {
+            let cable = Cable {
                 frame,
                 platform,
                 pulley: c.pulley,
-            });
+            };
+            match c.passive {
+                None => cables.push((cable, c)),
+                Some(spring) => springs.push((cable, spring, c)),
+            }
         }
+        if cables.is_empty() {
+            return Err(cables_xml.error(
+                set_node,
+                None,
+                "no actuated cable (only passive springs)",
+            ));
+        }
+        let passive_spring_names = springs.iter().map(|(_, _, c)| c.name.clone()).collect();
+        let passive_springs = if springs.is_empty() {
+            None
+        } else {
+            let geometry = Robot::new(motion, springs.iter().map(|(s, _, _)| *s).collect())
+                .map_err(|e| cables_xml.error(set_node, None, e.to_string()))?;
+            let (k, l0) = springs
+                .iter()
+                .map(|(_, p, _)| (p.stiffness, p.free_length))
+                .unzip();
+            warnings.push(format!(
+                "{} passive spring(s) (cable_passive_linear_spring): not actuated; their force K (l − l0) at each pose is added to the external wrench",
+                springs.len()
+            ));
+            Some(
+                PassiveSprings::new(geometry, k, l0)
+                    .map_err(|e| cables_xml.error(set_node, None, e.to_string()))?,
+            )
+        };
+        let (cables, raw): (Vec<Cable>, Vec<&RawCable>) = cables.into_iter().unzip();
         if shifted {
             warnings.push(
                 "platform attachments of a translating platform moved to the frame anchors (frame − offset): lengths and W are unchanged"
@@ -236,11 +300,7 @@ impl RobotDescription {
             ));
             centre_of_mass.z = 0.0;
         }
-        let gravity = if motion.space_dim() == 3 {
-            Vector3::new(0.0, 0.0, -CASPR_GRAVITY)
-        } else {
-            Vector3::zeros()
-        };
+        let gravity = body.gravity;
         let name = cables_file
             .file_name()
             .map(|s| s.to_string_lossy().into_owned())
@@ -264,6 +324,8 @@ impl RobotDescription {
             inertia: body.inertia,
             home_pose: body.home,
             platform_shape: None,
+            passive_springs,
+            passive_spring_names,
             warnings,
         })
     }
@@ -300,19 +362,27 @@ fn read_body(x: &XmlFile) -> Result<Body, RobotFileError> {
     let kind = joint
         .attribute("type")
         .ok_or_else(|| x.error(joint, Some("type"), "missing"))?;
-    let motion = match kind {
-        "SPATIAL_EULER_XYZ" => MotionPattern::Spatial,
-        "PLANAR_XY" => MotionPattern::Planar,
-        "T_XYZ" => MotionPattern::Point3,
-        "P_XY" => MotionPattern::Point2,
+    let (motion, plane) = match kind {
+        "SPATIAL_EULER_XYZ" => (MotionPattern::Spatial, Plane::Xy),
+        "PLANAR_XY" => (MotionPattern::Planar, Plane::Xy),
+        "PLANAR_YZ" => (MotionPattern::Planar, Plane::Yz),
+        "T_XYZ" => (MotionPattern::Point3, Plane::Xy),
+        "P_XY" => (MotionPattern::Point2, Plane::Xy),
         other => {
             return Err(x.unsupported(
                 joint,
                 format!(
-                    "joint type {other} (cdpr reads SPATIAL_EULER_XYZ, PLANAR_XY, T_XYZ and P_XY)"
+                    "joint type {other} (cdpr reads SPATIAL_EULER_XYZ, PLANAR_XY, PLANAR_YZ, T_XYZ and P_XY)"
                 ),
             ));
         }
+    };
+    let file_gravity = Vector3::new(0.0, 0.0, -CASPR_GRAVITY);
+    let gravity = match plane.map(file_gravity) {
+        // In space, or in a plane: its in-plane part (zero for PLANAR_XY and P_XY, where −z is
+        // normal to the plane; (0, −9.81) for PLANAR_YZ, a vertical plane).
+        g if motion.space_dim() == 3 => g,
+        g => Vector3::new(g.x, g.y, 0.0),
     };
     let home = match joint.attribute("q_initial") {
         None => None,
@@ -336,7 +406,7 @@ fn read_body(x: &XmlFile) -> Result<Body, RobotFileError> {
     if mass < 0.0 {
         return Err(x.error(mass_node, None, format!("mass {mass} is negative")));
     }
-    let centre_of_mass = x.vector3(x.child(physical, "com_location")?)?;
+    let centre_of_mass = plane.map(x.vector3(x.child(physical, "com_location")?)?);
     let inertia = match x.optional_child(physical, "inertia")? {
         None => None,
         Some(node) => {
@@ -344,6 +414,13 @@ fn read_body(x: &XmlFile) -> Result<Body, RobotFileError> {
             let (ixx, iyy, izz) = (get("Ixx")?, get("Iyy")?, get("Izz")?);
             let (ixy, ixz, iyz) = (get("Ixy")?, get("Ixz")?, get("Iyz")?);
             let i = Matrix3::new(ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz);
+            // In cdpr's axes: I' = P I Pᵀ with P the plane's permutation.
+            let p = Matrix3::from_columns(&[
+                plane.map(Vector3::x()),
+                plane.map(Vector3::y()),
+                plane.map(Vector3::z()),
+            ]);
+            let i = p * i * p.transpose();
             match node.attribute("ref").unwrap_or("com") {
                 "com" => Some(i),
                 // Parallel-axis theorem: I_joint = I_com + m (‖c‖² E − c cᵀ).
@@ -379,6 +456,8 @@ fn read_body(x: &XmlFile) -> Result<Body, RobotFileError> {
     }
     Ok(Body {
         motion,
+        plane,
+        gravity,
         mass,
         centre_of_mass,
         inertia,
@@ -440,22 +519,17 @@ fn read_cable<'a, 'i>(
     node: Node<'a, 'i>,
 ) -> Result<RawCable<'a, 'i>, RobotFileError> {
     let tag = node.tag_name().name();
-    let is_spring = match tag {
-        "cable_ideal" => false,
-        "cable_linear_spring" => true,
-        "cable_passive_linear_spring" => {
-            return Err(x.unsupported(
-                node,
-                "a passive spring: its force K (l − l0) follows from the pose, it is not an actuated cable",
-            ));
-        }
+    let (is_spring, is_passive) = match tag {
+        "cable_ideal" => (false, false),
+        "cable_linear_spring" => (true, false),
+        "cable_passive_linear_spring" => (false, true),
         t if t.starts_with("cable_vsd") => {
             return Err(x.unsupported(node, "a cable with a variable-stiffness device (VSD)"));
         }
         _ => {
             return Err(x.unsupported(
                 node,
-                "an element other than cable_ideal / cable_linear_spring in a cable set",
+                "an element other than cable_ideal / cable_linear_spring / cable_passive_linear_spring in a cable set",
             ));
         }
     };
@@ -474,16 +548,40 @@ fn read_cable<'a, 'i>(
         }
     };
     let properties = x.child(node, "properties")?;
-    let min_node = x.child(properties, "force_min")?;
-    let max_node = x.child(properties, "force_max")?;
-    let (min, max) = (x.number(min_node)?, x.number(max_node)?);
-    if min > max {
-        return Err(x.error(
-            min_node,
-            None,
-            format!("force_min = {min} exceeds force_max = {max}"),
-        ));
-    }
+    let passive = if is_passive {
+        let k_node = x.child(properties, "K")?;
+        let stiffness = x.number(k_node)?;
+        if stiffness <= 0.0 {
+            return Err(x.error(k_node, None, format!("K = {stiffness} must be positive")));
+        }
+        let l0_node = x.child(properties, "l0")?;
+        let free_length = x.number(l0_node)?;
+        if free_length < 0.0 {
+            return Err(x.error(l0_node, None, format!("l0 = {free_length} is negative")));
+        }
+        Some(PassiveSpring {
+            stiffness,
+            free_length,
+        })
+    } else {
+        None
+    };
+    // A passive spring has no force limits (its force follows from its length).
+    let (min, max) = if is_passive {
+        (0.0, f64::INFINITY)
+    } else {
+        let min_node = x.child(properties, "force_min")?;
+        let max_node = x.child(properties, "force_max")?;
+        let (min, max) = (x.number(min_node)?, x.number(max_node)?);
+        if min > max {
+            return Err(x.error(
+                min_node,
+                None,
+                format!("force_min = {min} exceeds force_max = {max}"),
+            ));
+        }
+        (min, max)
+    };
     let spring = if is_spring {
         let k_node = x.child(properties, "K")?;
         let k = x.number(k_node)?;
@@ -570,6 +668,7 @@ fn read_cable<'a, 'i>(
         min,
         max,
         spring,
+        passive,
         from_com,
     })
 }

@@ -42,10 +42,12 @@
 //!
 //! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
 
-use cdpr_kinematics::{Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Pulley, Robot};
+use cdpr_kinematics::{
+    Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Pose, Pulley, Robot,
+};
 use cdpr_tension::TensionBounds;
-use cdpr_wrench::Platform;
-use nalgebra::{Matrix3, Vector3};
+use cdpr_wrench::{PassiveSprings, Platform};
+use nalgebra::{DVector, Matrix3, Vector3};
 use serde::Deserialize;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -168,8 +170,41 @@ pub struct RobotDescription {
     /// A reference pose in the motion pattern's coordinates, if the file gives one (CASPR's
     /// `q_initial`, TOML `home_pose`).
     pub home_pose: Option<Vec<f64>>,
+    /// Passive springs (CASPR's `cable_passive_linear_spring`, TOML `[[passive_springs]]`):
+    /// not actuated, their force K (l − l₀) at each pose adds to the external wrench (see
+    /// [`RobotDescription::load_wrench`]).
+    pub passive_springs: Option<PassiveSprings>,
+    /// Per-spring names as the file gives them (display only).
+    pub passive_spring_names: Vec<Option<String>>,
     /// Non-fatal remarks (e.g. duplicate cables).
     pub warnings: Vec<String>,
+}
+
+impl RobotDescription {
+    /// The wrench the robot file itself puts on the platform at `pose` (N, N·m): the platform's
+    /// weight ([`Platform::gravity_wrench`]) plus the passive springs' forces
+    /// ([`PassiveSprings::wrench`]); the actuated cables balance W t + w_e + this = 0.
+    pub fn load_wrench(&self, pose: &Pose) -> Result<DVector<f64>, KinematicsError> {
+        let motion = self.robot.motion();
+        let mut w = self.platform.gravity_wrench(motion, pose);
+        if let Some(springs) = &self.passive_springs {
+            w += springs.wrench(pose)?;
+        }
+        Ok(w)
+    }
+
+    /// A usage error naming `analysis` when the robot has passive springs: their wrench
+    /// depends on the pose, so an analysis that keeps one external wrench over many poses
+    /// would leave them out.
+    pub fn require_no_passive_springs(&self, analysis: &str) -> Result<(), String> {
+        match &self.passive_springs {
+            Some(s) => Err(format!(
+                "{analysis} keeps one external wrench over its poses, but this robot has {} passive spring(s) whose force K (l − l0) changes with the pose: not modelled there (tension, capacity, isotropic and trajectory include them pose by pose)",
+                s.count()
+            )),
+            None => Ok(()),
+        }
+    }
 }
 
 #[derive(Deserialize)]
@@ -182,6 +217,17 @@ struct RawFile {
     limits: Option<RawLimits>,
     platform: Option<RawPlatform>,
     cables: Spanned<Vec<Spanned<RawCable>>>,
+    passive_springs: Option<Spanned<Vec<Spanned<RawSpring>>>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSpring {
+    name: Option<String>,
+    frame: Spanned<Vec<f64>>,
+    platform: Option<Spanned<Vec<f64>>>,
+    stiffness: Spanned<f64>,
+    free_length: Spanned<f64>,
 }
 
 #[derive(Deserialize)]
@@ -271,6 +317,43 @@ impl Ctx<'_> {
             message: message.into(),
         }
     }
+    /// The frame point and platform attachment of a cable or spring (`key("frame")`, …).
+    fn attachments(
+        &self,
+        frame: &Spanned<Vec<f64>>,
+        platform: Option<&Spanned<Vec<f64>>>,
+        key: &dyn Fn(&str) -> String,
+        motion: MotionPattern,
+    ) -> Result<(Vector3<f64>, Vector3<f64>), RobotFileError> {
+        let dim = motion.space_dim();
+        let a = self.vector(frame, &key("frame"), dim, motion)?;
+        let b = match (platform, motion.has_orientation()) {
+            (Some(p), true) => self.vector(p, &key("platform"), dim, motion)?,
+            (None, true) => {
+                return Err(self.invalid(
+                    frame.span(),
+                    key("platform"),
+                    format!("missing: a `{motion}` robot needs every platform attachment"),
+                ));
+            }
+            (Some(p), false) => {
+                let v = self.vector(p, &key("platform"), dim, motion)?;
+                if v != Vector3::zeros() {
+                    return Err(self.invalid(
+                        p.span(),
+                        key("platform"),
+                        format!(
+                            "a `{motion}` platform is a point: attachments must be absent or zero"
+                        ),
+                    ));
+                }
+                v
+            }
+            (None, false) => Vector3::zeros(),
+        };
+        Ok((a, b))
+    }
+
     fn finite(&self, v: &Spanned<f64>, key: &str) -> Result<f64, RobotFileError> {
         let x = *v.get_ref();
         if x.is_finite() {
@@ -525,41 +608,12 @@ impl RobotDescription {
         }
         let mut warnings = Vec::new();
         let cables_raw = raw.cables.get_ref();
-        if cables_raw.len() < motion.dof() {
-            return Err(ctx.invalid(
-                raw.cables.span(),
-                "cables",
-                format!(
-                    "{} cables, a `{motion}` robot needs at least {} (one per degree of freedom)",
-                    cables_raw.len(),
-                    motion.dof()
-                ),
-            ));
-        }
         let (mut cables, mut mins, mut maxs, mut stiff, mut names) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (i, c) in cables_raw.iter().enumerate() {
             let key = |k: &str| format!("cables[{}].{k}", i + 1);
             let c = c.get_ref();
-            let frame = ctx.vector(&c.frame, &key("frame"), dim, motion)?;
-            let platform = match (&c.platform, motion.has_orientation()) {
-                (Some(p), true) => ctx.vector(p, &key("platform"), dim, motion)?,
-                (None, true) => return Err(ctx.invalid(
-                    c.frame.span(),
-                    key("platform"),
-                    format!(
-                        "missing: a `{motion}` robot needs the platform attachment of every cable"
-                    ),
-                )),
-                (Some(p), false) => {
-                    let v = ctx.vector(p, &key("platform"), dim, motion)?;
-                    if v != Vector3::zeros() {
-                        return Err(ctx.invalid(p.span(), key("platform"), format!("a `{motion}` platform is a point: attachments must be absent or zero")));
-                    }
-                    v
-                }
-                (None, false) => Vector3::zeros(),
-            };
+            let (frame, platform) = ctx.attachments(&c.frame, c.platform.as_ref(), &key, motion)?;
             let pulley = c
                 .pulley
                 .as_ref()
@@ -699,6 +753,36 @@ impl RobotDescription {
         };
         let bounds = TensionBounds::new(mins, maxs)
             .map_err(|e| ctx.invalid(raw.tension.span(), "tension", e.to_string()))?;
+        let (passive_springs, passive_spring_names) = match &raw.passive_springs {
+            None => (None, Vec::new()),
+            Some(list) => {
+                let (mut attach, mut ks, mut l0s, mut names) =
+                    (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+                for (j, sp) in list.get_ref().iter().enumerate() {
+                    let key = |k: &str| format!("passive_springs[{}].{k}", j + 1);
+                    let sp = sp.get_ref();
+                    let (frame, platform) =
+                        ctx.attachments(&sp.frame, sp.platform.as_ref(), &key, motion)?;
+                    attach.push(Cable::new(frame, platform));
+                    let k = ctx.finite(&sp.stiffness, &key("stiffness"))?;
+                    if k <= 0.0 {
+                        return Err(ctx.invalid(
+                            sp.stiffness.span(),
+                            key("stiffness"),
+                            format!("{k} N/m must be positive"),
+                        ));
+                    }
+                    ks.push(k);
+                    l0s.push(ctx.non_negative(&sp.free_length, &key("free_length"))?);
+                    names.push(sp.name.clone());
+                }
+                let invalid = |e: String| ctx.invalid(list.span(), "passive_springs", e);
+                let geometry = Robot::new(motion, attach).map_err(|e| invalid(e.to_string()))?;
+                let springs =
+                    PassiveSprings::new(geometry, ks, l0s).map_err(|e| invalid(e.to_string()))?;
+                (Some(springs), names)
+            }
+        };
         Ok(Self {
             name: raw.name.unwrap_or_else(|| {
                 ctx.file
@@ -715,6 +799,8 @@ impl RobotDescription {
             cable_names: names,
             inertia,
             home_pose,
+            passive_springs,
+            passive_spring_names,
             warnings,
         })
     }

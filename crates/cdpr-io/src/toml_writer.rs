@@ -104,6 +104,21 @@ impl RobotDescription {
                 );
             }
         }
+        if let Some(springs) = &self.passive_springs {
+            let (k, l0) = (springs.stiffness(), springs.free_length());
+            for (j, c) in springs.geometry().cables().iter().enumerate() {
+                let _ = writeln!(s, "\n[[passive_springs]]");
+                if let Some(Some(name)) = self.passive_spring_names.get(j) {
+                    let _ = writeln!(s, "name = {}", string(name));
+                }
+                let _ = writeln!(s, "frame = {}", vector(&c.frame, dim));
+                if motion.has_orientation() {
+                    let _ = writeln!(s, "platform = {}", vector(&c.platform, dim));
+                }
+                let _ = writeln!(s, "stiffness = {}", num(k[j]));
+                let _ = writeln!(s, "free_length = {}", num(l0[j]));
+            }
+        }
         s
     }
 }

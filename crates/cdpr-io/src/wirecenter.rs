@@ -98,17 +98,6 @@ impl RobotDescription {
         let chains: Vec<Node> = XmlFile::elements(geometry)
             .filter(|n| n.has_tag_name("chain"))
             .collect();
-        if chains.len() < motion.dof() {
-            return Err(x.error(
-                geometry,
-                None,
-                format!(
-                    "{} <chain>s, a `{motion}` robot needs at least {}",
-                    chains.len(),
-                    motion.dof()
-                ),
-            ));
-        }
         let mut cables = Vec::new();
         let mut names = Vec::new();
         let (mut dropped_pulleys, mut shifted) = (false, false);
@@ -309,13 +298,15 @@ impl RobotDescription {
             inertia,
             home_pose: None,
             platform_shape: None,
+            passive_springs: None,
+            passive_spring_names: Vec::new(),
             warnings,
         })
     }
 
     /// The robot as a WireCenter `.wcrfx` file (version 0.31). `file` names the destination in
     /// errors. Fails when the format cannot hold a modelled number: per-cable tension bounds
-    /// or axial stiffnesses that differ. [`RobotDescription::wcrfx_losses`] lists what the
+    /// or axial stiffnesses that differ, passive springs. [`RobotDescription::wcrfx_losses`] lists what the
     /// format drops (limits, home pose, non-WireLib gravity).
     pub fn to_wcrfx(&self, file: impl AsRef<Path>) -> Result<String, RobotFileError> {
         let unrepresentable = |message: String| RobotFileError::Unrepresentable {
@@ -335,6 +326,12 @@ impl RobotDescription {
             return Err(unrepresentable(
                 "per-cable axial stiffnesses differ; .wcrfx has one cable type".into(),
             ));
+        }
+        if let Some(springs) = &self.passive_springs {
+            return Err(unrepresentable(format!(
+                "{} passive spring(s): .wcrfx has no passive elements",
+                springs.count()
+            )));
         }
         let motion = self.robot.motion();
         let pattern = match motion {

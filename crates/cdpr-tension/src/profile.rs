@@ -9,7 +9,7 @@
 use crate::{
     StiffnessData, TensionBounds, TensionError, TensionOutcome, TensionProblem, TensionSolver,
 };
-use cdpr_kinematics::{PathSample, PoseKinematics, Robot};
+use cdpr_kinematics::{MotionPattern, Path, PathSample, Pose, PoseKinematics, Robot};
 use nalgebra::{DMatrix, DVector};
 
 /// Tensions along a sampled path.
@@ -65,6 +65,76 @@ impl TensionProfile {
             .enumerate()
             .filter_map(|(k, j)| j.filter(|&j| j > threshold).map(|_| k))
             .collect()
+    }
+}
+
+/// External wrenches given at the waypoints of a path, interpolated linearly in the path
+/// parameter s between consecutive waypoints. Waypoint k sits at s_k = (length of the path
+/// through waypoints 0…k) / (total length), lengths by the pose distance of
+/// [`cdpr_kinematics::Path`]; on a path of zero length every waypoint after the first sits at 1.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WaypointWrenches {
+    s: Vec<f64>,
+    wrenches: Vec<DVector<f64>>,
+}
+
+impl WaypointWrenches {
+    /// One wrench per waypoint (at least two waypoints).
+    pub fn new(
+        motion: MotionPattern,
+        poses: &[Pose],
+        wrenches: Vec<DVector<f64>>,
+    ) -> Result<Self, TensionError> {
+        if poses.len() < 2 {
+            return Err(TensionError::DimensionMismatch {
+                what: "waypoints of a path (at least)",
+                expected: 2,
+                found: poses.len(),
+            });
+        }
+        if wrenches.len() != poses.len() {
+            return Err(TensionError::DimensionMismatch {
+                what: "waypoint wrenches (one per waypoint)",
+                expected: poses.len(),
+                found: wrenches.len(),
+            });
+        }
+        let length = |k: usize| {
+            Path::new(motion, poses[..=k].to_vec())
+                .map(|p| p.length())
+                .unwrap_or(0.0)
+        };
+        let total = length(poses.len() - 1);
+        let s = (0..poses.len())
+            .map(|k| match k {
+                0 => 0.0,
+                _ if total == 0.0 => 1.0,
+                _ => length(k) / total,
+            })
+            .collect();
+        Ok(Self { s, wrenches })
+    }
+
+    /// s_k of each waypoint.
+    pub fn waypoint_s(&self) -> &[f64] {
+        &self.s
+    }
+
+    /// The wrench at path parameter s: (1 − τ) w_k + τ w_{k+1} on the segment s_k ≤ s ≤ s_{k+1}
+    /// (τ clamped to [0, 1]; w_{k+1} on a segment of zero length).
+    pub fn at(&self, s: f64) -> DVector<f64> {
+        let k = self
+            .s
+            .partition_point(|&c| c <= s)
+            .clamp(1, self.s.len() - 1)
+            - 1;
+        let span = self.s[k + 1] - self.s[k];
+        let tau = if span > 0.0 {
+            ((s - self.s[k]) / span).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        &self.wrenches[k] * (1.0 - tau) + &self.wrenches[k + 1] * tau
     }
 }
 
@@ -125,4 +195,33 @@ pub fn tension_profile(
         }
     }
     Ok(profile)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Waypoints on a line 1 m then 3 m apart: s = 0, 0.25, 1; wrenches interpolate linearly
+    /// on each segment.
+    #[test]
+    fn waypoint_wrenches_interpolate_in_s() {
+        let poses = [
+            Pose::point(0.0, 0.0, 0.0),
+            Pose::point(1.0, 0.0, 0.0),
+            Pose::point(4.0, 0.0, 0.0),
+        ];
+        let w = |v: f64| DVector::from_vec(vec![v, -v]);
+        let ww = WaypointWrenches::new(MotionPattern::Point2, &poses, vec![w(0.0), w(4.0), w(8.0)])
+            .unwrap();
+        assert_eq!(ww.waypoint_s(), &[0.0, 0.25, 1.0]);
+        assert_eq!(ww.at(0.125), w(2.0));
+        assert_eq!(ww.at(0.625), w(6.0));
+        assert_eq!(ww.at(1.0), w(8.0));
+        let still = [poses[0], poses[0]];
+        let ww =
+            WaypointWrenches::new(MotionPattern::Point2, &still, vec![w(1.0), w(3.0)]).unwrap();
+        assert_eq!(ww.waypoint_s(), &[0.0, 1.0]);
+        assert!(WaypointWrenches::new(MotionPattern::Point2, &poses, vec![w(0.0)]).is_err());
+        assert!(WaypointWrenches::new(MotionPattern::Point2, &poses[..1], vec![w(0.0)]).is_err());
+    }
 }

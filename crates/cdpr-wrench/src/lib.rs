@@ -25,14 +25,16 @@
 
 mod error;
 mod external_wrench;
+mod passive_springs;
 mod stiffness;
 
-pub use error::WrenchError;
+pub use error::{WrenchError, require_enough_cables};
 pub use external_wrench::{Platform, STANDARD_GRAVITY, wrench_from_slice};
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_wrench::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
+pub use passive_springs::PassiveSprings;
 pub use stiffness::{
     active_stiffness, passive_stiffness, stiffness_matrix, wrench_components,
     write_stiffness_matrix,

@@ -72,6 +72,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    cdpr::wrench::require_enough_cables(&robot.robot, "the capacity margin (wrench closure)")?;
     let p = pose(&robot, &args.pose)?;
     let centre = external_wrench(&robot, &p, args.wrench.as_deref())?;
     let dof = centre.len();

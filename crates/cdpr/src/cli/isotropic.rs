@@ -121,6 +121,7 @@ fn definition(motion: MotionPattern) -> &'static str {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    cdpr::wrench::require_enough_cables(&robot.robot, "the isotropic force (wrench closure)")?;
     match (&args.pose, args.grid) {
         (Some(q), _) => run_pose(&args, &robot, q),
         (None, Some(m)) => run_grid(&args, &robot, m),

@@ -22,7 +22,9 @@ use std::path::PathBuf;
 /// attachment are left out; null if none), `closest_distance` (their distance, m),
 /// `closest_points` (the closest point on each, m), and with a `[platform] shape` in the robot
 /// file `platform_interference` (null, or the cable, 1-based, that passes deepest through the
-/// platform and its `penetration` in m).
+/// platform and its `penetration` in m). With passive springs in the robot file (CASPR's
+/// `cable_passive_linear_spring`), `passive_springs`: their `lengths` (m), `forces` K (l − l0)
+/// (N) and `wrench` (N, N·m), the part of w_ext they contribute; null without springs.
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
@@ -50,6 +52,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let through = robot.platform_shape.as_ref().map(|shape| {
         cdpr::kinematics::platform_interference(&kin, shape, &pose.position, &pose.rotation)
     });
+    let springs = match &robot.passive_springs {
+        None => None,
+        Some(s) => {
+            let (sk, forces) = s.state(&pose)?;
+            let ws = sk.wrench_matrix() * nalgebra::DVector::from_column_slice(&forces);
+            Some((sk.lengths().collect::<Vec<_>>(), forces, ws))
+        }
+    };
     if args.json {
         print_json(&json!({
             "robot": robot.name,
@@ -73,6 +83,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
                 Some(None) => json!({ "cable": null, "penetration": 0.0 }),
                 Some(Some(p)) => json!({ "cable": p.cable + 1, "penetration": p.penetration }),
             },
+            "passive_springs": springs.as_ref().map(|(l, f, w)| json!({
+                "lengths": l, "forces": f, "wrench": w.as_slice(),
+            })),
         }))
     } else {
         println!(
@@ -111,6 +124,17 @@ pub fn run(args: Args) -> Result<(), CliError> {
             }
         }
         print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
+        if let Some((l, f, ws)) = &springs {
+            println!("{:>6} {:>12} {:>12}", "spring", "length (m)", "force (N)");
+            for (j, (l, f)) in l.iter().zip(f).enumerate() {
+                println!("{:>6} {:>12.6} {:>12.6}", j + 1, l, f);
+            }
+            let parts: Vec<String> = ws.iter().map(|v| format!("{v:.6}")).collect();
+            println!(
+                "passive springs' wrench (N, N·m; part of w_ext): [{}]",
+                parts.join(", ")
+            );
+        }
         if let Some(d) = kin.jacobian_determinant() {
             println!("det J = {d:.6e}");
         }

@@ -175,6 +175,7 @@ pub fn check_method(
     robot: &RobotDescription,
     method: cdpr::tension::Method,
 ) -> Result<(), CliError> {
+    cdpr::wrench::require_enough_cables(&robot.robot, "tension distribution")?;
     let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
     method.check_redundancy(r)?;
     if method == cdpr::tension::Method::ImprovedClosedForm
@@ -213,13 +214,15 @@ pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64
     }
 }
 
-/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro, Plestan & Claveau 2020, eq. (1)).
+/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro,
+/// Plestan & Claveau 2020, eq. (1)) plus the passive springs' wrench w_s, if the robot has any
+/// ([`RobotDescription::load_wrench`]).
 pub fn external_wrench(
     robot: &RobotDescription,
     pose: &Pose,
     w: Option<&[f64]>,
 ) -> Result<DVector<f64>, CliError> {
-    Ok(wrench(robot, w)? + robot.platform.gravity_wrench(robot.robot.motion(), pose))
+    Ok(wrench(robot, w)? + robot.load_wrench(pose)?)
 }
 
 /// A number as a person reads it: at most 9 significant digits (so that round-off such as

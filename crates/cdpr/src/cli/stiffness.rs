@@ -30,6 +30,9 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    robot.require_no_passive_springs(
+        "the stiffness matrix (cables only; the springs' K would add to it)",
+    )?;
     let pose = pose(&robot, &args.pose)?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
     let n = robot.robot.cable_count();

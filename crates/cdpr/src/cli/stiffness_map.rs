@@ -68,6 +68,9 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    robot.require_no_passive_springs(
+        "the stiffness map (cables only; the springs' K would add to it)",
+    )?;
     check_method(&robot, cdpr::tension::Method::Sotda)?;
     if !(2..=2000).contains(&args.grid) {
         return Err("--grid must lie in [2, 2000]".into());

@@ -138,6 +138,7 @@ impl Problem<'_> {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let desc = load_robot(&args.robot)?;
+    desc.require_no_passive_springs("synthesize")?;
     let robot = &desc.robot;
     if robot.motion() != MotionPattern::Planar {
         return Err(format!(

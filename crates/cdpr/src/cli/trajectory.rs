@@ -16,7 +16,7 @@ use super::tension::{SotdaSearch, sotda_settings};
 use super::{CliError, Numbers, check_method, load_robot, pose, print_json, wrench};
 use cdpr::kinematics::{Path, PathSample, Pose, Sampling};
 use cdpr::plot::{LinePlot, Series};
-use cdpr::tension::profile::{TensionProfile, tension_profile};
+use cdpr::tension::profile::{TensionProfile, WaypointWrenches, tension_profile};
 use cdpr::tension::{Method, TensionSolver};
 use nalgebra::DVector;
 use serde::Deserialize;
@@ -119,36 +119,6 @@ struct Waypoint {
     wrench: Option<Vec<f64>>,
 }
 
-/// Path parameter of each waypoint (cumulative pose distance / total).
-fn waypoint_s(motion: cdpr::kinematics::MotionPattern, poses: &[Pose]) -> Vec<f64> {
-    let total = Path::new(motion, poses.to_vec())
-        .map(|p| p.length())
-        .unwrap_or(0.0);
-    (0..poses.len())
-        .map(|k| {
-            if k == 0 || total == 0.0 {
-                if k == 0 { 0.0 } else { 1.0 }
-            } else {
-                Path::new(motion, poses[..=k].to_vec())
-                    .map(|p| p.length() / total)
-                    .unwrap_or(1.0)
-            }
-        })
-        .collect()
-}
-
-/// Linear interpolation of per-waypoint wrenches at path parameter s.
-fn interpolate(s_way: &[f64], wrenches: &[DVector<f64>], s: f64) -> DVector<f64> {
-    let k = s_way.partition_point(|&c| c <= s).clamp(1, s_way.len() - 1) - 1;
-    let span = s_way[k + 1] - s_way[k];
-    let tau = if span > 0.0 {
-        ((s - s_way[k]) / span).clamp(0.0, 1.0)
-    } else {
-        1.0
-    };
-    &wrenches[k] * (1.0 - tau) + &wrenches[k + 1] * tau
-}
-
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
@@ -205,7 +175,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     let path = Path::new(motion, poses.clone())?;
     let samples = path.sample(sampling)?;
-    let s_way = waypoint_s(motion, &poses);
+    let way = WaypointWrenches::new(motion, &poses, wrenches)?;
     let es = robot.axial_stiffness.clone();
     let mut solver = if args.method == Method::Sotda {
         if es.is_none() {
@@ -221,14 +191,21 @@ pub fn run(args: Args) -> Result<(), CliError> {
     } else {
         TensionSolver::new(args.method)
     };
-    let gravity = |p: &Pose| robot.platform.gravity_wrench(motion, p);
+    // Weight and passive springs at each sample (checked here: a spring of zero length is an
+    // error naming the sample, not a panic in the profile).
+    for sample in &samples {
+        robot
+            .load_wrench(&sample.pose)
+            .map_err(|e| format!("at s = {}: {e}", sample.s))?;
+    }
+    let gravity = |p: &Pose| robot.load_wrench(p).expect("checked at every sample above");
     let profile = tension_profile(
         &robot.robot,
         &samples,
         &robot.bounds,
         &mut solver,
         es.as_deref(),
-        |sample: &PathSample| interpolate(&s_way, &wrenches, sample.s) + gravity(&sample.pose),
+        |sample: &PathSample| way.at(sample.s) + gravity(&sample.pose),
     )?;
     let discontinuities = profile.discontinuities(args.jump_ratio);
     if let Some(file) = &args.plot {

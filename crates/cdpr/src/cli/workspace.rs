@@ -283,6 +283,7 @@ impl CriteriaSetup {
         method: Method,
     ) -> Result<Self, CliError> {
         check_method(desc, method)?;
+        desc.require_no_passive_springs("the workspace")?;
         let dof = desc.robot.dof();
         let limits = desc.limits;
         let specs = match &args.criteria {

@@ -132,3 +132,124 @@ fn errors_name_file_line_and_element() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("per-cable tension bounds differ"));
 }
+
+/// 2DIPAnema2 declares 3R3T (spatial, 6 DOF) for 4 cables: `kinematics` gives its lengths and
+/// the 6 × 4 W; the analyses that balance a wrench exit 2 naming n and DOF.
+#[test]
+fn fewer_cables_than_dof_kinematics_works_analyses_refuse() {
+    let robot = data("wirecenter/2DIPAnema2.wcrfx");
+    let pose = "0.01,-0.02,0,0,0,0.1";
+    let r = json(&["kinematics", &robot, "--pose", pose, "--json"]);
+    assert_eq!(r["lengths"].as_array().unwrap().len(), 4);
+    let w = r["wrench_matrix"].as_array().unwrap();
+    assert_eq!((w.len(), w[0].as_array().unwrap().len()), (6, 4));
+    for args in [
+        vec!["tension", robot.as_str(), "--pose", pose],
+        vec![
+            "capacity",
+            robot.as_str(),
+            "--pose",
+            pose,
+            "--wrench-ball",
+            "1",
+        ],
+        vec!["isotropic", robot.as_str(), "--pose", pose],
+        vec!["workspace", robot.as_str(), "--grid", "3"],
+    ] {
+        let out = cdpr().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            err.contains("needs at least as many cables as degrees of freedom (n ≥ DOF); this spatial robot has n = 4 cables for DOF = 6"),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+/// CASPR's Passive_springs_planar: `kinematics` reports the springs' lengths, forces
+/// K (l − l0) and wrench; `tension` balances weight + springs (its `external_wrench` is their
+/// sum and W t + w_ext = 0); the converted TOML keeps the springs and gives the same tensions;
+/// analyses that keep one wrench over many poses refuse by name.
+#[test]
+fn passive_springs_enter_the_external_wrench_pose_by_pose() {
+    let model =
+        data("caspr/planar_manipulators/Passive_springs_planar/Passive_springs_planar_cables.xml");
+    let pose = "0.2,-0.1,0.3";
+    let k = json(&["kinematics", &model, "--pose", pose, "--json"]);
+    let springs = &k["passive_springs"];
+    let (lengths, forces) = (
+        springs["lengths"].as_array().unwrap(),
+        springs["forces"].as_array().unwrap(),
+    );
+    assert_eq!(lengths.len(), 4);
+    for (l, f) in lengths.iter().zip(forces) {
+        let (l, f) = (l.as_f64().unwrap(), f.as_f64().unwrap());
+        assert!(
+            (f - 5.0 * (l - 1.0)).abs() < 1e-12,
+            "K = 5 N/m, l0 = 1 m: {f} vs {l}"
+        );
+    }
+    let ws: Vec<f64> = springs["wrench"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let t = json(&["tension", &model, "--pose", pose, "--json"]);
+    let w_ext: Vec<f64> = t["external_wrench"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    // Weight 3 kg × 9.81 m/s² along −y (CASPR's −z in this vertical plane), at the joint.
+    let weight = [0.0, -3.0 * 9.81, 0.0];
+    for i in 0..3 {
+        assert!((w_ext[i] - (weight[i] + ws[i])).abs() < 1e-12, "{w_ext:?}");
+    }
+    let tensions: Vec<f64> = t["tensions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    let w = k["wrench_matrix"].as_array().unwrap();
+    for (r, row) in w.iter().enumerate() {
+        let wt: f64 = row
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(&tensions)
+            .map(|(a, t)| a.as_f64().unwrap() * t)
+            .sum();
+        assert!((wt + w_ext[r]).abs() < 1e-9, "row {r}: {wt} + {}", w_ext[r]);
+    }
+    // Converted: the same tensions.
+    let out = tmp("passive-springs.toml");
+    json(&["convert", &model, "-o", &out, "--json"]);
+    assert!(
+        std::fs::read_to_string(&out)
+            .unwrap()
+            .contains("[[passive_springs]]")
+    );
+    let t2 = json(&["tension", &out, "--pose", pose, "--json"]);
+    assert_eq!(t2["tensions"], t["tensions"]);
+    assert_eq!(t2["external_wrench"], t["external_wrench"]);
+    // One wrench over a grid, or the cables' stiffness alone: refused by name.
+    for args in [
+        vec!["workspace", model.as_str(), "--grid", "3"],
+        vec![
+            "stiffness",
+            model.as_str(),
+            "--pose",
+            pose,
+            "--tensions",
+            "1,1,1,1",
+        ],
+    ] {
+        let o = cdpr().args(&args).output().unwrap();
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("4 passive spring(s)"), "{args:?}: {err}");
+    }
+}

@@ -105,16 +105,17 @@ fn negative_limits() {
     assert_eq!((line, key.as_str()), (7, "limits.min_cable_length"));
 }
 
+/// A robot with fewer cables than degrees of freedom is a robot (its kinematics is defined);
+/// analyses that balance a wrench refuse it by name (tested on the command line).
 #[test]
-fn fewer_cables_than_dof() {
+fn fewer_cables_than_dof_loads() {
     let two = GOOD
         .split("[[cables]]")
         .take(3)
         .collect::<Vec<_>>()
         .join("[[cables]]");
-    let (_, key, msg) = error_of(&two);
-    assert_eq!(key, "cables");
-    assert!(msg.contains("at least 3"), "{msg}");
+    let r = RobotDescription::parse(&two, "robot.toml").unwrap();
+    assert_eq!((r.robot.cable_count(), r.robot.dof()), (2, 3));
 }
 
 #[test]
