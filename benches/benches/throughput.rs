@@ -1,7 +1,7 @@
 //! Issue 17's throughput table, refilled: the IPAnema 1 of `examples/robots/caspr-ipanema-1.toml`
 //! (Pott et al. 2013; 8 cables, 6 DOF), bounds t ∈ [1, 1000] N (not the file's [0, 720] N), the
 //! platform's 25 kg under the file's gravity (245.25 N along −z, centre of mass at the platform
-//! origin), 20 000 poses of [`spatial_poses`] (|x| ≤ 1 m, |y| ≤ 0.75 m, z ∈ [0.5, 1.5] m, angles
+//! origin), 20 000 poses of `spatial_poses` (|x| ≤ 1 m, |y| ≤ 0.75 m, z ∈ [0.5, 1.5] m, angles
 //! within ±0.1 rad). Every tension answer is certified (as in every `TensionSolver` call).
 //!
 //! One iteration runs all 20 000 poses (criterion's throughput gives the rate; CPU time per call
@@ -9,43 +9,12 @@
 //! barycenter, l2, l1, linf}`; run with
 //! `cargo bench -p cdpr-benches --bench throughput`.
 
-use cdpr_benches::spatial_poses;
-use cdpr_io::RobotDescription;
-use cdpr_kinematics::{Pose, PoseKinematics, Robot};
-use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
+use cdpr_benches::issue_17::{POSES, fixture};
+use cdpr_kinematics::PoseKinematics;
+use cdpr_tension::{Method, TensionProblem, TensionSolver};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
-
-/// Poses per iteration.
-const POSES: usize = 20_000;
-
-/// The robot, bounds, load and poses of issue 17.
-struct Fixture {
-    robot: Robot,
-    bounds: TensionBounds,
-    load: DVector<f64>,
-    poses: Vec<Pose>,
-}
-
-fn fixture() -> Fixture {
-    let file = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../examples/robots/caspr-ipanema-1.toml"
-    );
-    let desc = RobotDescription::load(file).expect("IPAnema 1 robot file");
-    assert_eq!(desc.robot.cable_count(), 8);
-    let p = &desc.platform;
-    assert_eq!(p.centre_of_mass.norm(), 0.0, "no gravity moment");
-    let weight = p.mass * p.gravity;
-    assert!((weight.z + 245.25).abs() < 1e-9, "25 kg under 9.81 m/s²");
-    Fixture {
-        robot: desc.robot,
-        bounds: TensionBounds::uniform(8, 1.0, 1000.0).unwrap(),
-        load: DVector::from_vec(vec![weight.x, weight.y, weight.z, 0.0, 0.0, 0.0]),
-        poses: spatial_poses(POSES),
-    }
-}
 
 fn ik_w(c: &mut Criterion) {
     let f = fixture();
