@@ -20,7 +20,9 @@ fn main() {
         let mut s = 0.0;
         for _ in 0..reps {
             for pose in &f.poses {
-                f.robot.update_kinematics(black_box(pose), &mut kin).unwrap();
+                f.robot
+                    .update_kinematics(black_box(pose), &mut kin)
+                    .unwrap();
                 kin.write_wrench_matrix(&mut w);
                 s += w[(5, 7)];
             }
