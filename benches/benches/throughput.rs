@@ -36,6 +36,18 @@ fn ik_w(c: &mut Criterion) {
             black_box(s)
         })
     });
+    // The batch API: W of all 20 000 poses into one flat buffer.
+    let mut out = vec![0.0; POSES * 48];
+    let mut valid = vec![false; POSES];
+    g.bench_function("ik_w_batch", |b| {
+        b.iter(|| {
+            let count = f
+                .robot
+                .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
+                .unwrap();
+            black_box((count, out[POSES * 48 - 1]))
+        })
+    });
     g.finish();
 }
 
