@@ -75,3 +75,44 @@ pub fn ten_cable_spatial() -> Robot {
     });
     Robot::new(MotionPattern::Spatial, cables).expect("valid 10-cable robot")
 }
+
+/// Issue 17's fixture: the IPAnema 1 of `examples/robots/caspr-ipanema-1.toml` (8 cables, 6 DOF),
+/// bounds t ∈ [1, 1000] N, the platform's 25 kg under the file's gravity (245.25 N along −z),
+/// 20 000 poses of [`spatial_poses`].
+pub mod issue_17 {
+    use super::spatial_poses;
+    use cdpr_io::RobotDescription;
+    use cdpr_kinematics::{Pose, Robot};
+    use cdpr_tension::TensionBounds;
+    use nalgebra::DVector;
+
+    /// Poses per iteration.
+    pub const POSES: usize = 20_000;
+
+    /// The robot, bounds, load and poses of issue 17.
+    pub struct Fixture {
+        pub robot: Robot,
+        pub bounds: TensionBounds,
+        pub load: DVector<f64>,
+        pub poses: Vec<Pose>,
+    }
+
+    pub fn fixture() -> Fixture {
+        let file = concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../examples/robots/caspr-ipanema-1.toml"
+        );
+        let desc = RobotDescription::load(file).expect("IPAnema 1 robot file");
+        assert_eq!(desc.robot.cable_count(), 8);
+        let p = &desc.platform;
+        assert_eq!(p.centre_of_mass.norm(), 0.0, "no gravity moment");
+        let weight = p.mass * p.gravity;
+        assert!((weight.z + 245.25).abs() < 1e-9, "25 kg under 9.81 m/s²");
+        Fixture {
+            robot: desc.robot,
+            bounds: TensionBounds::uniform(8, 1.0, 1000.0).unwrap(),
+            load: DVector::from_vec(vec![weight.x, weight.y, weight.z, 0.0, 0.0, 0.0]),
+            poses: spatial_poses(POSES),
+        }
+    }
+}

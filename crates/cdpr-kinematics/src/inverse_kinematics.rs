@@ -19,7 +19,7 @@ use crate::{KinematicsError, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 
 /// Relative length below which a cable counts as degenerate (zero length).
-const DEGENERATE_LENGTH: f64 = 1e-12;
+pub(crate) const DEGENERATE_LENGTH: f64 = 1e-12;
 
 /// The state of one cable at one pose, all in base coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

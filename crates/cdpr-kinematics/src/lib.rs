@@ -37,6 +37,7 @@
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
 
+mod batch;
 mod error;
 mod forward_kinematics;
 pub mod interference;

@@ -70,6 +70,12 @@ fn intersect(e: P2, be: f64, a: P2, b: f64) -> Option<P2> {
     Some([(be * a[1] - e[1] * b) / det, (e[0] * b - be * a[0]) / det])
 }
 
+/// The index after `j` in a cycle of `k` (no integer division: this is the clipping loop).
+#[inline(always)]
+fn next(j: usize, k: usize) -> usize {
+    if j + 1 == k { 0 } else { j + 1 }
+}
+
 #[inline]
 fn dot(a: P2, b: P2) -> f64 {
     a[0] * b[0] + a[1] * b[1]
@@ -248,7 +254,7 @@ impl Region {
         }
         for j in 0..edges {
             let p = self.verts[j];
-            let q = self.verts[(j + 1) % k];
+            let q = self.verts[next(j, k)];
             let dp = dq;
             dq = dot(a, q) - b;
             if dp.abs() <= tol {
@@ -320,7 +326,7 @@ impl Region {
         let mut dq = dot(a, self.verts[0]) - b;
         for j in 0..k {
             let p = self.verts[j];
-            let q = self.verts[(j + 1) % k];
+            let q = self.verts[next(j, k)];
             let dp = dq;
             dq = dot(a, q) - b;
             let e = self.edges[j];
@@ -419,7 +425,7 @@ impl Region {
         let mut s = 0.0;
         for j in 0..k {
             let p = self.verts[j];
-            let q = self.verts[(j + 1) % k];
+            let q = self.verts[next(j, k)];
             s += p[0] * q[1] - q[0] * p[1];
         }
         s
@@ -448,7 +454,7 @@ impl Region {
             let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
             for j in 0..k {
                 let p = [self.verts[j][0] - o[0], self.verts[j][1] - o[1]];
-                let qv = self.verts[(j + 1) % k];
+                let qv = self.verts[next(j, k)];
                 let q = [qv[0] - o[0], qv[1] - o[1]];
                 let c = p[0] * q[1] - q[0] * p[1];
                 s2 += c;
@@ -473,7 +479,7 @@ impl Region {
         }
         (0..k).all(|j| {
             let p = self.verts[j];
-            let q = self.verts[(j + 1) % k];
+            let q = self.verts[next(j, k)];
             (q[0] - p[0]) * (c[1] - p[1]) - (q[1] - p[1]) * (c[0] - p[0]) >= 0.0
         })
     }
@@ -492,7 +498,7 @@ impl Region {
         let mut bd = f64::INFINITY;
         for j in 0..k {
             let p = self.verts[j];
-            let q = self.verts[(j + 1) % k];
+            let q = self.verts[next(j, k)];
             let d = [q[0] - p[0], q[1] - p[1]];
             let dd = dot(d, d);
             let s = if dd > 0.0 {

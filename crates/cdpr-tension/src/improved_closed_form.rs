@@ -36,122 +36,157 @@ use crate::{Infeasibility, TensionProblem};
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ImprovedClosedForm {
     active: Vec<bool>,
-    rhs: Vec<f64>,
-    aat: Vec<f64>,
-    y: Vec<f64>,
+    /// A Aᵀ, rhs and y for DOF other than 6 and 3.
+    buf: Vec<f64>,
 }
 
 impl ImprovedClosedForm {
     /// Pott (2014) into `t` (callers ensure r ≥ 0 and finite t_max, see
-    /// [`crate::TensionError::NeedsFiniteBounds`]).
+    /// [`crate::TensionError::NeedsFiniteBounds`]). DOF 6 and 3 run a copy of the iteration
+    /// with the DOF fixed at compile time (stack buffers, unrolled loops, the same arithmetic).
     pub fn solve(&mut self, problem: &TensionProblem, t: &mut [f64]) -> Result<(), Infeasibility> {
-        const METHOD: &str = "improved-closed-form";
-        let w = problem.wrench_matrix;
-        let (m, n) = w.shape();
-        let (lo, hi) = (problem.bounds.min(), problem.bounds.max());
+        let (m, n) = problem.wrench_matrix.shape();
         self.active.clear();
         self.active.resize(n, true);
-        self.rhs.resize(m, 0.0);
-        self.aat.resize(m * m, 0.0);
-        self.y.resize(m, 0.0);
-        for i in 0..n {
-            t[i] = 0.5 * (lo[i] + hi[i]);
+        match m {
+            6 => {
+                let mut buf = [0.0; 6 * 6 + 2 * 6];
+                iterate::<6>(problem, &mut self.active, &mut buf, t)
+            }
+            3 => {
+                let mut buf = [0.0; 3 * 3 + 2 * 3];
+                iterate::<3>(problem, &mut self.active, &mut buf, t)
+            }
+            _ => {
+                self.buf.resize(m * m + 2 * m, 0.0);
+                iterate::<0>(problem, &mut self.active, &mut self.buf, t)
+            }
         }
-        let mut remaining = n;
-        let mut first = true;
-        loop {
-            // rhs = w_ext + W t (saturated cables at their bound, free ones at t_m).
+    }
+}
+
+/// The iteration of Pott (2014) for DOF m = M (M = 0: m read from W at run time). `buf` holds
+/// A Aᵀ (m × m, row-major), then rhs and y (m each).
+#[inline(always)]
+fn iterate<const M: usize>(
+    problem: &TensionProblem,
+    active: &mut [bool],
+    buf: &mut [f64],
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    const METHOD: &str = "improved-closed-form";
+    let w = problem.wrench_matrix;
+    let n = w.ncols();
+    let m = if M > 0 { M } else { w.nrows() };
+    debug_assert_eq!(w.nrows(), m);
+    // Column-major W: W_ki = ws[i·m + k].
+    let ws = &w.as_slice()[..m * n];
+    let we = &problem.external_wrench.as_slice()[..m];
+    let (aat, rest) = buf.split_at_mut(m * m);
+    let (rhs, y) = rest.split_at_mut(m);
+    let y = &mut y[..m];
+    let (lo, hi) = (
+        problem.bounds.min().as_slice(),
+        problem.bounds.max().as_slice(),
+    );
+    let (lo, hi, t, active) = (&lo[..n], &hi[..n], &mut t[..n], &mut active[..n]);
+    for i in 0..n {
+        t[i] = 0.5 * (lo[i] + hi[i]);
+    }
+    let mut remaining = n;
+    let mut first = true;
+    loop {
+        // rhs = w_ext + W t (saturated cables at their bound, free ones at t_m).
+        rhs.copy_from_slice(we);
+        for (col, &ti) in ws.chunks_exact(m).zip(t.iter()) {
             for k in 0..m {
-                let mut s = problem.external_wrench[k];
-                for (i, ti) in t.iter().enumerate() {
-                    s += w[(k, i)] * ti;
-                }
-                self.rhs[k] = s;
+                rhs[k] += col[k] * ti;
             }
-            // A Aᵀ over the free cables, lower triangle.
-            for r in 0..m {
-                for c in 0..=r {
-                    let mut s = 0.0;
-                    for i in 0..n {
-                        if self.active[i] {
-                            s += w[(r, i)] * w[(c, i)];
-                        }
-                    }
-                    self.aat[r * m + c] = s;
-                }
-            }
-            for k in 0..m {
-                self.y[k] = self.aat[k * m + k].sqrt();
-            }
-            if !cholesky(&mut self.aat, m) {
-                return Err(if first {
-                    Infeasibility::SingularPose {
-                        condition: f64::INFINITY,
-                    }
-                } else {
-                    Infeasibility::Inconclusive { method: METHOD }
-                });
-            }
-            let ratio: f64 = (0..m).map(|k| self.aat[k * m + k] / self.y[k]).product();
-            if ratio.is_nan() || ratio < SINGULARITY_RATIO {
-                return Err(if first {
-                    Infeasibility::SingularPose {
-                        condition: 1.0 / ratio,
-                    }
-                } else {
-                    Infeasibility::Inconclusive { method: METHOD }
-                });
-            }
-            first = false;
-            // (A Aᵀ) y = rhs; t_free −= Aᵀ y.
-            self.y.copy_from_slice(&self.rhs);
-            cholesky_solve(&self.aat, m, &mut self.y);
-            for i in 0..n {
-                if self.active[i] {
-                    let mut s = 0.0;
-                    for k in 0..m {
-                        s += w[(k, i)] * self.y[k];
-                    }
-                    t[i] -= s;
-                }
-            }
-            // The free cable with the largest violation of its limits, in force units (Pott
-            // 2014); a tension counts as violating beyond the certificate's relative tolerance.
-            let (mut worst, mut wv) = (n, 0.0);
-            for i in 0..n {
-                if self.active[i]
-                    && bound_violation(lo[i], hi[i], t[i]) > crate::certificate::BOUND_TOLERANCE
-                {
-                    let v = (lo[i] - t[i]).max(t[i] - hi[i]);
-                    if v > wv {
-                        (worst, wv) = (i, v);
+        }
+        // A Aᵀ over the free cables, lower triangle.
+        for r in 0..m {
+            for c in 0..=r {
+                let mut s = 0.0;
+                for (col, &free) in ws.chunks_exact(m).zip(active.iter()) {
+                    if free {
+                        s += col[r] * col[c];
                     }
                 }
+                aat[r * m + c] = s;
             }
-            if worst == n {
-                return Ok(());
-            }
-            if remaining <= m {
-                return Err(Infeasibility::Inconclusive { method: METHOD });
-            }
-            // Saturate it and restart the free cables from their mean tension.
-            t[worst] = if t[worst] < lo[worst] {
-                lo[worst]
+        }
+        for k in 0..m {
+            y[k] = aat[k * m + k].sqrt();
+        }
+        if !cholesky(aat, m) {
+            return Err(if first {
+                Infeasibility::SingularPose {
+                    condition: f64::INFINITY,
+                }
             } else {
-                hi[worst]
-            };
-            self.active[worst] = false;
-            remaining -= 1;
-            for i in 0..n {
-                if self.active[i] {
-                    t[i] = 0.5 * (lo[i] + hi[i]);
+                Infeasibility::Inconclusive { method: METHOD }
+            });
+        }
+        let ratio: f64 = (0..m).map(|k| aat[k * m + k] / y[k]).product();
+        if ratio.is_nan() || ratio < SINGULARITY_RATIO {
+            return Err(if first {
+                Infeasibility::SingularPose {
+                    condition: 1.0 / ratio,
                 }
+            } else {
+                Infeasibility::Inconclusive { method: METHOD }
+            });
+        }
+        first = false;
+        // (A Aᵀ) y = rhs; t_free −= Aᵀ y.
+        y.copy_from_slice(rhs);
+        cholesky_solve(aat, m, y);
+        for ((col, ti), &free) in ws.chunks_exact(m).zip(t.iter_mut()).zip(active.iter()) {
+            if free {
+                let mut s = 0.0;
+                for k in 0..m {
+                    s += col[k] * y[k];
+                }
+                *ti -= s;
+            }
+        }
+        // The free cable with the largest violation of its limits, in force units (Pott
+        // 2014); a tension counts as violating beyond the certificate's relative tolerance.
+        let (mut worst, mut wv) = (n, 0.0);
+        for i in 0..n {
+            if active[i]
+                && bound_violation(lo[i], hi[i], t[i]) > crate::certificate::BOUND_TOLERANCE
+            {
+                let v = (lo[i] - t[i]).max(t[i] - hi[i]);
+                if v > wv {
+                    (worst, wv) = (i, v);
+                }
+            }
+        }
+        if worst == n {
+            return Ok(());
+        }
+        if remaining <= m {
+            return Err(Infeasibility::Inconclusive { method: METHOD });
+        }
+        // Saturate it and restart the free cables from their mean tension.
+        t[worst] = if t[worst] < lo[worst] {
+            lo[worst]
+        } else {
+            hi[worst]
+        };
+        active[worst] = false;
+        remaining -= 1;
+        for i in 0..n {
+            if active[i] {
+                t[i] = 0.5 * (lo[i] + hi[i]);
             }
         }
     }
 }
 
 /// In-place Cholesky of the lower triangle of an m × m row-major matrix; false if not SPD.
+#[inline(always)]
 fn cholesky(a: &mut [f64], m: usize) -> bool {
     for j in 0..m {
         let mut d = a[j * m + j];
@@ -175,6 +210,7 @@ fn cholesky(a: &mut [f64], m: usize) -> bool {
 }
 
 /// Solves L Lᵀ x = b in place.
+#[inline(always)]
 fn cholesky_solve(l: &[f64], m: usize, x: &mut [f64]) {
     for i in 0..m {
         let mut s = x[i];

@@ -17,7 +17,7 @@
 //! | `closed-form` | Algorithm 6.1, r = 1, min ‖t‖₁ | [`closed_form`] |
 //! | `l1`, `l1-max` | min / max Σ t (6.19) | [`linear_program`] (r ≥ 3: active-set LP) |
 //! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] (r ≥ 3 l2: Goldfarb–Idnani) |
-//! | `linf` | min max t | [`linear_program`] (r ≥ 3: active-set LP) |
+//! | `linf` | min max t | [`linear_program`] (r ≥ 2: active-set LP) |
 //! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
 //! | `sotda` | stiffness-oriented, r = 2 (Picard, Caro, Plestan & Claveau 2020) | [`sotda`] |

@@ -6,12 +6,13 @@
 //! - **l1-max**: maximise Σ t_i (the thesis' "maximum allowable cable tensions").
 //! - **linf**: minimise max_i t_i (CASPR / WireX parity).
 //!
-//! For redundancy r ≤ 2 we solve them exactly on the feasible interval / polygon in λ-space:
-//! Σ t_i = Σ t0_i + (Nᵀ 1)·λ is linear, so its optimum is at a vertex; max_i t_i is convex and
-//! piecewise linear, minimised by bisection on the level s (clip the polygon with t_i ≤ s until
-//! the bracket is below 10⁻¹⁴ relative). For r ≥ 3 the dense active-set LP (phase 1, then the
-//! simplex method in inequality form with Bland's rule) solves it in λ-space without allocating
-//! (module `active_set`).
+//! For redundancy r ≤ 2 we solve l1 and l1-max exactly on the feasible interval / polygon in
+//! λ-space: Σ t_i = Σ t0_i + (Nᵀ 1)·λ is linear, so its optimum is at a vertex. linf at r ≤ 1:
+//! max_i t_i is convex and piecewise linear, minimised by bisection on the level s (clip the
+//! interval with t_i ≤ s until the bracket is below 10⁻¹⁴ relative). For r ≥ 3, and for linf
+//! already at r = 2 (exact, and about 3.5 times cheaper than the bisection on the polygon: issue
+//! 17), the dense active-set LP (phase 1, then the simplex method in inequality form with
+//! Bland's rule) solves it in λ-space without allocating (module `active_set`).
 //!
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators (ch. 6), §6.3.3, eq. (6.19).

@@ -78,6 +78,129 @@ impl NullSpace {
     /// Factor W and compute t0, N, g. Returns `Err(condition)` when W is singular
     /// (ρ < [`SINGULARITY_RATIO`]). Requires n ≥ m ≥ 1 and finite input.
     pub fn compute(&mut self, w: &DMatrix<f64>, w_ext: &DVector<f64>) -> Result<(), f64> {
+        match w.shape() {
+            (6, 8) => self.compute_fixed::<6, 8>(w, w_ext),
+            (6, 7) => self.compute_fixed::<6, 7>(w, w_ext),
+            (3, 5) => self.compute_fixed::<3, 5>(w, w_ext),
+            (3, 4) => self.compute_fixed::<3, 4>(w, w_ext),
+            _ => self.compute_dyn(w, w_ext),
+        }
+    }
+
+    /// [`Self::compute`] for W of shape M × N known at compile time (the common spatial and
+    /// planar shapes with r ≤ 2): the same Householder steps, the same sums in the same order
+    /// (bit-identical results), on stack arrays the compiler can unroll.
+    #[inline(never)]
+    fn compute_fixed<const M: usize, const N: usize>(
+        &mut self,
+        w: &DMatrix<f64>,
+        w_ext: &DVector<f64>,
+    ) -> Result<(), f64> {
+        debug_assert_eq!(w.shape(), (M, N));
+        let r = N - M;
+        self.m = M;
+        self.n = N;
+        self.t0.resize(N, 0.0);
+        self.basis.resize(N * r, 0.0);
+        self.g.resize(r, 0.0);
+        let ws = w.as_slice();
+        // a[k] = row k of W (column k of Wᵀ).
+        let mut a = [[0.0f64; N]; M];
+        let mut rows = [0.0f64; M];
+        let mut perm = [0usize; M];
+        let mut beta = [0.0f64; M];
+        let mut rdiag = [0.0f64; M];
+        for k in 0..M {
+            let mut s = 0.0;
+            for i in 0..N {
+                let v = ws[i * M + k];
+                a[k][i] = v;
+                s += v * v;
+            }
+            if s == 0.0 {
+                self.ratio = 0.0;
+                return Err(f64::INFINITY);
+            }
+            rows[k] = s.sqrt();
+            perm[k] = k;
+        }
+        let mut ratio = 1.0;
+        for k in 0..M {
+            let mut best = k;
+            let mut best_norm = -1.0;
+            for (j, col) in a.iter().enumerate().skip(k) {
+                let s: f64 = col[k..].iter().map(|v| v * v).sum();
+                if s > best_norm {
+                    best_norm = s;
+                    best = j;
+                }
+            }
+            if best != k {
+                a.swap(k, best);
+                perm.swap(k, best);
+            }
+            let norm = best_norm.sqrt();
+            if norm == 0.0 {
+                self.ratio = 0.0;
+                return Err(f64::INFINITY);
+            }
+            let x0 = a[k][k];
+            let alpha = if x0 >= 0.0 { -norm } else { norm };
+            a[k][k] = x0 - alpha;
+            let vtv: f64 = a[k][k..].iter().map(|v| v * v).sum();
+            let bk = 2.0 / vtv;
+            beta[k] = bk;
+            rdiag[k] = alpha;
+            ratio *= norm / rows[k];
+            let v = a[k];
+            for col in a.iter_mut().skip(k + 1) {
+                let mut s = 0.0;
+                for i in k..N {
+                    s += v[i] * col[i];
+                }
+                s *= bk;
+                for i in k..N {
+                    col[i] -= s * v[i];
+                }
+            }
+        }
+        self.ratio = ratio.min(1.0);
+        if self.ratio.is_nan() || self.ratio < SINGULARITY_RATIO {
+            return Err(1.0 / self.ratio);
+        }
+        // x ← Q x = H₀ H₁ ⋯ H_{M−1} x.
+        let apply_q = |x: &mut [f64; N]| {
+            for k in (0..M).rev() {
+                let v = &a[k][k..];
+                let xs = &mut x[k..];
+                let s: f64 = v.iter().zip(xs.iter()).map(|(a, b)| a * b).sum::<f64>() * beta[k];
+                for (xi, vi) in xs.iter_mut().zip(v) {
+                    *xi -= s * vi;
+                }
+            }
+        };
+        let mut x = [0.0f64; N];
+        for j in 0..M {
+            let mut s = -w_ext[perm[j]];
+            for i in 0..j {
+                s -= a[j][i] * x[i];
+            }
+            x[j] = s / rdiag[j];
+        }
+        apply_q(&mut x);
+        self.t0.copy_from_slice(&x);
+        for c in 0..r {
+            let mut x = [0.0f64; N];
+            x[M + c] = 1.0;
+            apply_q(&mut x);
+            self.basis[c * N..(c + 1) * N].copy_from_slice(&x);
+            self.g[c] = x.iter().zip(&self.t0).map(|(a, b)| a * b).sum();
+        }
+        Ok(())
+    }
+
+    /// [`Self::compute`] for any shape, on the reused heap buffers.
+    fn compute_dyn(&mut self, w: &DMatrix<f64>, w_ext: &DVector<f64>) -> Result<(), f64> {
         let (m, n) = w.shape();
         self.m = m;
         self.n = n;
@@ -208,6 +331,45 @@ mod tests {
         // Minimum norm: equals the pseudo-inverse solution computed independently.
         let pinv = w.clone().pseudo_inverse(1e-14).unwrap();
         assert!((t0 + pinv * we).norm() < 1e-13);
+    }
+
+    /// The fixed-size factorisation repeats the dynamic one bit for bit (same steps, same
+    /// order of the sums), including the singularity verdicts.
+    #[test]
+    fn fixed_sizes_match_the_dynamic_path_bit_for_bit() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for (m, n) in [(6, 8), (6, 7), (3, 5), (3, 4)] {
+            for case in 0..200 {
+                let mut w = DMatrix::from_fn(m, n, |_, _| next());
+                if case % 50 == 7 {
+                    // A singular W: two equal rows.
+                    let row = w.row(0).into_owned();
+                    w.row_mut(m - 1).copy_from(&row);
+                }
+                let we = DVector::from_fn(m, |_, _| 100.0 * next());
+                let (mut fixed, mut dynamic) = (NullSpace::default(), NullSpace::default());
+                let a = fixed.compute(&w, &we);
+                let b = dynamic.compute_dyn(&w, &we);
+                assert_eq!(
+                    a.map_err(f64::to_bits),
+                    b.map_err(f64::to_bits),
+                    "{m}x{n} {case}"
+                );
+                assert_eq!(fixed.ratio.to_bits(), dynamic.ratio.to_bits());
+                if a.is_ok() {
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&fixed.t0), bits(&dynamic.t0), "{m}x{n} {case}");
+                    assert_eq!(bits(&fixed.basis), bits(&dynamic.basis), "{m}x{n} {case}");
+                    assert_eq!(bits(&fixed.g), bits(&dynamic.g), "{m}x{n} {case}");
+                }
+            }
+        }
     }
 
     #[test]

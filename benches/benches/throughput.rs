@@ -1,0 +1,88 @@
+//! Issue 17's throughput table, refilled: the IPAnema 1 of `examples/robots/caspr-ipanema-1.toml`
+//! (Pott et al. 2013; 8 cables, 6 DOF), bounds t ∈ [1, 1000] N (not the file's [0, 720] N), the
+//! platform's 25 kg under the file's gravity (245.25 N along −z, centre of mass at the platform
+//! origin), 20 000 poses of `spatial_poses` (|x| ≤ 1 m, |y| ≤ 0.75 m, z ∈ [0.5, 1.5] m, angles
+//! within ±0.1 rad). Every tension answer is certified (as in every `TensionSolver` call).
+//!
+//! One iteration runs all 20 000 poses (criterion's throughput gives the rate; CPU time per call
+//! = time / 20 000). IDs: `throughput_ipanema_1/{ik_w, ik_w_batch, improved_closed_form,
+//! barycenter, l2, l1, linf}`; run with
+//! `cargo bench -p cdpr-benches --bench throughput`.
+
+use cdpr_benches::issue_17::{POSES, fixture};
+use cdpr_kinematics::PoseKinematics;
+use cdpr_tension::{Method, TensionProblem, TensionSolver};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use nalgebra::{DMatrix, DVector};
+use std::hint::black_box;
+
+fn ik_w(c: &mut Criterion) {
+    let f = fixture();
+    let mut g = c.benchmark_group("throughput_ipanema_1");
+    g.throughput(Throughput::Elements(POSES as u64));
+    g.sample_size(30);
+    let mut kin = PoseKinematics::for_robot(&f.robot);
+    let mut w = DMatrix::zeros(6, 8);
+    g.bench_function("ik_w", |b| {
+        b.iter(|| {
+            let mut s = 0.0;
+            for pose in &f.poses {
+                f.robot
+                    .update_kinematics(black_box(pose), &mut kin)
+                    .unwrap();
+                kin.write_wrench_matrix(&mut w);
+                s += w[(5, 7)];
+            }
+            black_box(s)
+        })
+    });
+    // The batch API: W of all 20 000 poses into one flat buffer.
+    let mut out = vec![0.0; POSES * 48];
+    let mut valid = vec![false; POSES];
+    g.bench_function("ik_w_batch", |b| {
+        b.iter(|| {
+            let count = f
+                .robot
+                .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
+                .unwrap();
+            black_box((count, out[POSES * 48 - 1]))
+        })
+    });
+    g.finish();
+}
+
+fn tension(c: &mut Criterion) {
+    let f = fixture();
+    let ws: Vec<DMatrix<f64>> = f
+        .poses
+        .iter()
+        .map(|p| f.robot.inverse_kinematics(p).unwrap().wrench_matrix())
+        .collect();
+    let mut g = c.benchmark_group("throughput_ipanema_1");
+    g.throughput(Throughput::Elements(POSES as u64));
+    g.sample_size(20);
+    for (name, method) in [
+        ("improved_closed_form", Method::ImprovedClosedForm),
+        ("barycenter", Method::Barycenter),
+        ("l2", Method::L2),
+        ("l1", Method::L1),
+        ("linf", Method::Linf),
+    ] {
+        let mut solver = TensionSolver::new(method);
+        let mut t = DVector::zeros(8);
+        let mut run = |solver: &mut TensionSolver| {
+            let mut ok = 0usize;
+            for w in &ws {
+                let p = TensionProblem::new(w, &f.load, &f.bounds);
+                ok += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+            }
+            ok
+        };
+        eprintln!("{name}: {} of {POSES} poses feasible", run(&mut solver));
+        g.bench_function(name, |b| b.iter(|| black_box(run(&mut solver))));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, ik_w, tension);
+criterion_main!(benches);

@@ -1,0 +1,62 @@
+//! Issue 17's table operations in a plain loop, for load-independent instruction counts:
+//! `valgrind --tool=callgrind <binary> OPERATION REPS` runs OPERATION (`ik_w`,
+//! `ik_w_batch`, `improved_closed_form`, `barycenter`, `l2`, `l1`, `linf`) REPS times over the 20 000 poses of
+//! the fixture; instructions per call = (count at REPS − count at 0) / (20 000 · REPS).
+
+use cdpr_benches::issue_17::fixture;
+use cdpr_kinematics::PoseKinematics;
+use cdpr_tension::{Method, TensionProblem, TensionSolver};
+use nalgebra::{DMatrix, DVector};
+use std::hint::black_box;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let op = args.get(1).map_or("l2", String::as_str);
+    let reps: usize = args.get(2).map_or(1, |s| s.parse().expect("REPS"));
+    let f = fixture();
+    let mut kin = PoseKinematics::for_robot(&f.robot);
+    let mut w = DMatrix::zeros(6, 8);
+    if op == "ik_w" {
+        let mut s = 0.0;
+        for _ in 0..reps {
+            for pose in &f.poses {
+                f.robot
+                    .update_kinematics(black_box(pose), &mut kin)
+                    .unwrap();
+                kin.write_wrench_matrix(&mut w);
+                s += w[(5, 7)];
+            }
+        }
+        println!("{s}");
+        return;
+    }
+    if op == "ik_w_batch" {
+        let mut out = vec![0.0; f.poses.len() * 48];
+        let mut valid = vec![false; f.poses.len()];
+        let mut count = 0;
+        for _ in 0..reps {
+            count += f
+                .robot
+                .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
+                .unwrap();
+        }
+        println!("{count} {}", out[out.len() - 1]);
+        return;
+    }
+    let method: Method = op.replace('_', "-").parse().expect("a method name");
+    let ws: Vec<DMatrix<f64>> = f
+        .poses
+        .iter()
+        .map(|p| f.robot.inverse_kinematics(p).unwrap().wrench_matrix())
+        .collect();
+    let mut solver = TensionSolver::new(method);
+    let mut t = DVector::zeros(8);
+    let mut ok = 0usize;
+    for _ in 0..reps {
+        for w in &ws {
+            let p = TensionProblem::new(w, &f.load, &f.bounds);
+            ok += solver.solve_into(black_box(&p), &mut t).unwrap().is_ok() as usize;
+        }
+    }
+    println!("{op}: {ok} feasible answers in {reps} passes");
+}

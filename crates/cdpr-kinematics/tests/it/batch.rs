@@ -1,0 +1,125 @@
+//! `Robot::wrench_matrices` (batch IK + W): every block equals the single-pose wrench matrix
+//! bit for bit, for every motion pattern and with pulleys; rejected poses are exactly those
+//! `update_kinematics` rejects; wrong buffer lengths are errors.
+
+use cdpr_kinematics::reference_robots::{
+    ipanema_like_8, ipanema_like_8_pulleys, krut_point_robot, thesis_four_cable,
+};
+use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Pose, Robot};
+use nalgebra::Vector3;
+
+fn poses(motion: MotionPattern, count: usize) -> Vec<Pose> {
+    (0..count)
+        .map(|k| {
+            let s = k as f64 / count as f64;
+            let (x, y, z) = (-0.4 + 0.8 * s, 0.3 - 0.5 * s, 0.6 + 0.7 * s);
+            match motion {
+                MotionPattern::Spatial => {
+                    Pose::spatial(Vector3::new(x, y, z), 0.1 * s, -0.05, 0.2 - 0.3 * s)
+                }
+                MotionPattern::Planar => Pose::planar(0.3 * x, 0.3 * y, 0.2 - 0.4 * s),
+                MotionPattern::Point3 => Pose::point(x, y, z),
+                MotionPattern::Point2 => Pose::point(100.0 * x, 100.0 * y, 0.0),
+            }
+        })
+        .collect()
+}
+
+fn point3_robot() -> Robot {
+    let c = |x: f64, y: f64, z: f64| Cable {
+        frame: Vector3::new(x, y, z),
+        platform: Vector3::zeros(),
+        pulley: None,
+    };
+    Robot::new(
+        MotionPattern::Point3,
+        vec![
+            c(2.0, 2.0, 2.0),
+            c(-2.0, 2.0, 2.0),
+            c(0.0, -2.0, 2.0),
+            c(0.0, 0.0, -1.0),
+        ],
+    )
+    .unwrap()
+}
+
+fn check_bitwise(robot: &Robot, poses: &[Pose]) {
+    let block = robot.motion().dof() * robot.cable_count();
+    let mut out = vec![f64::NAN; poses.len() * block];
+    let mut valid = vec![false; poses.len()];
+    let count = robot.wrench_matrices(poses, &mut out, &mut valid).unwrap();
+    assert_eq!(count, valid.iter().filter(|v| **v).count());
+    for (k, pose) in poses.iter().enumerate() {
+        match robot.inverse_kinematics(pose) {
+            Ok(kin) => {
+                assert!(valid[k], "pose {k}");
+                let w = kin.wrench_matrix();
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&out[k * block..][..block]),
+                    bits(w.as_slice()),
+                    "pose {k}"
+                );
+            }
+            Err(_) => assert!(!valid[k], "pose {k}"),
+        }
+    }
+}
+
+#[test]
+fn blocks_equal_the_single_pose_wrench_matrix_bit_for_bit() {
+    for robot in [
+        ipanema_like_8(),
+        ipanema_like_8_pulleys(),
+        thesis_four_cable(),
+        krut_point_robot(3, 1000.0, 30.0),
+        point3_robot(),
+    ] {
+        check_bitwise(&robot, &poses(robot.motion(), 57));
+    }
+}
+
+#[test]
+fn rejected_poses_are_those_inverse_kinematics_rejects() {
+    let robot = ipanema_like_8();
+    let anchor = robot.cables()[0].frame - robot.cables()[0].platform;
+    let mut p = poses(MotionPattern::Spatial, 5);
+    // Cable 1 of zero length, a NaN position, an overflowing one.
+    p[1] = Pose::spatial(anchor, 0.0, 0.0, 0.0);
+    p[2] = Pose::spatial(Vector3::new(f64::NAN, 0.0, 1.0), 0.0, 0.0, 0.0);
+    p[3] = Pose::spatial(Vector3::new(1e308, 1e308, 1.0), 0.0, 0.0, 0.0);
+    let mut out = vec![0.0; 5 * 48];
+    let mut valid = [true; 5];
+    assert_eq!(robot.wrench_matrices(&p, &mut out, &mut valid).unwrap(), 2);
+    assert_eq!(valid, [true, false, false, false, true]);
+    check_bitwise(&robot, &p);
+}
+
+#[test]
+fn wrong_buffer_lengths_are_errors() {
+    let robot = ipanema_like_8();
+    let p = poses(MotionPattern::Spatial, 3);
+    let mut valid = [false; 3];
+    let err = robot
+        .wrench_matrices(&p, &mut vec![0.0; 3 * 48 - 1], &mut valid)
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        KinematicsError::WrongDimension {
+            expected: 144,
+            found: 143,
+            ..
+        }
+    ));
+    let err = robot
+        .wrench_matrices(&p, &mut vec![0.0; 3 * 48], &mut [false; 2])
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        KinematicsError::WrongDimension {
+            expected: 3,
+            found: 2,
+            ..
+        }
+    ));
+}
