@@ -18,7 +18,9 @@
 //! - **"unbounded"** (maximisers with an infinite t_max): the recession cone
 //!   {d : W d = 0, d ≥ 0, d_i = 0 where t_max,i < ∞} must contain a ray (max Σ d over the cone
 //!   cut by d ≤ 1 is > 10⁻⁷, Clarabel again) and the set must be non-empty; otherwise
-//!   `false_unbounded`.
+//!   `false_unbounded`. When the depth LP itself fails (Clarabel gives no status, as with
+//!   feasible tensions of 10⁶ N next to bounds of 1 N), emptiness is undecided and the answer
+//!   is counted as `borderline` (not judged), as for "infeasible" answers.
 //!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
 //! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
@@ -510,6 +512,12 @@ pub fn soak_range(
                     c.unbounded += 1;
                     let dep = *depth_cache.get_or_insert_with(|| depth(&d.w, &d.w_ext, &d.bounds));
                     let ray = has_ray(&d.w, &d.bounds);
+                    // A failed depth LP (None) leaves emptiness undecided: not judged, as for
+                    // "infeasible" answers (counted in `borderline`).
+                    if ray.is_some() && dep.is_none() {
+                        c.borderline += 1;
+                        continue;
+                    }
                     let nonempty = dep.is_some_and(|x| x > -CLEAR_DEPTH);
                     if ray == Some(false) || !nonempty {
                         c.false_unbounded += 1;
