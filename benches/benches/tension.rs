@@ -5,7 +5,7 @@
 //! active-set path (redundancy 5) against Clarabel on an 8-cable planar robot. Each iteration
 //! solves all poses; criterion's throughput gives the per-pose cost.
 
-use cdpr_benches::{ipanema_like_8, spatial_poses};
+use cdpr_benches::{ipanema_like_8, spatial_poses, twelve_cable_spatial};
 use cdpr_kinematics::reference_robots::thesis_four_cable;
 use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
 use cdpr_tension::{
@@ -225,9 +225,51 @@ fn bench_planar_redundant(c: &mut Criterion) {
     g.finish();
 }
 
+/// l2-max at redundancy 6: 100 feasible poses of the 12-cable spatial robot
+/// (`twelve_cable_spatial`, t ∈ [1, 1000] N, 10 kg platform under gravity). The former candidate
+/// enumeration solved C(12, 6)·2⁶ = 59 136 systems per pose; the pivoting search visits only
+/// the feasible bases (issue 13 §1, goal ≤ 100 µs per pose).
+fn bench_twelve_cable_l2_max(c: &mut Criterion) {
+    const N: usize = 100;
+    let robot = twelve_cable_spatial();
+    let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
+    let b = TensionBounds::uniform(12, 1.0, 1000.0).unwrap();
+    let mut l2 = TensionSolver::new(Method::L2);
+    let mut ws = Vec::new();
+    for pose in spatial_poses(20 * N) {
+        let Ok(kin) = robot.inverse_kinematics(&pose) else {
+            continue;
+        };
+        let w = kin.wrench_matrix();
+        if l2.is_feasible(&TensionProblem::new(&w, &we, &b)).unwrap() {
+            ws.push(w);
+            if ws.len() == N {
+                break;
+            }
+        }
+    }
+    assert_eq!(ws.len(), N, "not enough feasible poses");
+    let mut g = c.benchmark_group("tension_12_cable");
+    g.throughput(Throughput::Elements(N as u64));
+    let mut solver = TensionSolver::new(Method::L2Max);
+    let mut t = DVector::zeros(12);
+    g.bench_function("l2_max", |bch| {
+        bch.iter(|| {
+            let mut ok = 0;
+            for w in &ws {
+                let p = TensionProblem::new(w, &we, &b);
+                ok += solver.solve_into(&p, &mut t).unwrap().is_ok() as usize;
+            }
+            black_box(ok)
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     bench_spatial,
+    bench_twelve_cable_l2_max,
     bench_planar,
     bench_planar_exact,
     bench_planar_redundant

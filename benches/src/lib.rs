@@ -116,3 +116,22 @@ pub mod issue_17 {
         }
     }
 }
+
+/// A 12-cable spatial robot (6 DOF, redundancy 6): the 10-cable robot of
+/// [`ten_cable_spatial`] plus two cables from the middle of its short sides to the platform's
+/// ends. l2-max on it has C(12, 6)·2⁶ = 59 136 candidate bases.
+pub fn twelve_cable_spatial() -> Robot {
+    let base = ten_cable_spatial();
+    let mut cables = base.cables().to_vec();
+    cables.push(Cable {
+        frame: Vector3::new(2.0, 0.0, 2.0),
+        platform: Vector3::new(0.15, 0.0, 0.05),
+        pulley: None,
+    });
+    cables.push(Cable {
+        frame: Vector3::new(-2.0, 0.0, 0.0),
+        platform: Vector3::new(-0.15, 0.0, -0.05),
+        pulley: None,
+    });
+    Robot::new(MotionPattern::Spatial, cables).expect("valid 12-cable robot")
+}

@@ -18,7 +18,11 @@
 //! - **"unbounded"** (maximisers with an infinite t_max): the recession cone
 //!   {d : W d = 0, d ≥ 0, d_i = 0 where t_max,i < ∞} must contain a ray (max Σ d over the cone
 //!   cut by d ≤ 1 is > 10⁻⁷, Clarabel again) and the set must be non-empty; otherwise
-//!   `false_unbounded`.
+//!   `false_unbounded`. Non-emptiness is proved by a verified "feasible" answer of an earlier
+//!   method when there is one (the depth LP fails or misleads with feasible tensions of 10⁶ N
+//!   next to bounds of 1 N), else by the depth; when the depth LP fails too, emptiness is
+//!   undecided and the answer is counted as `borderline` (not judged), as for "infeasible"
+//!   answers.
 //!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
 //! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
@@ -470,6 +474,8 @@ pub fn soak_range(
             axial_stiffness: &d.es,
         });
         let mut depth_cache: Option<Option<f64>> = None;
+        // Whether a verified "feasible" answer proved the set non-empty.
+        let mut witness = false;
         for (solver, &method) in solvers.iter_mut().zip(Method::ALL.iter()) {
             let c = report.methods.entry(method.name()).or_default();
             let complete = COMPLETE.contains(&method);
@@ -504,14 +510,29 @@ pub fn soak_range(
                     if let Err(e) = verify(&d, &s.tensions) {
                         c.false_feasible += 1;
                         fail("false feasible", e, &mut report.failures);
+                    } else {
+                        witness = true;
                     }
                 }
                 TensionOutcome::Infeasible(Infeasibility::Unbounded { .. }) => {
                     c.unbounded += 1;
                     let dep = *depth_cache.get_or_insert_with(|| depth(&d.w, &d.w_ext, &d.bounds));
                     let ray = has_ray(&d.w, &d.bounds);
-                    let nonempty = dep.is_some_and(|x| x > -CLEAR_DEPTH);
-                    if ray == Some(false) || !nonempty {
+                    // Non-empty: a verified "feasible" answer of an earlier method is a
+                    // witness (the depth LP can fail or mislead with tensions of 10⁶ N next
+                    // to bounds of 1 N); otherwise the depth decides, and a failed depth LP
+                    // leaves emptiness undecided: not judged, as for "infeasible" answers
+                    // (counted in `borderline`).
+                    let nonempty = if witness {
+                        Some(true)
+                    } else {
+                        dep.map(|x| x > -CLEAR_DEPTH)
+                    };
+                    if ray != Some(false) && nonempty.is_none() {
+                        c.borderline += 1;
+                        continue;
+                    }
+                    if ray == Some(false) || nonempty == Some(false) {
                         c.false_unbounded += 1;
                         fail(
                             "false unbounded",

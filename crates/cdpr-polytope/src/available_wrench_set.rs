@@ -66,6 +66,26 @@ fn same_normal(a: &DVector<f64>, b: &DVector<f64>) -> bool {
         .all(|(x, y)| (x - y).abs() < MERGE_TOL)
 }
 
+/// An integer with the order of [`f64::total_cmp`] (IEEE 754 totalOrder).
+#[inline]
+fn total_order_key(x: f64) -> i64 {
+    let b = x.to_bits() as i64;
+    b ^ (((b >> 63) as u64) >> 1) as i64
+}
+
+/// Lexicographic order of two normals by [`f64::total_cmp`] (a plain loop: the comparison
+/// dominates the sort of the 504 half-spaces of 10 cables in 6 DOF).
+#[inline]
+fn lexicographic(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
+    for (x, y) in a.iter().zip(b) {
+        let o = x.total_cmp(y);
+        if o.is_ne() {
+            return o;
+        }
+    }
+    a.len().cmp(&b.len())
+}
+
 /// Merges half-spaces sorted lexicographically by normal into facets: each half-space joins the
 /// first facet (in order of creation) whose normal is within [`MERGE_TOL`] of its own, and a
 /// facet keeps the tighter half-space whole (normal and offset of one supporting half-space, so
@@ -115,15 +135,29 @@ impl AvailableWrenchSet {
         let scale = scale.max(f64::MIN_POSITIVE);
         // Deterministic order: lexicographic on the normal, then the offset.
         raw.retain(|f| f.offset.is_finite());
-        raw.sort_by(|a, b| {
-            a.normal
-                .iter()
-                .zip(b.normal.iter())
-                .map(|(x, y)| x.total_cmp(y))
-                .find(|o| o.is_ne())
-                .unwrap_or(std::cmp::Ordering::Equal)
-                .then(a.offset.total_cmp(&b.offset))
+        // Sorted by an integer key of the first component (the order of `f64::total_cmp`),
+        // then the whole normal and the offset; unstable, since elements comparing equal are
+        // equal (same normal and offset).
+        let mut order: Vec<(i64, usize)> = raw
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (total_order_key(f.normal.get(0).copied().unwrap_or(0.0)), i))
+            .collect();
+        order.sort_unstable_by(|a, b| {
+            a.0.cmp(&b.0).then_with(|| {
+                let (fa, fb) = (&raw[a.1], &raw[b.1]);
+                lexicographic(fa.normal.as_slice(), fb.normal.as_slice())
+                    .then(fa.offset.total_cmp(&fb.offset))
+            })
         });
+        let empty = || Facet {
+            normal: DVector::zeros(0),
+            offset: 0.0,
+        };
+        let raw: Vec<Facet> = order
+            .iter()
+            .map(|&(_, i)| std::mem::replace(&mut raw[i], empty()))
+            .collect();
         let (facets, group) = merge_sorted(&raw);
         let mut set = Self {
             dof,
@@ -286,6 +320,35 @@ pub(crate) fn binomial(n: f64, k: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn total_order_key_orders_as_total_cmp() {
+        let xs = [
+            f64::NEG_INFINITY,
+            -1.0,
+            -f64::MIN_POSITIVE,
+            -5e-324,
+            -0.0,
+            0.0,
+            5e-324,
+            1e-300,
+            0.5,
+            1.0,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for a in xs {
+            for b in xs {
+                assert_eq!(
+                    super::total_order_key(a).cmp(&super::total_order_key(b)),
+                    a.total_cmp(&b),
+                    "{a} vs {b}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn combinations_are_enumerated_in_order() {

@@ -16,7 +16,7 @@
 //! | `pinv` | t = −W⁺ w_ext (6.14), bounds checked | [`minimum_norm`] |
 //! | `closed-form` | Algorithm 6.1, r = 1, min ‖t‖₁ | [`closed_form`] |
 //! | `l1`, `l1-max` | min / max Σ t (6.19) | [`linear_program`] (r ≥ 3: active-set LP) |
-//! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] (r ≥ 3 l2: Goldfarb–Idnani) |
+//! | `l2`, `l2-max` | min / max ‖t‖₂² (6.17) | [`quadratic_program`] (r ≥ 3 l2: Goldfarb–Idnani; l2-max: vertex enumeration by pivoting) |
 //! | `linf` | min max t | [`linear_program`] (r ≥ 2: active-set LP) |
 //! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
@@ -77,6 +77,7 @@ pub mod profile;
 pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
+mod vertex_enumeration;
 
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};

@@ -9,17 +9,20 @@
 //! rounding, since t0 is the minimum-norm solution), so for r ≤ 2 the l2 optimum is the exact
 //! Euclidean projection of −g onto the feasible interval / polygon, and l2-max is the vertex
 //! farthest from −g. For r ≥ 3, l2 is the same projection, computed by the dual active-set
-//! method of Goldfarb & Idnani (module `active_set`), and l2-max enumerates the vertices
-//! {λ : r independent bounds active} (at most C(n, r)·2^r candidates, capped at 2·10⁵).
+//! method of Goldfarb & Idnani (module `active_set`), and l2-max visits the vertices of the
+//! feasible set by pivoting along its edges (module `vertex_enumeration`), falling back to the
+//! candidates {λ : r independent bounds active} (at most C(n, r)·2^r, capped at 2·10⁵).
 //!
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators (ch. 6), §6.3.2, eq. (6.17) and Appendix E.
 
+use crate::active_set::{ActiveSet, DenseEnd};
 use crate::certificate::bound_violation;
 use crate::feasible_polygon::Region;
 use crate::linear_program::write_tensions;
 use crate::null_space::NullSpace;
-use crate::{Infeasibility, Method, TensionBounds, TensionProblem, TensionSolver};
+use crate::vertex_enumeration::{GaveUp, VertexSearch};
+use crate::{Infeasibility, Method, Objective, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector};
 
 /// l2 (`maximize = false`) or l2-max on a built, non-empty region (r ≤ 2).
@@ -77,23 +80,35 @@ fn has_recession_ray(w: &DMatrix<f64>, bounds: &TensionBounds) -> Option<bool> {
     }
 }
 
-/// l2-max at r ≥ 3: with an infinite t_max, first whether the set is empty (l1 on the same
-/// problem) or unbounded ([`has_recession_ray`]); a bounded set then has its vertices among
-/// the candidates of [`l2_max_by_vertices`] (an infinite bound is never active at a vertex).
+/// l2-max at r ≥ 3: first whether the set is empty (the dense l1 LP on the same null space),
+/// then, with an infinite t_max, whether it is unbounded ([`has_recession_ray`]); the bounded set's
+/// best vertex is then found by pivoting from the l1 solution
+/// ([`crate::vertex_enumeration`]), or, when that search gives way, among the candidates of
+/// [`l2_max_by_vertices`] (an infinite bound is never active at a vertex).
 pub(crate) fn l2_max_high_redundancy(
     problem: &TensionProblem,
     ns: &NullSpace,
+    dense: &mut ActiveSet,
+    search: &mut VertexSearch,
     t: &mut [f64],
 ) -> Result<(), Infeasibility> {
-    if problem.bounds.max().iter().any(|v| !v.is_finite()) {
-        let l1 = TensionSolver::new(Method::L1).solve(problem).map_err(|e| {
-            Infeasibility::SolverFailure {
-                detail: format!("l2-max: feasibility test: {e}"),
+    match dense.solve(ns, problem.bounds, Objective::L1, "l2-max", t) {
+        DenseEnd::Infeasible(reason) => return Err(reason),
+        DenseEnd::Solved => {}
+        DenseEnd::Failed(_) => {
+            // The l1 LP by the full solver (Clarabel fallback included).
+            let l1 = TensionSolver::new(Method::L1).solve(problem).map_err(|e| {
+                Infeasibility::SolverFailure {
+                    detail: format!("l2-max: feasibility test: {e}"),
+                }
+            })?;
+            match l1 {
+                crate::TensionOutcome::Infeasible(reason) => return Err(reason),
+                crate::TensionOutcome::Feasible(s) => t.copy_from_slice(s.tensions.as_slice()),
             }
-        })?;
-        if let crate::TensionOutcome::Infeasible(reason) = l1 {
-            return Err(reason);
         }
+    }
+    if problem.bounds.max().iter().any(|v| !v.is_finite()) {
         match has_recession_ray(problem.wrench_matrix, problem.bounds) {
             Some(true) => return Err(Infeasibility::Unbounded { method: "l2-max" }),
             Some(false) => {}
@@ -104,10 +119,16 @@ pub(crate) fn l2_max_high_redundancy(
             }
         }
     }
-    l2_max_by_vertices(ns, problem.bounds, t)
+    let start = t.to_vec();
+    match search.l2_max(ns, problem.bounds, &start, t) {
+        Ok(answer) => answer,
+        Err(GaveUp) => l2_max_by_vertices(ns, problem.bounds, t),
+    }
 }
 
-/// l2-max for any redundancy r ≥ 1 by vertex enumeration in λ-space (allocates). The set must
+/// l2-max for any redundancy r ≥ 1 by candidate enumeration in λ-space (allocates): every
+/// choice of r cables at one of their bounds, C(n, r)·2ʳ linear systems. The fallback of the
+/// pivoting search, and its test oracle. The set must
 /// be bounded (see [`l2_max_high_redundancy`]); an infinite t_max is never a vertex's bound.
 pub(crate) fn l2_max_by_vertices(
     ns: &NullSpace,

@@ -40,6 +40,7 @@ use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
 use crate::sotda::{Sotda, SotdaSettings};
+use crate::vertex_enumeration::VertexSearch;
 use crate::{
     Infeasibility, Method, TensionError, TensionOutcome, TensionProblem, TensionSolution,
     barycenter, quadratic_program,
@@ -115,6 +116,7 @@ pub struct TensionSolver {
     icf: ImprovedClosedForm,
     sotda: Sotda,
     dense: ActiveSet,
+    vertices: VertexSearch,
     fallbacks: u64,
     t: Vec<f64>,
 }
@@ -131,6 +133,7 @@ impl TensionSolver {
             icf: ImprovedClosedForm::default(),
             sotda: Sotda::default(),
             dense: ActiveSet::default(),
+            vertices: VertexSearch::default(),
             fallbacks: 0,
             t: Vec::new(),
         }
@@ -395,7 +398,13 @@ impl TensionSolver {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
-                quadratic_program::l2_max_high_redundancy(p, &self.ns, &mut self.t)
+                quadratic_program::l2_max_high_redundancy(
+                    p,
+                    &self.ns,
+                    &mut self.dense,
+                    &mut self.vertices,
+                    &mut self.t,
+                )
             }
             _ => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {

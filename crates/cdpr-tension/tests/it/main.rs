@@ -11,5 +11,6 @@ mod input;
 mod minimum_norm_vs_l2;
 mod profile;
 mod properties;
+mod soak_regressions;
 mod sotda;
 mod thesis;
