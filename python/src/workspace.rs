@@ -14,6 +14,7 @@ use crate::value_error;
 use cdpr_kinematics::{MotionPattern, Pose};
 use cdpr_polytope::RequiredWrenchSet;
 use cdpr_tension::Method;
+use cdpr_workspace::CriterionSpec as Spec;
 use cdpr_workspace::{
     ChordSettings, Criterion, Grid, GridWorkspace, MeshSettings, PoseEvaluator, Region,
     VolumeConvention, boundary_mesh, chord_workspace, constant_orientation_workspace,
@@ -80,127 +81,16 @@ impl WorkspaceResult {
     }
 }
 
-/// One criterion as written in `--criteria` (the load is bound later).
-#[derive(Debug, Clone, PartialEq)]
-enum Spec {
-    Tension,
-    Length(f64),
-    Det(f64),
-    WrenchClosure,
-    Capacity(f64),
-    Isotropic(f64),
-    Stiffness(f64),
-    StiffnessFloor(f64, f64),
-    Interference(f64),
-}
-
-impl Spec {
-    fn label(&self) -> String {
-        match self {
-            Spec::Tension => "tension".into(),
-            Spec::Length(l) => format!("length:{l}"),
-            Spec::Det(d) => format!("det:{d}"),
-            Spec::WrenchClosure => "wrench-closure".into(),
-            Spec::Capacity(m) => format!("capacity:{m}"),
-            Spec::Isotropic(f) => format!("isotropic:{f}"),
-            Spec::Stiffness(k) => format!("stiffness:{k}"),
-            Spec::StiffnessFloor(kt, kr) => format!("stiffness:{kt},{kr}"),
-            Spec::Interference(d) => format!("interference:{d}"),
-        }
-    }
-}
-
-fn number(token: &str, value: &str) -> PyResult<f64> {
-    let v: f64 = value
-        .parse()
-        .map_err(|_| value_error(format!("criteria: `{token}`: `{value}` is not a number")))?;
-    if !v.is_finite() {
-        return Err(value_error(format!(
-            "criteria: `{token}`: the value must be finite"
-        )));
-    }
-    Ok(v)
-}
-
 /// The criteria of `tokens` (default: tension, plus length and det when the robot has limits).
 fn specs(robot: &Robot, tokens: Option<Vec<String>>) -> PyResult<Vec<Spec>> {
     let limits = robot.desc.limits;
-    let Some(tokens) = tokens else {
-        let mut s = vec![Spec::Tension];
-        s.extend(limits.min_cable_length.map(Spec::Length));
-        s.extend(limits.min_jacobian_det.map(Spec::Det));
-        return Ok(s);
-    };
-    let mut out = Vec::new();
-    for token in tokens.iter().flat_map(|t| t.split(',')).map(str::trim) {
-        if token.is_empty() {
-            continue;
-        }
-        // `stiffness:KT,KR`: a bare number after `stiffness:KT` is its KR.
-        if let (Some(Spec::Stiffness(kt)), Ok(kr)) = (out.last(), token.parse::<f64>()) {
-            let kt = *kt;
-            if !kr.is_finite() {
-                return Err(value_error(format!(
-                    "criteria stiffness:{kt},{token}: KR must be finite (N·m/rad)"
-                )));
-            }
-            if !robot.motion_pattern().has_orientation() {
-                return Err(value_error(format!(
-                    "criteria stiffness:{kt},{token}: a `{}` robot does not rotate; give \
-                     stiffness:KT (N/m) only",
-                    robot.motion_pattern().name()
-                )));
-            }
-            *out.last_mut().expect("just matched") = Spec::StiffnessFloor(kt, kr);
-            continue;
-        }
-        let (name, value) = match token.split_once(':') {
-            Some((n, v)) => (n, Some(v)),
-            None => (token, None),
-        };
-        out.push(match (name, value) {
-            ("tension", None) => Spec::Tension,
-            ("length", Some(v)) => Spec::Length(number(token, v)?),
-            ("length", None) => Spec::Length(limits.min_cable_length.ok_or_else(|| {
-                value_error("criteria length: the robot has no min_cable_length (give length:L)")
-            })?),
-            ("det", Some(v)) => Spec::Det(number(token, v)?),
-            ("det", None) => Spec::Det(limits.min_jacobian_det.ok_or_else(|| {
-                value_error("criteria det: the robot has no min_jacobian_det (give det:D)")
-            })?),
-            ("wrench-closure", None) => Spec::WrenchClosure,
-            ("capacity", v) => {
-                Spec::Capacity(v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0))
-            }
-            ("isotropic", Some(v)) => Spec::Isotropic(number(token, v)?),
-            ("stiffness", Some(v)) => Spec::Stiffness(number(token, v)?),
-            ("interference", v) => {
-                let d = v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0);
-                if d < 0.0 {
-                    return Err(value_error(format!(
-                        "criteria: `{token}`: the clearance D (m) must be ≥ 0"
-                    )));
-                }
-                Spec::Interference(d)
-            }
-            ("isotropic" | "stiffness", None) => {
-                return Err(value_error(format!(
-                    "criteria {name} needs a floor, e.g. {name}:10"
-                )));
-            }
-            _ => {
-                return Err(value_error(format!(
-                    "criteria: unknown criterion `{token}` (known: tension, length[:L], det[:D], \
-                     wrench-closure, capacity[:M], isotropic:F, stiffness:KT,KR, stiffness:K, \
-                     interference[:D])"
-                )));
-            }
-        });
-    }
-    if out.is_empty() {
-        return Err(value_error("criteria: give at least one criterion"));
-    }
-    Ok(out)
+    cdpr_workspace::parse_criteria(
+        tokens.as_ref().map(|t| t.iter().map(String::as_str)),
+        robot.motion_pattern(),
+        limits.min_cable_length,
+        limits.min_jacobian_det,
+    )
+    .map_err(|e| value_error(format!("criteria: {e}")))
 }
 
 /// The platform orientation: φ (planar), rx, ry, rz (spatial), none (point robots).

@@ -281,3 +281,24 @@ def test_passive_springs_are_part_of_the_external_wrench(cli):
         np.testing.assert_allclose(res.external_wrench[k], weight + springs["wrench"], atol=1e-12)
     with pytest.raises(ValueError, match="4 passive spring"):
         robot.workspace(resolution=4)
+
+
+@pytest.mark.parametrize("criteria", ["volume", "isotropic", "length:x", "det"])
+def test_criteria_errors_are_the_cli_s(robot_path, criteria):
+    # One parser (cdpr_workspace::parse_criteria) behind `--criteria` and `criteria=`.
+    import subprocess
+
+    from conftest import _find_cli
+
+    robot = cdpr.Robot.load(robot_path("krut-4"))
+    with pytest.raises(ValueError) as err:
+        robot.workspace(resolution=4, criteria=[criteria])
+    out = subprocess.run(
+        [str(_find_cli()), "workspace", str(robot_path("krut-4")), "--grid", "4",
+         "--criteria", criteria],
+        capture_output=True, text=True,
+    )
+    assert out.returncode == 2
+    message = str(err.value)
+    assert message.startswith("criteria: ")
+    assert message[len("criteria: "):] in out.stderr

@@ -77,6 +77,7 @@
 pub mod boundary_mesh;
 pub mod chord;
 mod criteria;
+mod criteria_spec;
 pub mod dextrous;
 pub mod discretisation;
 mod error;
@@ -94,6 +95,7 @@ pub use chord::{
     ChordSettings, ChordWorkspace, InteriorPoint, Polygon, Section, chord_section, chord_workspace,
 };
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
+pub use criteria_spec::{CriteriaError, CriterionSpec, parse_criteria};
 pub use dextrous::{
     CentralCheck, DextrousWorkspace, OrientationRange, dextrous_workspace,
     dextrous_workspace_about_axis, dextrous_workspace_over, euler_box,

@@ -204,44 +204,7 @@ pub struct CriteriaArgs {
 }
 
 /// One criterion as read from the command line (the wrench is bound per orientation later).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Spec {
-    /// Tensions in bounds (eq. 6.21).
-    Tension,
-    /// l_i ≥ l_min (eq. 6.22).
-    Length(f64),
-    /// |det J| ≥ D_min (eq. 6.24).
-    Det(f64),
-    /// Positive spanning.
-    WrenchClosure,
-    /// Capacity margin ≥ the value, for the box of half-widths `wrench_box`.
-    Capacity(f64),
-    /// Isotropic force ≥ the value.
-    Isotropic(f64),
-    /// λ_min(sym K) ≥ the value (mixed units).
-    Stiffness(f64),
-    /// sym(K) − diag(k_t I, k_r I) ⪰ 0: (k_t N/m, k_r N·m/rad).
-    StiffnessFloor(f64, f64),
-    /// Cables at least the value apart (m), none through the platform shape.
-    Interference(f64),
-}
-
-impl Spec {
-    /// Name with its value, for reports.
-    pub fn label(&self) -> String {
-        match self {
-            Spec::Tension => "tension".into(),
-            Spec::Length(l) => format!("length:{l}"),
-            Spec::Det(d) => format!("det:{d}"),
-            Spec::WrenchClosure => "wrench-closure".into(),
-            Spec::Capacity(m) => format!("capacity:{m}"),
-            Spec::Isotropic(f) => format!("isotropic:{f}"),
-            Spec::Stiffness(k) => format!("stiffness:{k}"),
-            Spec::StiffnessFloor(kt, kr) => format!("stiffness:{kt},{kr}"),
-            Spec::Interference(d) => format!("interference:{d}"),
-        }
-    }
-}
+pub use cdpr::workspace::CriterionSpec as Spec;
 
 /// The criteria of a command, ready to build an evaluator at any orientation.
 #[derive(Debug, Clone)]
@@ -265,16 +228,6 @@ pub fn default_method(robot: &Robot) -> Method {
     }
 }
 
-fn number(token: &str, value: &str) -> Result<f64, CliError> {
-    let v: f64 = value
-        .parse()
-        .map_err(|_| format!("--criteria: `{token}`: `{value}` is not a number"))?;
-    if !v.is_finite() {
-        return Err(format!("--criteria: `{token}`: the value must be finite").into());
-    }
-    Ok(v)
-}
-
 impl CriteriaSetup {
     /// Reads the criteria options against the robot file.
     pub fn from_args(
@@ -286,94 +239,13 @@ impl CriteriaSetup {
         desc.require_no_passive_springs("the workspace")?;
         let dof = desc.robot.dof();
         let limits = desc.limits;
-        let specs = match &args.criteria {
-            None => {
-                let mut s = vec![Spec::Tension];
-                if let Some(l) = limits.min_cable_length {
-                    s.push(Spec::Length(l));
-                }
-                if let Some(d) = limits.min_jacobian_det {
-                    s.push(Spec::Det(d));
-                }
-                s
-            }
-            Some(list) => {
-                let mut s: Vec<Spec> = Vec::new();
-                for token in list.split(',').map(str::trim).filter(|t| !t.is_empty()) {
-                    // `stiffness:KT,KR`: a bare number after `stiffness:KT` is its KR.
-                    if let (Some(Spec::Stiffness(kt)), Ok(kr)) = (s.last(), token.parse::<f64>()) {
-                        let kt = *kt;
-                        if !kr.is_finite() {
-                            return Err(format!(
-                                "--criteria stiffness:{kt},{token}: KR must be finite (N·m/rad)"
-                            )
-                            .into());
-                        }
-                        if !desc.robot.motion().has_orientation() {
-                            return Err(format!(
-                                "--criteria stiffness:{kt},{token}: a `{}` robot does not rotate; \
-                                 give stiffness:KT (N/m) only",
-                                desc.robot.motion().name()
-                            )
-                            .into());
-                        }
-                        *s.last_mut().expect("just matched") = Spec::StiffnessFloor(kt, kr);
-                        continue;
-                    }
-                    let (name, value) = match token.split_once(':') {
-                        Some((n, v)) => (n, Some(v)),
-                        None => (token, None),
-                    };
-                    let spec = match (name, value) {
-                        ("tension", None) => Spec::Tension,
-                        ("length", Some(v)) => Spec::Length(number(token, v)?),
-                        ("length", None) => Spec::Length(limits.min_cable_length.ok_or(
-                            "--criteria length: the robot file has no [limits] min_cable_length \
-                             (give one as length:L)",
-                        )?),
-                        ("det", Some(v)) => Spec::Det(number(token, v)?),
-                        ("det", None) => Spec::Det(limits.min_jacobian_det.ok_or(
-                            "--criteria det: the robot file has no [limits] min_jacobian_det \
-                             (give one as det:D)",
-                        )?),
-                        ("wrench-closure", None) => Spec::WrenchClosure,
-                        ("capacity", v) => {
-                            Spec::Capacity(v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0))
-                        }
-                        ("isotropic", Some(v)) => Spec::Isotropic(number(token, v)?),
-                        ("interference", v) => {
-                            let d = v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0);
-                            if d < 0.0 {
-                                return Err(format!(
-                                    "--criteria: `{token}`: the clearance D (m) must be ≥ 0"
-                                )
-                                .into());
-                            }
-                            Spec::Interference(d)
-                        }
-                        ("stiffness", Some(v)) => Spec::Stiffness(number(token, v)?),
-                        ("isotropic" | "stiffness", None) => {
-                            return Err(
-                                format!("--criteria {name} needs a floor, e.g. {name}:10").into()
-                            );
-                        }
-                        _ => {
-                            return Err(format!(
-                                "--criteria: unknown criterion `{token}` (known: tension, \
-                                 length[:L], det[:D], wrench-closure, capacity[:M], \
-                                 isotropic:F, stiffness:KT,KR, stiffness:K, interference[:D])"
-                            )
-                            .into());
-                        }
-                    };
-                    s.push(spec);
-                }
-                s
-            }
-        };
-        if specs.is_empty() {
-            return Err("--criteria: give at least one criterion".into());
-        }
+        let specs = cdpr::workspace::parse_criteria(
+            args.criteria.as_deref().map(|c| [c]),
+            desc.robot.motion(),
+            limits.min_cable_length,
+            limits.min_jacobian_det,
+        )
+        .map_err(|e| format!("--criteria: {e}"))?;
         let wrench_box = args.wrench_box.as_ref().map(|b| b.0.clone());
         if specs.iter().any(|s| matches!(s, Spec::Capacity(_))) {
             match &wrench_box {
