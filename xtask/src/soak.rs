@@ -762,6 +762,20 @@ pub fn run(args: &[String]) -> ExitCode {
 mod tests {
     use super::*;
 
+    /// Problems of the 10⁶-problem soak (seed 20261122) that l2, l2-max and linf called
+    /// infeasible: redundancy 1, two fixed cables, one of them with a null-space row of
+    /// 10⁻⁵–10⁻⁴ (the feasible segment collapsed to a point that the other fixed cable missed).
+    #[test]
+    fn soak_regressions_fixed_cables_with_tiny_null_space_rows() {
+        for index in [544_506, 868_887, 917_609] {
+            let report = soak_range(20_261_122, index..index + 1, |_| {});
+            for f in &report.failures {
+                eprintln!("{f}");
+            }
+            assert!(report.clean(), "problem {index}: {:#?}", report.methods);
+        }
+    }
+
     /// The soak that stays (issue 13 §8): 2 000 problems, no false answer from a complete
     /// method, and every kind of problem drawn (fixed cables, infinite t_max, both verdicts).
     #[test]

@@ -186,6 +186,23 @@ impl Region {
                 let a = ns.row2(i);
                 let t0 = ns.t0[i];
                 let tol_lo = self.tolerance(lo[i]);
+                if hi[i] == lo[i] && r == 1 {
+                    // t0 + a·λ = t_min, kept as the band |a·λ − (t_min − t0)| ≤ tol (cut at
+                    // the band's edges): λ is a scalar, so a fixed cable whose null-space row a
+                    // is tiny pins λ only to ±tol/|a|, and a second fixed cable must be allowed
+                    // to meet it anywhere in that band. Cutting at the line itself collapsed
+                    // the segment to one point whose rounding, amplified by 1/|a|, made the
+                    // second fixed cable miss it (three false "no feasible tension" in the
+                    // 10⁶-problem soak, l2, l2-max and linf). The band's ends are within the
+                    // clipping tolerance of t_min, so the certificate accepts them.
+                    let b = lo[i] - t0;
+                    if !self.clip(a, b - tol_lo, tol_lo)
+                        || !self.clip([-a[0], -a[1]], -b - tol_lo, tol_lo)
+                    {
+                        return false;
+                    }
+                    continue;
+                }
                 if hi[i] == lo[i] {
                     // t0 + a·λ = t_min
                     if !self.clip_line(a, lo[i] - t0, tol_lo) {
