@@ -274,48 +274,21 @@ pub fn synthesise<O: Objective + ?Sized>(
     settings.validate()?;
     design::check_design(start)?;
     settings.check_feasible_separation(start.len())?;
-    let mut result = optimise(objective, start, settings);
-    reduce_angles(objective, &mut result);
-    Ok(result)
-}
-
-/// Reports the design with every angle in [0, 2π) (the global stage can move anchors past 2π,
-/// e.g. 12.0656 rad) when the objective confirms that the reduced design has the same value, as
-/// the thesis' area does: an anchor depends on its angle modulo 2π only. An objective that is not
-/// 2π-periodic keeps its design as found.
-fn reduce_angles<O: Objective + ?Sized>(objective: &mut O, result: &mut SynthesisResult) {
-    let reduced: Vec<f64> = result
-        .design
-        .iter()
-        .map(|b| b.rem_euclid(std::f64::consts::TAU))
-        .collect();
-    if reduced != result.design && objective.value(&reduced) == result.area {
-        result.design = reduced;
-        result.evaluations.function += 1;
-    }
-}
-
-/// The optimiser(s) of `settings.method` from `start`.
-fn optimise<O: Objective + ?Sized>(
-    objective: &mut O,
-    start: &[f64],
-    settings: &SynthesisSettings,
-) -> SynthesisResult {
     match settings.method {
-        Method::DynamicQ => dynamic_q::maximise(
+        Method::DynamicQ => Ok(dynamic_q::maximise(
             objective,
             start,
             settings.min_separation,
             settings.penalty,
             &settings.dynamic_q,
-        ),
-        Method::CompassSearch => compass_search::maximise(
+        )),
+        Method::CompassSearch => Ok(compass_search::maximise(
             objective,
             start,
             settings.min_separation,
             settings.penalty,
             &settings.compass,
-        ),
+        )),
         Method::DynamicQThenCompass | Method::Global => {
             let first = dynamic_q::maximise(
                 objective,
@@ -335,15 +308,15 @@ fn optimise<O: Objective + ?Sized>(
             second.iterations += first.iterations;
             // The compass search never returns a worse penalised value than its start.
             if settings.method == Method::Global {
-                return multi_start::maximise(
+                return Ok(multi_start::maximise(
                     objective,
                     second,
                     settings.min_separation,
                     settings.penalty,
                     &settings.multi_start,
-                );
+                ));
             }
-            second
+            Ok(second)
         }
     }
 }
@@ -540,51 +513,5 @@ mod tests {
                 assert!((d - e).abs() < 5e-3, "{method:?}: {:?}", r.design);
             }
         }
-    }
-}
-
-#[cfg(test)]
-mod reduce_angles_tests {
-    use super::*;
-    use std::f64::consts::TAU;
-
-    fn result(design: Vec<f64>, area: f64) -> SynthesisResult {
-        SynthesisResult {
-            design,
-            area,
-            constraint_violation: 0.0,
-            evaluations: Evaluations::default(),
-            iterations: 0,
-            termination: Termination::Converged,
-        }
-    }
-
-    /// A 2π-periodic objective (as the thesis' area): the design is reported in [0, 2π).
-    #[test]
-    fn periodic_objective_reports_angles_below_two_pi() {
-        let mut periodic = |d: &[f64]| d.iter().map(|b| (b.rem_euclid(TAU) - 1.0).abs()).sum();
-        let design = vec![12.0656, 0.5, -0.25];
-        let area = periodic(&design);
-        let mut r = result(design, area);
-        reduce_angles(&mut periodic, &mut r);
-        assert!(
-            r.design.iter().all(|b| (0.0..TAU).contains(b)),
-            "{:?}",
-            r.design
-        );
-        assert_eq!(r.design[0], 12.0656_f64.rem_euclid(TAU));
-        assert_eq!(r.design[1], 0.5);
-        assert_eq!(r.area, area);
-        assert_eq!(r.evaluations.function, 1);
-    }
-
-    /// An objective that is not periodic keeps the design as found.
-    #[test]
-    fn non_periodic_objective_keeps_the_design() {
-        let mut sum = |d: &[f64]| d.iter().sum::<f64>();
-        let design = vec![7.0, 0.5];
-        let mut r = result(design.clone(), sum(&design));
-        reduce_angles(&mut sum, &mut r);
-        assert_eq!(r.design, design);
     }
 }
