@@ -5,8 +5,10 @@ use super::tables::{Reoptimised, Row, cell_area, evaluations_json};
 use serde_json::json;
 use std::fmt::Write;
 
+use cdpr_workspace::synthesis::in_first_turn;
+
 fn betas(b: &[f64]) -> String {
-    let v: Vec<String> = b.iter().map(|x| format!("{x:.4}")).collect();
+    let v: Vec<String> = in_first_turn(b).iter().map(|x| format!("{x:.4}")).collect();
     format!("[{}]", v.join(", "))
 }
 
@@ -32,16 +34,16 @@ pub fn json(rows: &[Row], conventions: &Conventions, seconds: f64, settle_second
             }
             if let Some(re) = &r.reoptimised {
                 o["published_gradient_evaluations"] = json!(r.published_gradients);
-                o["optimized_betas"] = json!(re.global.design);
+                o["optimized_betas"] = json!(in_first_turn(&re.global.design));
                 o["optimized_area"] = json!(re.global.area);
                 o["evaluations"] = evaluations_json(&re.global);
                 o["dynamic_q"] = json!({
-                    "betas": re.dynamic_q.design,
+                    "betas": in_first_turn(&re.dynamic_q.design),
                     "area": re.dynamic_q.area,
                     "evaluations": evaluations_json(&re.dynamic_q),
                 });
                 o["dynamic_q_compass"] = json!({
-                    "betas": re.polished.design,
+                    "betas": in_first_turn(&re.polished.design),
                     "area": re.polished.area,
                     "evaluations": evaluations_json(&re.polished),
                 });

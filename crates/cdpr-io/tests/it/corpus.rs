@@ -254,7 +254,9 @@ fn import_convert_reimport_keeps_every_number() {
 }
 
 fn tempdir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("cdpr-io-corpus-{}", std::process::id()));
+    let dir = // Cargo's scratch directory for integration tests (target/tmp), reused by every run, so
+    // that no run leaves a directory behind in the system's temporary directory.
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("corpus");
     std::fs::create_dir_all(&dir).unwrap();
     dir
 }

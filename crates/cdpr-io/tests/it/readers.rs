@@ -356,7 +356,9 @@ fn caspr_errors_name_file_line_and_element() {
         "{e}"
     );
     // A missing bodies file.
-    let dir = std::env::temp_dir().join(format!("cdpr-io-readers-{}", std::process::id()));
+    let dir = // Cargo's scratch directory for integration tests (target/tmp), reused by every run, so
+    // that no run leaves a directory behind in the system's temporary directory.
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("readers");
     std::fs::create_dir_all(&dir).unwrap();
     let lonely = dir.join("lonely_cables.xml");
     std::fs::write(&lonely, cables_file(&six("joint"))).unwrap();

@@ -26,6 +26,16 @@ pub fn frame_anchor(beta: f64) -> [f64; 2] {
     [rho * c, rho * s]
 }
 
+/// The same design shifted by a whole number of turns, 2π·round(β₁ / 2π), so that β₁ ∈ [−π, π]
+/// and the other angles keep their offsets from it (the cyclic order reads as written). Every
+/// anchor depends on its angle modulo 2π only; the optimisers, whose steps may carry the angles
+/// past 2π (the global stage reached [5.9570, 8.6478, 12.0656] rad), are left untouched, and
+/// reports print this form (thesis Table 6.10 writes d* = [−0.3146, 2.379, 5.794]).
+pub fn in_first_turn(betas: &[f64]) -> Vec<f64> {
+    let turns = betas.first().map_or(0.0, |b| (b / TAU).round());
+    betas.iter().map(|b| b - turns * TAU).collect()
+}
+
 /// Platform attachments **ā**^i of Table 6.1 (platform coordinates, z = 0) for the 3- or 4-cable
 /// manipulator of the thesis chapter on planar tendon-driven manipulators; `None` for other cable counts.
 pub fn thesis_platform(cables: usize) -> Option<Vec<[f64; 2]>> {
@@ -192,6 +202,27 @@ mod tests {
     use super::*;
     use approx::assert_abs_diff_eq;
     use proptest::prelude::*;
+
+    #[test]
+    fn designs_are_reported_in_the_first_turn() {
+        let d = in_first_turn(&[5.9570, 8.6478, 12.0656]);
+        let e = [5.9570 - TAU, 8.6478 - TAU, 12.0656 - TAU];
+        for (a, b) in d.iter().zip(e) {
+            assert_abs_diff_eq!(*a, b, epsilon = 1e-15);
+        }
+        assert_eq!(
+            in_first_turn(&[-0.3146, 2.379, 5.794]),
+            [-0.3146, 2.379, 5.794]
+        );
+        assert_eq!(in_first_turn(&[-7.0])[0], -7.0 + TAU);
+        assert!(in_first_turn(&[]).is_empty());
+        // The same anchors.
+        for (a, b) in d.iter().zip([5.9570, 8.6478, 12.0656]) {
+            let (p, q) = (frame_anchor(*a), frame_anchor(b));
+            assert_abs_diff_eq!(p[0], q[0], epsilon = 1e-12);
+            assert_abs_diff_eq!(p[1], q[1], epsilon = 1e-12);
+        }
+    }
 
     #[test]
     fn anchors_of_hand_picked_angles() {

@@ -65,8 +65,8 @@ mod projection;
 
 pub use compass_search::CompassSettings;
 pub use design::{
-    cables_clear_platform, cyclic_order, frame_anchor, robot_from_design, same_cyclic_order,
-    separation_violation, thesis_platform,
+    cables_clear_platform, cyclic_order, frame_anchor, in_first_turn, robot_from_design,
+    same_cyclic_order, separation_violation, thesis_platform,
 };
 pub use dynamic_q::DynamicQSettings;
 pub use multi_start::MultiStartSettings;

@@ -10,8 +10,8 @@ use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::tension::Method;
 use cdpr::workspace::synthesis::{
-    Method as Optimizer, SynthesisSettings, Termination, frame_anchor, robot_from_design,
-    separation_violation, synthesise,
+    Method as Optimizer, SynthesisSettings, Termination, frame_anchor, in_first_turn,
+    robot_from_design, separation_violation, synthesise,
 };
 use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
 use indicatif::ProgressBar;
@@ -51,7 +51,7 @@ A_d is counted as the thesis does (feasible points × cell area, JSON `volume_co
 \"points\"), so that its published areas are reproduced; `cdpr dextrous --volume-convention
 points` gives the same number for a design.
 
-JSON: `design` (optimised angles, rad), `area` (its A_d, m²), `evaluations` {`function`,
+JSON: `design` (optimised angles, rad, shifted by whole turns so that β1 ∈ [−π, π]), `area` (its A_d, m²), `evaluations` {`function`,
 `gradient`}, `start`, `start_area`, `termination` (\"converged\" or \"budget\"), `anchors`
 (optimised frame points), `constraint_violation`, `iterations`, `feasible_points`,
 `total_points`, `cell_area`, `central_check`.";
@@ -266,7 +266,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "start": args.start.0,
             "start_area": start_ws.workspace.area,
             "start_constraint_violation": separation_violation(&args.start, settings.min_separation),
-            "design": result.design,
+            "design": in_first_turn(&result.design),
             "area": result.area,
             "anchors": anchors,
             "constraint_violation": result.constraint_violation,
@@ -310,7 +310,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     );
     println!(
         "optimum  d* = [{}]  A_d = {:.6} ({} points)",
-        fmt(&result.design),
+        fmt(&in_first_turn(&result.design)),
         result.area,
         best.workspace.feasible_points
     );

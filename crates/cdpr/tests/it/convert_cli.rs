@@ -15,7 +15,9 @@ fn data(rel: &str) -> String {
 }
 
 fn tmp(name: &str) -> String {
-    let dir = std::env::temp_dir().join(format!("cdpr-convert-cli-{}", std::process::id()));
+    let dir = // Cargo's scratch directory for integration tests (target/tmp), reused by every run, so
+    // that no run leaves a directory behind in the system's temporary directory.
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("convert_cli");
     std::fs::create_dir_all(&dir).unwrap();
     dir.join(name).display().to_string()
 }
