@@ -16,15 +16,16 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::hint::black_box;
 
-struct Pose8 {
+struct FeasiblePose {
     kin: PoseKinematics,
     w: DMatrix<f64>,
 }
 
-fn feasible_spatial(count: usize) -> (Vec<Pose8>, DVector<f64>, TensionBounds, Vec<f64>) {
-    let robot = ipanema_like_8();
+/// The first `count` poses of `spatial_poses` where `robot` holds a 10 kg platform under
+/// gravity with tensions in [1, 1000] N (l2 feasible): their kinematics and W.
+fn feasible_poses(robot: &Robot, count: usize) -> (Vec<FeasiblePose>, DVector<f64>, TensionBounds) {
     let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
-    let b = TensionBounds::uniform(8, 1.0, 1000.0).unwrap();
+    let b = TensionBounds::uniform(robot.cable_count(), 1.0, 1000.0).unwrap();
     let mut l2 = TensionSolver::new(Method::L2);
     let mut out = Vec::new();
     for pose in spatial_poses(20 * count) {
@@ -33,13 +34,18 @@ fn feasible_spatial(count: usize) -> (Vec<Pose8>, DVector<f64>, TensionBounds, V
         };
         let w = kin.wrench_matrix();
         if l2.is_feasible(&TensionProblem::new(&w, &we, &b)).unwrap() {
-            out.push(Pose8 { kin, w });
+            out.push(FeasiblePose { kin, w });
             if out.len() == count {
                 break;
             }
         }
     }
     assert_eq!(out.len(), count, "not enough feasible poses");
+    (out, we, b)
+}
+
+fn feasible_spatial(count: usize) -> (Vec<FeasiblePose>, DVector<f64>, TensionBounds, Vec<f64>) {
+    let (out, we, b) = feasible_poses(&ipanema_like_8(), count);
     (out, we, b, vec![80e9 * 0.75e-6; 8])
 }
 
@@ -231,24 +237,8 @@ fn bench_planar_redundant(c: &mut Criterion) {
 /// the feasible bases (issue 13 §1, goal ≤ 100 µs per pose).
 fn bench_twelve_cable_l2_max(c: &mut Criterion) {
     const N: usize = 100;
-    let robot = twelve_cable_spatial();
-    let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
-    let b = TensionBounds::uniform(12, 1.0, 1000.0).unwrap();
-    let mut l2 = TensionSolver::new(Method::L2);
-    let mut ws = Vec::new();
-    for pose in spatial_poses(20 * N) {
-        let Ok(kin) = robot.inverse_kinematics(&pose) else {
-            continue;
-        };
-        let w = kin.wrench_matrix();
-        if l2.is_feasible(&TensionProblem::new(&w, &we, &b)).unwrap() {
-            ws.push(w);
-            if ws.len() == N {
-                break;
-            }
-        }
-    }
-    assert_eq!(ws.len(), N, "not enough feasible poses");
+    let (poses, we, b) = feasible_poses(&twelve_cable_spatial(), N);
+    let ws: Vec<DMatrix<f64>> = poses.into_iter().map(|p| p.w).collect();
     let mut g = c.benchmark_group("tension_12_cable");
     g.throughput(Throughput::Elements(N as u64));
     let mut solver = TensionSolver::new(Method::L2Max);
