@@ -99,8 +99,9 @@ pub(crate) struct VertexSearch {
     tie_lo: Vec<f64>,
     tie_hi: Vec<f64>,
     found: Vec<(usize, f64)>,
-    /// Orthonormalised rows (start-up only).
+    /// Orthonormalised rows and a row being orthogonalised (start-up only).
     q: Vec<f64>,
+    row: Vec<f64>,
     /// The search stack: bases to visit, and the (t, T, cables) blocks of those reached by a
     /// pivot (in stack order, so a popped node's block is the last one).
     nodes: Vec<Node>,
@@ -112,7 +113,7 @@ pub(crate) struct VertexSearch {
 
 /// Pivots after which a basis is factorised afresh instead of updated (bounds the rounding
 /// that the tableau updates accumulate along a path of the search).
-const REFACTOR_EVERY: u32 = 16;
+const REFACTOR_EVERY: u32 = 24;
 
 /// A basis on the search stack: `depth` pivots since its path's last factorisation; `pivoted`
 /// when its tensions and tableau wait in the pool (else it is factorised when visited).
@@ -129,13 +130,13 @@ pub(crate) struct GaveUp;
 
 impl VertexSearch {
     /// The largest ‖t‖² over the vertices of the bounded, non-empty set
-    /// {t0 + N λ : bounds}, starting from the feasible tensions `start`. Writes the best vertex's
-    /// tensions to `t`.
+    /// {t0 + N λ : bounds}, starting from the feasible tensions in `t`; writes the best
+    /// vertex's tensions to `t` (`t` is untouched when the search gives way). Allocates
+    /// nothing once its buffers have grown (the hash set keeps its capacity).
     pub fn l2_max(
         &mut self,
         ns: &NullSpace,
         bounds: &TensionBounds,
-        start: &[f64],
         t: &mut [f64],
     ) -> Result<Result<(), Infeasibility>, GaveUp> {
         let (n, r) = (ns.n, ns.r());
@@ -172,7 +173,7 @@ impl VertexSearch {
         self.pool.clear();
         self.pool_cables.clear();
         self.evaluated = 0;
-        let first = self.first_basis(ns, bounds, start)?;
+        let first = self.first_basis(ns, bounds, t)?;
         self.visited.insert(first);
         self.nodes.push(Node {
             key: first,
@@ -306,10 +307,11 @@ impl VertexSearch {
             let others = key.0 & !(1u64 << c);
             let mut theta = f64::INFINITY;
             let mut found = 0;
-            for i in 0..n {
-                if others >> i & 1 == 1 {
-                    continue;
-                }
+            // The cables outside S − c (bits of the complement, in order).
+            let mut free = !others & (u64::MAX >> (64 - n));
+            while free != 0 {
+                let i = free.trailing_zeros() as usize;
+                free &= free - 1;
                 let rate = sigma * rates[i];
                 let a = rate.abs();
                 if a <= self.negligible[i] * dnorm {
@@ -362,34 +364,24 @@ impl VertexSearch {
                 }
                 // The vertex of S − c + i: step θ_i along the edge, t_i exactly on its bound.
                 let at = self.pool.len();
-                self.pool.resize(at + n * (r + 1), 0.0);
-                let (t_new, tab_new) = self.pool[at..].split_at_mut(n);
                 let step = sigma * step_i;
-                for ((o, ti), d) in t_new.iter_mut().zip(t).zip(rates) {
-                    *o = ti + step * d;
-                }
-                t_new[i] = bound;
+                self.pool
+                    .extend(t.iter().zip(rates).map(|(ti, d)| ti + step * d));
+                self.pool[at + i] = bound;
                 // Pivot on T_ik: column k ← T e_k / T_ik, column j ← T e_j − T_ij column k,
                 // and row i ← e_k exactly.
                 let pivot = rates[i];
-                let (before, rest) = tab_new.split_at_mut(k * n);
-                let (col_k, after) = rest.split_at_mut(n);
-                for (o, d) in col_k.iter_mut().zip(rates) {
-                    *o = d / pivot;
-                }
-                col_k[i] = 1.0;
-                for (j, out) in before
-                    .chunks_exact_mut(n)
-                    .chain(after.chunks_exact_mut(n))
-                    .enumerate()
-                {
-                    let j = if j < k { j } else { j + 1 };
+                let pivot_row: &[f64] = &self.tab[i..];
+                for j in 0..r {
                     let col = &self.tab[j * n..(j + 1) * n];
-                    let f = col[i];
-                    for ((o, a), b) in out.iter_mut().zip(col).zip(col_k.iter()) {
-                        *o = a - f * b;
+                    if j == k {
+                        self.pool.extend(col.iter().map(|d| d / pivot));
+                    } else {
+                        let f = pivot_row[j * n] / pivot;
+                        self.pool
+                            .extend(col.iter().zip(rates).map(|(a, d)| a - f * d));
                     }
-                    out[i] = 0.0;
+                    self.pool[at + n + j * n + i] = if j == k { 1.0 } else { 0.0 };
                 }
                 self.pool_cables.extend_from_slice(&self.cables);
                 let last = self.pool_cables.len() - r;
@@ -547,7 +539,9 @@ impl VertexSearch {
     /// Adds row N_i to the orthonormal rows `q` if it is independent of them.
     fn orthogonalise(&mut self, ns: &NullSpace, i: usize) -> bool {
         let (n, r) = (ns.n, ns.r());
-        let mut v: Vec<f64> = (0..r).map(|j| ns.basis[i + n * j]).collect();
+        let mut v = std::mem::take(&mut self.row);
+        v.clear();
+        v.extend((0..r).map(|j| ns.basis[i + n * j]));
         let norm0 = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         for _ in 0..2 {
             for q in self.q.chunks(r) {
@@ -556,11 +550,12 @@ impl VertexSearch {
             }
         }
         let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if norm0 == 0.0 || norm <= 1e-9 * norm0 {
-            return false;
+        let independent = norm0 != 0.0 && norm > 1e-9 * norm0;
+        if independent {
+            self.q.extend(v.iter().map(|x| x / norm));
         }
-        self.q.extend(v.iter().map(|x| x / norm));
-        true
+        self.row = v;
+        independent
     }
 }
 
@@ -736,9 +731,9 @@ mod tests {
                     let start = TensionSolver::new(Method::L1).solve(&p).unwrap();
                     let mut ns = NullSpace::default();
                     ns.compute(&w, &we).unwrap();
-                    let mut t = vec![0.0; w.ncols()];
+                    let mut t = start.tensions().unwrap().as_slice().to_vec();
                     let mut search = super::VertexSearch::default();
-                    let answer = search.l2_max(&ns, &b, start.tensions().unwrap().as_slice(), &mut t);
+                    let answer = search.l2_max(&ns, &b, &mut t);
                     prop_assert!(matches!(answer, Ok(Ok(()))), "the search gave way");
                     let direct: f64 = t.iter().map(|v| v * v).sum();
                     prop_assert!((direct - f).abs() <= 1e-7 * f, "search {direct} vs {f}");
@@ -764,11 +759,8 @@ mod tests {
             let mut ns = NullSpace::default();
             ns.compute(&w, &we).unwrap();
             let mut search = super::VertexSearch::default();
-            let mut got = vec![0.0; 12];
-            search
-                .l2_max(&ns, &b, t.as_slice(), &mut got)
-                .unwrap()
-                .unwrap();
+            let mut got = t.as_slice().to_vec();
+            search.l2_max(&ns, &b, &mut got).unwrap().unwrap();
             let f: f64 = got.iter().map(|v| v * v).sum();
             let expected = oracle(&w, &we, &b).unwrap();
             assert!((f - expected).abs() <= 1e-9 * expected, "{f} vs {expected}");
