@@ -187,6 +187,20 @@ pub(crate) fn snap_and_certify(
     }
 }
 
+/// The verdict of [`snap_and_certify_fixed`] without the failure's description, for W given
+/// as its column-major values (M rows): the same snapping, the same sums in the same order.
+#[inline(always)]
+pub(crate) fn snap_and_certify_fixed_ok<const M: usize>(
+    ws: &[f64],
+    we: &[f64],
+    bounds: &TensionBounds,
+    t: &mut [f64],
+) -> bool {
+    let inside = snap_all(bounds, t);
+    let (residual, scale) = equilibrium::<M>(ws, we, t);
+    inside && in_equilibrium(residual, scale)
+}
+
 /// [`snap_and_certify`] for a DOF = M known at compile time (W is M × t.len()): the same
 /// snapping, the same sums in the same order, the same verdict.
 #[inline(always)]

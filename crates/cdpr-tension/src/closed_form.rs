@@ -31,7 +31,7 @@
 use crate::certificate::{BOUND_TOLERANCE, bound_violation};
 use crate::null_space::SINGULARITY_RATIO;
 use crate::outcome::validate;
-use crate::{Infeasibility, TensionError, TensionProblem};
+use crate::{Infeasibility, TensionBounds, TensionError, TensionProblem};
 use nalgebra::DVector;
 
 /// The feasible interval of a redundancy-1 problem (Algorithm 6.1).
@@ -423,15 +423,29 @@ pub(crate) fn solve_small<const M: usize>(
     maximize: bool,
     t: &mut [f64],
 ) -> Result<(), Infeasibility> {
-    let n = M + 1;
-    let mut s = Small::default();
-    param_small::<M>(
+    solve_small_slices::<M>(
         problem.wrench_matrix.as_slice(),
         problem.external_wrench.as_slice(),
-        &mut s,
-    )?;
-    let tmin = &problem.bounds.min().as_slice()[..n];
-    let tmax = &problem.bounds.max().as_slice()[..n];
+        problem.bounds,
+        maximize,
+        t,
+    )
+}
+
+/// [`solve_small`] on W given as its column-major values (M × (M + 1)) and w_ext as a slice.
+#[inline(always)]
+pub(crate) fn solve_small_slices<const M: usize>(
+    ws: &[f64],
+    we: &[f64],
+    bounds: &TensionBounds,
+    maximize: bool,
+    t: &mut [f64],
+) -> Result<(), Infeasibility> {
+    let n = M + 1;
+    let mut s = Small::default();
+    param_small::<M>(ws, we, &mut s)?;
+    let tmin = &bounds.min().as_slice()[..n];
+    let tmax = &bounds.max().as_slice()[..n];
     let t = &mut t[..n];
     // Eq. (6.18) per cable; `n` (out of range) marks "no defining cable".
     let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
@@ -488,6 +502,70 @@ pub(crate) fn solve_small<const M: usize>(
     }
     Ok(())
 }
+/// Whether the planar r = 1 problem (DOF 3, 4 cables) has certified tensions by Algorithm 6.1:
+/// the verdict of [`crate::TensionSolver::is_feasible`] with `ClosedForm` or `L1` (`maximize`
+/// false: the smaller-Σt end) or `L1Max` (`maximize` true) on the same W, w_ext and bounds —
+/// the same fixed-size arithmetic and certificate, without the `DMatrix` problem and the
+/// method dispatch. For loops over millions of poses (the dextrous workspace of the thesis
+/// chapter on planar tendon-driven manipulators, Table 6.10). Errors on non-finite W or w_ext
+/// and on bounds that are not for 4 cables, as the solver does.
+///
+/// ```
+/// use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver, closed_form};
+/// use nalgebra::{DMatrix, Matrix3x4, Vector3};
+/// let w = Matrix3x4::new(1.0, 0.0, -1.0, 0.0, 0.0, 1.0, 0.0, -1.0, 0.1, -0.1, 0.1, -0.1);
+/// let we = Vector3::new(0.0, -10.0, 0.0);
+/// let b = TensionBounds::uniform(4, 1.0, 100.0).unwrap();
+/// let lean = closed_form::is_feasible_planar(&w, &we, &b, false).unwrap();
+/// let (wd, wed) = (DMatrix::from_column_slice(3, 4, w.as_slice()), we.as_slice().to_vec().into());
+/// let full = TensionSolver::new(Method::L1).is_feasible(&TensionProblem::new(&wd, &wed, &b));
+/// assert_eq!(lean, full.unwrap());
+/// assert!(lean);
+/// ```
+pub fn is_feasible_planar(
+    w: &nalgebra::Matrix3x4<f64>,
+    w_ext: &nalgebra::Vector3<f64>,
+    bounds: &TensionBounds,
+    maximize: bool,
+) -> Result<bool, TensionError> {
+    if bounds.len() != 4 {
+        return Err(TensionError::DimensionMismatch {
+            what: "tension bounds vs wrench matrix columns",
+            expected: 4,
+            found: bounds.len(),
+        });
+    }
+    let (ws, we) = (w.as_slice(), w_ext.as_slice());
+    if !ws.iter().chain(we).all(|v| v.is_finite()) {
+        return Err(not_finite(ws, we));
+    }
+    let mut t = [0.0; 4];
+    Ok(
+        solve_small_slices::<3>(ws, we, bounds, maximize, &mut t).is_ok()
+            && crate::certificate::snap_and_certify_fixed_ok::<3>(ws, we, bounds, &mut t),
+    )
+}
+
+/// The first non-finite entry of W (column-major) or w_ext, as the solver reports it.
+#[cold]
+fn not_finite(ws: &[f64], we: &[f64]) -> TensionError {
+    match ws.iter().position(|v| !v.is_finite()) {
+        Some(index) => TensionError::NotFinite {
+            what: "wrench matrix entry (column-major index)",
+            index,
+            value: ws[index],
+        },
+        None => {
+            let index = we.iter().position(|v| !v.is_finite()).unwrap_or(0);
+            TensionError::NotFinite {
+                what: "external wrench component",
+                index,
+                value: we[index],
+            }
+        }
+    }
+}
+
 /// A feasible interval [lo, hi] of t^B with the cables whose bounds define its ends.
 #[derive(Debug, Clone, Copy)]
 struct Interval {

@@ -119,8 +119,7 @@ pub(crate) fn l2_max_high_redundancy(
             }
         }
     }
-    let start = t.to_vec();
-    match search.l2_max(ns, problem.bounds, &start, t) {
+    match search.l2_max(ns, problem.bounds, t) {
         Ok(answer) => answer,
         Err(GaveUp) => l2_max_by_vertices(ns, problem.bounds, t),
     }

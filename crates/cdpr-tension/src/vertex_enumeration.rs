@@ -78,7 +78,6 @@ type Key = (u64, u64);
 #[derive(Debug, Default, Clone)]
 pub(crate) struct VertexSearch {
     visited: HashSet<Key, BuildHasherDefault<MaskHasher>>,
-    stack: Vec<Key>,
     /// r × r LU factors of A_S, row-major, and the row permutation.
     lu: Vec<f64>,
     piv: Vec<usize>,
@@ -89,16 +88,40 @@ pub(crate) struct VertexSearch {
     t: Vec<f64>,
     dir: Vec<f64>,
     best: Vec<f64>,
-    /// A_S⁻¹ (r × r, column-major), the tableau N A_S⁻¹ (n × r, column-major), the step
-    /// per cable of the ratio test, and ‖N_i‖ per cable.
+    /// A_S⁻¹ (r × r, column-major), the tableau N A_S⁻¹ (n × r, column-major), and ‖N_i‖ per
+    /// cable.
     inv: Vec<f64>,
     tab: Vec<f64>,
-    theta: Vec<f64>,
     norms: Vec<f64>,
-    /// Orthonormalised rows (start-up only).
+    /// Per cable: the rate below which an edge does not move it (10⁻¹² ‖N_i‖, times ‖d‖),
+    /// the tie slack TIE·max(|bound|, 1) at each bound, and the ratio test's candidates.
+    negligible: Vec<f64>,
+    tie_lo: Vec<f64>,
+    tie_hi: Vec<f64>,
+    found: Vec<(usize, f64)>,
+    /// Orthonormalised rows and a row being orthogonalised (start-up only).
     q: Vec<f64>,
+    row: Vec<f64>,
+    /// The search stack: bases to visit, and the (t, T, cables) blocks of those reached by a
+    /// pivot (in stack order, so a popped node's block is the last one).
+    nodes: Vec<Node>,
+    pool: Vec<f64>,
+    pool_cables: Vec<usize>,
     /// Bases evaluated by the last search (for tests and benches).
     pub evaluated: usize,
+}
+
+/// Pivots after which a basis is factorised afresh instead of updated (bounds the rounding
+/// that the tableau updates accumulate along a path of the search).
+const REFACTOR_EVERY: u32 = 24;
+
+/// A basis on the search stack: `depth` pivots since its path's last factorisation; `pivoted`
+/// when its tensions and tableau wait in the pool (else it is factorised when visited).
+#[derive(Debug, Clone, Copy)]
+struct Node {
+    key: Key,
+    depth: u32,
+    pivoted: bool,
 }
 
 /// Why the search gave way (the caller falls back to the candidate enumeration).
@@ -107,13 +130,13 @@ pub(crate) struct GaveUp;
 
 impl VertexSearch {
     /// The largest ‖t‖² over the vertices of the bounded, non-empty set
-    /// {t0 + N λ : bounds}, starting from the feasible tensions `start`. Writes the best vertex's
-    /// tensions to `t`.
+    /// {t0 + N λ : bounds}, starting from the feasible tensions in `t`; writes the best
+    /// vertex's tensions to `t` (`t` is untouched when the search gives way). Allocates
+    /// nothing once its buffers have grown (the hash set keeps its capacity).
     pub fn l2_max(
         &mut self,
         ns: &NullSpace,
         bounds: &TensionBounds,
-        start: &[f64],
         t: &mut [f64],
     ) -> Result<Result<(), Infeasibility>, GaveUp> {
         let (n, r) = (ns.n, ns.r());
@@ -135,34 +158,69 @@ impl VertexSearch {
                 .sum::<f64>()
                 .sqrt()
         }));
+        let (lo, hi) = (bounds.min(), bounds.max());
+        self.negligible.clear();
+        self.negligible.extend(self.norms.iter().map(|v| 1e-12 * v));
+        self.tie_lo.clear();
+        self.tie_lo
+            .extend(lo.iter().map(|b| TIE * b.abs().max(1.0)));
+        self.tie_hi.clear();
+        self.tie_hi
+            .extend(hi.iter().map(|b| TIE * b.abs().max(1.0)));
+        self.found.resize(n, (0, 0.0));
         self.visited.clear();
-        self.stack.clear();
+        self.nodes.clear();
+        self.pool.clear();
+        self.pool_cables.clear();
         self.evaluated = 0;
-        let first = self.first_basis(ns, bounds, start)?;
+        let first = self.first_basis(ns, bounds, t)?;
         self.visited.insert(first);
-        self.stack.push(first);
-        let mut best = f64::NEG_INFINITY;
-        while let Some(key) = self.stack.pop() {
+        self.nodes.push(Node {
+            key: first,
+            depth: 0,
+            pivoted: false,
+        });
+        self.tab.resize(n * r, 0.0);
+        let (mut best, mut best_key) = (f64::NEG_INFINITY, None);
+        while let Some(node) = self.nodes.pop() {
             self.evaluated += 1;
             if self.evaluated > MAX_BASES {
                 return Err(GaveUp);
             }
-            if !self.evaluate(ns, bounds, key) {
-                continue;
+            if node.pivoted {
+                let at = self.pool.len() - n * (r + 1);
+                self.t.copy_from_slice(&self.pool[at..at + n]);
+                self.tab.copy_from_slice(&self.pool[at + n..]);
+                self.pool.truncate(at);
+                let at = self.pool_cables.len() - r;
+                self.cables.clear();
+                self.cables.extend_from_slice(&self.pool_cables[at..]);
+                self.pool_cables.truncate(at);
+                let (lo, hi) = (bounds.min(), bounds.max());
+                if !(0..n).all(|i| bound_violation(lo[i], hi[i], self.t[i]) <= FEASIBLE) {
+                    continue;
+                }
+            } else {
+                if !self.evaluate(ns, bounds, node.key) {
+                    continue;
+                }
+                self.tableau(ns, node.key);
             }
             let f: f64 = self.t.iter().map(|v| v * v).sum();
             if f > best {
                 best = f;
-                self.best.copy_from_slice(&self.t);
+                best_key = Some(node.key);
             }
-
-            self.expand(ns, bounds, key);
+            self.expand(bounds, node);
         }
-        if best == f64::NEG_INFINITY {
-            return Err(GaveUp);
+        // The best vertex afresh from its factorisation (not from a chain of updates).
+        match best_key {
+            Some(key) if self.evaluate(ns, bounds, key) => {
+                t.copy_from_slice(&self.t);
+                Ok(Ok(()))
+            }
+            _ => Err(GaveUp),
         }
-        t.copy_from_slice(&self.best);
-        Ok(Ok(()))
     }
 
     /// Factor A_S, solve λ_S and t = t0 + N λ_S; false when A_S is singular or λ_S infeasible.
@@ -202,15 +260,10 @@ impl VertexSearch {
         (0..n).all(|i| bound_violation(bounds.min()[i], bounds.max()[i], self.t[i]) <= FEASIBLE)
     }
 
-    /// Pushes the unvisited neighbours of the evaluated basis `key`: the tableau
-    /// T = N A_S⁻¹ (n × r) gives the rate of every tension along every edge, then one ratio
-    /// test per edge.
-    fn expand(&mut self, ns: &NullSpace, bounds: &TensionBounds, key: Key) {
+    /// The tableau T = N A_S⁻¹ (n × r, column k in tab[k n..]: the rate of every tension along
+    /// edge k) from X = A_S⁻¹ of [`Self::evaluate`]; the rows of the cables in S are e_k.
+    fn tableau(&mut self, ns: &NullSpace, key: Key) {
         let (n, r) = (ns.n, ns.r());
-        let (lo, hi) = (bounds.min(), bounds.max());
-        // T = N X (column k in tab[k n..]) with X = A_S⁻¹ from `evaluate`; the rows of the
-        // cables in S are ±e_k by construction and are not needed.
-        self.tab.resize(n * r, 0.0);
         for k in 0..r {
             let x = &self.inv[k * r..(k + 1) * r];
             let out = &mut self.tab[k * n..(k + 1) * n];
@@ -224,57 +277,120 @@ impl VertexSearch {
                         .sum()
                 };
             }
+            out[self.cables[k]] = 1.0;
         }
-        self.theta.resize(n, 0.0);
+    }
+
+    /// Pushes the unvisited neighbours of the visited basis `node` (tensions in `t`, tableau
+    /// in `tab`, cables in `cables`): one ratio test per edge. A neighbour S − c + i gets its
+    /// tensions and tableau by the pivot of the revised simplex method on T_ik (an O(n r)
+    /// update), or, every [`REFACTOR_EVERY`] pivots, a fresh factorisation when visited.
+    fn expand(&mut self, bounds: &TensionBounds, node: Node) {
+        let (n, r) = (self.t.len(), self.cables.len());
+        let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+        let (lo, hi) = (&lo[..n], &hi[..n]);
+        let key = node.key;
         for k in 0..r {
             let c = self.cables[k];
             if lo[c] == hi[c] {
                 continue; // an equality never leaves the basis
             }
-            // Edge d = σ A_S⁻¹ e_k: N_c d = σ, N_j d = 0 for the other cables of S.
+            // Edge d = σ A_S⁻¹ e_k: N_c d = σ, N_j d = 0 for the other cables of S; N is
+            // orthonormal, so ‖d‖ = ‖T e_k‖.
             let sigma = if key.1 >> c & 1 == 1 { -1.0 } else { 1.0 };
-            let x = &self.inv[k * r..(k + 1) * r];
-            let dnorm = x.iter().map(|v| v * v).sum::<f64>().sqrt();
-            let rates = &mut self.tab[k * n..(k + 1) * n];
-            rates[c] = 1.0;
-            // Ratio test: the smallest step to a bound, then every bound reached within TIE.
+            let rates = &self.tab[k * n..(k + 1) * n];
+            let t = &self.t[..n];
+            let dnorm = rates.iter().map(|v| v * v).sum::<f64>().sqrt();
+            // Ratio test: the smallest step θ* to a bound, then every bound reached within TIE
+            // ((θ_i − θ*)|rate_i| ≤ TIE·scale_i). One pass keeps the candidates that can still
+            // tie with the running minimum (≥ θ*, so no tie is lost), in cable order.
+            let others = key.0 & !(1u64 << c);
             let mut theta = f64::INFINITY;
-            for i in 0..n {
+            let mut found = 0;
+            // The cables outside S − c (bits of the complement, in order).
+            let mut free = !others & (u64::MAX >> (64 - n));
+            while free != 0 {
+                let i = free.trailing_zeros() as usize;
+                free &= free - 1;
                 let rate = sigma * rates[i];
-                self.theta[i] = f64::INFINITY;
-                if (i != c && key.0 >> i & 1 == 1) || rate.abs() <= 1e-12 * self.norms[i] * dnorm {
+                let a = rate.abs();
+                if a <= self.negligible[i] * dnorm {
                     continue;
                 }
-                let s = if rate > 0.0 {
-                    (hi[i] - self.t[i]) / rate
+                let (s, tol) = if rate > 0.0 {
+                    ((hi[i] - t[i]) / rate, self.tie_hi[i])
                 } else {
-                    (lo[i] - self.t[i]) / rate
+                    ((lo[i] - t[i]) / rate, self.tie_lo[i])
                 };
-                self.theta[i] = s.max(0.0);
-                theta = theta.min(self.theta[i]);
+                let s = s.max(0.0);
+                if (s - theta) * a <= tol {
+                    self.found[found] = (i, s);
+                    found += 1;
+                    theta = theta.min(s);
+                }
             }
             if !theta.is_finite() {
                 continue; // numerically unbounded edge of a bounded set: nothing to reach
             }
-            for i in 0..n {
-                if !self.theta[i].is_finite() {
-                    continue;
-                }
+            for f in 0..found {
+                let (i, step_i) = self.found[f];
                 let rate = sigma * rates[i];
                 let upper = rate > 0.0;
-                let scale = if upper { hi[i] } else { lo[i] }.abs().max(1.0);
-                if (self.theta[i] - theta) * rate.abs() > TIE * scale {
+                let (bound, tol) = if upper {
+                    (hi[i], self.tie_hi[i])
+                } else {
+                    (lo[i], self.tie_lo[i])
+                };
+                if !step_i.is_finite() || (step_i - theta) * rate.abs() > tol {
                     continue;
                 }
-                let cables = (key.0 & !(1u64 << c)) | 1u64 << i;
+                let cables = others | 1u64 << i;
                 let mut uppers = key.1 & !(1u64 << c);
                 if upper {
                     uppers |= 1u64 << i;
                 }
                 let next = (cables, uppers);
-                if self.visited.insert(next) {
-                    self.stack.push(next);
+                if !self.visited.insert(next) {
+                    continue;
                 }
+                let depth = node.depth + 1;
+                if depth >= REFACTOR_EVERY {
+                    self.nodes.push(Node {
+                        key: next,
+                        depth: 0,
+                        pivoted: false,
+                    });
+                    continue;
+                }
+                // The vertex of S − c + i: step θ_i along the edge, t_i exactly on its bound.
+                let at = self.pool.len();
+                let step = sigma * step_i;
+                self.pool
+                    .extend(t.iter().zip(rates).map(|(ti, d)| ti + step * d));
+                self.pool[at + i] = bound;
+                // Pivot on T_ik: column k ← T e_k / T_ik, column j ← T e_j − T_ij column k,
+                // and row i ← e_k exactly.
+                let pivot = rates[i];
+                let pivot_row: &[f64] = &self.tab[i..];
+                for j in 0..r {
+                    let col = &self.tab[j * n..(j + 1) * n];
+                    if j == k {
+                        self.pool.extend(col.iter().map(|d| d / pivot));
+                    } else {
+                        let f = pivot_row[j * n] / pivot;
+                        self.pool
+                            .extend(col.iter().zip(rates).map(|(a, d)| a - f * d));
+                    }
+                    self.pool[at + n + j * n + i] = if j == k { 1.0 } else { 0.0 };
+                }
+                self.pool_cables.extend_from_slice(&self.cables);
+                let last = self.pool_cables.len() - r;
+                self.pool_cables[last + k] = i;
+                self.nodes.push(Node {
+                    key: next,
+                    depth,
+                    pivoted: true,
+                });
             }
         }
     }
@@ -423,7 +539,9 @@ impl VertexSearch {
     /// Adds row N_i to the orthonormal rows `q` if it is independent of them.
     fn orthogonalise(&mut self, ns: &NullSpace, i: usize) -> bool {
         let (n, r) = (ns.n, ns.r());
-        let mut v: Vec<f64> = (0..r).map(|j| ns.basis[i + n * j]).collect();
+        let mut v = std::mem::take(&mut self.row);
+        v.clear();
+        v.extend((0..r).map(|j| ns.basis[i + n * j]));
         let norm0 = v.iter().map(|x| x * x).sum::<f64>().sqrt();
         for _ in 0..2 {
             for q in self.q.chunks(r) {
@@ -432,11 +550,12 @@ impl VertexSearch {
             }
         }
         let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if norm0 == 0.0 || norm <= 1e-9 * norm0 {
-            return false;
+        let independent = norm0 != 0.0 && norm > 1e-9 * norm0;
+        if independent {
+            self.q.extend(v.iter().map(|x| x / norm));
         }
-        self.q.extend(v.iter().map(|x| x / norm));
-        true
+        self.row = v;
+        independent
     }
 }
 
@@ -591,7 +710,9 @@ mod tests {
     }
 
     proptest! {
-        #![proptest_config(ProptestConfig::with_cases(400))]
+        #![proptest_config(ProptestConfig::with_cases(
+            std::env::var("L2_MAX_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(400)
+        ))]
 
         /// The pivoting search finds the same largest ‖t‖² as the candidate enumeration, and
         /// says "infeasible" exactly when no candidate vertex is feasible.
@@ -605,6 +726,17 @@ mod tests {
                 (TensionOutcome::Feasible(s), Some(f)) => {
                     let got = s.tensions.norm_squared();
                     prop_assert!((got - f).abs() <= 1e-7 * f, "‖t‖² {got} vs enumeration {f}");
+                    // The pivoting search itself answered (not its fallback), from the l1
+                    // solution as in the solver.
+                    let start = TensionSolver::new(Method::L1).solve(&p).unwrap();
+                    let mut ns = NullSpace::default();
+                    ns.compute(&w, &we).unwrap();
+                    let mut t = start.tensions().unwrap().as_slice().to_vec();
+                    let mut search = super::VertexSearch::default();
+                    let answer = search.l2_max(&ns, &b, &mut t);
+                    prop_assert!(matches!(answer, Ok(Ok(()))), "the search gave way");
+                    let direct: f64 = t.iter().map(|v| v * v).sum();
+                    prop_assert!((direct - f).abs() <= 1e-7 * f, "search {direct} vs {f}");
                 }
                 (TensionOutcome::Infeasible(Infeasibility::Unbounded { .. }), _) => {}
                 (TensionOutcome::Infeasible(_), None) => {}
@@ -627,11 +759,8 @@ mod tests {
             let mut ns = NullSpace::default();
             ns.compute(&w, &we).unwrap();
             let mut search = super::VertexSearch::default();
-            let mut got = vec![0.0; 12];
-            search
-                .l2_max(&ns, &b, t.as_slice(), &mut got)
-                .unwrap()
-                .unwrap();
+            let mut got = t.as_slice().to_vec();
+            search.l2_max(&ns, &b, &mut got).unwrap().unwrap();
             let f: f64 = got.iter().map(|v| v * v).sum();
             let expected = oracle(&w, &we, &b).unwrap();
             assert!((f - expected).abs() <= 1e-9 * expected, "{f} vs {expected}");

@@ -1,4 +1,4 @@
-//! The dense active-set path (redundancy ≥ 3) and the redundancy-2 path of an 8-cable spatial
+//! The dense active-set path (redundancy ≥ 3, with the l2-max vertex search) and the redundancy-2 path of an 8-cable spatial
 //! robot do not allocate after their first call for a problem size: counted with a global
 //! allocator wrapper (per thread, so the test functions may run in parallel).
 
@@ -71,7 +71,13 @@ fn dense_path_does_not_allocate() {
         DVector::from_vec(vec![0.0, -5000.0, 0.0]),
     ];
     let b = TensionBounds::uniform(8, 5.0, 200.0).unwrap();
-    for method in [Method::L1, Method::L1Max, Method::L2, Method::Linf] {
+    for method in [
+        Method::L1,
+        Method::L1Max,
+        Method::L2,
+        Method::Linf,
+        Method::L2Max,
+    ] {
         let mut solver = TensionSolver::new(method);
         let mut t = DVector::zeros(8);
         let mut run = |solver: &mut TensionSolver| {

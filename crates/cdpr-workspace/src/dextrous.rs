@@ -10,6 +10,12 @@
 //! contains the intersection of the two extreme workspaces. [`CentralCheck`] reports whether
 //! that holds on the grid, and how many grid points violate it.
 //!
+//! **The planar r = 1 path.** The thesis' robots (4 cables, 3 DOF) with cable-length and
+//! Algorithm 6.1 criteria (`closed-form`, `l1`, `l1-max`) are tested by [`PlanarSlice`]: per
+//! orientation the attachments R a_i are computed once, and per pose the cable vectors, W and
+//! the closed-form tensions with their certificate run on the stack — the evaluator's arithmetic
+//! expression by expression, hence its verdicts, without its generic per-pose path.
+//!
 //! Planar robots rotate about z; spatial robots about a chosen axis
 //! ([`dextrous_workspace_about_axis`]) or over any list of orientations, e.g. a box of Euler
 //! angles ([`euler_box`], [`dextrous_workspace_over`]).
@@ -19,9 +25,10 @@
 //! - Du Plessis & Snyman (2003), dextrous workspaces of parallel manipulators (the thesis chapter ref. \[18\]).
 
 use crate::discretisation::{checked_orientation, map_grid};
-use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
-use cdpr_kinematics::Pose;
-use nalgebra::{Rotation3, Unit, Vector3};
+use crate::{Criterion, Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
+use cdpr_kinematics::{MotionPattern, Pose};
+use cdpr_tension::{Method, TensionBounds, closed_form};
+use nalgebra::{Matrix3x4, Rotation3, Unit, Vector3};
 
 /// A range of orientation angles [min, max] sampled at `slices` = m_sl regularly spaced values,
 /// endpoints included (radians).
@@ -109,6 +116,120 @@ pub struct DextrousWorkspace {
     pub angles: Vec<f64>,
 }
 
+/// The length above which, relative to the robot's size and the position, a cable is tested by
+/// [`PlanarSlice`] itself; a shorter one (near the kinematics' degenerate-cable threshold,
+/// 10⁻¹² of it) goes through [`PoseEvaluator`].
+const LEAN_MIN_LENGTH: f64 = 1e-9;
+
+/// One orientation of a planar robot with 4 cables (redundancy 1) whose criteria are only
+/// cable-length floors (eq. (6.22)) and tension feasibility by Algorithm 6.1 (`closed-form`,
+/// `l1`, `l1-max`): the verdict of [`PoseEvaluator::is_feasible`] at that orientation,
+/// computed on the stack. The attachments R a_i are computed once; per pose the cable vectors
+/// ℓ_i = c_i − (u + R a_i) (eq. (6.2)), the columns [u_i; (R a_i) × u_i] of W (eq. (6.11))
+/// and the closed-form tensions with their certificate
+/// ([`cdpr_tension::closed_form::is_feasible_planar`]) are the evaluator's expressions, so the
+/// verdicts are the same bit for bit (test `planar_slice_agrees_with_the_evaluator`).
+#[derive(Debug, Clone)]
+pub struct PlanarSlice {
+    /// c_i and R a_i in the plane (their z is 0, so the 3-vector sums of the evaluator are
+    /// these sums, bit for bit).
+    frame: [[f64; 2]; 4],
+    attachment: [[f64; 2]; 4],
+    length_scale: f64,
+    /// The largest cable-length floor (−∞ without one).
+    min_length: f64,
+    bounds: TensionBounds,
+    /// (w_ext, l1-max?) of every tension criterion.
+    tension: Vec<(Vector3<f64>, bool)>,
+}
+
+impl PlanarSlice {
+    /// The lean test of `eval` at `rotation`, or `None` when it does not apply (not planar, not
+    /// 4 cables, pulleys, another criterion or method, a non-finite load or rotation, a point
+    /// off the plane z = 0).
+    pub fn new(eval: &PoseEvaluator, rotation: &Rotation3<f64>) -> Option<Self> {
+        let robot = eval.robot();
+        if robot.motion() != MotionPattern::Planar
+            || robot.cable_count() != 4
+            || robot.cables().iter().any(|c| c.pulley.is_some())
+            || eval.bounds().len() != 4
+            || !rotation.matrix().iter().all(|v| v.is_finite())
+        {
+            return None;
+        }
+        let mut min_length = f64::NEG_INFINITY;
+        let mut tension = Vec::new();
+        for c in eval.criteria() {
+            match c {
+                Criterion::MinCableLength(l) if !l.is_nan() => min_length = min_length.max(*l),
+                Criterion::TensionFeasible { method, wrench }
+                    if wrench.len() == 3 && wrench.iter().all(|v| v.is_finite()) =>
+                {
+                    let maximize = match method {
+                        Method::ClosedForm | Method::L1 => false,
+                        Method::L1Max => true,
+                        _ => return None,
+                    };
+                    tension.push((Vector3::new(wrench[0], wrench[1], wrench[2]), maximize));
+                }
+                _ => return None,
+            }
+        }
+        let r = rotation.matrix();
+        let cables = robot.cables();
+        let attachment: Vec<Vector3<f64>> = cables.iter().map(|c| r * c.platform).collect();
+        if cables.iter().any(|c| c.frame.z != 0.0) || attachment.iter().any(|a| a.z != 0.0) {
+            return None;
+        }
+        Some(Self {
+            frame: std::array::from_fn(|i| [cables[i].frame.x, cables[i].frame.y]),
+            attachment: std::array::from_fn(|i| [attachment[i].x, attachment[i].y]),
+            length_scale: robot.length_scale(),
+            min_length,
+            bounds: eval.bounds().clone(),
+            tension,
+        })
+    }
+
+    /// The evaluator's verdict at `position` (finite, z = 0) and this orientation, or `None` when
+    /// a cable is nearly degenerate or z ≠ 0 (the caller asks the evaluator).
+    #[inline]
+    pub fn is_feasible(&self, position: &Vector3<f64>) -> Option<bool> {
+        if position.z != 0.0 {
+            return None;
+        }
+        let (px, py) = (position.x, position.y);
+        // ‖u‖ and the cable vectors as the evaluator's 3-vectors with z = 0: the same roundings.
+        let floor = LEAN_MIN_LENGTH * self.length_scale.max((px * px + py * py).sqrt());
+        let mut w = Matrix3x4::zeros();
+        let mut short = false;
+        for i in 0..4 {
+            let [ax, ay] = self.attachment[i];
+            let [cx, cy] = self.frame[i];
+            // ℓ_i = c_i − (u + R a_i), eq. (6.2).
+            let (vx, vy) = (cx - (px + ax), cy - (py + ay));
+            let length = (vx * vx + vy * vy).sqrt();
+            if length.is_nan() || length <= floor {
+                return None;
+            }
+            short |= length < self.min_length;
+            let (ux, uy) = (vx / length, vy / length);
+            w[(0, i)] = ux;
+            w[(1, i)] = uy;
+            w[(2, i)] = ax * uy - ay * ux;
+        }
+        if short {
+            return Some(false);
+        }
+        for (we, maximize) in &self.tension {
+            if !closed_form::is_feasible_planar(&w, we, &self.bounds, *maximize).unwrap_or(false) {
+                return Some(false);
+            }
+        }
+        Some(true)
+    }
+}
+
 /// Eq. (6.28) for a planar robot: orientations φ ∈ [min, max] about z (point robots: the
 /// constant-orientation workspace).
 ///
@@ -181,14 +302,32 @@ pub fn dextrous_workspace_about_axis(
         .map(|&a| rot(a))
         .collect::<Result<Vec<_>, _>>()?;
     let central_is_slice = angles.contains(&range.central());
+    // The lean planar path, when every orientation has it (the same verdicts).
+    let lean = |r: &Rotation3<f64>| PlanarSlice::new(eval, r);
+    let lean: Option<(PlanarSlice, PlanarSlice, PlanarSlice, Vec<PlanarSlice>)> = (|| {
+        Some((
+            lean(&first)?,
+            lean(&last)?,
+            lean(&central)?,
+            others.iter().map(lean).collect::<Option<Vec<_>>>()?,
+        ))
+    })();
     // Per point: (dextrous, feasible at both extremes, violation of the central check).
     let verdicts = map_grid(eval, grid, dim, |ev, u| {
-        let mut ok = |r: &Rotation3<f64>| ev.is_feasible_finite_rotation(&Pose::new(u, *r));
-        if !ok(&first) || (angles.len() > 1 && !ok(&last)) {
+        let mut ok = |r: &Rotation3<f64>, s: Option<&PlanarSlice>| {
+            s.and_then(|s| s.is_feasible(&u))
+                .unwrap_or_else(|| ev.is_feasible_finite_rotation(&Pose::new(u, *r)))
+        };
+        let l = lean.as_ref();
+        if !ok(&first, l.map(|l| &l.0)) || (angles.len() > 1 && !ok(&last, l.map(|l| &l.1))) {
             return (false, false, false);
         }
-        let central_ok = ok(&central);
-        let dextrous = (central_ok || !central_is_slice) && others.iter().all(&mut ok);
+        let central_ok = ok(&central, l.map(|l| &l.2));
+        let dextrous = (central_ok || !central_is_slice)
+            && others
+                .iter()
+                .enumerate()
+                .all(|(k, r)| ok(r, l.map(|l| &l.3[k])));
         (dextrous, true, !central_ok)
     });
     let feasible: Vec<bool> = verdicts.iter().map(|v| v.0).collect();

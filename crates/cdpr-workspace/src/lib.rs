@@ -97,7 +97,7 @@ pub use chord::{
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use criteria_spec::{CriteriaError, CriterionSpec, parse_criteria};
 pub use dextrous::{
-    CentralCheck, DextrousWorkspace, OrientationRange, dextrous_workspace,
+    CentralCheck, DextrousWorkspace, OrientationRange, PlanarSlice, dextrous_workspace,
     dextrous_workspace_about_axis, dextrous_workspace_over, euler_box,
 };
 pub use discretisation::{

@@ -225,3 +225,138 @@ proptest! {
         }
     }
 }
+
+/// SplitMix64 in [a, b).
+struct Rng(u64);
+impl Rng {
+    fn range(&mut self, a: f64, b: f64) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        a + (b - a) * (((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+/// The lean planar r = 1 path gives the evaluator's verdict at every pose: random 4-cable planar
+/// robots, loads, bounds (some fixed, some infinite t_max), length floors, the three methods
+/// of Algorithm 6.1, poses on a grid and at the frame anchors (a zero-length cable).
+#[test]
+fn planar_slice_agrees_with_the_evaluator() {
+    use cdpr_kinematics::{Cable, MotionPattern, Robot};
+    use cdpr_workspace::PlanarSlice;
+    let mut g = Rng(20261122);
+    let (mut feasible, mut infeasible, mut deferred) = (0, 0, 0);
+    for robot_index in 0..60 {
+        let cables: Vec<Cable> = (0..4)
+            .map(|i| {
+                let a = std::f64::consts::FRAC_PI_2 * i as f64 + g.range(0.0, 1.4);
+                let b = std::f64::consts::FRAC_PI_2 * i as f64 + g.range(0.0, 1.4);
+                Cable {
+                    frame: Vector3::new(a.cos(), a.sin(), 0.0),
+                    platform: Vector3::new(0.1 * b.cos(), 0.1 * b.sin(), 0.0),
+                    pulley: None,
+                }
+            })
+            .collect();
+        let robot = Robot::new(MotionPattern::Planar, cables).unwrap();
+        let lo = g.range(0.0, 10.0);
+        let mut hi = vec![lo + g.range(5.0, 200.0); 4];
+        match robot_index % 4 {
+            1 => hi[robot_index % 3] = lo,            // a fixed cable
+            2 => hi[robot_index % 4] = f64::INFINITY, // no upper bound
+            _ => {}
+        }
+        let bounds = TensionBounds::new(vec![lo; 4], hi).unwrap();
+        let wrench = nalgebra::DVector::from_fn(3, |_, _| g.range(-10.0, 10.0));
+        let method = [Method::L1, Method::L1Max, Method::ClosedForm][robot_index % 3];
+        let mut criteria = vec![Criterion::TensionFeasible { method, wrench }];
+        if robot_index % 2 == 0 {
+            criteria.push(Criterion::MinCableLength(g.range(0.0, 0.3)));
+        }
+        let mut eval = PoseEvaluator::new(robot.clone(), bounds, criteria).unwrap();
+        for phi in [-0.3, 0.0, 0.17] {
+            let r = Rotation3::from_axis_angle(&Vector3::z_axis(), phi);
+            let lean = PlanarSlice::new(&eval, &r).expect("the lean path applies");
+            let mut positions: Vec<Vector3<f64>> = (0..=20)
+                .flat_map(|i| (0..=20).map(move |j| (i, j)))
+                .map(|(i, j)| Vector3::new(-1.0 + 0.1 * i as f64, -1.0 + 0.1 * j as f64, 0.0))
+                .collect();
+            // A cable of zero length: the attachment point on its frame anchor.
+            let c = &robot.cables()[0];
+            positions.push(c.frame - r * c.platform);
+            for u in positions {
+                let expected = eval.is_feasible(&cdpr_kinematics::Pose::new(u, r));
+                match lean.is_feasible(&u) {
+                    Some(got) => assert_eq!(got, expected, "robot {robot_index}, φ {phi}, u {u:?}"),
+                    None => deferred += 1,
+                }
+                if expected {
+                    feasible += 1;
+                } else {
+                    infeasible += 1;
+                }
+            }
+        }
+    }
+    // Both verdicts occur; only the zero-length cables go to the evaluator.
+    assert!(
+        feasible > 1000 && infeasible > 1000,
+        "{feasible} / {infeasible}"
+    );
+    assert!(deferred <= 60 * 3, "{deferred}");
+}
+
+/// The lean path applies only where it is the evaluator's path: another method or criterion,
+/// a robot that is not planar with 4 cables, pulleys.
+#[test]
+fn planar_slice_declines_other_settings() {
+    use cdpr_workspace::PlanarSlice;
+    let r = Rotation3::identity();
+    assert!(PlanarSlice::new(&four_cable_eval(0, Method::L1), &r).is_some());
+    assert!(PlanarSlice::new(&four_cable_eval(0, Method::L2), &r).is_none());
+    assert!(PlanarSlice::new(&four_cable_eval(0, Method::Pinv), &r).is_none());
+    assert!(PlanarSlice::new(&three_cable_eval(0), &r).is_none());
+    let closure = PoseEvaluator::new(
+        four_cable(),
+        TensionBounds::uniform(4, T_MIN, T_MAX).unwrap(),
+        vec![Criterion::WrenchClosure],
+    )
+    .unwrap();
+    assert!(PlanarSlice::new(&closure, &r).is_none());
+}
+
+/// The thesis' Table 6.10 run-1 design (the `cdpr dextrous` timing of issue 13): the dextrous
+/// workspace by the lean path equals the intersection of the constant-orientation workspaces
+/// of the general evaluator, slice by slice.
+#[test]
+fn table_6_10_run_1_dextrous_matches_the_general_slices() {
+    use cdpr_kinematics::reference_robots::thesis_manipulator;
+    let anchors: Vec<[f64; 2]> = [0.7572f64, 2.922, 3.097, 5.449]
+        .iter()
+        .map(|&b| {
+            let rho = 1.0 / b.cos().abs().max(b.sin().abs());
+            [rho * b.cos(), rho * b.sin()]
+        })
+        .collect();
+    let eval = PoseEvaluator::new(
+        thesis_manipulator(&anchors),
+        TensionBounds::uniform(4, 5.0, 100.0).unwrap(),
+        vec![
+            Criterion::TensionFeasible {
+                method: Method::L1,
+                wrench: nalgebra::DVector::from_row_slice(&[5.0, -10.0, 1.0]),
+            },
+            Criterion::MinCableLength(0.1),
+        ],
+    )
+    .unwrap();
+    let range = OrientationRange {
+        min: -0.2,
+        max: 0.2,
+        slices: 21,
+    };
+    let g = Grid::new(60, Region::planar(-1.0, 1.0, -1.0, 1.0));
+    let dex = check_against_slices(&eval, &range, &g);
+    assert!(dex.feasible_points > 100 && dex.feasible_points < dex.total_points / 2);
+}

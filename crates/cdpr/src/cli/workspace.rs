@@ -10,7 +10,8 @@ use cdpr::polytope::RequiredWrenchSet;
 use cdpr::tension::Method;
 use cdpr::workspace::{
     CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, OrientationSet,
-    OrientationWorkspaceKind, PoseEvaluator, Region, VolumeConvention, chord_workspace,
+    OrientationWorkspaceKind, PlanarSlice, PoseEvaluator, Region, VolumeConvention,
+    chord_workspace,
 };
 use indicatif::ProgressBar;
 use nalgebra::{DVector, Rotation3, Unit, Vector3};
@@ -570,30 +571,45 @@ pub fn dextrous(
             Err((Box::new(setup.evaluator(desc, robot.clone(), &r)?), r))
         }
     };
+    // The lean planar r = 1 path of every orientation, if all have it (the same verdicts).
+    let lean = evals
+        .iter()
+        .zip(&rotations)
+        .map(|(e, r)| PlanarSlice::new(e, r))
+        .collect::<Option<Vec<_>>>()
+        .and_then(|l| match &central {
+            Ok(_) => Some((l, None)),
+            Err((e, r)) => PlanarSlice::new(e, r).map(|c| (l, Some(c))),
+        });
     let slices = Slices {
         evals,
         rotations,
         central,
     };
     let n = angles.len();
+    let lean = lean.as_ref();
     let verdicts = map_rows(&slices, grid, dim, bar, |s, u| {
-        let mut ok = |k: usize| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k]));
-        if !ok(0) || (n > 1 && !ok(n - 1)) {
+        let ok = |s: &mut Slices, k: usize| {
+            lean.and_then(|l| l.0[k].is_feasible(&u))
+                .unwrap_or_else(|| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])))
+        };
+        if !ok(s, 0) || (n > 1 && !ok(s, n - 1)) {
             return (false, false, false);
         }
         let (central_ok, central_index) = match &mut s.central {
             Ok(k) => {
                 let k = *k;
-                (
-                    s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])),
-                    Some(k),
-                )
+                (ok(s, k), Some(k))
             }
-            Err((ev, r)) => (ev.is_feasible(&Pose::new(u, *r)), None),
+            Err((ev, r)) => (
+                lean.and_then(|l| l.1.as_ref()?.is_feasible(&u))
+                    .unwrap_or_else(|| ev.is_feasible(&Pose::new(u, *r))),
+                None,
+            ),
         };
         let others_ok = (1..n.saturating_sub(1))
             .filter(|&k| Some(k) != central_index)
-            .all(|k| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])));
+            .all(|k| ok(s, k));
         let dextrous = (central_ok || central_index.is_none()) && others_ok;
         (dextrous, true, !central_ok)
     });

@@ -626,3 +626,58 @@ fn synthesize_global_leaves_the_local_maximum() {
     ));
     assert_eq!(f(&global["constraint_violation"]), 0.0);
 }
+
+/// The issue-13 timing command (the thesis' Table 6.10 run-1 design, load L3, l1, 21
+/// orientations) on a coarser grid: the CLI's points are the intersection of the 21
+/// constant-orientation workspaces of the library's general evaluator.
+#[test]
+fn dextrous_l1_timing_command_matches_the_general_slices() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../benches/numpy/tdpm-4-table6.10-run1.toml")
+        .display()
+        .to_string();
+    let v = json(&[
+        "dextrous",
+        &file,
+        "--orientations",
+        "-0.2:0.2:21",
+        "--grid",
+        "80",
+        "--box",
+        "-1,1,-1,1",
+        "--wrench",
+        "5,-10,1",
+        "--method",
+        "l1",
+        "--json",
+    ]);
+    let desc = RobotDescription::load(&file).unwrap();
+    let grid = Grid::new(80, Region::planar(-1.0, 1.0, -1.0, 1.0));
+    let eval = PoseEvaluator::new(
+        desc.robot.clone(),
+        desc.bounds.clone(),
+        vec![
+            Criterion::TensionFeasible {
+                method: Method::L1,
+                wrench: DVector::from_vec(vec![5.0, -10.0, 1.0]),
+            },
+            Criterion::MinCableLength(0.1),
+        ],
+    )
+    .unwrap();
+    let range = OrientationRange {
+        min: -0.2,
+        max: 0.2,
+        slices: 21,
+    };
+    let mut all = vec![true; 81 * 81];
+    for phi in range.angles() {
+        let ws = planar_workspace(&eval, phi, &grid).unwrap();
+        for (a, b) in all.iter_mut().zip(&ws.feasible) {
+            *a &= *b;
+        }
+    }
+    let expected = all.iter().filter(|a| **a).count();
+    assert!(expected > 500, "{expected}");
+    assert_eq!(v["feasible_points"], expected);
+}
