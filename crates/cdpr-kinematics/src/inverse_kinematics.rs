@@ -196,6 +196,7 @@ impl Robot {
         if self.has_pulleys() {
             return update_cables(
                 self.cables(),
+                self.pulley_blocks(),
                 r,
                 &pose.position,
                 threshold,

@@ -48,6 +48,7 @@
 use crate::inverse_kinematics::{CableState, PulleyState, straight_cable};
 use crate::{Cable, KinematicsError, Pulley};
 use nalgebra::{Matrix3, Vector3};
+use std::array::from_fn;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4, FRAC_PI_8, TAU};
 
 /// Largest deviation |QᵀQ − I| accepted for a pulley frame.
@@ -138,6 +139,7 @@ impl std::fmt::Display for PulleyDegeneracy {
 }
 
 /// The geometry of one pulley cable at one pose (base coordinates).
+#[cfg(test)]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PulleyCable {
     /// Tangent point **C** where the cable leaves the pulley.
@@ -242,8 +244,9 @@ impl PulleyPlane {
 }
 
 /// The tangent point, the free segment and the length (module equations) from the pulley-plane
-/// quantities and β.
-#[inline(always)]
+/// quantities and β, for one cable: the reference that [`update_cables`]'s stage 4 evaluates
+/// a block at a time (the tests compare the two bit for bit).
+#[cfg(test)]
 fn tangent(pulley: &Pulley, b: &Vector3<f64>, plane: &PulleyPlane, wrap: f64) -> PulleyCable {
     let q = &pulley.orientation;
     let rho = pulley.radius;
@@ -312,6 +315,60 @@ impl PlaneBlock {
     }
 }
 
+/// A robot's cables in blocks of [`BLOCK`], one array per coordinate, as [`update_cables`]
+/// reads them (built once, with the robot; empty for a robot without pulleys).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct PulleyBlocks(Vec<PulleyBlock>);
+
+/// [`BLOCK`] cables: frame points **a**, platform attachments **b̄**, pulley frames Q (entry k
+/// of Q in column-major order is `q[k]`) and radii ρ. Straight cables hold Q = I, ρ = 0 (their
+/// pulley results are not used) and the lanes past the last cable zeros with Q = I.
+#[derive(Debug, Clone, PartialEq)]
+#[repr(align(32))]
+struct PulleyBlock {
+    frame: [[f64; BLOCK]; 3],
+    platform: [[f64; BLOCK]; 3],
+    q: [[f64; BLOCK]; 9],
+    rho: [f64; BLOCK],
+}
+
+impl PulleyBlocks {
+    pub(crate) fn new(cables: &[Cable]) -> Self {
+        if cables.iter().all(|c| c.pulley.is_none()) {
+            return Self::default();
+        }
+        Self(
+            cables
+                .chunks(BLOCK)
+                .map(|cables| {
+                    let mut block = PulleyBlock {
+                        frame: [[0.0; BLOCK]; 3],
+                        platform: [[0.0; BLOCK]; 3],
+                        q: [[0.0; BLOCK]; 9],
+                        rho: [0.0; BLOCK],
+                    };
+                    (block.q[0], block.q[4], block.q[8]) =
+                        ([1.0; BLOCK], [1.0; BLOCK], [1.0; BLOCK]);
+                    for (j, cable) in cables.iter().enumerate() {
+                        for c in 0..3 {
+                            block.frame[c][j] = cable.frame[c];
+                            block.platform[c][j] = cable.platform[c];
+                        }
+                        let Some(pulley) = &cable.pulley else {
+                            continue;
+                        };
+                        for (e, q) in pulley.orientation.iter().zip(block.q.iter_mut()) {
+                            q[j] = *e;
+                        }
+                        block.rho[j] = pulley.radius;
+                    }
+                    block
+                })
+                .collect(),
+        )
+    }
+}
+
 /// Cables per block in [`update_cables`].
 const BLOCK: usize = 8;
 
@@ -329,6 +386,7 @@ const BLOCK: usize = 8;
 /// is enabled, so both builds round every operation the same way: identical results.
 pub(crate) fn update_cables(
     cables: &[Cable],
+    geometry: &PulleyBlocks,
     rotation: &Matrix3<f64>,
     position: &Vector3<f64>,
     threshold: f64,
@@ -339,10 +397,14 @@ pub(crate) fn update_cables(
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, the only feature the function enables.
         return unsafe {
-            update_cables_avx2(cables, rotation, position, threshold, states, pulleys)
+            update_cables_avx2(
+                cables, geometry, rotation, position, threshold, states, pulleys,
+            )
         };
     }
-    update_cables_portable(cables, rotation, position, threshold, states, pulleys)
+    update_cables_portable(
+        cables, geometry, rotation, position, threshold, states, pulleys,
+    )
 }
 
 /// [`update_cables_portable`] compiled with AVX2.
@@ -350,19 +412,23 @@ pub(crate) fn update_cables(
 #[target_feature(enable = "avx2")]
 fn update_cables_avx2(
     cables: &[Cable],
+    geometry: &PulleyBlocks,
     rotation: &Matrix3<f64>,
     position: &Vector3<f64>,
     threshold: f64,
     states: &mut [CableState],
     pulleys: &mut [Option<PulleyState>],
 ) -> Result<(), KinematicsError> {
-    update_cables_portable(cables, rotation, position, threshold, states, pulleys)
+    update_cables_portable(
+        cables, geometry, rotation, position, threshold, states, pulleys,
+    )
 }
 
 /// [`update_cables`] for any CPU.
 #[inline(always)]
 pub(crate) fn update_cables_portable(
     cables: &[Cable],
+    geometry: &PulleyBlocks,
     rotation: &Matrix3<f64>,
     position: &Vector3<f64>,
     threshold: f64,
@@ -375,29 +441,59 @@ pub(crate) fn update_cables_portable(
         .zip(pulleys.chunks_mut(BLOCK))
         .enumerate()
     {
-        // Stage 1: attachments and p = Qᵀ(B − a). Straight cables and the lanes past the end
-        // get a harmless stand-in (s = 1, ρ = 0).
-        let mut attachment = [Vector3::zeros(); BLOCK];
-        let (mut px, mut py, mut h, mut rho) =
-            ([1.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
-        for (j, cable) in cables.iter().enumerate() {
-            attachment[j] = rotation * cable.platform;
-            if let Some(pulley) = &cable.pulley {
-                let p = pulley
-                    .orientation
-                    .tr_mul(&(position + attachment[j] - cable.frame));
-                (px[j], py[j], h[j], rho[j]) = (p.x, p.y, p.z, pulley.radius);
+        let PulleyBlock {
+            frame,
+            platform,
+            q,
+            rho,
+        } = &geometry.0[block];
+        // Stage 1: attachments R b̄ (as nalgebra's matrix–vector product: column by column),
+        // attachment points B and p = Qᵀ(B − a) (entry k of Q column-major is q[k]).
+        let r = rotation;
+        let (mut attachment, mut point, mut p) =
+            ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        for j in 0..BLOCK {
+            let mut d = [0.0; 3];
+            for c in 0..3 {
+                let a = r[(c, 0)] * platform[0][j]
+                    + r[(c, 1)] * platform[1][j]
+                    + r[(c, 2)] * platform[2][j];
+                attachment[c][j] = a;
+                point[c][j] = position[c] + a;
+                d[c] = point[c][j] - frame[c][j];
+            }
+            for k in 0..3 {
+                p[k][j] = q[3 * k][j] * d[0] + q[3 * k + 1][j] * d[1] + q[3 * k + 2][j] * d[2];
             }
         }
-        // Stage 2: the pulley plane; stage 3: the wrap angle (one array per quantity, so that
-        // the compiler can run the lanes side by side).
+        // Stage 2: the pulley plane; stage 3: the wrap angle.
         let mut plane = PlaneBlock::default();
         for j in 0..BLOCK {
-            plane.set(j, pulley_plane(px[j], py[j], h[j], rho[j]));
+            plane.set(j, pulley_plane(p[0][j], p[1][j], p[2][j], rho[j]));
         }
-        let wrap: [f64; BLOCK] =
-            std::array::from_fn(|j| wrap_angle(plane.cos_beta[j], plane.sin_beta[j]));
-        // Stage 4: the tangent point and the states, in cable order.
+        let wrap: [f64; BLOCK] = from_fn(|j| wrap_angle(plane.cos_beta[j], plane.sin_beta[j]));
+        // Stage 4: the tangent point (as `tangent`, one coordinate at a time; Q's columns are
+        // e₁ = q[0..3], e₂ = q[3..6], k = q[6..9]).
+        let (mut unit, mut free_vector) = ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        let (mut exit_point, mut normal) = ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        let (mut length, mut ratio) = ([0.0; BLOCK], [0.0; BLOCK]);
+        for j in 0..BLOCK {
+            let (cos_beta, sin_beta) = (plane.cos_beta[j], plane.sin_beta[j]);
+            let (cos_gamma, sin_gamma) = (plane.cos_gamma[j], plane.sin_gamma[j]);
+            for c in 0..3 {
+                let (e1, e2, k) = (q[c][j], q[3 + c][j], q[6 + c][j]);
+                let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
+                let u = -(radial_direction * sin_beta + k * cos_beta);
+                unit[c][j] = u;
+                free_vector[c][j] = u * plane.free_length[j];
+                exit_point[c][j] = point[c][j] + free_vector[c][j];
+                normal[c][j] = e2 * cos_gamma - e1 * sin_gamma;
+            }
+            length[j] = rho[j] * wrap[j] + plane.free_length[j];
+            ratio[j] = rho[j] * (1.0 - cos_beta) * plane.inv_s[j];
+        }
+        // Stage 5: the states, in cable order (the first degenerate cable is the error).
+        let lane = |v: &[[f64; BLOCK]; 3], j: usize| Vector3::new(v[0][j], v[1][j], v[2][j]);
         for (j, ((cable, state), pulley_state)) in cables
             .iter()
             .zip(states.iter_mut())
@@ -405,8 +501,8 @@ pub(crate) fn update_cables_portable(
             .enumerate()
         {
             let i = block * BLOCK + j;
-            let attachment_point = position + attachment[j];
-            if let Some(pulley) = &cable.pulley {
+            let (attachment, attachment_point) = (lane(&attachment, j), lane(&point, j));
+            if cable.pulley.is_some() {
                 if let Some((reason, distance)) = plane.get(j).degeneracy(threshold) {
                     return Err(KinematicsError::DegeneratePulley {
                         cable: i,
@@ -414,24 +510,23 @@ pub(crate) fn update_cables_portable(
                         distance,
                     });
                 }
-                let c = tangent(pulley, &attachment_point, &plane.get(j), wrap[j]);
                 *state = CableState {
-                    vector: c.free_vector,
-                    length: c.length,
-                    unit: c.unit,
-                    attachment: attachment[j],
+                    vector: lane(&free_vector, j),
+                    length: length[j],
+                    unit: lane(&unit, j),
+                    attachment,
                     attachment_point,
                 };
                 *pulley_state = Some(PulleyState {
-                    free_length: c.free_length,
-                    swivel_direction: c.swivel_direction,
-                    wrap_angle: c.wrap_angle,
-                    exit_point: c.exit_point,
-                    plane_normal: c.plane_normal,
-                    swivel_ratio: c.swivel_ratio,
+                    free_length: plane.free_length[j],
+                    swivel_direction: [plane.cos_gamma[j], plane.sin_gamma[j]],
+                    wrap_angle: wrap[j],
+                    exit_point: lane(&exit_point, j),
+                    plane_normal: lane(&normal, j),
+                    swivel_ratio: ratio[j],
                 });
             } else {
-                *state = straight_cable(cable, attachment[j], attachment_point, threshold, i)?;
+                *state = straight_cable(cable, attachment, attachment_point, threshold, i)?;
                 *pulley_state = None;
             }
         }
@@ -648,6 +743,7 @@ mod tests {
             let (mut states, mut pulleys) = (vec![CableState::default(); n], vec![None; n]);
             update_cables_portable(
                 robot.cables(),
+                robot.pulley_blocks(),
                 pose.rotation.matrix(),
                 &pose.position,
                 threshold,
@@ -658,8 +754,14 @@ mod tests {
             assert_eq!(kin.cables(), &states[..]);
             for (i, (cable, state)) in robot.cables().iter().zip(&states).enumerate() {
                 assert_eq!(kin.pulley(i), pulleys[i].as_ref());
+                let attachment = pose.rotation * cable.platform;
+                assert_eq!(state.attachment, attachment);
+                assert_eq!(state.attachment_point, pose.position + attachment);
                 let Some(pulley) = &cable.pulley else {
                     assert!(pulleys[i].is_none());
+                    let straight = cable.frame - (pose.position + attachment);
+                    assert_eq!((state.vector, state.length), (straight, straight.norm()));
+                    assert_eq!(state.unit, straight / straight.norm());
                     continue;
                 };
                 pulley_cables += 1;
