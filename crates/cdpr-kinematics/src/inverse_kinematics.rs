@@ -14,8 +14,8 @@
 //! - Thesis eqs. (6.2)–(6.4). Picard, Caro, Plestan & Claveau 2020, §2.
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (pulley kinematics).
 
-use crate::pulley::pulley_cable;
-use crate::{KinematicsError, MotionPattern, Pose, Robot};
+use crate::pulley::update_cables;
+use crate::{Cable, KinematicsError, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 
 /// Relative length below which a cable counts as degenerate (zero length).
@@ -193,50 +193,49 @@ impl Robot {
         let r = pose.rotation.matrix();
         // One threshold per pose: lengths are compared with the size of the robot and the pose.
         let threshold = DEGENERATE_LENGTH * self.length_scale().max(pose.position.norm());
+        if self.has_pulleys() {
+            return update_cables(
+                self.cables(),
+                self.pulley_blocks(),
+                r,
+                &pose.position,
+                threshold,
+                &mut kin.cables,
+                &mut kin.pulleys,
+            );
+        }
         for (i, (cable, state)) in self.cables().iter().zip(kin.cables.iter_mut()).enumerate() {
             let attachment = r * cable.platform;
             let attachment_point = pose.position + attachment;
-            if let Some(pulley) = &cable.pulley {
-                let c = pulley_cable(&cable.frame, pulley, &attachment_point, threshold).map_err(
-                    |(reason, distance)| KinematicsError::DegeneratePulley {
-                        cable: i,
-                        reason,
-                        distance,
-                    },
-                )?;
-                *state = CableState {
-                    vector: c.free_vector,
-                    length: c.length,
-                    unit: c.unit,
-                    attachment,
-                    attachment_point,
-                };
-                kin.pulleys[i] = Some(PulleyState {
-                    free_length: c.free_length,
-                    swivel_direction: c.swivel_direction,
-                    wrap_angle: c.wrap_angle,
-                    exit_point: c.exit_point,
-                    plane_normal: c.plane_normal,
-                    swivel_ratio: c.swivel_ratio,
-                });
-                continue;
-            }
-            let vector = cable.frame - attachment_point;
-            let length = vector.norm();
-            // Written so that a NaN length also counts as degenerate.
-            if length.is_nan() || length <= threshold {
-                return Err(KinematicsError::DegenerateCable { cable: i, length });
-            }
-            *state = CableState {
-                vector,
-                length,
-                unit: vector / length,
-                attachment,
-                attachment_point,
-            };
+            *state = straight_cable(cable, attachment, attachment_point, threshold, i)?;
         }
         Ok(())
     }
+}
+
+/// The state of straight cable `i` (eqs. (6.2)–(6.4)) from its attachment **a**^i and attachment
+/// point; a length ≤ `threshold` (or NaN) is degenerate.
+#[inline(always)]
+pub(crate) fn straight_cable(
+    cable: &Cable,
+    attachment: Vector3<f64>,
+    attachment_point: Vector3<f64>,
+    threshold: f64,
+    i: usize,
+) -> Result<CableState, KinematicsError> {
+    let vector = cable.frame - attachment_point;
+    let length = vector.norm();
+    // Written so that a NaN length also counts as degenerate.
+    if length.is_nan() || length <= threshold {
+        return Err(KinematicsError::DegenerateCable { cable: i, length });
+    }
+    Ok(CableState {
+        vector,
+        length,
+        unit: vector / length,
+        attachment,
+        attachment_point,
+    })
 }
 
 #[cfg(test)]

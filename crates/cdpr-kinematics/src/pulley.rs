@@ -45,8 +45,10 @@
 //!   kinematics; the `.wcrfx` model of WireLib's `doInverseKinematicsPulleyEx`).
 //! - CASPR (Lau et al.), `BaseRotatingPulleyAttachment`.
 
-use crate::Pulley;
+use crate::inverse_kinematics::{CableState, PulleyState, straight_cable};
+use crate::{Cable, KinematicsError, Pulley};
 use nalgebra::{Matrix3, Vector3};
+use std::array::from_fn;
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_4, FRAC_PI_8, TAU};
 
 /// Largest deviation |QᵀQ − I| accepted for a pulley frame.
@@ -137,6 +139,7 @@ impl std::fmt::Display for PulleyDegeneracy {
 }
 
 /// The geometry of one pulley cable at one pose (base coordinates).
+#[cfg(test)]
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct PulleyCable {
     /// Tangent point **C** where the cable leaves the pulley.
@@ -168,53 +171,367 @@ pub(crate) struct PulleyCable {
 /// **r̂** = Q R_z(γ) e_x, **C** − **M** = ρ (−cos β **r̂** + sin β **k**) and
 /// **B** − **M** = x **r̂** + h **k**, so (**C** − **B**) / l_f = −(sin β **r̂** + cos β **k**)
 /// (substitute cos β and sin β and use l_f² = BM² − ρ²).
-#[inline]
+///
+/// [`update_cables`] evaluates the same three stages ([`pulley_plane`], [`wrap_angle`],
+/// [`tangent`]) a block of cables at a time, with bit-identical results (the tests compare the
+/// two).
+#[cfg(test)]
 pub(crate) fn pulley_cable(
     a: &Vector3<f64>,
     pulley: &Pulley,
     b: &Vector3<f64>,
     threshold: f64,
 ) -> Result<PulleyCable, (PulleyDegeneracy, f64)> {
-    let q = &pulley.orientation;
-    let rho = pulley.radius;
-    let p = q.tr_mul(&(b - a));
+    let p = pulley.orientation.tr_mul(&(b - a));
+    let plane = pulley_plane(p.x, p.y, p.z, pulley.radius);
+    plane.degeneracy(threshold).map_or(Ok(()), Err)?;
+    let wrap = wrap_angle(plane.cos_beta, plane.sin_beta);
+    Ok(tangent(pulley, b, &plane, wrap))
+}
+
+/// The pulley-plane quantities of one cable (module equations): everything but β itself.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct PulleyPlane {
+    s: f64,
+    free2: f64,
+    bm2: f64,
+    free_length: f64,
+    cos_beta: f64,
+    sin_beta: f64,
+    cos_gamma: f64,
+    sin_gamma: f64,
+    inv_s: f64,
+}
+
+/// From p = Qᵀ(**B** − **a**) and ρ: s, l_f, cos β, sin β, cos γ, sin γ (module equations).
+/// Computed whatever the geometry (NaN or ∞ when degenerate; [`PulleyPlane::degeneracy`] tells).
+#[inline(always)]
+fn pulley_plane(px: f64, py: f64, h: f64, rho: f64) -> PulleyPlane {
     // √ rather than `hypot`: a tenth of the cost, and s² cannot overflow for finite robots.
-    let s = (p.x * p.x + p.y * p.y).sqrt();
-    // Written so that NaN also counts as degenerate.
-    if s.is_nan() || s <= threshold {
-        return Err((PulleyDegeneracy::OnSwivelAxis, s));
-    }
-    let h = p.z;
+    let s = (px * px + py * py).sqrt();
     let x = s - rho;
     let bm2 = x * x + h * h;
     let free2 = bm2 - rho * rho;
-    if free2.is_nan() || free2 <= threshold * threshold {
-        return Err((PulleyDegeneracy::InsidePulley, bm2.sqrt()));
-    }
     let free_length = free2.sqrt();
     let inv_bm2 = 1.0 / bm2;
-    let cos_beta = (free_length * h - rho * x) * inv_bm2;
-    let sin_beta = (free_length * x + rho * h) * inv_bm2;
-    let wrap_angle = wrap_angle(cos_beta, sin_beta);
     let inv_s = 1.0 / s;
-    let (cos_gamma, sin_gamma) = (p.x * inv_s, p.y * inv_s);
+    PulleyPlane {
+        s,
+        free2,
+        bm2,
+        free_length,
+        cos_beta: (free_length * h - rho * x) * inv_bm2,
+        sin_beta: (free_length * x + rho * h) * inv_bm2,
+        cos_gamma: px * inv_s,
+        sin_gamma: py * inv_s,
+        inv_s,
+    }
+}
+
+impl PulleyPlane {
+    /// The attachment on the swivel axis (s ≤ `threshold`) or inside the pulley
+    /// (l_f ≤ `threshold`), with the distance that vanished; NaN counts as degenerate.
+    #[inline(always)]
+    fn degeneracy(&self, threshold: f64) -> Option<(PulleyDegeneracy, f64)> {
+        if self.s.is_nan() || self.s <= threshold {
+            Some((PulleyDegeneracy::OnSwivelAxis, self.s))
+        } else if self.free2.is_nan() || self.free2 <= threshold * threshold {
+            Some((PulleyDegeneracy::InsidePulley, self.bm2.sqrt()))
+        } else {
+            None
+        }
+    }
+}
+
+/// The tangent point, the free segment and the length (module equations) from the pulley-plane
+/// quantities and β, for one cable: the reference that [`update_cables`]'s stage 4 evaluates
+/// a block at a time (the tests compare the two bit for bit).
+#[cfg(test)]
+fn tangent(pulley: &Pulley, b: &Vector3<f64>, plane: &PulleyPlane, wrap: f64) -> PulleyCable {
+    let q = &pulley.orientation;
+    let rho = pulley.radius;
+    let (cos_beta, sin_beta) = (plane.cos_beta, plane.sin_beta);
+    let (cos_gamma, sin_gamma) = (plane.cos_gamma, plane.sin_gamma);
     let radial = rho * (1.0 - cos_beta);
     let (e1, e2, k) = (q.column(0), q.column(1), q.column(2));
     // r̂ = Q R_z(γ) e_x = cos γ e₁ + sin γ e₂.
     let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
     let unit = -(radial_direction * sin_beta + k * cos_beta);
-    let free_vector = unit * free_length;
-    Ok(PulleyCable {
+    let free_vector = unit * plane.free_length;
+    PulleyCable {
         exit_point: b + free_vector,
         free_vector,
         unit,
-        free_length,
-        length: rho * wrap_angle + free_length,
+        free_length: plane.free_length,
+        length: rho * wrap + plane.free_length,
         swivel_direction: [cos_gamma, sin_gamma],
-        wrap_angle,
+        wrap_angle: wrap,
         plane_normal: e2 * cos_gamma - e1 * sin_gamma,
-        swivel_ratio: radial * inv_s,
-    })
+        swivel_ratio: radial * plane.inv_s,
+    }
+}
+
+/// [`PulleyPlane`] of a block of cables, one array per quantity.
+#[derive(Default)]
+struct PlaneBlock {
+    s: [f64; BLOCK],
+    free2: [f64; BLOCK],
+    bm2: [f64; BLOCK],
+    free_length: [f64; BLOCK],
+    cos_beta: [f64; BLOCK],
+    sin_beta: [f64; BLOCK],
+    cos_gamma: [f64; BLOCK],
+    sin_gamma: [f64; BLOCK],
+    inv_s: [f64; BLOCK],
+}
+
+impl PlaneBlock {
+    #[inline(always)]
+    fn set(&mut self, j: usize, p: PulleyPlane) {
+        self.s[j] = p.s;
+        self.free2[j] = p.free2;
+        self.bm2[j] = p.bm2;
+        self.free_length[j] = p.free_length;
+        self.cos_beta[j] = p.cos_beta;
+        self.sin_beta[j] = p.sin_beta;
+        self.cos_gamma[j] = p.cos_gamma;
+        self.sin_gamma[j] = p.sin_gamma;
+        self.inv_s[j] = p.inv_s;
+    }
+
+    #[inline(always)]
+    fn get(&self, j: usize) -> PulleyPlane {
+        PulleyPlane {
+            s: self.s[j],
+            free2: self.free2[j],
+            bm2: self.bm2[j],
+            free_length: self.free_length[j],
+            cos_beta: self.cos_beta[j],
+            sin_beta: self.sin_beta[j],
+            cos_gamma: self.cos_gamma[j],
+            sin_gamma: self.sin_gamma[j],
+            inv_s: self.inv_s[j],
+        }
+    }
+}
+
+/// A robot's cables in blocks of [`BLOCK`], one array per coordinate, as [`update_cables`]
+/// reads them (built once, with the robot; empty for a robot without pulleys).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub(crate) struct PulleyBlocks(Vec<PulleyBlock>);
+
+/// [`BLOCK`] cables: frame points **a**, platform attachments **b̄**, pulley frames Q (entry k
+/// of Q in column-major order is `q[k]`) and radii ρ. Straight cables hold Q = I, ρ = 0 (their
+/// pulley results are not used) and the lanes past the last cable zeros with Q = I.
+#[derive(Debug, Clone, PartialEq)]
+#[repr(align(32))]
+struct PulleyBlock {
+    frame: [[f64; BLOCK]; 3],
+    platform: [[f64; BLOCK]; 3],
+    q: [[f64; BLOCK]; 9],
+    rho: [f64; BLOCK],
+}
+
+impl PulleyBlocks {
+    pub(crate) fn new(cables: &[Cable]) -> Self {
+        if cables.iter().all(|c| c.pulley.is_none()) {
+            return Self::default();
+        }
+        Self(
+            cables
+                .chunks(BLOCK)
+                .map(|cables| {
+                    let mut block = PulleyBlock {
+                        frame: [[0.0; BLOCK]; 3],
+                        platform: [[0.0; BLOCK]; 3],
+                        q: [[0.0; BLOCK]; 9],
+                        rho: [0.0; BLOCK],
+                    };
+                    (block.q[0], block.q[4], block.q[8]) =
+                        ([1.0; BLOCK], [1.0; BLOCK], [1.0; BLOCK]);
+                    for (j, cable) in cables.iter().enumerate() {
+                        for c in 0..3 {
+                            block.frame[c][j] = cable.frame[c];
+                            block.platform[c][j] = cable.platform[c];
+                        }
+                        let Some(pulley) = &cable.pulley else {
+                            continue;
+                        };
+                        for (e, q) in pulley.orientation.iter().zip(block.q.iter_mut()) {
+                            q[j] = *e;
+                        }
+                        block.rho[j] = pulley.radius;
+                    }
+                    block
+                })
+                .collect(),
+        )
+    }
+}
+
+/// Cables per block in [`update_cables`].
+const BLOCK: usize = 8;
+
+/// The inverse kinematics of every cable of a robot with pulleys at the pose (`rotation`,
+/// `position`), into `states` and `pulleys` (one per cable); straight cables as in
+/// `inverse_kinematics`. The first degenerate cable (in index order) is the error.
+///
+/// Same equations and operations as [`pulley_cable`], reordered for speed: each stage runs
+/// over a block of [`BLOCK`] cables before the next starts, so that the cables' long dependent
+/// chains (two square roots, two divisions, the wrap angle) overlap instead of following each
+/// other.
+///
+/// On x86-64 CPUs with AVX2 the same code is compiled a second time with AVX2 enabled (chosen at
+/// run time), so that the compiler can run four lanes of a stage at once. No fused multiply–add
+/// is enabled, so both builds round every operation the same way: identical results.
+pub(crate) fn update_cables(
+    cables: &[Cable],
+    geometry: &PulleyBlocks,
+    rotation: &Matrix3<f64>,
+    position: &Vector3<f64>,
+    threshold: f64,
+    states: &mut [CableState],
+    pulleys: &mut [Option<PulleyState>],
+) -> Result<(), KinematicsError> {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU supports AVX2, the only feature the function enables.
+        return unsafe {
+            update_cables_avx2(
+                cables, geometry, rotation, position, threshold, states, pulleys,
+            )
+        };
+    }
+    update_cables_portable(
+        cables, geometry, rotation, position, threshold, states, pulleys,
+    )
+}
+
+/// [`update_cables_portable`] compiled with AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn update_cables_avx2(
+    cables: &[Cable],
+    geometry: &PulleyBlocks,
+    rotation: &Matrix3<f64>,
+    position: &Vector3<f64>,
+    threshold: f64,
+    states: &mut [CableState],
+    pulleys: &mut [Option<PulleyState>],
+) -> Result<(), KinematicsError> {
+    update_cables_portable(
+        cables, geometry, rotation, position, threshold, states, pulleys,
+    )
+}
+
+/// [`update_cables`] for any CPU.
+#[inline(always)]
+pub(crate) fn update_cables_portable(
+    cables: &[Cable],
+    geometry: &PulleyBlocks,
+    rotation: &Matrix3<f64>,
+    position: &Vector3<f64>,
+    threshold: f64,
+    states: &mut [CableState],
+    pulleys: &mut [Option<PulleyState>],
+) -> Result<(), KinematicsError> {
+    for (block, ((cables, states), pulleys)) in cables
+        .chunks(BLOCK)
+        .zip(states.chunks_mut(BLOCK))
+        .zip(pulleys.chunks_mut(BLOCK))
+        .enumerate()
+    {
+        let PulleyBlock {
+            frame,
+            platform,
+            q,
+            rho,
+        } = &geometry.0[block];
+        // Stage 1: attachments R b̄ (as nalgebra's matrix–vector product: column by column),
+        // attachment points B and p = Qᵀ(B − a) (entry k of Q column-major is q[k]).
+        let r = rotation;
+        let (mut attachment, mut point, mut p) =
+            ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        for j in 0..BLOCK {
+            let mut d = [0.0; 3];
+            for c in 0..3 {
+                let a = r[(c, 0)] * platform[0][j]
+                    + r[(c, 1)] * platform[1][j]
+                    + r[(c, 2)] * platform[2][j];
+                attachment[c][j] = a;
+                point[c][j] = position[c] + a;
+                d[c] = point[c][j] - frame[c][j];
+            }
+            for k in 0..3 {
+                p[k][j] = q[3 * k][j] * d[0] + q[3 * k + 1][j] * d[1] + q[3 * k + 2][j] * d[2];
+            }
+        }
+        // Stage 2: the pulley plane; stage 3: the wrap angle.
+        let mut plane = PlaneBlock::default();
+        for j in 0..BLOCK {
+            plane.set(j, pulley_plane(p[0][j], p[1][j], p[2][j], rho[j]));
+        }
+        let wrap: [f64; BLOCK] = from_fn(|j| wrap_angle(plane.cos_beta[j], plane.sin_beta[j]));
+        // Stage 4: the tangent point (as `tangent`, one coordinate at a time; Q's columns are
+        // e₁ = q[0..3], e₂ = q[3..6], k = q[6..9]).
+        let (mut unit, mut free_vector) = ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        let (mut exit_point, mut normal) = ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
+        let (mut length, mut ratio) = ([0.0; BLOCK], [0.0; BLOCK]);
+        for j in 0..BLOCK {
+            let (cos_beta, sin_beta) = (plane.cos_beta[j], plane.sin_beta[j]);
+            let (cos_gamma, sin_gamma) = (plane.cos_gamma[j], plane.sin_gamma[j]);
+            for c in 0..3 {
+                let (e1, e2, k) = (q[c][j], q[3 + c][j], q[6 + c][j]);
+                let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
+                let u = -(radial_direction * sin_beta + k * cos_beta);
+                unit[c][j] = u;
+                free_vector[c][j] = u * plane.free_length[j];
+                exit_point[c][j] = point[c][j] + free_vector[c][j];
+                normal[c][j] = e2 * cos_gamma - e1 * sin_gamma;
+            }
+            length[j] = rho[j] * wrap[j] + plane.free_length[j];
+            ratio[j] = rho[j] * (1.0 - cos_beta) * plane.inv_s[j];
+        }
+        // Stage 5: the states, in cable order (the first degenerate cable is the error).
+        let lane = |v: &[[f64; BLOCK]; 3], j: usize| Vector3::new(v[0][j], v[1][j], v[2][j]);
+        for (j, ((cable, state), pulley_state)) in cables
+            .iter()
+            .zip(states.iter_mut())
+            .zip(pulleys.iter_mut())
+            .enumerate()
+        {
+            let i = block * BLOCK + j;
+            let (attachment, attachment_point) = (lane(&attachment, j), lane(&point, j));
+            if cable.pulley.is_some() {
+                if let Some((reason, distance)) = plane.get(j).degeneracy(threshold) {
+                    return Err(KinematicsError::DegeneratePulley {
+                        cable: i,
+                        reason,
+                        distance,
+                    });
+                }
+                *state = CableState {
+                    vector: lane(&free_vector, j),
+                    length: length[j],
+                    unit: lane(&unit, j),
+                    attachment,
+                    attachment_point,
+                };
+                *pulley_state = Some(PulleyState {
+                    free_length: plane.free_length[j],
+                    swivel_direction: [plane.cos_gamma[j], plane.sin_gamma[j]],
+                    wrap_angle: wrap[j],
+                    exit_point: lane(&exit_point, j),
+                    plane_normal: lane(&normal, j),
+                    swivel_ratio: ratio[j],
+                });
+            } else {
+                *state = straight_cable(cable, attachment, attachment_point, threshold, i)?;
+                *pulley_state = None;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// (θ_k, cos θ_k, sin θ_k) for θ_k = kπ/32, k = 0, …, 8, correctly rounded (computed with
@@ -372,6 +689,132 @@ mod tests {
         let m = Vector3::new(1.0, 0.0, 0.0);
         assert_relative_eq!((c.exit_point - m).norm(), 1.0, epsilon = 1e-14);
         assert!((c.exit_point - m).dot(&c.free_vector).abs() < 1e-13);
+    }
+
+    /// 11 cables (a full block and part of a second), tilted pulleys of several radii, two
+    /// straight cables among them.
+    fn mixed_robot() -> crate::Robot {
+        let cables = (0..11)
+            .map(|i| {
+                let t = i as f64;
+                let pulley = (i % 5 != 3).then(|| {
+                    let down = if i % 4 == 0 { -1.0 } else { 1.0 };
+                    Pulley::from_axis(
+                        0.02 + 0.01 * t,
+                        Vector3::new(0.2 * t.sin(), 0.3 * t.cos(), down),
+                    )
+                });
+                Cable {
+                    frame: Vector3::new(2.0 * (1.3 * t).cos(), 2.0 * (1.3 * t).sin(), 1.5),
+                    platform: Vector3::new(0.1 * (2.1 * t).cos(), 0.1 * (2.1 * t).sin(), 0.05),
+                    pulley,
+                }
+            })
+            .collect();
+        crate::Robot::new(crate::MotionPattern::Spatial, cables).unwrap()
+    }
+
+    /// The block update (AVX2 build where the CPU has it), its portable build and the per-cable
+    /// equations [`pulley_cable`] give the same bits.
+    #[test]
+    fn block_update_equals_the_cable_equations_bit_for_bit() {
+        use crate::Pose;
+        use nalgebra::Rotation3;
+        let robot = mixed_robot();
+        let n = robot.cable_count();
+        let mut pulley_cables = 0;
+        for k in 0..200 {
+            let t = k as f64;
+            let pose = Pose::new(
+                Vector3::new(
+                    0.4 * (0.7 * t).sin(),
+                    0.4 * (1.1 * t).cos(),
+                    0.3 * (0.3 * t).sin(),
+                ),
+                Rotation3::new(Vector3::new(
+                    0.3 * t.sin(),
+                    0.2 * t.cos(),
+                    0.5 * (0.4 * t).sin(),
+                )),
+            );
+            let kin = robot.inverse_kinematics(&pose).unwrap();
+            let threshold = crate::inverse_kinematics::DEGENERATE_LENGTH
+                * robot.length_scale().max(pose.position.norm());
+            let (mut states, mut pulleys) = (vec![CableState::default(); n], vec![None; n]);
+            update_cables_portable(
+                robot.cables(),
+                robot.pulley_blocks(),
+                pose.rotation.matrix(),
+                &pose.position,
+                threshold,
+                &mut states,
+                &mut pulleys,
+            )
+            .unwrap();
+            assert_eq!(kin.cables(), &states[..]);
+            for (i, (cable, state)) in robot.cables().iter().zip(&states).enumerate() {
+                assert_eq!(kin.pulley(i), pulleys[i].as_ref());
+                let attachment = pose.rotation * cable.platform;
+                assert_eq!(state.attachment, attachment);
+                assert_eq!(state.attachment_point, pose.position + attachment);
+                let Some(pulley) = &cable.pulley else {
+                    assert!(pulleys[i].is_none());
+                    let straight = cable.frame - (pose.position + attachment);
+                    assert_eq!((state.vector, state.length), (straight, straight.norm()));
+                    assert_eq!(state.unit, straight / straight.norm());
+                    continue;
+                };
+                pulley_cables += 1;
+                let c =
+                    pulley_cable(&cable.frame, pulley, &state.attachment_point, threshold).unwrap();
+                let p = pulleys[i].unwrap();
+                assert_eq!(
+                    (state.length, state.unit, state.vector),
+                    (c.length, c.unit, c.free_vector)
+                );
+                assert_eq!(
+                    (
+                        p.free_length,
+                        p.swivel_direction,
+                        p.wrap_angle,
+                        p.exit_point
+                    ),
+                    (
+                        c.free_length,
+                        c.swivel_direction,
+                        c.wrap_angle,
+                        c.exit_point
+                    )
+                );
+                assert_eq!(
+                    (p.plane_normal, p.swivel_ratio),
+                    (c.plane_normal, c.swivel_ratio)
+                );
+            }
+        }
+        assert_eq!(pulley_cables, 200 * 9);
+    }
+
+    /// The first degenerate cable in index order is the error, in either block.
+    #[test]
+    fn block_update_reports_the_first_degenerate_cable() {
+        use crate::{KinematicsError, Pose};
+        let robot = mixed_robot();
+        for i in [0, 3, 9, 10] {
+            // Put the platform origin (attachment offset undone) on cable i's frame point.
+            let cable = &robot.cables()[i];
+            let pose = Pose::new(
+                cable.frame - cable.platform,
+                nalgebra::Rotation3::identity(),
+            );
+            match robot.inverse_kinematics(&pose).unwrap_err() {
+                KinematicsError::DegeneratePulley { cable, reason, .. } => {
+                    assert_eq!((cable, reason), (i, PulleyDegeneracy::OnSwivelAxis));
+                }
+                KinematicsError::DegenerateCable { cable, .. } => assert_eq!((cable, i), (3, 3)),
+                e => panic!("{e}"),
+            }
+        }
     }
 
     #[test]

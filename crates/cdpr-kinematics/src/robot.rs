@@ -4,6 +4,7 @@
 //! cable i, the frame anchor **c**^i (base coordinates) and the platform attachment **ā**^i
 //! (platform coordinates). Thesis Fig. 6.1 and Tables 6.1–6.2; Picard, Caro, Plestan & Claveau 2020, §2 calls them A_i, B_i.
 
+use crate::pulley::PulleyBlocks;
 use crate::{KinematicsError, MotionPattern};
 use nalgebra::{Matrix3, Vector2, Vector3};
 
@@ -160,6 +161,8 @@ pub struct Robot {
     length_scale: f64,
     /// Whether any cable has a pulley.
     has_pulleys: bool,
+    /// The cables' geometry as the pulley inverse kinematics reads it (empty without pulleys).
+    pulley_blocks: PulleyBlocks,
 }
 
 impl Robot {
@@ -221,6 +224,7 @@ impl Robot {
         let has_pulleys = cables.iter().any(|c| c.pulley.is_some());
         Ok(Self {
             motion,
+            pulley_blocks: PulleyBlocks::new(&cables),
             cables,
             length_scale,
             has_pulleys,
@@ -295,17 +299,25 @@ impl Robot {
             c.pulley = None;
         }
         r.has_pulleys = false;
+        r.pulley_blocks = PulleyBlocks::new(&r.cables);
         r
     }
 
     /// The same robot with its cables reordered: `order[k]` is the old index of new cable k.
     pub fn permuted(&self, order: &[usize]) -> Self {
+        let cables: Vec<Cable> = order.iter().map(|&i| self.cables[i]).collect();
         Self {
             motion: self.motion,
-            cables: order.iter().map(|&i| self.cables[i]).collect(),
+            pulley_blocks: PulleyBlocks::new(&cables),
+            cables,
             length_scale: self.length_scale,
             has_pulleys: self.has_pulleys,
         }
+    }
+
+    /// The cables' geometry in blocks for the pulley inverse kinematics.
+    pub(crate) fn pulley_blocks(&self) -> &PulleyBlocks {
+        &self.pulley_blocks
     }
 }
 
