@@ -117,16 +117,16 @@ impl WrenchClosureTest {
     /// [`WrenchClosureTest::reduce_dynamic`] in the same order.
     fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &DMatrix<f64>) -> Option<usize> {
         let mut a = [[0.0f64; N]; D];
+        // The largest |w_ij| by comparisons (the entries are finite: `f64::max` would give
+        // the same value at twice the instructions).
+        let mut largest = 0.0f64;
         for (j, column) in w.as_slice().chunks_exact(D).enumerate() {
             for (i, &v) in column.iter().enumerate() {
                 a[i][j] = v;
+                largest = if v.abs() > largest { v.abs() } else { largest };
             }
         }
-        let scale = a
-            .iter()
-            .flatten()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(1e-300);
+        let scale = largest.max(1e-300);
         let mut pivots = [0usize; D];
         let mut is_pivot = [false; N];
         let mut row = 0;
@@ -147,7 +147,15 @@ impl WrenchClosureTest {
             }
             a.swap(row, best);
             let inv = 1.0 / a[row][col];
-            a[row][col..].iter_mut().for_each(|v| *v *= inv);
+            // While no column has been skipped (row = col), every column left of `col` is a
+            // pivot column, whose entries are never read again: whole rows can then be updated
+            // (fixed length, unrolled) with the same values in every entry that is read.
+            let full = row == col;
+            if full {
+                a[row].iter_mut().for_each(|v| *v *= inv);
+            } else {
+                a[row][col..].iter_mut().for_each(|v| *v *= inv);
+            }
             let pivot = a[row];
             for (i, other) in a.iter_mut().enumerate() {
                 if i == row {
@@ -155,8 +163,14 @@ impl WrenchClosureTest {
                 }
                 let f = other[col];
                 if f != 0.0 {
-                    for (o, p) in other[col..].iter_mut().zip(&pivot[col..]) {
-                        *o -= f * p;
+                    if full {
+                        for (o, p) in other.iter_mut().zip(&pivot) {
+                            *o -= f * p;
+                        }
+                    } else {
+                        for (o, p) in other[col..].iter_mut().zip(&pivot[col..]) {
+                            *o -= f * p;
+                        }
                     }
                 }
             }
