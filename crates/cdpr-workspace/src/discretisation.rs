@@ -19,7 +19,9 @@
 //!
 //! Points are evaluated in parallel with rayon, in contiguous tasks, with one [`PoseEvaluator`]
 //! clone per thread; each point's verdict depends on that point only, so the result is the same
-//! whatever the number of threads.
+//! whatever the number of threads. Constant-orientation grids pass each task's points to
+//! [`PoseEvaluator::feasible_batch`] 64 at a time (the batch inverse kinematics when the
+//! criteria need W only; the same verdicts as point by point).
 //!
 //! ## References
 //! - Thesis §6.4.2, Algorithm 6.2.

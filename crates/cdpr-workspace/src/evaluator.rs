@@ -5,7 +5,9 @@
 //! scratch, K): no allocation per pose once warmed up (`tests/no_allocation.rs` counts them;
 //! tension methods that allocate internally, such as the interior-point path of
 //! `cdpr-tension`, are the exception). Cheap criteria are tested first and the first failure
-//! ends the test. Grids clone one evaluator per rayon task.
+//! ends the test. Grids clone one evaluator per rayon thread. [`PoseEvaluator::feasible_batch`]
+//! evaluates a list of poses, taking W from the batch inverse kinematics (SIMD across poses,
+//! `Robot::wrench_matrices`) when every criterion needs W only.
 //!
 //! ## References
 //! - Thesis eq. (6.23): the constant-orientation workspace definition.
