@@ -383,7 +383,7 @@ impl PoseEvaluator {
     /// panics otherwise). When every criterion needs W only (wrench closure, tension
     /// feasibility without stiffness, capacity margin, isotropic force, Jacobian determinant) and
     /// the robot has no pulleys, W comes from the batch inverse kinematics
-    /// (`Robot::wrench_matrices`, SIMD across poses) [`BATCH`] poses at a time, in buffers kept
+    /// (`Robot::wrench_matrices`, SIMD across poses) 64 poses at a time, in buffers kept
     /// by the evaluator: no allocation once warmed up. Every verdict equals the pose-by-pose
     /// one (the batch W is the single-pose W bit for bit).
     ///
