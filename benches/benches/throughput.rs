@@ -5,7 +5,7 @@
 //! within ±0.1 rad). Every tension answer is certified (as in every `TensionSolver` call).
 //!
 //! One iteration runs all 20 000 poses (criterion's throughput gives the rate; CPU time per call
-//! = time / 20 000). IDs: `throughput_ipanema_1/{ik_w, ik_w_batch, improved_closed_form,
+//! = time / 20 000). IDs: `throughput_ipanema_1/{ik_w, ik_w_batch, ik_w_batch_portable, improved_closed_form,
 //! barycenter, l2, l1, linf}`; run with
 //! `cargo bench -p cdpr-benches --bench throughput`.
 
@@ -44,6 +44,17 @@ fn ik_w(c: &mut Criterion) {
             let count = f
                 .robot
                 .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
+                .unwrap();
+            black_box((count, out[POSES * 48 - 1]))
+        })
+    });
+    // The same API through the portable (SSE2) build of its structure-of-arrays kernel, which
+    // CPUs without AVX2 run.
+    g.bench_function("ik_w_batch_portable", |b| {
+        b.iter(|| {
+            let count = f
+                .robot
+                .wrench_matrices_portable(black_box(&f.poses), &mut out, &mut valid)
                 .unwrap();
             black_box((count, out[POSES * 48 - 1]))
         })

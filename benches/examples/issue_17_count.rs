@@ -1,6 +1,6 @@
 //! Issue 17's table operations in a plain loop, for load-independent instruction counts:
 //! `valgrind --tool=callgrind <binary> OPERATION REPS` runs OPERATION (`ik_w`,
-//! `ik_w_batch`, `improved_closed_form`, `barycenter`, `l2`, `l1`, `linf`) REPS times over the 20 000 poses of
+//! `ik_w_batch`, `ik_w_batch_portable`, `improved_closed_form`, `barycenter`, `l2`, `l1`, `linf`) REPS times over the 20 000 poses of
 //! the fixture; instructions per call = (count at REPS − count at 0) / (20 000 · REPS).
 
 use cdpr_benches::issue_17::fixture;
@@ -28,6 +28,19 @@ fn main() {
             }
         }
         println!("{s}");
+        return;
+    }
+    if op == "ik_w_batch_portable" {
+        let mut out = vec![0.0; f.poses.len() * 48];
+        let mut valid = vec![false; f.poses.len()];
+        let mut count = 0;
+        for _ in 0..reps {
+            count += f
+                .robot
+                .wrench_matrices_portable(black_box(&f.poses), &mut out, &mut valid)
+                .unwrap();
+        }
+        println!("{count} {}", out[out.len() - 1]);
         return;
     }
     if op == "ik_w_batch" {

@@ -22,7 +22,7 @@ use nalgebra::Vector3;
 impl Robot {
     /// W of every pose in `poses` into `out` (`poses.len()` blocks of DOF · n values, each
     /// column-major like `DMatrix::as_slice`); `valid[k]` tells whether pose k has a wrench
-    /// matrix (its block is then written; otherwise the block is left as it was). Returns the
+    /// matrix (its block is then written; otherwise the block holds no meaningful values). Returns the
     /// number of valid poses; errors only when `out` or `valid` has the wrong length. Allocates
     /// nothing for robots without pulleys.
     ///
@@ -65,6 +65,9 @@ impl Robot {
             return Ok(self.wrench_matrices_by_pose(poses, out, valid));
         }
         Ok(match self.motion() {
+            MotionPattern::Spatial if self.cable_count() <= MAX_LANE_CABLES => {
+                spatial_lanes(self, poses, out, valid, detected_path())
+            }
             MotionPattern::Spatial => self.straight::<6>(poses, out, valid, |u, a, col| {
                 let m = a.cross(u);
                 col[..3].copy_from_slice(u.as_slice());
@@ -83,6 +86,26 @@ impl Robot {
                 col[1] = u.y;
             }),
         })
+    }
+
+    /// [`Robot::wrench_matrices`] through the portable (SSE2) build of the structure-of-arrays
+    /// kernel whatever the CPU, so that tests can compare it with the AVX2 build. Not API.
+    #[doc(hidden)]
+    pub fn wrench_matrices_portable(
+        &self,
+        poses: &[Pose],
+        out: &mut [f64],
+        valid: &mut [bool],
+    ) -> Result<usize, KinematicsError> {
+        if self.motion() == MotionPattern::Spatial
+            && !self.has_pulleys()
+            && self.cable_count() <= MAX_LANE_CABLES
+            && out.len() == poses.len() * 6 * self.cable_count()
+            && valid.len() == poses.len()
+        {
+            return Ok(spatial_lanes(self, poses, out, valid, LanePath::Portable));
+        }
+        self.wrench_matrices(poses, out, valid)
     }
 
     /// The straight-cable loop for DOF = D, with the column formula of the motion pattern.
@@ -153,4 +176,179 @@ impl Robot {
         }
         count
     }
+}
+
+/// Poses per group of the structure-of-arrays kernel (four f64 lanes: one AVX2 register; the
+/// stores of [`spatial_group`] are written out for four).
+const LANES: usize = 4;
+/// Most cables the kernel takes (its loops are unrolled for small robots); larger robots take
+/// the pose-by-pose loop.
+const MAX_LANE_CABLES: usize = 16;
+
+/// The columns of a group, cable × row × lane: whole lanes are stored as they are computed (so
+/// the compiler keeps the arithmetic across lanes), then copied out pose by pose.
+type Columns = [[[f64; LANES]; 6]; MAX_LANE_CABLES];
+
+/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop
+/// without closures, which the compiler turns into SIMD instructions).
+macro_rules! lanes {
+    ($l:ident => $e:expr) => {{
+        let mut lane = [0.0f64; LANES];
+        for $l in 0..LANES {
+            lane[$l] = $e;
+        }
+        lane
+    }};
+}
+
+/// One f64 per pose of a group.
+/// Which build of the structure-of-arrays kernel runs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum LanePath {
+    /// Compiled for AVX2 (chosen at run time when the CPU has it).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    /// Compiled for the baseline target (SSE2 on x86-64).
+    Portable,
+}
+
+/// The fastest build this CPU runs (`is_x86_feature_detected!` caches its answer).
+fn detected_path() -> LanePath {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        return LanePath::Avx2;
+    }
+    LanePath::Portable
+}
+
+/// Spatial robots without pulleys: groups of [`LANES`] poses through [`spatial_group`], the
+/// remainder pose by pose. Both builds compile the same source without fused multiply–adds
+/// (Rust never contracts `a * b + c`), so they give the same bits as the single-pose path.
+fn spatial_lanes(
+    robot: &Robot,
+    poses: &[Pose],
+    out: &mut [f64],
+    valid: &mut [bool],
+    path: LanePath,
+) -> usize {
+    let groups = poses.len() / LANES * LANES;
+    let block = 6 * robot.cable_count();
+    let (head, tail) = out.split_at_mut(groups * block);
+    let (ok_head, ok_tail) = valid.split_at_mut(groups);
+    let count = match path {
+        // SAFETY: `Avx2` is chosen only when the CPU reports AVX2 (`detected_path`, or a test
+        // that checks it first).
+        #[cfg(target_arch = "x86_64")]
+        LanePath::Avx2 => unsafe { spatial_groups_avx2(robot, &poses[..groups], head, ok_head) },
+        LanePath::Portable => spatial_groups(robot, &poses[..groups], head, ok_head),
+    };
+    count
+        + robot.straight::<6>(&poses[groups..], tail, ok_tail, |u, a, col| {
+            let m = a.cross(u);
+            col[..3].copy_from_slice(u.as_slice());
+            col[3..].copy_from_slice(m.as_slice());
+        })
+}
+
+/// [`spatial_groups`] compiled with AVX2 enabled (four f64 lanes per instruction).
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn spatial_groups_avx2(
+    robot: &Robot,
+    poses: &[Pose],
+    out: &mut [f64],
+    valid: &mut [bool],
+) -> usize {
+    spatial_groups(robot, poses, out, valid)
+}
+
+/// Whole groups of [`LANES`] poses (`poses.len()` a multiple of it), each written straight into
+/// the blocks of its poses.
+#[inline(always)]
+fn spatial_groups(robot: &Robot, poses: &[Pose], out: &mut [f64], valid: &mut [bool]) -> usize {
+    let block = 6 * robot.cable_count();
+    let mut scratch = [[[0.0; LANES]; 6]; MAX_LANE_CABLES];
+    let mut count = 0;
+    for ((group, blocks), ok) in poses
+        .chunks_exact(LANES)
+        .zip(out.chunks_exact_mut(LANES * block))
+        .zip(valid.chunks_exact_mut(LANES))
+    {
+        let good = spatial_group(robot, group, blocks, &mut scratch);
+        ok.copy_from_slice(&good);
+        count += good.iter().filter(|&&g| g).count();
+    }
+    count
+}
+
+/// One group of [`LANES`] poses, structure of arrays: for each cable the expressions of
+/// `update_kinematics` (eqs. (6.2)–(6.4)) and of the column `[u_i ; a_i × u_i]`, evaluated in
+/// the same order as nalgebra's (**T ā** = ((T₀ ā_x + T₁ ā_y) + T₂ ā_z), ‖ℓ‖² = (x² + y²) + z²,
+/// three divisions by ‖ℓ‖), one lane per pose, then stored into the pose's block of `blocks`.
+/// Returns which poses are valid (finite position, every cable longer than the
+/// degenerate-length threshold).
+#[inline(always)]
+fn spatial_group(
+    robot: &Robot,
+    group: &[Pose],
+    blocks: &mut [f64],
+    scratch: &mut Columns,
+) -> [bool; LANES] {
+    let block = 6 * robot.cable_count();
+    let mut u = [[0.0; LANES]; 3];
+    let mut t = [[[0.0; LANES]; 3]; 3];
+    let mut threshold = [0.0; LANES];
+    let mut good = [false; LANES];
+    for (l, pose) in group.iter().enumerate() {
+        let m = pose.rotation.matrix();
+        for k in 0..3 {
+            u[k][l] = pose.position[k];
+            for j in 0..3 {
+                t[k][j][l] = m[(k, j)];
+            }
+        }
+        good[l] = pose.position.iter().all(|v| v.is_finite());
+        threshold[l] = DEGENERATE_LENGTH * robot.length_scale().max(pose.position.norm());
+    }
+    // 1.0 while every cable so far is longer than the threshold, 0.0 after (a mask that
+    // vectorises; a NaN length fails `>`).
+    let mut long = [1.0f64; LANES];
+    let n = robot.cable_count();
+    for (cable, column) in robot.cables().iter().zip(&mut scratch[..n]) {
+        let (p, c) = (&cable.platform, &cable.frame);
+        // Every step is one operation on whole lanes (what the compiler turns into one SIMD
+        // instruction per step).
+        let mut a = [[0.0; LANES]; 3];
+        let mut v = [[0.0; LANES]; 3];
+        for k in 0..3 {
+            a[k] = lanes!(l => t[k][0][l] * p.x + t[k][1][l] * p.y + t[k][2][l] * p.z);
+            v[k] = lanes!(l => c[k] - (u[k][l] + a[k][l]));
+        }
+        let length =
+            lanes!(l => (v[0][l] * v[0][l] + v[1][l] * v[1][l] + v[2][l] * v[2][l]).sqrt());
+        long = lanes!(l => if length[l] > threshold[l] { long[l] } else { 0.0 });
+        let mut e = [[0.0; LANES]; 3];
+        for k in 0..3 {
+            e[k] = lanes!(l => v[k][l] / length[l]);
+        }
+        *column = [
+            e[0],
+            e[1],
+            e[2],
+            lanes!(l => a[1][l] * e[2][l] - a[2][l] * e[1][l]),
+            lanes!(l => a[2][l] * e[0][l] - a[0][l] * e[2][l]),
+            lanes!(l => a[0][l] * e[1][l] - a[1][l] * e[0][l]),
+        ];
+    }
+    for (l, dst) in blocks.chunks_exact_mut(block).enumerate() {
+        for (d, column) in dst.chunks_exact_mut(6).zip(&scratch[..n]) {
+            for (v, row) in d.iter_mut().zip(column) {
+                *v = row[l];
+            }
+        }
+    }
+    std::array::from_fn(|l| good[l] && long[l] == 1.0)
 }

@@ -63,6 +63,10 @@ fn batch_and_single_pose_ik_do_not_allocate() {
     let mut w = DMatrix::zeros(6, 8);
     let before = allocations_so_far();
     let count = robot.wrench_matrices(&poses, &mut out, &mut valid).unwrap();
+    // The portable build of the structure-of-arrays kernel (the AVX2 one runs above).
+    let portable = robot
+        .wrench_matrices_portable(&poses, &mut out, &mut valid)
+        .unwrap();
     for (k, pose) in poses.iter().enumerate() {
         if k != 10 {
             robot.update_kinematics(pose, &mut kin).unwrap();
@@ -71,5 +75,6 @@ fn batch_and_single_pose_ik_do_not_allocate() {
     }
     assert_eq!(allocations_so_far() - before, 0);
     assert_eq!(count, poses.len() - 1);
+    assert_eq!(portable, count);
     assert!(!valid[10]);
 }

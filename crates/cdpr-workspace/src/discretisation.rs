@@ -19,11 +19,14 @@
 //!
 //! Points are evaluated in parallel with rayon, in contiguous tasks, with one [`PoseEvaluator`]
 //! clone per thread; each point's verdict depends on that point only, so the result is the same
-//! whatever the number of threads.
+//! whatever the number of threads. Constant-orientation grids pass each task's points to
+//! [`PoseEvaluator::feasible_batch`] 64 at a time (the batch inverse kinematics when the
+//! criteria need W only; the same verdicts as point by point).
 //!
 //! ## References
 //! - Thesis §6.4.2, Algorithm 6.2.
 
+use crate::evaluator::BATCH;
 use crate::{PoseEvaluator, Region, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
 use nalgebra::{Rotation3, Vector3};
@@ -386,6 +389,19 @@ where
     T: Send + Copy + Default,
     F: Fn(&mut S, Vector3<f64>) -> T + Sync,
 {
+    map_grid_tasks(eval, grid, dim, |ev, axes, start, slots| {
+        axes.for_each_point(start, slots, |slot, u| *slot = f(ev, u))
+    })
+}
+
+/// [`map_grid`] with the task as the unit: `task(state, axes, start, slots)` fills the verdicts
+/// of the points of flat indices `start..start + slots.len()`.
+fn map_grid_tasks<S, T, F>(eval: &S, grid: &Grid, dim: usize, task_fn: F) -> Vec<T>
+where
+    S: Clone + Send + Sync,
+    T: Send + Copy + Default,
+    F: Fn(&mut S, &Axes, usize, &mut [T]) + Sync,
+{
     let axes = Axes::new(grid, dim);
     let mut out = vec![T::default(); grid.point_count(dim)];
     let threads = rayon::current_num_threads().max(1);
@@ -397,8 +413,7 @@ where
     out.par_chunks_mut(len)
         .enumerate()
         .for_each(|(task, slots)| {
-            let mut run =
-                |ev: &mut S| axes.for_each_point(task * len, slots, |slot, u| *slot = f(ev, u));
+            let mut run = |ev: &mut S| task_fn(ev, &axes, task * len, slots);
             let own = rayon::current_thread_index().unwrap_or(0) % threads;
             match evaluators[own].try_lock() {
                 Ok(mut slot) => run(slot.get_or_insert_with(|| eval.clone())),
@@ -437,8 +452,18 @@ pub fn constant_orientation_workspace(
     grid.validate(dim)?;
     eval.validate()?;
     let rotation = checked_orientation(motion, orientation)?;
-    let feasible = map_grid(eval, grid, dim, |ev, u| {
-        ev.is_feasible_finite_rotation(&Pose::new(u, rotation))
+    // Each task takes its points [`BATCH`] at a time through `PoseEvaluator::feasible_batch`
+    // (the batch inverse kinematics when the criteria need W only; the same verdicts).
+    let state = (
+        eval.clone(),
+        vec![Pose::new(Vector3::zeros(), rotation); BATCH],
+    );
+    let feasible = map_grid_tasks(&state, grid, dim, |(ev, poses), axes, start, slots| {
+        for (c, verdicts) in slots.chunks_mut(BATCH).enumerate() {
+            let poses = &mut poses[..verdicts.len()];
+            axes.for_each_point(start + c * BATCH, poses, |p, u| p.position = u);
+            ev.feasible_batch(poses, verdicts);
+        }
     });
     Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
 }

@@ -5,7 +5,9 @@
 //! scratch, K): no allocation per pose once warmed up (`tests/no_allocation.rs` counts them;
 //! tension methods that allocate internally, such as the interior-point path of
 //! `cdpr-tension`, are the exception). Cheap criteria are tested first and the first failure
-//! ends the test. Grids clone one evaluator per rayon task.
+//! ends the test. Grids clone one evaluator per rayon thread. [`PoseEvaluator::feasible_batch`]
+//! evaluates a list of poses, taking W from the batch inverse kinematics (SIMD across poses,
+//! `Robot::wrench_matrices`) when every criterion needs W only.
 //!
 //! ## References
 //! - Thesis eq. (6.23): the constant-orientation workspace definition.
@@ -67,6 +69,17 @@ struct Scratch {
     tensions: DVector<f64>,
     tensions_valid: bool,
     stiffness: DMatrix<f64>,
+    batch: BatchBuffers,
+}
+
+/// Poses per call of the batch inverse kinematics in [`PoseEvaluator::feasible_batch`].
+pub(crate) const BATCH: usize = 64;
+
+/// W and validity flags of [`BATCH`] poses (sized on first use).
+#[derive(Debug, Clone, Default)]
+struct BatchBuffers {
+    w: Vec<f64>,
+    valid: Vec<bool>,
 }
 
 impl PoseEvaluator {
@@ -243,6 +256,7 @@ impl PoseEvaluator {
             tensions: DVector::zeros(n),
             tensions_valid: false,
             stiffness: DMatrix::zeros(dof, dof),
+            batch: BatchBuffers::default(),
         };
         Ok(Self {
             robot,
@@ -348,8 +362,90 @@ impl PoseEvaluator {
         self.evaluate(pose).unwrap_or(false)
     }
 
+    /// Whether every criterion needs W only (no cable lengths, no per-cable states, no pose):
+    /// then [`PoseEvaluator::feasible_batch`] takes W from the batch inverse kinematics
+    /// (`Robot::wrench_matrices`) instead of `update_kinematics` pose by pose.
+    fn needs_only_w(&self) -> bool {
+        !self.robot.has_pulleys()
+            && self.axial_stiffness.is_none()
+            && self.criteria.iter().all(|c| match c {
+                Criterion::WrenchClosure
+                | Criterion::MinJacobianDeterminant(_)
+                | Criterion::CapacityMargin { .. }
+                | Criterion::IsotropicForce { .. }
+                | Criterion::IsotropicForceUnderLoad { .. } => true,
+                Criterion::TensionFeasible { method, .. } => *method != Method::Sotda,
+                _ => false,
+            })
+    }
+
+    /// [`PoseEvaluator::is_feasible`] of every pose of `poses` into `feasible` (same length;
+    /// panics otherwise). When every criterion needs W only (wrench closure, tension
+    /// feasibility without stiffness, capacity margin, isotropic force, Jacobian determinant) and
+    /// the robot has no pulleys, W comes from the batch inverse kinematics
+    /// (`Robot::wrench_matrices`, SIMD across poses) 64 poses at a time, in buffers kept
+    /// by the evaluator: no allocation once warmed up. Every verdict equals the pose-by-pose
+    /// one (the batch W is the single-pose W bit for bit).
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Pose, reference_robots::ipanema_like_8};
+    /// use cdpr_tension::TensionBounds;
+    /// use cdpr_workspace::{Criterion, PoseEvaluator};
+    /// let mut eval = PoseEvaluator::new(ipanema_like_8(), TensionBounds::uniform(8, 1.0, 1e3).unwrap(),
+    ///                                   vec![Criterion::WrenchClosure]).unwrap();
+    /// let poses: Vec<Pose> = (0..10).map(|k| Pose::point(0.1 * k as f64 - 0.5, 0.0, 1.0)).collect();
+    /// let mut feasible = vec![false; poses.len()];
+    /// eval.feasible_batch(&poses, &mut feasible);
+    /// assert!(poses.iter().zip(&feasible).all(|(p, &f)| eval.is_feasible(p) == f));
+    /// ```
+    pub fn feasible_batch(&mut self, poses: &[Pose], feasible: &mut [bool]) {
+        assert_eq!(poses.len(), feasible.len(), "one verdict per pose");
+        if !self.needs_only_w() {
+            for (pose, f) in poses.iter().zip(feasible) {
+                *f = self.is_feasible(pose);
+            }
+            return;
+        }
+        let block = self.robot.dof() * self.robot.cable_count();
+        let mut batch = std::mem::take(&mut self.scratch.batch);
+        batch.w.resize(BATCH * block, 0.0);
+        batch.valid.resize(BATCH, false);
+        for (chunk, verdicts) in poses.chunks(BATCH).zip(feasible.chunks_mut(BATCH)) {
+            let (w, valid) = (
+                &mut batch.w[..chunk.len() * block],
+                &mut batch.valid[..chunk.len()],
+            );
+            self.robot
+                .wrench_matrices(chunk, w, valid)
+                .expect("buffers sized for the chunk");
+            for (k, (pose, f)) in chunk.iter().zip(verdicts).enumerate() {
+                // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
+                // non-finite position; a non-finite rotation is checked here).
+                *f = valid[k] && pose.rotation.matrix().iter().all(|v| v.is_finite()) && {
+                    self.scratch
+                        .w
+                        .as_mut_slice()
+                        .copy_from_slice(&w[k * block..(k + 1) * block]);
+                    self.run_criteria(pose, true).unwrap_or(false)
+                };
+            }
+        }
+        self.scratch.batch = batch;
+    }
+
     /// Eq. (6.23): every criterion, cheapest first; the first failure ends the test.
     fn evaluate(&mut self, pose: &Pose) -> Result<bool, WorkspaceError> {
+        match self.robot.update_kinematics(pose, &mut self.scratch.kin) {
+            Ok(()) => {}
+            Err(KinematicsError::DegenerateCable { .. }) => return Ok(false),
+            Err(e) => return Err(e.into()),
+        }
+        self.run_criteria(pose, false)
+    }
+
+    /// The criteria at `pose`, whose kinematics are in the scratch (or, with `w_given`, whose
+    /// W is, for criteria that need W only).
+    fn run_criteria(&mut self, pose: &Pose, w_given: bool) -> Result<bool, WorkspaceError> {
         let Self {
             robot,
             bounds,
@@ -360,14 +456,9 @@ impl PoseEvaluator {
             tension_source,
             scratch,
         } = self;
-        match robot.update_kinematics(pose, &mut scratch.kin) {
-            Ok(()) => {}
-            Err(KinematicsError::DegenerateCable { .. }) => return Ok(false),
-            Err(e) => return Err(e.into()),
-        }
         scratch.tensions_valid = false;
         for (position, &k) in order.iter().enumerate() {
-            if position == *wrench_free {
+            if position == *wrench_free && !w_given {
                 scratch.kin.write_wrench_matrix(&mut scratch.w);
             }
             let ok = match &criteria[k] {

@@ -85,7 +85,7 @@ impl WrenchClosureTest {
     /// [`WrenchClosureTest::new`]; a matrix of another shape is not wrench-closure.
     pub fn is_wrench_closure(&mut self, w: &DMatrix<f64>) -> bool {
         let (dof, n) = (self.dof, self.n);
-        if w.shape() != (dof, n) || n <= dof || w.iter().any(|v| !v.is_finite()) {
+        if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
             return false;
         }
         let r = match self.reduce(w) {
@@ -100,7 +100,106 @@ impl WrenchClosureTest {
     }
 
     /// RREF of W; fills the null basis and returns r = n − DOF, or `None` if rank W < DOF.
+    /// The common shapes run [`WrenchClosureTest::reduce_fixed`] (the same arithmetic on the
+    /// stack, sizes known at compile time: the same bits).
     fn reduce(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+        match (self.dof, self.n) {
+            (6, 8) => self.reduce_fixed::<6, 8>(w),
+            (6, 7) => self.reduce_fixed::<6, 7>(w),
+            (3, 5) => self.reduce_fixed::<3, 5>(w),
+            (3, 4) => self.reduce_fixed::<3, 4>(w),
+            (2, 4) => self.reduce_fixed::<2, 4>(w),
+            _ => self.reduce_dynamic(w),
+        }
+    }
+
+    /// [`WrenchClosureTest::reduce`] for D × N matrices, in a stack array: the operations of
+    /// [`WrenchClosureTest::reduce_dynamic`] in the same order.
+    fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+        let mut a = [[0.0f64; N]; D];
+        // The largest |w_ij| by comparisons (the entries are finite: `f64::max` would give
+        // the same value at twice the instructions).
+        let mut largest = 0.0f64;
+        for (j, column) in w.as_slice().chunks_exact(D).enumerate() {
+            for (i, &v) in column.iter().enumerate() {
+                a[i][j] = v;
+                largest = if v.abs() > largest { v.abs() } else { largest };
+            }
+        }
+        let scale = largest.max(1e-300);
+        let mut pivots = [0usize; D];
+        let mut is_pivot = [false; N];
+        let mut row = 0;
+        for col in 0..N {
+            if row == D {
+                break;
+            }
+            let (mut best, mut best_abs) = (row, 0.0);
+            for (i, r) in a.iter().enumerate().skip(row) {
+                let v = r[col].abs();
+                if v > best_abs {
+                    best = i;
+                    best_abs = v;
+                }
+            }
+            if best_abs <= RANK_TOLERANCE * scale {
+                continue;
+            }
+            a.swap(row, best);
+            let inv = 1.0 / a[row][col];
+            // While no column has been skipped (row = col), every column left of `col` is a
+            // pivot column, whose entries are never read again: whole rows can then be updated
+            // (fixed length, unrolled) with the same values in every entry that is read.
+            let full = row == col;
+            if full {
+                a[row].iter_mut().for_each(|v| *v *= inv);
+            } else {
+                a[row][col..].iter_mut().for_each(|v| *v *= inv);
+            }
+            let pivot = a[row];
+            for (i, other) in a.iter_mut().enumerate() {
+                if i == row {
+                    continue;
+                }
+                let f = other[col];
+                if f != 0.0 {
+                    if full {
+                        for (o, p) in other.iter_mut().zip(&pivot) {
+                            *o -= f * p;
+                        }
+                    } else {
+                        for (o, p) in other[col..].iter_mut().zip(&pivot[col..]) {
+                            *o -= f * p;
+                        }
+                    }
+                }
+            }
+            pivots[row] = col;
+            is_pivot[col] = true;
+            row += 1;
+        }
+        if row < D {
+            return None;
+        }
+        let r = N - D;
+        let null = &mut self.null[..N * r];
+        null.iter_mut().for_each(|v| *v = 0.0);
+        let mut k = 0;
+        for f in 0..N {
+            if is_pivot[f] {
+                continue;
+            }
+            null[f * r + k] = 1.0;
+            for (p, &pc) in pivots.iter().enumerate() {
+                null[pc * r + k] = -a[p][f];
+            }
+            k += 1;
+        }
+        Some(r)
+    }
+
+    /// [`WrenchClosureTest::reduce`] for any shape, in the reusable buffers.
+    fn reduce_dynamic(&mut self, w: &DMatrix<f64>) -> Option<usize> {
         let (dof, n) = (self.dof, self.n);
         for i in 0..dof {
             for j in 0..n {
@@ -292,6 +391,47 @@ mod tests {
         // Redundancy 2 but one cable (−y) needed: drop it → upper half-plane + axis: not.
         let w = mat(2, 4, &[1.0, 0.3, -1.0, -0.3, 0.0, 1.0, 0.0, 1.0]);
         assert!(!t.is_wrench_closure(&w));
+    }
+
+    /// The fixed-size reduction gives the bits of the general one (null basis and rank
+    /// decision) on random matrices of every specialised shape, rank-deficient ones included
+    /// (a repeated column pair, a zero row, a row that is a multiple of another).
+    #[test]
+    fn fixed_size_reduction_equals_the_general_one() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut rank_deficient = 0;
+        for (dof, n) in [(6, 8), (6, 7), (3, 5), (3, 4), (2, 4)] {
+            let mut t = WrenchClosureTest::new(dof, n);
+            for case in 0..400 {
+                let mut w = DMatrix::from_fn(dof, n, |_, _| next());
+                match case % 4 {
+                    1 => w.set_column(1, &w.column(0).clone_owned()),
+                    2 => w.row_mut(dof - 1).fill(0.0),
+                    3 => {
+                        let r = w.row(0) * 3.0;
+                        w.set_row(1, &r);
+                    }
+                    _ => {}
+                }
+                let fixed = t.reduce(&w);
+                let fixed_null = t.null.clone();
+                let general = t.reduce_dynamic(&w);
+                assert_eq!(fixed, general, "{dof}×{n}, case {case}");
+                rank_deficient += usize::from(general.is_none());
+                if let Some(r) = general {
+                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                    assert_eq!(bits(&fixed_null[..n * r]), bits(&t.null[..n * r]));
+                }
+            }
+        }
+        // Zero rows and proportional rows are rank-deficient; repeated columns are not.
+        assert!(rank_deficient >= 2 * 5 * 100, "{rank_deficient}");
     }
 
     #[test]

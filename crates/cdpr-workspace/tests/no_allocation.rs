@@ -141,6 +141,18 @@ fn evaluator_does_not_allocate_per_pose() {
     ));
     for (name, mut eval, poses) in cases {
         let (allocs, feasible) = allocations(&mut eval, &poses);
+        // The batch path (SIMD inverse kinematics for the W-only criteria, pose by pose for
+        // the others), warmed up once, then counted.
+        let mut verdicts = vec![false; poses.len()];
+        eval.feasible_batch(&poses, &mut verdicts);
+        let before = allocations_so_far();
+        eval.feasible_batch(&poses, &mut verdicts);
+        let batch_allocs = allocations_so_far() - before;
+        assert_eq!(
+            batch_allocs, 0,
+            "{name}: {batch_allocs} allocations in the batch"
+        );
+        assert_eq!(verdicts.iter().filter(|&&f| f).count(), feasible, "{name}");
         assert!(
             feasible > 0 && feasible < poses.len(),
             "{name}: {feasible} feasible"

@@ -5,8 +5,10 @@
 use cdpr_kinematics::reference_robots::{
     ipanema_like_8, ipanema_like_8_pulleys, krut_point_robot, thesis_four_cable,
 };
+use cdpr_kinematics::strategies::{arb_pose, arb_robot};
 use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
+use proptest::prelude::*;
 
 fn poses(motion: MotionPattern, count: usize) -> Vec<Pose> {
     (0..count)
@@ -44,10 +46,19 @@ fn point3_robot() -> Robot {
 }
 
 fn check_bitwise(robot: &Robot, poses: &[Pose]) {
+    check_path_bitwise(robot, poses, Robot::wrench_matrices);
+    check_path_bitwise(robot, poses, Robot::wrench_matrices_portable);
+}
+
+type BatchPath = fn(&Robot, &[Pose], &mut [f64], &mut [bool]) -> Result<usize, KinematicsError>;
+
+/// One build of the batch kernel (the one the CPU selects, or the portable one) against the
+/// single-pose path.
+fn check_path_bitwise(robot: &Robot, poses: &[Pose], path: BatchPath) {
     let block = robot.motion().dof() * robot.cable_count();
     let mut out = vec![f64::NAN; poses.len() * block];
     let mut valid = vec![false; poses.len()];
-    let count = robot.wrench_matrices(poses, &mut out, &mut valid).unwrap();
+    let count = path(robot, poses, &mut out, &mut valid).unwrap();
     assert_eq!(count, valid.iter().filter(|v| **v).count());
     for (k, pose) in poses.iter().enumerate() {
         match robot.inverse_kinematics(pose) {
@@ -122,4 +133,38 @@ fn wrong_buffer_lengths_are_errors() {
             ..
         }
     ));
+}
+
+proptest! {
+    /// The structure-of-arrays kernel (groups of four poses, AVX2 or portable build) equals the
+    /// single-pose path bit for bit on random spatial robots and pose lists of any length, with
+    /// poses that put a platform attachment on its frame anchor (rejected per pose).
+    #[test]
+    fn lanes_equal_single_pose_bit_for_bit(
+        robot in arb_robot(MotionPattern::Spatial, 7..=16),
+        mut poses in prop::collection::vec(arb_pose(MotionPattern::Spatial), 0..23),
+        degenerate in prop::collection::vec((0usize..64, 0usize..16), 0..3),
+    ) {
+        for (k, i) in degenerate {
+            if !poses.is_empty() {
+                let k = k % poses.len();
+                let cable = &robot.cables()[i % robot.cable_count()];
+                let r = poses[k].rotation;
+                poses[k].position = cable.frame - r * cable.platform;
+            }
+        }
+        check_bitwise(&robot, &poses);
+    }
+}
+
+/// On this machine type the AVX2 build is the one `wrench_matrices` runs: make sure the test
+/// above compared two different builds (a CPU without AVX2 compares the portable one twice).
+#[test]
+fn avx2_build_runs_where_available() {
+    #[cfg(target_arch = "x86_64")]
+    if !std::arch::is_x86_feature_detected!("avx2") {
+        eprintln!("no AVX2 on this CPU: only the portable build is tested");
+    }
+    let robot = ipanema_like_8();
+    check_bitwise(&robot, &poses(MotionPattern::Spatial, 1000));
 }

@@ -335,3 +335,89 @@ proptest::proptest! {
         }
     }
 }
+
+/// Issue 17: `PoseEvaluator::feasible_batch` (W from the SIMD batch inverse kinematics when the
+/// criteria need W only) gives the pose-by-pose verdicts, for criteria that take the batch
+/// path and for ones that do not, on random spatial poses (lists of any length, poses with a
+/// zero-length cable or a non-finite position among them); and the grid, which goes through
+/// it, gives the per-point verdicts.
+mod batch_equals_per_pose {
+    use cdpr_kinematics::reference_robots::ipanema_like_8;
+    use cdpr_kinematics::{Pose, Robot};
+    use cdpr_tension::{Method, TensionBounds};
+    use cdpr_workspace::{Criterion, Grid, PoseEvaluator, constant_orientation_workspace};
+    use nalgebra::{DVector, Rotation3, Vector3};
+    use proptest::prelude::*;
+
+    fn evaluators(robot: &Robot) -> Vec<PoseEvaluator> {
+        let bounds = TensionBounds::uniform(8, 1.0, 1000.0).unwrap();
+        let gravity = DVector::from_vec(vec![0.0, 0.0, -245.25, 0.0, 0.0, 0.0]);
+        let make = |criteria| PoseEvaluator::new(robot.clone(), bounds.clone(), criteria).unwrap();
+        vec![
+            make(vec![Criterion::WrenchClosure]),
+            make(vec![Criterion::TensionFeasible {
+                method: Method::L2,
+                wrench: gravity.clone(),
+            }]),
+            // Not W-only: the pose-by-pose fallback.
+            make(vec![
+                Criterion::WrenchClosure,
+                Criterion::MinCableLength(1.5),
+            ]),
+        ]
+    }
+
+    proptest! {
+        #[test]
+        fn batch_verdicts_equal_per_pose_verdicts(
+            coords in prop::collection::vec(
+                (-1.0f64..1.0, -1.0f64..1.0, 0.0f64..2.0, -0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3),
+                0..150,
+            ),
+            special in prop::collection::vec((0usize..150, 0usize..9), 0..4),
+        ) {
+            let robot = ipanema_like_8();
+            let mut poses: Vec<Pose> = coords
+                .iter()
+                .map(|&(x, y, z, a, b, c)| Pose::spatial(Vector3::new(x, y, z), a, b, c))
+                .collect();
+            for (k, i) in special {
+                if poses.is_empty() {
+                    break;
+                }
+                let k = k % poses.len();
+                if i == 8 {
+                    poses[k].position.x = f64::NAN;
+                } else {
+                    let cable = &robot.cables()[i];
+                    poses[k].position = cable.frame - poses[k].rotation * cable.platform;
+                }
+            }
+            for mut eval in evaluators(&robot) {
+                let mut batch = vec![false; poses.len()];
+                eval.feasible_batch(&poses, &mut batch);
+                for (k, pose) in poses.iter().enumerate() {
+                    prop_assert_eq!(batch[k], eval.is_feasible(pose), "pose {}", k);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn grid_verdicts_equal_per_point_verdicts() {
+        let robot = ipanema_like_8();
+        let grid = Grid::over_frame(&robot, 9);
+        let rotation = Rotation3::from_euler_angles(0.01, -0.02, 0.03);
+        for mut eval in evaluators(&robot) {
+            let ws = constant_orientation_workspace(&eval, &rotation, &grid).unwrap();
+            assert!(ws.feasible_points > 0 && ws.feasible_points < ws.total_points);
+            for (idx, &f) in ws.feasible.iter().enumerate() {
+                assert_eq!(
+                    f,
+                    eval.is_feasible(&Pose::new(ws.point(idx), rotation)),
+                    "{idx}"
+                );
+            }
+        }
+    }
+}
