@@ -10,7 +10,7 @@
 //! `cargo bench -p cdpr-benches --bench throughput`.
 
 use cdpr_benches::issue_17::{POSES, fixture};
-use cdpr_kinematics::PoseKinematics;
+use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
 use cdpr_tension::{Method, TensionProblem, TensionSolver};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector};
@@ -36,29 +36,23 @@ fn ik_w(c: &mut Criterion) {
             black_box(s)
         })
     });
-    // The batch API: W of all 20 000 poses into one flat buffer.
+    // The batch API: W of all 20 000 poses into one flat buffer; and the same API through the
+    // portable (SSE2) build of its structure-of-arrays kernel, which CPUs without AVX2 run.
     let mut out = vec![0.0; POSES * 48];
     let mut valid = vec![false; POSES];
-    g.bench_function("ik_w_batch", |b| {
-        b.iter(|| {
-            let count = f
-                .robot
-                .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
-                .unwrap();
-            black_box((count, out[POSES * 48 - 1]))
-        })
-    });
-    // The same API through the portable (SSE2) build of its structure-of-arrays kernel, which
-    // CPUs without AVX2 run.
-    g.bench_function("ik_w_batch_portable", |b| {
-        b.iter(|| {
-            let count = f
-                .robot
-                .wrench_matrices_portable(black_box(&f.poses), &mut out, &mut valid)
-                .unwrap();
-            black_box((count, out[POSES * 48 - 1]))
-        })
-    });
+    type Batch = fn(&Robot, &[Pose], &mut [f64], &mut [bool]) -> Result<usize, KinematicsError>;
+    let batches: [(&str, Batch); 2] = [
+        ("ik_w_batch", Robot::wrench_matrices),
+        ("ik_w_batch_portable", Robot::wrench_matrices_portable),
+    ];
+    for (name, batch) in batches {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let count = batch(&f.robot, black_box(&f.poses), &mut out, &mut valid).unwrap();
+                black_box((count, out[POSES * 48 - 1]))
+            })
+        });
+    }
     g.finish();
 }
 

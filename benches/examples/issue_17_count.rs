@@ -4,7 +4,7 @@
 //! the fixture; instructions per call = (count at REPS − count at 0) / (20 000 · REPS).
 
 use cdpr_benches::issue_17::fixture;
-use cdpr_kinematics::PoseKinematics;
+use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
 use cdpr_tension::{Method, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
@@ -30,28 +30,19 @@ fn main() {
         println!("{s}");
         return;
     }
-    if op == "ik_w_batch_portable" {
+    // The batch API (the structure-of-arrays kernel the CPU selects, or its portable build).
+    type Batch = fn(&Robot, &[Pose], &mut [f64], &mut [bool]) -> Result<usize, KinematicsError>;
+    let batch: Option<Batch> = match op {
+        "ik_w_batch" => Some(Robot::wrench_matrices),
+        "ik_w_batch_portable" => Some(Robot::wrench_matrices_portable),
+        _ => None,
+    };
+    if let Some(batch) = batch {
         let mut out = vec![0.0; f.poses.len() * 48];
         let mut valid = vec![false; f.poses.len()];
         let mut count = 0;
         for _ in 0..reps {
-            count += f
-                .robot
-                .wrench_matrices_portable(black_box(&f.poses), &mut out, &mut valid)
-                .unwrap();
-        }
-        println!("{count} {}", out[out.len() - 1]);
-        return;
-    }
-    if op == "ik_w_batch" {
-        let mut out = vec![0.0; f.poses.len() * 48];
-        let mut valid = vec![false; f.poses.len()];
-        let mut count = 0;
-        for _ in 0..reps {
-            count += f
-                .robot
-                .wrench_matrices(black_box(&f.poses), &mut out, &mut valid)
-                .unwrap();
+            count += batch(&f.robot, black_box(&f.poses), &mut out, &mut valid).unwrap();
         }
         println!("{count} {}", out[out.len() - 1]);
         return;
