@@ -113,7 +113,7 @@ pub(crate) struct VertexSearch {
 
 /// Pivots after which a basis is factorised afresh instead of updated (bounds the rounding
 /// that the tableau updates accumulate along a path of the search).
-const REFACTOR_EVERY: u32 = 24;
+const REFACTOR_EVERY: u32 = 48;
 
 /// A basis on the search stack: `depth` pivots since its path's last factorisation; `pivoted`
 /// when its tensions and tableau wait in the pool (else it is factorised when visited).
