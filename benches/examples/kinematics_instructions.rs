@@ -53,10 +53,17 @@ fn main() {
             })
             .collect();
         let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+        let mut iterations = 0;
         for k in 0..calls {
             let (l, guess) = &problems[k % problems.len()];
-            sum += fk.solve(black_box(l), guess).unwrap().residual;
+            let solution = fk.solve(black_box(l), guess).unwrap();
+            sum += solution.residual;
+            iterations += solution.iterations;
         }
+        println!(
+            "{:.3} iterations per solve",
+            iterations as f64 / calls.max(1) as f64
+        );
     }
     println!("{case}: {calls} calls, checksum {sum:e}");
 }

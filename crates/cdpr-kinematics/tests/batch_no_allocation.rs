@@ -1,10 +1,10 @@
 //! `Robot::wrench_matrices` (batch IK + W) and the single-pose `update_kinematics` +
 //! `write_wrench_matrix` do not allocate for straight cables: counted with a global allocator
-//! wrapper (issue 17).
+//! wrapper (issue 17); nor do the pulley IK + W and the forward kinematics (issue 14).
 
-use cdpr_kinematics::reference_robots::ipanema_like_8;
-use cdpr_kinematics::{Pose, PoseKinematics};
-use nalgebra::{DMatrix, Vector3};
+use cdpr_kinematics::reference_robots::{ipanema_like_8, ipanema_like_8_pulleys};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, PoseKinematics};
+use nalgebra::{DMatrix, Rotation3, Vector3};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -35,11 +35,9 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-// One test function: the counter is global, tests in parallel would disturb each other.
-#[test]
-fn batch_and_single_pose_ik_do_not_allocate() {
-    let robot = ipanema_like_8();
-    let mut poses: Vec<Pose> = (0..64)
+/// 64 poses along a line through the workspace, slowly turning.
+fn path_poses() -> Vec<Pose> {
+    (0..64)
         .map(|k| {
             let s = k as f64 / 64.0;
             Pose::spatial(
@@ -49,7 +47,14 @@ fn batch_and_single_pose_ik_do_not_allocate() {
                 -0.1,
             )
         })
-        .collect();
+        .collect()
+}
+
+// The counter is per thread: tests in parallel do not disturb each other.
+#[test]
+fn batch_and_single_pose_ik_do_not_allocate() {
+    let robot = ipanema_like_8();
+    let mut poses = path_poses();
     // One pose the batch rejects (cable 1 of zero length): rejection must not allocate either.
     poses[10] = Pose::spatial(
         robot.cables()[0].frame - robot.cables()[0].platform,
@@ -77,4 +82,34 @@ fn batch_and_single_pose_ik_do_not_allocate() {
     assert_eq!(count, poses.len() - 1);
     assert_eq!(portable, count);
     assert!(!valid[10]);
+}
+
+/// The pulley hot paths (issue 14): `update_kinematics` + `write_wrench_matrix` of a pulley robot
+/// (blocks of cables, AVX2 build where the CPU has it) and `ForwardKinematics::solve`. The
+/// counter is per thread, so this test may run beside the other one.
+#[test]
+fn pulley_ik_and_forward_kinematics_do_not_allocate() {
+    let robot = ipanema_like_8_pulleys();
+    let poses = path_poses();
+    let lengths: Vec<Vec<f64>> = poses
+        .iter()
+        .map(|p| robot.inverse_kinematics(p).unwrap().lengths().collect())
+        .collect();
+    let mut kin = PoseKinematics::for_robot(&robot);
+    let mut w = DMatrix::zeros(6, 8);
+    let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+    let nudge = Rotation3::new(Vector3::new(0.0, 0.02, -0.01));
+    let before = allocations_so_far();
+    let mut solved = 0;
+    for (pose, l) in poses.iter().zip(&lengths) {
+        robot.update_kinematics(pose, &mut kin).unwrap();
+        kin.write_wrench_matrix(&mut w);
+        let guess = Pose::new(
+            pose.position + Vector3::new(0.02, 0.0, -0.01),
+            nudge * pose.rotation,
+        );
+        solved += usize::from(fk.solve(l, &guess).unwrap().converged);
+    }
+    assert_eq!(allocations_so_far() - before, 0);
+    assert_eq!(solved, poses.len());
 }
