@@ -35,7 +35,7 @@ use crate::closed_form::{self, ClosedForm};
 use crate::feasible_polygon::Region;
 use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
-use crate::linear_program::{self, Linear};
+use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
@@ -279,13 +279,24 @@ impl TensionSolver {
                 }
             }
         }
-        if let Err(reason) = self.dispatch(p)? {
-            return Ok(Err(reason));
+        match self.dispatch(p)? {
+            Err(reason) => return Ok(Err(reason)),
+            Ok(Some(residual)) => return Ok(Ok(residual)),
+            Ok(None) => {}
         }
         Ok(
             snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t)
                 .map_err(certificate_failed),
         )
+    }
+
+    /// l2 at r = 2 by the planar active set (module `planar_active_set`): the residual of the
+    /// certified answer, or `None` when the feasible polygon must decide.
+    #[inline]
+    fn planar(&mut self, p: &TensionProblem) -> Option<f64> {
+        let l = crate::planar_active_set::l2_projection(&self.ns, p.bounds)?;
+        write_tensions(&self.ns, l, &mut self.t);
+        snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
     }
 
     /// Clarabel after a numerical failure of the dense active-set path (`why`), counted in
@@ -342,10 +353,15 @@ impl TensionSolver {
         self.sotda.prepare(&self.settings, s, p.external_wrench)
     }
 
-    fn dispatch(&mut self, p: &TensionProblem) -> Result<Result<(), Infeasibility>, TensionError> {
+    /// The answer of the method: `Ok(Some(residual))` when it is certified already, `Ok(None)`
+    /// when the tensions in `self.t` still need their certificate.
+    fn dispatch(
+        &mut self,
+        p: &TensionProblem,
+    ) -> Result<Result<Option<f64>, Infeasibility>, TensionError> {
         let r = p.redundancy();
         let method = self.method;
-        Ok(match method {
+        let answer = match method {
             Method::Exact | Method::Pinv => minimum_norm(&mut self.ns, p, &mut self.t),
             Method::ClosedForm => self.closed.solve(p, false, &mut self.t),
             Method::L1 | Method::L1Max if r == 1 => {
@@ -386,7 +402,7 @@ impl TensionSolver {
                             p.bounds,
                             &mut self.t,
                         ) {
-                            Ok(_) => return Ok(Ok(())),
+                            Ok(residual) => return Ok(Ok(Some(residual))),
                             Err(_) => "dense answer failed the certificate",
                         }
                     }
@@ -409,6 +425,12 @@ impl TensionSolver {
             _ => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                if method == Method::L2
+                    && r == 2
+                    && let Some(residual) = self.planar(p)
+                {
+                    return Ok(Ok(Some(residual)));
                 }
                 if !self.region.build(&self.ns, p.bounds) {
                     return Ok(Err(Infeasibility::NoFeasibleTension));
@@ -451,6 +473,7 @@ impl TensionSolver {
                     _ => unreachable!("all other methods are dispatched above"),
                 }
             }
-        })
+        };
+        Ok(answer.map(|()| None))
     }
 }
