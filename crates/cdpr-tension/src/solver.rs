@@ -13,9 +13,9 @@
 //! | exact | QR (n ≤ 3: adjugate) | – | – | – |
 //! | pinv | QR | QR | QR | QR |
 //! | closed-form | – | Alg. 6.1 (DOF ≤ 3: minors, lean path) | – | – |
-//! | l1, l1-max | point | interval | polygon | active-set LP (Bland), from the l2 optimum |
+//! | l1, l1-max | point | interval | planar simplex from the l2 optimum, else polygon | active-set LP (Bland), from the l2 optimum |
 //! | linf | point | interval | active-set LP | active-set LP (Bland), from the l2 optimum |
-//! | l2 | point | interval | polygon | Goldfarb–Idnani dual active set |
+//! | l2 | point | interval | planar active set, else polygon | Goldfarb–Idnani dual active set |
 //! | l2-max | point | interval | polygon | vertex enumeration |
 //! | improved-closed-form | Pott 2014 | ← | ← | ← |
 //! | barycenter, sotda | – | – | polygon | – |
@@ -39,6 +39,7 @@ use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
+use crate::planar_active_set;
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
 use crate::{
@@ -290,11 +291,16 @@ impl TensionSolver {
         )
     }
 
-    /// l2 at r = 2 by the planar active set (module `planar_active_set`): the residual of the
-    /// certified answer, or `None` when the feasible polygon must decide.
+    /// l2, l1 and l1-max at r = 2 by the planar active set (module `planar_active_set`): the
+    /// residual of the certified answer, or `None` when the feasible polygon must decide.
     #[inline]
     fn planar(&mut self, p: &TensionProblem) -> Option<f64> {
-        let l = crate::planar_active_set::l2_projection(&self.ns, p.bounds)?;
+        let l = match self.method {
+            Method::L2 => planar_active_set::l2_projection(&self.ns, p.bounds)?,
+            Method::L1 => planar_active_set::l1_vertex(&self.ns, p.bounds, false)?,
+            Method::L1Max => planar_active_set::l1_vertex(&self.ns, p.bounds, true)?,
+            _ => return None,
+        };
         write_tensions(&self.ns, l, &mut self.t);
         snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
     }
@@ -426,7 +432,7 @@ impl TensionSolver {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
-                if method == Method::L2
+                if matches!(method, Method::L2 | Method::L1 | Method::L1Max)
                     && r == 2
                     && let Some(residual) = self.planar(p)
                 {

@@ -374,6 +374,66 @@ proptest! {
         }
     }
 
+    /// Issue 17: l1 and l1-max at r = 2 run the simplex method in the plane from the l2 optimum
+    /// (module `planar_active_set`) instead of scanning the clipped polygon's vertices. They
+    /// must give the polygon's verdict and the optimum of Σ t over its vertices (brute force),
+    /// with a fixed cable (t_min = t_max) and an infinite t_max too (both handed to the
+    /// polygon).
+    #[test]
+    fn l1_at_redundancy_2_matches_the_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
+        let n = case.w.ncols();
+        let (mut lo, mut hi) = (case.b.min().as_slice().to_vec(), case.b.max().as_slice().to_vec());
+        let which = which % n;
+        match variant {
+            1 => hi[which] = f64::INFINITY,
+            2 => {
+                let p = TensionProblem::new(&case.w, &case.we, &case.b);
+                if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
+                    lo[which] = s.tensions[which];
+                    hi[which] = s.tensions[which];
+                }
+            }
+            _ => {}
+        }
+        let b = TensionBounds::new(lo, hi).unwrap();
+        let p = TensionProblem::new(&case.w, &case.we, &b);
+        let poly = FeasiblePolygon::compute(&p).unwrap();
+        for method in [Method::L1, Method::L1Max] {
+            let out = solve(method, &p);
+            match (&out, &poly) {
+                (TensionOutcome::Infeasible(cdpr_tension::Infeasibility::SingularPose { .. }), _) => {}
+                (TensionOutcome::Feasible(s), Ok(poly)) => {
+                    check(&p, &s.tensions);
+                    let sums = poly.tension_vertices.iter().map(|t| t.sum());
+                    let best = if method == Method::L1 {
+                        sums.fold(f64::INFINITY, f64::min)
+                    } else {
+                        sums.fold(f64::NEG_INFINITY, f64::max)
+                    };
+                    let got = s.tensions.sum();
+                    prop_assert!(rel_eq(got, best, 1e-9), "{method} {got} against the polygon's {best}");
+                }
+                // Unbounded polygon (infinite t_max): l1 is bounded below (t ≥ t_min); l1-max
+                // must say unbounded as the polygon does.
+                (TensionOutcome::Feasible(s), Err(cdpr_tension::Infeasibility::Unbounded { .. })) if method == Method::L1 => {
+                    check(&p, &s.tensions);
+                    let ip = interior_point(&p, Objective::L1).unwrap();
+                    if let Ok(ip) = ip {
+                        prop_assert!(rel_eq(s.tensions.sum(), ip.sum(), 1e-6));
+                    }
+                }
+                (TensionOutcome::Infeasible(reason), Err(theirs)) => {
+                    if method == Method::L1Max {
+                        prop_assert_eq!(reason, theirs);
+                    } else {
+                        prop_assert_eq!(reason, &cdpr_tension::Infeasibility::NoFeasibleTension);
+                    }
+                }
+                (out, poly) => prop_assert!(false, "{} {:?} against the polygon {:?}", method, out, poly),
+            }
+        }
+    }
+
     /// Issue 13 §7: at r = 1, l1 and l1-max take Algorithm 6.1's path (the same arithmetic as
     /// closed-form, so identical tensions) and reach the optimum of the general LP (Clarabel,
     /// an independent interior-point solver) and of every random feasible point.
