@@ -636,57 +636,12 @@ impl Region {
 
     /// Twice the signed area (shoelace).
     pub fn double_area(&self) -> f64 {
-        let k = self.verts.len();
-        if k < 3 {
-            return 0.0;
-        }
-        let mut s = 0.0;
-        for j in 0..k {
-            let p = self.verts[j];
-            let q = self.verts[next(j, k)];
-            s += p[0] * q[1] - q[0] * p[1];
-        }
-        s
+        double_area(&self.verts)
     }
 
     /// Area centroid; for a (numerically) degenerate polygon, the mean of its vertices.
     pub fn centroid(&self) -> P2 {
-        let k = self.verts.len();
-        let a2 = self.double_area();
-        let (mut xmin, mut xmax, mut ymin, mut ymax) = (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        );
-        for v in &self.verts {
-            xmin = xmin.min(v[0]);
-            xmax = xmax.max(v[0]);
-            ymin = ymin.min(v[1]);
-            ymax = ymax.max(v[1]);
-        }
-        let extent = (xmax - xmin).max(ymax - ymin);
-        if k >= 3 && a2.abs() > 1e-12 * extent * extent {
-            // Shift to the first vertex for accuracy.
-            let o = self.verts[0];
-            let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
-            for j in 0..k {
-                let p = [self.verts[j][0] - o[0], self.verts[j][1] - o[1]];
-                let qv = self.verts[next(j, k)];
-                let q = [qv[0] - o[0], qv[1] - o[1]];
-                let c = p[0] * q[1] - q[0] * p[1];
-                s2 += c;
-                cx += (p[0] + q[0]) * c;
-                cy += (p[1] + q[1]) * c;
-            }
-            [o[0] + cx / (3.0 * s2), o[1] + cy / (3.0 * s2)]
-        } else {
-            let (sx, sy) = self
-                .verts
-                .iter()
-                .fold((0.0, 0.0), |(a, b), v| (a + v[0], b + v[1]));
-            [sx / k as f64, sy / k as f64]
-        }
+        centroid(&self.verts)
     }
 
     /// Whether `c` lies in a polygon with positive area (counter-clockwise).
@@ -753,6 +708,67 @@ impl Region {
     /// Whether any vertex lies on the artificial box.
     pub fn is_unbounded(&self) -> bool {
         self.verts.iter().any(|&v| self.on_artificial_box(v))
+    }
+}
+
+/// Twice the signed area (shoelace).
+pub(crate) fn double_area(verts: &[P2]) -> f64 {
+    let k = verts.len();
+    if k < 3 {
+        return 0.0;
+    }
+    let mut s = 0.0;
+    for j in 0..k {
+        let p = verts[j];
+        let q = verts[next(j, k)];
+        s += p[0] * q[1] - q[0] * p[1];
+    }
+    s
+}
+
+/// Whether a polygon has an area (at least 3 vertices, |area| above 10⁻¹² of its extent²);
+/// otherwise it counts as degenerate (a segment or a point).
+pub(crate) fn has_area(verts: &[P2]) -> bool {
+    let k = verts.len();
+    let a2 = double_area(verts);
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for v in verts {
+        xmin = xmin.min(v[0]);
+        xmax = xmax.max(v[0]);
+        ymin = ymin.min(v[1]);
+        ymax = ymax.max(v[1]);
+    }
+    let extent = (xmax - xmin).max(ymax - ymin);
+    k >= 3 && a2.abs() > 1e-12 * extent * extent
+}
+
+/// Area centroid; for a (numerically) degenerate polygon, the mean of its vertices.
+pub(crate) fn centroid(verts: &[P2]) -> P2 {
+    let k = verts.len();
+    if has_area(verts) {
+        // Shift to the first vertex for accuracy.
+        let o = verts[0];
+        let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
+        for j in 0..k {
+            let p = [verts[j][0] - o[0], verts[j][1] - o[1]];
+            let qv = verts[next(j, k)];
+            let q = [qv[0] - o[0], qv[1] - o[1]];
+            let c = p[0] * q[1] - q[0] * p[1];
+            s2 += c;
+            cx += (p[0] + q[0]) * c;
+            cy += (p[1] + q[1]) * c;
+        }
+        [o[0] + cx / (3.0 * s2), o[1] + cy / (3.0 * s2)]
+    } else {
+        let (sx, sy) = verts
+            .iter()
+            .fold((0.0, 0.0), |(a, b), v| (a + v[0], b + v[1]));
+        [sx / k as f64, sy / k as f64]
     }
 }
 

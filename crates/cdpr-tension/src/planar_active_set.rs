@@ -35,7 +35,7 @@
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6).
 
 use crate::TensionBounds;
-use crate::feasible_polygon::P2;
+use crate::feasible_polygon::{P2, has_area};
 use crate::null_space::NullSpace;
 
 /// Relative violation below which a constraint counts as satisfied (a hundredth of the
@@ -244,14 +244,8 @@ struct Working {
 /// same way. Vertices are computed from their two lines in the polygon's clipping order (the
 /// lower constraint first), as the clipping computes them.
 pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) -> Option<P2> {
-    if bounds.max().iter().any(|h| !h.is_finite()) {
-        // Unbounded directions and answers beyond the artificial box: the polygon reports them.
-        return None;
-    }
-    let (mut l, mut w) = l2_active_set(ns, bounds)?;
-    let n = ns.n;
     let mut d = [0.0; 2];
-    for i in 0..n {
+    for i in 0..ns.n {
         let a = ns.row2(i);
         d[0] += a[0];
         d[1] += a[1];
@@ -259,6 +253,18 @@ pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) 
     if maximize {
         d = [-d[0], -d[1]];
     }
+    simplex(ns, bounds, d).map(|(l, _)| l)
+}
+
+/// min d·λ on the polygon by the simplex steps of [`l1_vertex`], with the constraints active
+/// at the answer.
+fn simplex(ns: &NullSpace, bounds: &TensionBounds, d: P2) -> Option<(P2, Working)> {
+    if bounds.max().iter().any(|h| !h.is_finite()) {
+        // Unbounded directions and answers beyond the artificial box: the polygon reports them.
+        return None;
+    }
+    let (mut l, mut w) = l2_active_set(ns, bounds)?;
+    let n = ns.n;
     for _ in 0..4 + 2 * n {
         let u = match w.size {
             2 => {
@@ -267,7 +273,7 @@ pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) 
                 let det = np[0] * nq[1] - np[1] * nq[0];
                 let (mp, mq) = multipliers(np, nq, det, d);
                 if mp >= 0.0 && mq >= 0.0 {
-                    return Some(l);
+                    return Some((l, w));
                 }
                 // Release the constraint with the more negative multiplier; move along the
                 // other line, away from the released one.
@@ -289,7 +295,7 @@ pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) 
                 let along = [d[0] - mu * nq[0], d[1] - mu * nq[1]];
                 if along[0].abs() + along[1].abs() <= 1e-12 * (d[0].abs() + d[1].abs()) {
                     if mu >= 0.0 {
-                        return Some(l);
+                        return Some((l, w));
                     }
                     w.size = 0;
                     [-d[0], -d[1]]
@@ -299,30 +305,7 @@ pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) 
             }
             _ => [-d[0], -d[1]],
         };
-        // Ratio test: the first constraint met along u.
-        let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
-        let mut hit: Option<(Constraint, f64)> = None;
-        for i in 0..n {
-            let a = ns.row2(i);
-            let rate = dot(a, u);
-            if rate == 0.0 {
-                continue;
-            }
-            let t = ns.t0[i] + a[0] * l[0] + a[1] * l[1];
-            // Falling tensions meet t_min, rising ones t_max.
-            let (j, step) = if rate < 0.0 {
-                (Constraint(2 * i), (t - lo[i]).max(0.0) / -rate)
-            } else {
-                (Constraint(2 * i + 1), (hi[i] - t).max(0.0) / rate)
-            };
-            if w.set[..w.size].contains(&j) {
-                continue;
-            }
-            if hit.is_none_or(|(_, s)| step < s) {
-                hit = Some((j, step));
-            }
-        }
-        let (j, step) = hit?;
+        let (j, step) = first_met(ns, bounds, l, u, &w.set[..w.size])?;
         if w.size == 0 {
             l = [l[0] + step * u[0], l[1] + step * u[1]];
             w = Working {
@@ -332,21 +315,137 @@ pub(crate) fn l1_vertex(ns: &NullSpace, bounds: &TensionBounds, maximize: bool) 
             continue;
         }
         let k = w.set[0];
-        let (first, second) = if k.0 < j.0 { (k, j) } else { (j, k) };
-        let ((n1, b1), (n2, b2)) = (first.line(ns, bounds), second.line(ns, bounds));
-        let det = n1[0] * n2[1] - n1[1] * n2[0];
-        let size = (n1[0].abs() + n1[1].abs()) * (n2[0].abs() + n2[1].abs());
-        if det.abs() <= 1e-9 * size || det.is_nan() {
-            return None;
-        }
-        l = [
-            (b1 * n2[1] - n1[1] * b2) / det,
-            (n1[0] * b2 - b1 * n2[0]) / det,
-        ];
+        l = corner(ns, bounds, k, j)?;
         w = Working {
-            set: [first, second],
+            set: [k, j],
             size: 2,
         };
+    }
+    None
+}
+
+/// The first constraint met from λ along u (ratio test; those in `skip` excluded), with the
+/// step length; `None` when nothing blocks.
+#[inline(always)]
+fn first_met(
+    ns: &NullSpace,
+    bounds: &TensionBounds,
+    l: P2,
+    u: P2,
+    skip: &[Constraint],
+) -> Option<(Constraint, f64)> {
+    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let mut hit: Option<(Constraint, f64)> = None;
+    for i in 0..ns.n {
+        let a = ns.row2(i);
+        let rate = dot(a, u);
+        if rate == 0.0 {
+            continue;
+        }
+        let t = ns.t0[i] + a[0] * l[0] + a[1] * l[1];
+        // Falling tensions meet t_min, rising ones t_max.
+        let (j, step) = if rate < 0.0 {
+            (Constraint(2 * i), (t - lo[i]).max(0.0) / -rate)
+        } else {
+            (Constraint(2 * i + 1), (hi[i] - t).max(0.0) / rate)
+        };
+        if skip.contains(&j) {
+            continue;
+        }
+        if hit.is_none_or(|(_, s)| step < s) {
+            hit = Some((j, step));
+        }
+    }
+    hit
+}
+
+/// The vertex where the lines of constraints p and q meet, computed from the lower constraint
+/// first (as the clipping computes it); `None` for nearly parallel lines.
+#[inline(always)]
+fn corner(ns: &NullSpace, bounds: &TensionBounds, p: Constraint, q: Constraint) -> Option<P2> {
+    let (first, second) = if p.0 < q.0 { (p, q) } else { (q, p) };
+    let ((n1, b1), (n2, b2)) = (first.line(ns, bounds), second.line(ns, bounds));
+    let det = n1[0] * n2[1] - n1[1] * n2[0];
+    let size = (n1[0].abs() + n1[1].abs()) * (n2[0].abs() + n2[1].abs());
+    if det.abs() <= 1e-9 * size || det.is_nan() {
+        return None;
+    }
+    Some([
+        (b1 * n2[1] - n1[1] * b2) / det,
+        (n1[0] * b2 - b1 * n2[0]) / det,
+    ])
+}
+
+/// Most vertices [`polygon_walk`] collects.
+pub(crate) const WALK_VERTICES: usize = 40;
+
+/// The vertices of the feasible polygon, counter-clockwise, by walking its edges (Lamaury &
+/// Gouttefarde 2013) from the l1 vertex: along the line of the constraint that leaves the
+/// current vertex, to the first constraint met (ratio test), until the walk is back at its
+/// start. Returns the vertex count, or `None` when the clipping must decide (what
+/// [`l1_vertex`] hands back, an l1 optimum on an edge, parallel lines, a polygon without
+/// area, more than 2n + 2 steps).
+pub(crate) fn polygon_walk(
+    ns: &NullSpace,
+    bounds: &TensionBounds,
+    verts: &mut [P2; WALK_VERTICES],
+) -> Option<usize> {
+    let (mut d, mut size) = ([0.0; 2], 0.0);
+    for i in 0..ns.n {
+        let a = ns.row2(i);
+        d[0] += a[0];
+        d[1] += a[1];
+        size += a[0].abs() + a[1].abs();
+    }
+    if d[0].abs() + d[1].abs() <= 1e-12 * size {
+        // Σ t is constant on the polygon (1 lies in the row space of W): any direction will do.
+        d = [1.0, 0.0];
+    }
+    // The edge along constraint c runs in direction (n_c,2, −n_c,1): its inside (n_c) on the
+    // left, so the walk goes counter-clockwise.
+    let edge = |c: Constraint| {
+        let (nc, _) = c.line(ns, bounds);
+        ([nc[1], -nc[0]], nc)
+    };
+    let (mut v0, w) = simplex(ns, bounds, d)?;
+    let (p, q) = match w.size {
+        2 => (w.set[0], w.set[1]),
+        1 => {
+            // The optimum is a whole edge: go on along it to its end.
+            let c = w.set[0];
+            let (j, _) = first_met(ns, bounds, v0, edge(c).0, &[c])?;
+            v0 = corner(ns, bounds, c, j)?;
+            (c, j)
+        }
+        _ => return None,
+    };
+    let ((up, np), (uq, nq)) = (edge(p), edge(q));
+    let (start, mut along, mut u) = if dot(nq, up) > 0.0 {
+        (q, p, up)
+    } else if dot(np, uq) > 0.0 {
+        (p, q, uq)
+    } else {
+        return None;
+    };
+    let mut l = v0;
+    verts[0] = v0;
+    let mut k = 1;
+    for _ in 0..2 * ns.n + 2 {
+        let (j, _) = first_met(ns, bounds, l, u, &[along])?;
+        if k == WALK_VERTICES {
+            return None;
+        }
+        l = corner(ns, bounds, along, j)?;
+        verts[k] = l;
+        k += 1;
+        if j == start {
+            // The edge along `start` ends at the first vertex. A degenerate polygon (segment,
+            // point) has its vertex mean as barycentre, which depends on how often the walk
+            // repeats a vertex: the clipping decides it.
+            return has_area(&verts[..k]).then_some(k);
+        }
+        along = j;
+        u = edge(j).0;
     }
     None
 }
@@ -420,5 +519,41 @@ mod tests {
         // An infinite t_max: the polygon decides.
         let bounds = TensionBounds::new(vec![0.0; 3], vec![3.0, 3.0, f64::INFINITY]).unwrap();
         assert_eq!(l1_vertex(&ns, &bounds, false), None);
+    }
+
+    /// t1 + t2 + t3 = 3 with t ∈ [0, 3]: the polygon is the triangle of the three points where
+    /// one cable holds everything; its centroid is t = (1, 1, 1) (Σ t is constant here, so the
+    /// walk starts from another direction). With two identical cables
+    /// (t1 = t2 interchangeable, both in [0, 1]) the polygon is a parallelogram walked in four
+    /// vertices, and the centroid has t1 = t2 = 1/2 by symmetry (a walk that closed one
+    /// vertex early gave 1/3 and 2/3).
+    #[test]
+    fn walks_by_hand() {
+        let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+        let we = DVector::from_vec(vec![-3.0]);
+        let mut ns = NullSpace::default();
+        ns.compute(&w, &we).unwrap();
+        let bounds = TensionBounds::new(vec![0.0; 3], vec![3.0; 3]).unwrap();
+        let mut verts = [[0.0; 2]; WALK_VERTICES];
+        // Three bounds meet at each corner: the walk may pass a corner twice (a zero-length
+        // edge, no area).
+        let k = polygon_walk(&ns, &bounds, &mut verts).expect("a walk");
+        assert!((3..=6).contains(&k), "{k}");
+        let c = crate::feasible_polygon::centroid(&verts[..k]);
+        for i in 0..3 {
+            assert!((ns.tension2(i, c) - 1.0).abs() < 1e-14);
+        }
+        // Cables 1 and 2 identical; cable 3 the other way; cable 4 pulls up.
+        let w = DMatrix::from_row_slice(2, 4, &[1.0, 1.0, 0.5, -1.0, 0.0, 0.0, 1.0, 0.2]);
+        // Balanced by t = (0.5, 0.5, 1, 1); then t1 + t2 = 1.1 t4 − 0.1 and t3 = 1.2 − 0.2 t4:
+        // the square t1, t2 ∈ [0, 1], no other bound active.
+        let we = DVector::from_vec(vec![-0.5, -1.2]);
+        ns.compute(&w, &we).unwrap();
+        let bounds = TensionBounds::new(vec![0.0; 4], vec![1.0, 1.0, 20.0, 20.0]).unwrap();
+        let k = polygon_walk(&ns, &bounds, &mut verts).expect("a walk");
+        assert_eq!(k, 4);
+        let c = crate::feasible_polygon::centroid(&verts[..k]);
+        assert!((ns.tension2(0, c) - 0.5).abs() < 1e-13);
+        assert!((ns.tension2(1, c) - 0.5).abs() < 1e-13);
     }
 }

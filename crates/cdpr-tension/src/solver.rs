@@ -18,7 +18,8 @@
 //! | l2 | point | interval | planar active set, else polygon | Goldfarb–Idnani dual active set |
 //! | l2-max | point | interval | polygon | vertex enumeration |
 //! | improved-closed-form | Pott 2014 | ← | ← | ← |
-//! | barycenter, sotda | – | – | polygon | – |
+//! | barycenter | – | – | polygon by an edge walk from the l1 vertex, else clipped | – |
+//! | sotda | – | – | polygon | – |
 //!
 //! The active-set solvers (r ≥ 3; linf from r = 2; private module `active_set`, on the null-space
 //! parametrisation) fall back to Clarabel ([`crate::interior_point()`]) only on a
@@ -32,7 +33,7 @@
 use crate::active_set::{ActiveSet, DenseEnd};
 use crate::certificate::{Certificate, snap_and_certify, snap_and_certify_fixed};
 use crate::closed_form::{self, ClosedForm};
-use crate::feasible_polygon::Region;
+use crate::feasible_polygon::{self, Region};
 use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
 use crate::linear_program::{self, Linear, write_tensions};
@@ -291,14 +292,20 @@ impl TensionSolver {
         )
     }
 
-    /// l2, l1 and l1-max at r = 2 by the planar active set (module `planar_active_set`): the
-    /// residual of the certified answer, or `None` when the feasible polygon must decide.
+    /// l2, l1, l1-max and the barycentre at r = 2 by the planar active set, simplex and edge
+    /// walk (module `planar_active_set`): the residual of the certified answer, or `None` when
+    /// the clipped feasible polygon must decide.
     #[inline]
     fn planar(&mut self, p: &TensionProblem) -> Option<f64> {
         let l = match self.method {
             Method::L2 => planar_active_set::l2_projection(&self.ns, p.bounds)?,
             Method::L1 => planar_active_set::l1_vertex(&self.ns, p.bounds, false)?,
             Method::L1Max => planar_active_set::l1_vertex(&self.ns, p.bounds, true)?,
+            Method::Barycenter => {
+                let mut verts = [[0.0; 2]; planar_active_set::WALK_VERTICES];
+                let k = planar_active_set::polygon_walk(&self.ns, p.bounds, &mut verts)?;
+                feasible_polygon::centroid(&verts[..k])
+            }
             _ => return None,
         };
         write_tensions(&self.ns, l, &mut self.t);
@@ -432,8 +439,10 @@ impl TensionSolver {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
-                if matches!(method, Method::L2 | Method::L1 | Method::L1Max)
-                    && r == 2
+                if matches!(
+                    method,
+                    Method::L2 | Method::L1 | Method::L1Max | Method::Barycenter
+                ) && r == 2
                     && let Some(residual) = self.planar(p)
                 {
                     return Ok(Ok(Some(residual)));

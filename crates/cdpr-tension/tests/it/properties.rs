@@ -434,6 +434,42 @@ proptest! {
         }
     }
 
+    /// Issue 17: the barycentre at r = 2 walks the polygon's edges from the l1 vertex (module
+    /// `planar_active_set`) instead of clipping. Same verdict and the same area centroid as
+    /// the clipped polygon of `FeasiblePolygon` (up to rounding), with a fixed cable and an
+    /// infinite t_max too (both handed to the clipping).
+    #[test]
+    fn barycenter_walk_matches_the_clipped_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
+        let n = case.w.ncols();
+        let (mut lo, mut hi) = (case.b.min().as_slice().to_vec(), case.b.max().as_slice().to_vec());
+        let which = which % n;
+        match variant {
+            1 => hi[which] = f64::INFINITY,
+            2 => {
+                let p = TensionProblem::new(&case.w, &case.we, &case.b);
+                if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
+                    lo[which] = s.tensions[which];
+                    hi[which] = s.tensions[which];
+                }
+            }
+            _ => {}
+        }
+        let b = TensionBounds::new(lo, hi).unwrap();
+        let p = TensionProblem::new(&case.w, &case.we, &b);
+        let out = solve(Method::Barycenter, &p);
+        match (&out, FeasiblePolygon::compute(&p).unwrap()) {
+            (TensionOutcome::Infeasible(cdpr_tension::Infeasibility::SingularPose { .. }), _) => {}
+            (TensionOutcome::Feasible(s), Ok(poly)) => {
+                check(&p, &s.tensions);
+                let c = poly.barycenter();
+                let scale = 1f64.max(c.amax());
+                prop_assert!((&s.tensions - &c).amax() <= 1e-8 * scale, "{} against {}", s.tensions, c);
+            }
+            (TensionOutcome::Infeasible(reason), Err(theirs)) => prop_assert_eq!(reason, &theirs),
+            (out, poly) => prop_assert!(false, "barycenter {:?} against the polygon {:?}", out, poly),
+        }
+    }
+
     /// Issue 13 §7: at r = 1, l1 and l1-max take Algorithm 6.1's path (the same arithmetic as
     /// closed-form, so identical tensions) and reach the optimum of the general LP (Clarabel,
     /// an independent interior-point solver) and of every random feasible point.
