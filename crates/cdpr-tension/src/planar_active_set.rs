@@ -28,10 +28,19 @@
 //! its verdict). Issue 17 (IPAnema 1, 20 000 poses): l2 7 800 and l1 8 200 instructions per
 //! call against 17 700 and 17 400 through the polygon, the same tensions bit for bit.
 //!
+//! The barycentre needs the whole polygon: its vertices come from walking the edges
+//! counter-clockwise from the l1 vertex (Lamaury & Gouttefarde 2013): along the line of the
+//! constraint that leaves the current vertex to the first constraint met, until the edge that
+//! ends at the first vertex. A polygon without area goes to the clipping (its vertex mean
+//! depends on how often a vertex repeats). Barycentre 10 600 instructions per call against
+//! 17 600.
+//!
 //! ## References
 //! - Nocedal & Wright (2006), *Numerical Optimization*, 2nd ed., §16.5 (active-set methods for
 //!   convex quadratic programs).
 //! - Dantzig (1963), *Linear Programming and Extensions*, Princeton University Press.
+//! - Lamaury & Gouttefarde (2013), *A tension distribution method with improved computational
+//!   efficiency*, Cable-Driven Parallel Robots, pp. 71–85.
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6).
 
 use crate::TensionBounds;

@@ -139,6 +139,30 @@ fn random_feasible(p: &TensionProblem, seed: &[f64]) -> Vec<DVector<f64>> {
     out
 }
 
+/// The bounds of `case` as they are (variant 0), with t_max,which = ∞ (1), with cable `which`
+/// fixed (t_min = t_max) at its l2 tension when the problem is feasible (2), or with every
+/// t_max = ∞ (3).
+fn variant_bounds(case: &Case, variant: usize, which: usize) -> TensionBounds {
+    let which = which % case.w.ncols();
+    let (mut lo, mut hi) = (
+        case.b.min().as_slice().to_vec(),
+        case.b.max().as_slice().to_vec(),
+    );
+    match variant {
+        1 => hi[which] = f64::INFINITY,
+        2 => {
+            let p = TensionProblem::new(&case.w, &case.we, &case.b);
+            if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
+                lo[which] = s.tensions[which];
+                hi[which] = s.tensions[which];
+            }
+        }
+        3 => hi.iter_mut().for_each(|h| *h = f64::INFINITY),
+        _ => {}
+    }
+    TensionBounds::new(lo, hi).unwrap()
+}
+
 /// min ‖t‖² over a bounded feasible polygon by brute force: ‖t0‖² when t0 = −W⁺ w_ext is
 /// inside the bounds (the unconstrained minimum), else the closest point of an edge (tension
 /// space).
@@ -329,23 +353,7 @@ proptest! {
     /// one or all t_max infinite and with a fixed cable (t_min = t_max) too.
     #[test]
     fn l2_at_redundancy_2_matches_the_polygon(case in arb_case(2..=2), variant in 0usize..4, which in 0usize..12) {
-        let n = case.w.ncols();
-        let (mut lo, mut hi) = (case.b.min().as_slice().to_vec(), case.b.max().as_slice().to_vec());
-        let which = which % n;
-        match variant {
-            1 => hi[which] = f64::INFINITY,
-            2 => hi.iter_mut().for_each(|h| *h = f64::INFINITY),
-            3 => {
-                // Fixed at the l2 tension of the unmodified problem when there is one.
-                let p = TensionProblem::new(&case.w, &case.we, &case.b);
-                if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
-                    lo[which] = s.tensions[which];
-                    hi[which] = s.tensions[which];
-                }
-            }
-            _ => {}
-        }
-        let b = TensionBounds::new(lo, hi).unwrap();
+        let b = variant_bounds(&case, variant, which);
         let p = TensionProblem::new(&case.w, &case.we, &b);
         let out = solve(Method::L2, &p);
         let poly = FeasiblePolygon::compute(&p).unwrap();
@@ -381,21 +389,7 @@ proptest! {
     /// polygon).
     #[test]
     fn l1_at_redundancy_2_matches_the_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
-        let n = case.w.ncols();
-        let (mut lo, mut hi) = (case.b.min().as_slice().to_vec(), case.b.max().as_slice().to_vec());
-        let which = which % n;
-        match variant {
-            1 => hi[which] = f64::INFINITY,
-            2 => {
-                let p = TensionProblem::new(&case.w, &case.we, &case.b);
-                if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
-                    lo[which] = s.tensions[which];
-                    hi[which] = s.tensions[which];
-                }
-            }
-            _ => {}
-        }
-        let b = TensionBounds::new(lo, hi).unwrap();
+        let b = variant_bounds(&case, variant, which);
         let p = TensionProblem::new(&case.w, &case.we, &b);
         let poly = FeasiblePolygon::compute(&p).unwrap();
         for method in [Method::L1, Method::L1Max] {
@@ -440,21 +434,7 @@ proptest! {
     /// infinite t_max too (both handed to the clipping).
     #[test]
     fn barycenter_walk_matches_the_clipped_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
-        let n = case.w.ncols();
-        let (mut lo, mut hi) = (case.b.min().as_slice().to_vec(), case.b.max().as_slice().to_vec());
-        let which = which % n;
-        match variant {
-            1 => hi[which] = f64::INFINITY,
-            2 => {
-                let p = TensionProblem::new(&case.w, &case.we, &case.b);
-                if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
-                    lo[which] = s.tensions[which];
-                    hi[which] = s.tensions[which];
-                }
-            }
-            _ => {}
-        }
-        let b = TensionBounds::new(lo, hi).unwrap();
+        let b = variant_bounds(&case, variant, which);
         let p = TensionProblem::new(&case.w, &case.we, &b);
         let out = solve(Method::Barycenter, &p);
         match (&out, FeasiblePolygon::compute(&p).unwrap()) {
