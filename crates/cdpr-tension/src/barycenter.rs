@@ -2,8 +2,9 @@
 //!
 //! For redundancy 2, the tensions at the area centroid of the feasible polygon (Picard, Caro, Plestan & Claveau 2020
 //! eqs. (5)–(6)): far from all bounds, continuous along trajectories, and computed by a
-//! finite number of operations (Lamaury & Gouttefarde 2013 walk the polygon's edges; we clip
-//! it, see [`crate::FeasiblePolygon`]). The area centroid commutes with affine maps, so the
+//! finite number of operations (Lamaury & Gouttefarde 2013 walk the polygon's edges; so do we
+//! first, module `planar_active_set`, and clip it, see [`crate::FeasiblePolygon`], for what the
+//! walk hands back). The area centroid commutes with affine maps, so the
 //! result does not depend on the choice of the null-space basis. A degenerate (zero-area)
 //! polygon gives the mean of its vertices. Other redundancies: [`crate::TensionError::MethodNotApplicable`].
 //!

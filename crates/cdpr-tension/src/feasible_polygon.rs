@@ -56,6 +56,11 @@ pub(crate) struct Region {
     saved: Vec<P2>,
     saved_edges: Vec<u32>,
     saved_lines: usize,
+    /// Scratch of [`Self::clip`]: a·λ − b at each vertex.
+    depth: Vec<f64>,
+    /// The polygon during a redundancy-2 build, and whether it lives there.
+    fixed: FixedPolygon,
+    in_fixed: bool,
     /// Half-width of the initial box.
     pub radius: f64,
     /// Data scale max(1, |t0_i|, |t_min,i|, finite |t_max,i|): the floor of the duplicate test.
@@ -89,23 +94,252 @@ fn dot(a: P2, b: P2) -> f64 {
     a[0] * b[0] + a[1] * b[1]
 }
 
+/// max(a, b) for numbers that are not NaN (one `maxsd`; `f64::max` spends several instructions
+/// on NaN, and this runs for every vertex of every clip).
+#[inline(always)]
+fn max_of(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
 /// Whether two vertices coincide up to rounding (10⁻¹³ relative to their size and the data).
+/// False whenever a coordinate is NaN (a comparison with NaN is false), whatever `max_of`
+/// makes of it.
 #[inline]
 fn close(p: P2, q: P2, scale: f64) -> bool {
-    let size = p[0]
-        .abs()
-        .max(p[1].abs())
-        .max(q[0].abs())
-        .max(q[1].abs())
-        .max(scale)
-        .max(1e-300);
+    let size = max_of(
+        max_of(
+            max_of(p[0].abs(), p[1].abs()),
+            max_of(q[0].abs(), q[1].abs()),
+        ),
+        max_of(scale, 1e-300),
+    );
     let eps = 1e-13 * size;
     (p[0] - q[0]).abs() <= eps && (p[1] - q[1]).abs() <= eps
+}
+
+/// What one clip did to the polygon.
+enum Clipped {
+    /// Every vertex already satisfies the constraint (the common case late in a build).
+    Unchanged,
+    /// Nothing is left.
+    Empty,
+    /// The polygon was cut; this many vertices are left.
+    Cut(usize),
+}
+
+/// Borrowed storage of one clip: the polygon (`verts`, `edges`, room for 2k entries), scratch
+/// for the unreduced output (2k), the vertex depths (k + 1) and the lines met so far. The same code
+/// clips the reusable vectors of [`Region`] and the fixed arrays of [`FixedPolygon`].
+struct PolygonMut<'a> {
+    verts: &'a mut [P2],
+    edges: &'a mut [u32],
+    tmp: &'a mut [P2],
+    tmp_edges: &'a mut [u32],
+    depth: &'a mut [f64],
+    lines: &'a [(P2, f64)],
+}
+
+impl PolygonMut<'_> {
+    /// Sutherland–Hodgman step on the first `k` vertices: keeps a·λ ≥ b − tol. The new edge is
+    /// carried by `line` (its index among the lines). See [`Region::clip`].
+    #[inline(always)]
+    fn clip(&mut self, k: usize, a: P2, b: f64, tol: f64, line: u32, scale: f64) -> Clipped {
+        if a[0].abs() + a[1].abs() < 1e-14 {
+            // Constant constraint (cable i has no null-space freedom): see
+            // [`CONSTANT_ROW_SLACK`].
+            return if 0.0 >= b - CONSTANT_ROW_SLACK * tol {
+                Clipped::Unchanged
+            } else {
+                Clipped::Empty
+            };
+        }
+        let (verts, edges) = (&mut self.verts[..2 * k], &mut self.edges[..2 * k]);
+        let (tmp, tmp_edges) = (&mut self.tmp[..2 * k], &mut self.tmp_edges[..2 * k]);
+        let depth = &mut self.depth[..k + 1];
+        let mut inside = true;
+        for (d, &p) in depth.iter_mut().zip(verts[..k].iter()) {
+            *d = dot(a, p) - b;
+            inside &= *d >= -tol;
+        }
+        // Nothing to cut: keep the region as it is.
+        if inside {
+            return Clipped::Unchanged;
+        }
+        // The first vertex again after the last (k ≥ 1, room for 2k), so edge j runs from
+        // entry j to entry j + 1.
+        verts[k] = verts[0];
+        depth[k] = depth[0];
+        let mut m = 0;
+        for j in 0..k {
+            let (p, q) = (verts[j], verts[j + 1]);
+            let (dp, dq) = (depth[j], depth[j + 1]);
+            let e = edges[j];
+            let (ip, iq) = (dp >= -tol, dq >= -tol);
+            if ip {
+                tmp[m] = p;
+                tmp_edges[m] = e;
+                m += 1;
+            }
+            if ip != iq {
+                let interpolated = || {
+                    let s = (dp / (dp - dq)).clamp(0.0, 1.0);
+                    [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]
+                };
+                let exact = if e == NO_LINE {
+                    None
+                } else {
+                    let (el, eb) = self.lines[e as usize];
+                    // Must lie on the segment p q (up to rounding of p and q).
+                    intersect(el, eb, a, b).filter(|x| {
+                        let d = [q[0] - p[0], q[1] - p[1]];
+                        let dd = dot(d, d);
+                        let sx = dot([x[0] - p[0], x[1] - p[1]], d);
+                        sx >= -1e-6 * dd && sx <= (1.0 + 1e-6) * dd
+                    })
+                };
+                tmp[m] = exact.unwrap_or_else(interpolated);
+                // Leaving the half-plane: the new edge runs along the clipping line.
+                tmp_edges[m] = if ip { line } else { e };
+                m += 1;
+            }
+        }
+        // Drop consecutive duplicates (a dropped vertex passes its outgoing edge to the kept
+        // one). The tolerance is relative to the vertices and the data, not to the box.
+        let mut kept = 0;
+        for (&p, &e) in tmp[..m].iter().zip(&tmp_edges[..m]) {
+            if kept > 0 && close(p, verts[kept - 1], scale) {
+                edges[kept - 1] = e;
+                continue;
+            }
+            verts[kept] = p;
+            edges[kept] = e;
+            kept += 1;
+        }
+        while kept > 1 && close(verts[0], verts[kept - 1], scale) {
+            kept -= 1;
+        }
+        if kept == 0 {
+            Clipped::Empty
+        } else {
+            Clipped::Cut(kept)
+        }
+    }
+}
+
+/// Vertices a [`FixedPolygon`] may hold before a clip (its arrays hold twice as many).
+const FIXED_VERTICES: usize = 32;
+/// Cables up to which a redundancy-2 polygon is clipped in [`FixedPolygon`] (4 box lines plus
+/// 2 lines per cable).
+const FIXED_CABLES: usize = 16;
+const FIXED_LINES: usize = 4 + 2 * FIXED_CABLES;
+
+/// The polygon of a redundancy-2 build in fixed arrays (issue 17: no vector bookkeeping in the
+/// clipping loop, about 12 000 of the 17 500 instructions of an l2 solve on 8 cables before).
+/// Same arithmetic as the vector path, so the same vertices bit for bit; a polygon that would
+/// outgrow the arrays moves to the vectors.
+#[derive(Debug, Clone)]
+struct FixedPolygon {
+    verts: [P2; 2 * FIXED_VERTICES],
+    edges: [u32; 2 * FIXED_VERTICES],
+    tmp: [P2; 2 * FIXED_VERTICES],
+    tmp_edges: [u32; 2 * FIXED_VERTICES],
+    depth: [f64; FIXED_VERTICES + 1],
+    lines: [(P2, f64); FIXED_LINES],
+    /// Vertices.
+    k: usize,
+    /// Lines.
+    nl: usize,
+}
+
+impl Default for FixedPolygon {
+    fn default() -> Self {
+        Self {
+            verts: [[0.0; 2]; 2 * FIXED_VERTICES],
+            edges: [NO_LINE; 2 * FIXED_VERTICES],
+            tmp: [[0.0; 2]; 2 * FIXED_VERTICES],
+            tmp_edges: [NO_LINE; 2 * FIXED_VERTICES],
+            depth: [0.0; FIXED_VERTICES + 1],
+            lines: [([0.0; 2], 0.0); FIXED_LINES],
+            k: 0,
+            nl: 0,
+        }
+    }
+}
+
+impl FixedPolygon {
+    /// [`Region::clip`] on the arrays; `None` when the polygon might outgrow them.
+    #[inline(always)]
+    fn clip(&mut self, a: P2, b: f64, tol: f64, scale: f64) -> Option<bool> {
+        let k = self.k;
+        if k > FIXED_VERTICES || self.nl >= FIXED_LINES {
+            return None;
+        }
+        if k == 0 {
+            return Some(false);
+        }
+        let line = self.nl as u32;
+        let mut poly = PolygonMut {
+            verts: &mut self.verts,
+            edges: &mut self.edges,
+            tmp: &mut self.tmp,
+            tmp_edges: &mut self.tmp_edges,
+            depth: &mut self.depth,
+            lines: &self.lines[..self.nl],
+        };
+        self.k = match poly.clip(k, a, b, tol, line, scale) {
+            Clipped::Unchanged => k,
+            Clipped::Empty => 0,
+            Clipped::Cut(kept) => {
+                self.lines[self.nl] = (a, b);
+                self.nl += 1;
+                kept
+            }
+        };
+        Some(self.k > 0)
+    }
 }
 
 impl Region {
     /// Builds the feasible set of `ns` under `bounds`; false if it is empty.
     pub fn build(&mut self, ns: &NullSpace, bounds: &TensionBounds) -> bool {
+        self.build_with(ns, bounds, true)
+    }
+
+    /// [`Self::build`]; `fixed`: clip a redundancy-2 polygon in [`FixedPolygon`] when it fits
+    /// (false only in the test that compares both paths).
+    fn build_with(&mut self, ns: &NullSpace, bounds: &TensionBounds, fixed: bool) -> bool {
+        let nonempty = self.build_in_place(ns, bounds, fixed);
+        if self.in_fixed {
+            self.leave_fixed();
+        }
+        nonempty
+    }
+
+    /// Moves the polygon from the fixed arrays to the vectors.
+    fn leave_fixed(&mut self) {
+        let f = &self.fixed;
+        self.verts.clear();
+        self.verts.extend_from_slice(&f.verts[..f.k]);
+        self.edges.clear();
+        self.edges.extend_from_slice(&f.edges[..f.k]);
+        self.lines.clear();
+        self.lines.extend_from_slice(&f.lines[..f.nl]);
+        self.in_fixed = false;
+    }
+
+    /// [`Self::clip`] during a build: in the fixed arrays while the polygon fits there.
+    #[inline(always)]
+    fn cut(&mut self, a: P2, b: f64, tol: f64) -> bool {
+        if self.in_fixed {
+            if let Some(nonempty) = self.fixed.clip(a, b, tol, self.scale) {
+                return nonempty;
+            }
+            self.leave_fixed();
+        }
+        self.clip(a, b, tol)
+    }
+
+    fn build_in_place(&mut self, ns: &NullSpace, bounds: &TensionBounds, fixed: bool) -> bool {
         let (n, r) = (ns.n, ns.r());
         debug_assert!(r <= 2);
         let cap = 2 * n + 8;
@@ -172,6 +406,15 @@ impl Region {
                     [-radius, radius],
                 ]);
                 self.edges.extend_from_slice(&[0, 1, 2, 3]);
+                // Fixed cables are cut by `clip_line`, which works on the vectors only.
+                self.in_fixed = fixed && n <= FIXED_CABLES && (0..n).all(|i| lo[i] != hi[i]);
+                if self.in_fixed {
+                    let f = &mut self.fixed;
+                    f.verts[..4].copy_from_slice(&self.verts);
+                    f.edges[..4].copy_from_slice(&self.edges);
+                    f.lines[..4].copy_from_slice(&self.lines);
+                    (f.k, f.nl) = (4, 4);
+                }
             }
         }
         // Two-sided constraints first, fixed cables (t_min = t_max) as one line each: while
@@ -196,8 +439,8 @@ impl Region {
                     // 10⁶-problem soak, l2, l2-max and linf). The band's ends are within the
                     // clipping tolerance of t_min, so the certificate accepts them.
                     let b = lo[i] - t0;
-                    if !self.clip(a, b - tol_lo, tol_lo)
-                        || !self.clip([-a[0], -a[1]], -b - tol_lo, tol_lo)
+                    if !self.cut(a, b - tol_lo, tol_lo)
+                        || !self.cut([-a[0], -a[1]], -b - tol_lo, tol_lo)
                     {
                         return false;
                     }
@@ -211,12 +454,12 @@ impl Region {
                     continue;
                 }
                 // t0 + a·λ ≥ t_min  ⇔  a·λ ≥ t_min − t0
-                if !self.clip(a, lo[i] - t0, tol_lo) {
+                if !self.cut(a, lo[i] - t0, tol_lo) {
                     return false;
                 }
                 if hi[i].is_finite() {
                     let tol = self.tolerance(hi[i]);
-                    if !self.clip([-a[0], -a[1]], t0 - hi[i], tol) {
+                    if !self.cut([-a[0], -a[1]], t0 - hi[i], tol) {
                         return false;
                     }
                 }
@@ -327,88 +570,36 @@ impl Region {
         if self.verts.is_empty() {
             return false;
         }
-        if a[0].abs() + a[1].abs() < 1e-14 {
-            // Constant constraint (cable i has no null-space freedom): see
-            // [`CONSTANT_ROW_SLACK`].
-            if 0.0 >= b - CONSTANT_ROW_SLACK * tol {
-                return true;
-            }
-            self.verts.clear();
-            self.edges.clear();
-            return false;
-        }
         let k = self.verts.len();
-        // Nothing to cut (the common case late in the build): keep the region as it is.
-        if self.verts.iter().all(|&p| dot(a, p) - b >= -tol) {
-            return true;
-        }
         if self.edges.len() != k {
             self.edges.clear();
             self.edges.resize(k, NO_LINE);
         }
+        self.verts.resize(2 * k, [0.0; 2]);
+        self.edges.resize(2 * k, NO_LINE);
+        self.tmp.resize(2 * k, [0.0; 2]);
+        self.tmp_edges.resize(2 * k, NO_LINE);
+        self.depth.resize(k + 1, 0.0);
         let line = self.lines.len() as u32;
-        self.lines.push((a, b));
-        self.tmp.clear();
-        self.tmp_edges.clear();
-        let mut dq = dot(a, self.verts[0]) - b;
-        for j in 0..k {
-            let p = self.verts[j];
-            let q = self.verts[next(j, k)];
-            let dp = dq;
-            dq = dot(a, q) - b;
-            let e = self.edges[j];
-            let (ip, iq) = (dp >= -tol, dq >= -tol);
-            if ip {
-                self.tmp.push(p);
-                self.tmp_edges.push(e);
+        let mut poly = PolygonMut {
+            verts: &mut self.verts,
+            edges: &mut self.edges,
+            tmp: &mut self.tmp,
+            tmp_edges: &mut self.tmp_edges,
+            depth: &mut self.depth,
+            lines: &self.lines,
+        };
+        let kept = match poly.clip(k, a, b, tol, line, self.scale) {
+            Clipped::Unchanged => k,
+            Clipped::Empty => 0,
+            Clipped::Cut(kept) => {
+                self.lines.push((a, b));
+                kept
             }
-            if ip != iq {
-                let interpolated = || {
-                    let s = (dp / (dp - dq)).clamp(0.0, 1.0);
-                    [p[0] + s * (q[0] - p[0]), p[1] + s * (q[1] - p[1])]
-                };
-                let exact = if e == NO_LINE {
-                    None
-                } else {
-                    let (el, eb) = self.lines[e as usize];
-                    // Must lie on the segment p q (up to rounding of p and q).
-                    intersect(el, eb, a, b).filter(|x| {
-                        let d = [q[0] - p[0], q[1] - p[1]];
-                        let dd = dot(d, d);
-                        let sx = dot([x[0] - p[0], x[1] - p[1]], d);
-                        sx >= -1e-6 * dd && sx <= (1.0 + 1e-6) * dd
-                    })
-                };
-                let x = exact.unwrap_or_else(interpolated);
-                self.tmp.push(x);
-                // Leaving the half-plane: the new edge runs along the clipping line.
-                self.tmp_edges.push(if ip { line } else { e });
-            }
-        }
-        // Drop consecutive duplicates (a dropped vertex passes its outgoing edge to the kept
-        // one). The tolerance is relative to the vertices and the data, not to the box.
-        self.verts.clear();
-        self.edges.clear();
-        for (&p, &e) in self.tmp.iter().zip(&self.tmp_edges) {
-            if let Some(&last) = self.verts.last()
-                && close(p, last, self.scale)
-            {
-                *self.edges.last_mut().expect("same length as verts") = e;
-                continue;
-            }
-            self.verts.push(p);
-            self.edges.push(e);
-        }
-        while self.verts.len() > 1 {
-            let (f, l) = (self.verts[0], self.verts[self.verts.len() - 1]);
-            if close(f, l, self.scale) {
-                self.verts.pop();
-                self.edges.pop();
-            } else {
-                break;
-            }
-        }
-        !self.verts.is_empty()
+        };
+        self.verts.truncate(kept);
+        self.edges.truncate(kept);
+        kept > 0
     }
 
     /// Saves the current vertices (for bisection).
@@ -445,57 +636,12 @@ impl Region {
 
     /// Twice the signed area (shoelace).
     pub fn double_area(&self) -> f64 {
-        let k = self.verts.len();
-        if k < 3 {
-            return 0.0;
-        }
-        let mut s = 0.0;
-        for j in 0..k {
-            let p = self.verts[j];
-            let q = self.verts[next(j, k)];
-            s += p[0] * q[1] - q[0] * p[1];
-        }
-        s
+        double_area(&self.verts)
     }
 
     /// Area centroid; for a (numerically) degenerate polygon, the mean of its vertices.
     pub fn centroid(&self) -> P2 {
-        let k = self.verts.len();
-        let a2 = self.double_area();
-        let (mut xmin, mut xmax, mut ymin, mut ymax) = (
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        );
-        for v in &self.verts {
-            xmin = xmin.min(v[0]);
-            xmax = xmax.max(v[0]);
-            ymin = ymin.min(v[1]);
-            ymax = ymax.max(v[1]);
-        }
-        let extent = (xmax - xmin).max(ymax - ymin);
-        if k >= 3 && a2.abs() > 1e-12 * extent * extent {
-            // Shift to the first vertex for accuracy.
-            let o = self.verts[0];
-            let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
-            for j in 0..k {
-                let p = [self.verts[j][0] - o[0], self.verts[j][1] - o[1]];
-                let qv = self.verts[next(j, k)];
-                let q = [qv[0] - o[0], qv[1] - o[1]];
-                let c = p[0] * q[1] - q[0] * p[1];
-                s2 += c;
-                cx += (p[0] + q[0]) * c;
-                cy += (p[1] + q[1]) * c;
-            }
-            [o[0] + cx / (3.0 * s2), o[1] + cy / (3.0 * s2)]
-        } else {
-            let (sx, sy) = self
-                .verts
-                .iter()
-                .fold((0.0, 0.0), |(a, b), v| (a + v[0], b + v[1]));
-            [sx / k as f64, sy / k as f64]
-        }
+        centroid(&self.verts)
     }
 
     /// Whether `c` lies in a polygon with positive area (counter-clockwise).
@@ -562,6 +708,67 @@ impl Region {
     /// Whether any vertex lies on the artificial box.
     pub fn is_unbounded(&self) -> bool {
         self.verts.iter().any(|&v| self.on_artificial_box(v))
+    }
+}
+
+/// Twice the signed area (shoelace).
+pub(crate) fn double_area(verts: &[P2]) -> f64 {
+    let k = verts.len();
+    if k < 3 {
+        return 0.0;
+    }
+    let mut s = 0.0;
+    for j in 0..k {
+        let p = verts[j];
+        let q = verts[next(j, k)];
+        s += p[0] * q[1] - q[0] * p[1];
+    }
+    s
+}
+
+/// Whether a polygon has an area (at least 3 vertices, |area| above 10⁻¹² of its extent²);
+/// otherwise it counts as degenerate (a segment or a point).
+pub(crate) fn has_area(verts: &[P2]) -> bool {
+    let k = verts.len();
+    let a2 = double_area(verts);
+    let (mut xmin, mut xmax, mut ymin, mut ymax) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for v in verts {
+        xmin = xmin.min(v[0]);
+        xmax = xmax.max(v[0]);
+        ymin = ymin.min(v[1]);
+        ymax = ymax.max(v[1]);
+    }
+    let extent = (xmax - xmin).max(ymax - ymin);
+    k >= 3 && a2.abs() > 1e-12 * extent * extent
+}
+
+/// Area centroid; for a (numerically) degenerate polygon, the mean of its vertices.
+pub(crate) fn centroid(verts: &[P2]) -> P2 {
+    let k = verts.len();
+    if has_area(verts) {
+        // Shift to the first vertex for accuracy.
+        let o = verts[0];
+        let (mut cx, mut cy, mut s2) = (0.0, 0.0, 0.0);
+        for j in 0..k {
+            let p = [verts[j][0] - o[0], verts[j][1] - o[1]];
+            let qv = verts[next(j, k)];
+            let q = [qv[0] - o[0], qv[1] - o[1]];
+            let c = p[0] * q[1] - q[0] * p[1];
+            s2 += c;
+            cx += (p[0] + q[0]) * c;
+            cy += (p[1] + q[1]) * c;
+        }
+        [o[0] + cx / (3.0 * s2), o[1] + cy / (3.0 * s2)]
+    } else {
+        let (sx, sy) = verts
+            .iter()
+            .fold((0.0, 0.0), |(a, b), v| (a + v[0], b + v[1]));
+        [sx / k as f64, sy / k as f64]
     }
 }
 
@@ -747,5 +954,86 @@ mod tests {
         assert!((x - 503.2447700885809).abs() <= 1e-13, "{x}");
         // Projection onto that long segment returns its end exactly.
         assert_eq!(s.project([0.0, 0.0])[0], x);
+    }
+
+    /// The fixed arrays give the vector path's polygon bit for bit (same steps), on random
+    /// redundancy-2 problems with finite, infinite and nearly violated bounds.
+    #[test]
+    fn fixed_arrays_match_the_vectors_bit_for_bit() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut nonempty = 0;
+        for (m, n) in [(6, 8), (3, 5), (1, 3), (10, 12), (14, 16)] {
+            for case in 0..300 {
+                let w = DMatrix::from_fn(m, n, |_, _| 2.0 * next() - 1.0);
+                let we = DVector::from_fn(m, |_, _| 4.0 * (2.0 * next() - 1.0));
+                let lo: Vec<f64> = (0..n).map(|_| next()).collect();
+                let hi: Vec<f64> = (0..n)
+                    .map(|i| match case % 3 {
+                        0 if i == 0 => f64::INFINITY,
+                        _ => lo[i] + 1.0 + 5.0 * next(),
+                    })
+                    .collect();
+                let bounds = TensionBounds::new(lo, hi).unwrap();
+                let mut ns = NullSpace::default();
+                if ns.compute(&w, &we).is_err() {
+                    continue;
+                }
+                let (mut a, mut b) = (Region::default(), Region::default());
+                let ka = a.build_with(&ns, &bounds, true);
+                let kb = b.build_with(&ns, &bounds, false);
+                assert_eq!(ka, kb, "{m}x{n} case {case}");
+                let bits = |r: &Region| {
+                    r.verts
+                        .iter()
+                        .flat_map(|v| [v[0].to_bits(), v[1].to_bits()])
+                        .collect::<Vec<_>>()
+                };
+                assert_eq!(bits(&a), bits(&b), "{m}x{n} case {case}");
+                assert_eq!(a.edges, b.edges, "{m}x{n} case {case}");
+                assert_eq!(a.lines, b.lines, "{m}x{n} case {case}");
+                nonempty += ka as usize;
+            }
+        }
+        // Both outcomes occur (the test is not vacuous).
+        assert!(nonempty > 100 && nonempty < 1400, "{nonempty}");
+    }
+
+    /// A polygon with more vertices than the fixed arrays take before a clip moves to the
+    /// vectors and is clipped there, as if it had been there all along.
+    #[test]
+    fn a_polygon_too_large_for_the_arrays_moves_to_the_vectors() {
+        let k = FIXED_VERTICES + 8;
+        let gon: Vec<P2> = (0..k)
+            .map(|j| {
+                let a = std::f64::consts::TAU * j as f64 / k as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let mut vectors = Region {
+            verts: gon.clone(),
+            edges: vec![NO_LINE; k],
+            scale: 1.0,
+            ..Region::default()
+        };
+        let mut fixed = Region {
+            scale: 1.0,
+            in_fixed: true,
+            ..Region::default()
+        };
+        fixed.fixed.verts[..k].copy_from_slice(&gon);
+        fixed.fixed.k = k;
+        // λ₁ + λ₂ ≤ 0.5 cuts off about a third of the 40-gon.
+        assert!(vectors.clip([-1.0, -1.0], -0.5, 0.0));
+        assert!(fixed.cut([-1.0, -1.0], -0.5, 0.0));
+        assert!(!fixed.in_fixed);
+        assert_eq!(fixed.verts, vectors.verts);
+        assert_eq!(fixed.edges, vectors.edges);
+        assert!(vectors.verts.len() < k && vectors.verts.len() > k / 2);
     }
 }

@@ -103,16 +103,38 @@ fn iterate<const M: usize>(
                 rhs[k] += col[k] * ti;
             }
         }
-        // A Aᵀ over the free cables, lower triangle.
-        for r in 0..m {
-            for c in 0..=r {
-                let mut s = 0.0;
-                for (col, &free) in ws.chunks_exact(m).zip(active.iter()) {
-                    if free {
-                        s += col[r] * col[c];
+        // A Aᵀ over the free cables, lower triangle: one outer product per free cable (each
+        // entry sums over the cables in the same order as an entry-by-entry loop, so the same
+        // bits, without a branch per entry and cable).
+        if M > 0 {
+            // DOF known at compile time: the triangle in a local array the compiler unrolls.
+            let mut acc = [[0.0; M]; M];
+            for (col, &free) in ws.chunks_exact(M).zip(active.iter()) {
+                if free {
+                    for r in 0..M {
+                        let cr = col[r];
+                        for c in 0..=r {
+                            acc[r][c] += cr * col[c];
+                        }
                     }
                 }
-                aat[r * m + c] = s;
+            }
+            for r in 0..M {
+                aat[r * M..r * M + r + 1].copy_from_slice(&acc[r][..=r]);
+            }
+        } else {
+            for r in 0..m {
+                aat[r * m..r * m + r + 1].fill(0.0);
+            }
+            for (col, &free) in ws.chunks_exact(m).zip(active.iter()) {
+                if free {
+                    for r in 0..m {
+                        let cr = col[r];
+                        for c in 0..=r {
+                            aat[r * m + c] += cr * col[c];
+                        }
+                    }
+                }
             }
         }
         for k in 0..m {

@@ -73,6 +73,7 @@ mod method;
 pub mod minimum_norm;
 pub mod null_space;
 mod outcome;
+mod planar_active_set;
 pub mod profile;
 pub mod quadratic_program;
 pub mod solver;

@@ -7,7 +7,9 @@
 //! - **linf**: minimise max_i t_i (CASPR / WireX parity).
 //!
 //! For redundancy r ≤ 2 we solve l1 and l1-max exactly on the feasible interval / polygon in
-//! λ-space: Σ t_i = Σ t0_i + (Nᵀ 1)·λ is linear, so its optimum is at a vertex. linf at r ≤ 1:
+//! λ-space: Σ t_i = Σ t0_i + (Nᵀ 1)·λ is linear, so its optimum is at a vertex (at r = 2 found
+//! first by simplex steps from the l2 optimum without building the polygon, module
+//! `planar_active_set`; the polygon decides what that path hands back). linf at r ≤ 1:
 //! max_i t_i is convex and piecewise linear, minimised by bisection on the level s (clip the
 //! interval with t_i ≤ s until the bracket is below 10⁻¹⁴ relative). For r ≥ 3, and for linf
 //! already at r = 2 (exact, and about 3.5 times cheaper than the bisection on the polygon: issue

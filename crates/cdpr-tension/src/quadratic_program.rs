@@ -7,8 +7,9 @@
 //!
 //! With the orthonormal null-space basis, ‖t0 + N λ‖² = ‖t0‖² + 2 gᵀλ + ‖λ‖² (g = Nᵀ t0 = 0 up to
 //! rounding, since t0 is the minimum-norm solution), so for r ≤ 2 the l2 optimum is the exact
-//! Euclidean projection of −g onto the feasible interval / polygon, and l2-max is the vertex
-//! farthest from −g. For r ≥ 3, l2 is the same projection, computed by the dual active-set
+//! Euclidean projection of −g onto the feasible interval / polygon (at r = 2 found first by a
+//! planar active set without building the polygon, module `planar_active_set`), and l2-max is
+//! the vertex farthest from −g. For r ≥ 3, l2 is the same projection, computed by the dual active-set
 //! method of Goldfarb & Idnani (module `active_set`), and l2-max visits the vertices of the
 //! feasible set by pivoting along its edges (module `vertex_enumeration`), falling back to the
 //! candidates {λ : r independent bounds active} (at most C(n, r)·2^r, capped at 2·10⁵).

@@ -13,12 +13,13 @@
 //! | exact | QR (n ≤ 3: adjugate) | – | – | – |
 //! | pinv | QR | QR | QR | QR |
 //! | closed-form | – | Alg. 6.1 (DOF ≤ 3: minors, lean path) | – | – |
-//! | l1, l1-max | point | interval | polygon | active-set LP (Bland), from the l2 optimum |
+//! | l1, l1-max | point | interval | planar simplex from the l2 optimum, else polygon | active-set LP (Bland), from the l2 optimum |
 //! | linf | point | interval | active-set LP | active-set LP (Bland), from the l2 optimum |
-//! | l2 | point | interval | polygon | Goldfarb–Idnani dual active set |
+//! | l2 | point | interval | planar active set, else polygon | Goldfarb–Idnani dual active set |
 //! | l2-max | point | interval | polygon | vertex enumeration |
 //! | improved-closed-form | Pott 2014 | ← | ← | ← |
-//! | barycenter, sotda | – | – | polygon | – |
+//! | barycenter | – | – | polygon by an edge walk from the l1 vertex, else clipped | – |
+//! | sotda | – | – | polygon | – |
 //!
 //! The active-set solvers (r ≥ 3; linf from r = 2; private module `active_set`, on the null-space
 //! parametrisation) fall back to Clarabel ([`crate::interior_point()`]) only on a
@@ -32,13 +33,14 @@
 use crate::active_set::{ActiveSet, DenseEnd};
 use crate::certificate::{Certificate, snap_and_certify, snap_and_certify_fixed};
 use crate::closed_form::{self, ClosedForm};
-use crate::feasible_polygon::Region;
+use crate::feasible_polygon::{self, Region};
 use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
-use crate::linear_program::{self, Linear};
+use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
+use crate::planar_active_set;
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
 use crate::{
@@ -279,13 +281,35 @@ impl TensionSolver {
                 }
             }
         }
-        if let Err(reason) = self.dispatch(p)? {
-            return Ok(Err(reason));
+        match self.dispatch(p)? {
+            Err(reason) => return Ok(Err(reason)),
+            Ok(Some(residual)) => return Ok(Ok(residual)),
+            Ok(None) => {}
         }
         Ok(
             snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t)
                 .map_err(certificate_failed),
         )
+    }
+
+    /// l2, l1, l1-max and the barycentre at r = 2 by the planar active set, simplex and edge
+    /// walk (module `planar_active_set`): the residual of the certified answer, or `None` when
+    /// the clipped feasible polygon must decide.
+    #[inline]
+    fn planar(&mut self, p: &TensionProblem) -> Option<f64> {
+        let l = match self.method {
+            Method::L2 => planar_active_set::l2_projection(&self.ns, p.bounds)?,
+            Method::L1 => planar_active_set::l1_vertex(&self.ns, p.bounds, false)?,
+            Method::L1Max => planar_active_set::l1_vertex(&self.ns, p.bounds, true)?,
+            Method::Barycenter => {
+                let mut verts = [[0.0; 2]; planar_active_set::WALK_VERTICES];
+                let k = planar_active_set::polygon_walk(&self.ns, p.bounds, &mut verts)?;
+                feasible_polygon::centroid(&verts[..k])
+            }
+            _ => return None,
+        };
+        write_tensions(&self.ns, l, &mut self.t);
+        snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
     }
 
     /// Clarabel after a numerical failure of the dense active-set path (`why`), counted in
@@ -342,10 +366,15 @@ impl TensionSolver {
         self.sotda.prepare(&self.settings, s, p.external_wrench)
     }
 
-    fn dispatch(&mut self, p: &TensionProblem) -> Result<Result<(), Infeasibility>, TensionError> {
+    /// The answer of the method: `Ok(Some(residual))` when it is certified already, `Ok(None)`
+    /// when the tensions in `self.t` still need their certificate.
+    fn dispatch(
+        &mut self,
+        p: &TensionProblem,
+    ) -> Result<Result<Option<f64>, Infeasibility>, TensionError> {
         let r = p.redundancy();
         let method = self.method;
-        Ok(match method {
+        let answer = match method {
             Method::Exact | Method::Pinv => minimum_norm(&mut self.ns, p, &mut self.t),
             Method::ClosedForm => self.closed.solve(p, false, &mut self.t),
             Method::L1 | Method::L1Max if r == 1 => {
@@ -386,7 +415,7 @@ impl TensionSolver {
                             p.bounds,
                             &mut self.t,
                         ) {
-                            Ok(_) => return Ok(Ok(())),
+                            Ok(residual) => return Ok(Ok(Some(residual))),
                             Err(_) => "dense answer failed the certificate",
                         }
                     }
@@ -409,6 +438,14 @@ impl TensionSolver {
             _ => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                if matches!(
+                    method,
+                    Method::L2 | Method::L1 | Method::L1Max | Method::Barycenter
+                ) && r == 2
+                    && let Some(residual) = self.planar(p)
+                {
+                    return Ok(Ok(Some(residual)));
                 }
                 if !self.region.build(&self.ns, p.bounds) {
                     return Ok(Err(Infeasibility::NoFeasibleTension));
@@ -451,6 +488,7 @@ impl TensionSolver {
                     _ => unreachable!("all other methods are dispatched above"),
                 }
             }
-        })
+        };
+        Ok(answer.map(|()| None))
     }
 }

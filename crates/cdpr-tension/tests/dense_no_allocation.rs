@@ -106,7 +106,8 @@ fn dense_path_does_not_allocate() {
 }
 
 /// The redundancy-2 path of an 8-cable spatial robot (fixed-size 6 × 8 null space, feasible
-/// polygon, dense linf, fixed-DOF improved closed form; issue 17).
+/// polygon clipped in fixed arrays, planar active set of l2, dense linf, fixed-DOF improved
+/// closed form; issue 17).
 #[test]
 fn redundancy_two_path_does_not_allocate() {
     let robot = ipanema_like_8();
@@ -133,6 +134,8 @@ fn redundancy_two_path_does_not_allocate() {
         Method::Barycenter,
         Method::L2,
         Method::L1,
+        Method::L1Max,
+        Method::L2Max,
         Method::Linf,
         Method::Pinv,
     ] {

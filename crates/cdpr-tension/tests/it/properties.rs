@@ -139,6 +139,57 @@ fn random_feasible(p: &TensionProblem, seed: &[f64]) -> Vec<DVector<f64>> {
     out
 }
 
+/// The bounds of `case` as they are (variant 0), with t_max,which = ∞ (1), with cable `which`
+/// fixed (t_min = t_max) at its l2 tension when the problem is feasible (2), or with every
+/// t_max = ∞ (3).
+fn variant_bounds(case: &Case, variant: usize, which: usize) -> TensionBounds {
+    let which = which % case.w.ncols();
+    let (mut lo, mut hi) = (
+        case.b.min().as_slice().to_vec(),
+        case.b.max().as_slice().to_vec(),
+    );
+    match variant {
+        1 => hi[which] = f64::INFINITY,
+        2 => {
+            let p = TensionProblem::new(&case.w, &case.we, &case.b);
+            if let TensionOutcome::Feasible(s) = solve(Method::L2, &p) {
+                lo[which] = s.tensions[which];
+                hi[which] = s.tensions[which];
+            }
+        }
+        3 => hi.iter_mut().for_each(|h| *h = f64::INFINITY),
+        _ => {}
+    }
+    TensionBounds::new(lo, hi).unwrap()
+}
+
+/// min ‖t‖² over a bounded feasible polygon by brute force: ‖t0‖² when t0 = −W⁺ w_ext is
+/// inside the bounds (the unconstrained minimum), else the closest point of an edge (tension
+/// space).
+fn polygon_l2(poly: &FeasiblePolygon, b: &TensionBounds) -> f64 {
+    let t0 = &poly.particular;
+    if (0..t0.len()).all(|i| t0[i] >= b.min()[i] && t0[i] <= b.max()[i]) {
+        return t0.norm_squared();
+    }
+    let k = poly.tension_vertices.len();
+    let mut best = f64::INFINITY;
+    for j in 0..k {
+        let (a, c) = (
+            &poly.tension_vertices[j],
+            &poly.tension_vertices[(j + 1) % k],
+        );
+        let d = c - a;
+        let dd = d.norm_squared();
+        let s = if dd > 0.0 {
+            (-a.dot(&d) / dd).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        best = best.min((a + d * s).norm_squared());
+    }
+    best
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { failure_persistence: None, ..ProptestConfig::default() })]
 
@@ -292,6 +343,110 @@ proptest! {
             }
             prop_assert!(out.is_feasible(), "{}: {:?}", method, out);
             check(&p, out.tensions().unwrap());
+        }
+    }
+
+    /// Issue 17: l2 at r = 2 runs the planar active set (module `planar_active_set`) instead of
+    /// projecting onto the clipped polygon. It must give the polygon's verdict and the minimum
+    /// of ‖t‖ over the polygon, found here by brute force over the polygon's vertices and edges
+    /// in tension space (or Clarabel when an infinite t_max leaves the polygon unbounded), with
+    /// one or all t_max infinite and with a fixed cable (t_min = t_max) too.
+    #[test]
+    fn l2_at_redundancy_2_matches_the_polygon(case in arb_case(2..=2), variant in 0usize..4, which in 0usize..12) {
+        let b = variant_bounds(&case, variant, which);
+        let p = TensionProblem::new(&case.w, &case.we, &b);
+        let out = solve(Method::L2, &p);
+        let poly = FeasiblePolygon::compute(&p).unwrap();
+        match (&out, &poly) {
+            (TensionOutcome::Infeasible(cdpr_tension::Infeasibility::SingularPose { .. }), _) => {}
+            (TensionOutcome::Feasible(s), Ok(poly)) => {
+                check(&p, &s.tensions);
+                let (got, best) = (s.tensions.norm_squared(), polygon_l2(poly, &b));
+                prop_assert!(rel_eq(got, best, 1e-8), "l2 {got} against the polygon's {best}");
+            }
+            (TensionOutcome::Feasible(s), Err(cdpr_tension::Infeasibility::Unbounded { .. })) => {
+                check(&p, &s.tensions);
+                // Also the optimum under t_max = 10 (1 + max t) instead of ∞, a bounded polygon.
+                let cap = 10.0 * (1.0 + s.tensions.max());
+                let hi: Vec<f64> = b.max().iter().map(|&h| if h.is_finite() { h } else { cap }).collect();
+                let capped = TensionBounds::new(b.min().as_slice().to_vec(), hi).unwrap();
+                let q = TensionProblem::new(&case.w, &case.we, &capped);
+                let poly = FeasiblePolygon::compute(&q).unwrap().unwrap();
+                let (got, best) = (s.tensions.norm_squared(), polygon_l2(&poly, &capped));
+                prop_assert!(rel_eq(got, best, 1e-8), "l2 {got} against the capped polygon's {best}");
+            }
+            (TensionOutcome::Infeasible(reason), Err(theirs)) => {
+                prop_assert_eq!(reason, theirs);
+            }
+            (out, poly) => prop_assert!(false, "l2 {:?} against the polygon {:?}", out, poly),
+        }
+    }
+
+    /// Issue 17: l1 and l1-max at r = 2 run the simplex method in the plane from the l2 optimum
+    /// (module `planar_active_set`) instead of scanning the clipped polygon's vertices. They
+    /// must give the polygon's verdict and the optimum of Σ t over its vertices (brute force),
+    /// with a fixed cable (t_min = t_max) and an infinite t_max too (both handed to the
+    /// polygon).
+    #[test]
+    fn l1_at_redundancy_2_matches_the_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
+        let b = variant_bounds(&case, variant, which);
+        let p = TensionProblem::new(&case.w, &case.we, &b);
+        let poly = FeasiblePolygon::compute(&p).unwrap();
+        for method in [Method::L1, Method::L1Max] {
+            let out = solve(method, &p);
+            match (&out, &poly) {
+                (TensionOutcome::Infeasible(cdpr_tension::Infeasibility::SingularPose { .. }), _) => {}
+                (TensionOutcome::Feasible(s), Ok(poly)) => {
+                    check(&p, &s.tensions);
+                    let sums = poly.tension_vertices.iter().map(|t| t.sum());
+                    let best = if method == Method::L1 {
+                        sums.fold(f64::INFINITY, f64::min)
+                    } else {
+                        sums.fold(f64::NEG_INFINITY, f64::max)
+                    };
+                    let got = s.tensions.sum();
+                    prop_assert!(rel_eq(got, best, 1e-9), "{method} {got} against the polygon's {best}");
+                }
+                // Unbounded polygon (infinite t_max): l1 is bounded below (t ≥ t_min); l1-max
+                // must say unbounded as the polygon does.
+                (TensionOutcome::Feasible(s), Err(cdpr_tension::Infeasibility::Unbounded { .. })) if method == Method::L1 => {
+                    check(&p, &s.tensions);
+                    let ip = interior_point(&p, Objective::L1).unwrap();
+                    if let Ok(ip) = ip {
+                        prop_assert!(rel_eq(s.tensions.sum(), ip.sum(), 1e-6));
+                    }
+                }
+                (TensionOutcome::Infeasible(reason), Err(theirs)) => {
+                    if method == Method::L1Max {
+                        prop_assert_eq!(reason, theirs);
+                    } else {
+                        prop_assert_eq!(reason, &cdpr_tension::Infeasibility::NoFeasibleTension);
+                    }
+                }
+                (out, poly) => prop_assert!(false, "{} {:?} against the polygon {:?}", method, out, poly),
+            }
+        }
+    }
+
+    /// Issue 17: the barycentre at r = 2 walks the polygon's edges from the l1 vertex (module
+    /// `planar_active_set`) instead of clipping. Same verdict and the same area centroid as
+    /// the clipped polygon of `FeasiblePolygon` (up to rounding), with a fixed cable and an
+    /// infinite t_max too (both handed to the clipping).
+    #[test]
+    fn barycenter_walk_matches_the_clipped_polygon(case in arb_case(2..=2), variant in 0usize..3, which in 0usize..12) {
+        let b = variant_bounds(&case, variant, which);
+        let p = TensionProblem::new(&case.w, &case.we, &b);
+        let out = solve(Method::Barycenter, &p);
+        match (&out, FeasiblePolygon::compute(&p).unwrap()) {
+            (TensionOutcome::Infeasible(cdpr_tension::Infeasibility::SingularPose { .. }), _) => {}
+            (TensionOutcome::Feasible(s), Ok(poly)) => {
+                check(&p, &s.tensions);
+                let c = poly.barycenter();
+                let scale = 1f64.max(c.amax());
+                prop_assert!((&s.tensions - &c).amax() <= 1e-8 * scale, "{} against {}", s.tensions, c);
+            }
+            (TensionOutcome::Infeasible(reason), Err(theirs)) => prop_assert_eq!(reason, &theirs),
+            (out, poly) => prop_assert!(false, "barycenter {:?} against the polygon {:?}", out, poly),
         }
     }
 
