@@ -45,9 +45,6 @@ pub struct WrenchClosureTest {
     is_pivot: Vec<bool>,
     /// Null basis N, n × r, row-major (row i = ν_i).
     null: Vec<f64>,
-    /// Pseudo-angles of the rows for r = 2, and their sorting permutation.
-    angles: Vec<f64>,
-    order: Vec<usize>,
     /// LP for r ≥ 3.
     lp: Option<Lp>,
 }
@@ -75,8 +72,6 @@ impl WrenchClosureTest {
             pivots: Vec::with_capacity(dof),
             is_pivot: vec![false; n],
             null: vec![0.0; n * n.saturating_sub(dof).max(1)],
-            angles: vec![0.0; n],
-            order: vec![0; n],
             lp,
         }
     }
@@ -281,28 +276,57 @@ impl WrenchClosureTest {
         v.iter().all(|&x| x > tol) || v.iter().all(|&x| x < -tol)
     }
 
-    fn half_plane(&mut self) -> bool {
+    /// r = 2: the rows ν_i lie in an open half-plane. The decision is that of sorting the rows
+    /// by pseudo-angle (stable: ties in index order) and asking whether some cyclically
+    /// consecutive pair (u, w) has `gap(u, w)` (a negative cross product, |sin| of the angle
+    /// beyond `STRICT_TOLERANCE`), but without the sort, in O(n):
+    ///
+    /// - the pair tested is the one straddling t = angle(−ν_0): u the last row (in the order
+    ///   above) with angle < t, w the first with angle ≥ t (cyclically: the last and first rows
+    ///   overall when one side is empty). u, w are consecutive in that order, so a `true` here
+    ///   is a `true` of the sorted test.
+    /// - conversely, if some consecutive pair (u*, w*) passes `gap`, the rows lie in the closed
+    ///   arc from w* to u* of width < π − 10⁻⁹ rad, and −ν_0 lies in the open arc from u* to w*
+    ///   at least 10⁻⁹ rad from its ends. The pseudo-angle grows at least 1/2 per radian and
+    ///   is computed within ~10⁻¹⁵, so t separates the angles of u* and w* and the pair
+    ///   straddling t is (u*, w*).
+    ///
+    /// `tests::half_plane_equals_the_sorted_test` checks it against the sorted test, kept as
+    /// the oracle.
+    fn half_plane(&self) -> bool {
         let n = self.n;
         let null = &self.null[..2 * n];
         let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
         let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
         let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
-        for i in 0..n {
-            if norm2(i) <= tol2 * scale2 {
-                return false; // this cable is slack in every self-stress
-            }
-            self.angles[i] = diamond_angle(null[2 * i], null[2 * i + 1]);
-            self.order[i] = i;
+        if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
+            return false; // a cable slack in every self-stress
         }
-        let (angles, order) = (&self.angles, &mut self.order[..n]);
-        order.sort_unstable_by(|&a, &b| angles[a].total_cmp(&angles[b]));
-        // All gaps between consecutive directions sum to 2π, so at most one exceeds π: the one
-        // whose (counter-clockwise) ends u, w have a negative cross product.
-        (0..n).any(|k| {
-            let (u, w) = (order[k], order[(k + 1) % n]);
-            let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
-            cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
-        })
+        let t = diamond_angle(-null[0], -null[1]);
+        // (angle, row) of the last row below t, the first at or above t, and the first and
+        // last overall; `total_cmp` as the sort compares.
+        let mut last_below: Option<(f64, usize)> = None;
+        let mut first_above: Option<(f64, usize)> = None;
+        let (mut first, mut last) = ((f64::INFINITY, usize::MAX), (f64::NEG_INFINITY, 0));
+        for i in 0..n {
+            let a = diamond_angle(null[2 * i], null[2 * i + 1]);
+            if a.total_cmp(&first.0).is_lt() {
+                first = (a, i);
+            }
+            if a.total_cmp(&last.0).is_ge() {
+                last = (a, i);
+            }
+            if a.total_cmp(&t).is_lt() {
+                if last_below.is_none_or(|(b, _)| a.total_cmp(&b).is_ge()) {
+                    last_below = Some((a, i));
+                }
+            } else if first_above.is_none_or(|(b, _)| a.total_cmp(&b).is_lt()) {
+                first_above = Some((a, i));
+            }
+        }
+        let u = last_below.map_or(last.1, |(_, i)| i);
+        let w = first_above.map_or(first.1, |(_, i)| i);
+        gap(null, u, w, tol2)
     }
 
     fn linear_programme(&mut self, w: &DMatrix<f64>) -> bool {
@@ -340,6 +364,15 @@ impl WrenchClosureTest {
     }
 }
 
+/// Whether the counter-clockwise angle from row u to row w of the n × 2 basis `null` exceeds π
+/// by more than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
+#[inline]
+fn gap(null: &[f64], u: usize, w: usize, tol2: f64) -> bool {
+    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+    let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+    cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+}
+
 /// A monotone stand-in for atan2(y, x) ∈ [0, 4) (the "diamond angle"), without trigonometry.
 #[inline]
 fn diamond_angle(x: f64, y: f64) -> f64 {
@@ -359,6 +392,222 @@ fn diamond_angle(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    impl WrenchClosureTest {
+        /// The r = 2 test as it was before the straddling pair (the oracle): sort the rows by
+        /// pseudo-angle, then look for a consecutive pair passing `gap`.
+        fn half_plane_sorted(&self) -> bool {
+            let n = self.n;
+            let null = &self.null[..2 * n];
+            let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+            let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
+            let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
+            let mut angles = vec![0.0; n];
+            for (i, a) in angles.iter_mut().enumerate() {
+                if norm2(i) <= tol2 * scale2 {
+                    return false;
+                }
+                *a = diamond_angle(null[2 * i], null[2 * i + 1]);
+            }
+            let mut order: Vec<usize> = (0..n).collect();
+            order.sort_unstable_by(|&a, &b| angles[a].total_cmp(&angles[b]));
+            (0..n).any(|k| {
+                let (u, w) = (order[k], order[(k + 1) % n]);
+                let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+                cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+            })
+        }
+
+        /// The whole decision as before (general reduction, sorted half-plane test).
+        fn is_wrench_closure_reference(&mut self, w: &DMatrix<f64>) -> bool {
+            let (dof, n) = (self.dof, self.n);
+            if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
+                return false;
+            }
+            match self.reduce_dynamic(w) {
+                None => false,
+                Some(1) => self.one_dimensional(),
+                Some(2) => self.half_plane_sorted(),
+                Some(_) => self.linear_programme(w),
+            }
+        }
+    }
+
+    /// Rows of an n × 2 null basis at the angles `angles` (radians) with lengths `lengths`.
+    fn rows(angles: &[f64], lengths: &[f64]) -> Vec<f64> {
+        angles
+            .iter()
+            .zip(lengths)
+            .flat_map(|(a, l)| [l * a.cos(), l * a.sin()])
+            .collect()
+    }
+
+    /// How to place n rows of a null basis around a cluster of a given width: its start angle
+    /// and, per row, (fraction, kind, exponent).
+    #[derive(Debug, Clone)]
+    struct Layout {
+        start: f64,
+        spec: Vec<(f64, u8, i32)>,
+    }
+
+    /// Layouts at the boundary of the rule: cluster ends on an axis or anywhere; rows at the
+    /// ends (exact ties), at the axes (±0 components), tiny rows near the slack threshold,
+    /// lengths that are powers of two (exact ties of the pseudo-angle), rows anywhere inside.
+    fn layouts(n: usize) -> impl Strategy<Value = Layout> {
+        (
+            0.0f64..std::f64::consts::TAU,
+            proptest::collection::vec((0.0f64..1.0, 0u8..8, -2i32..3), n),
+            0u8..4,
+        )
+            .prop_map(|(start, spec, quarter)| Layout {
+                start: match quarter {
+                    0 => 0.0,
+                    1 => std::f64::consts::FRAC_PI_2,
+                    _ => start,
+                },
+                spec,
+            })
+    }
+
+    /// The rows of `layout` for a cluster of width `width` (radians): the first two rows are
+    /// its ends.
+    fn layout_rows(layout: &Layout, width: f64) -> Vec<f64> {
+        let mut angles: Vec<f64> = Vec::with_capacity(layout.spec.len());
+        let mut lengths = Vec::with_capacity(layout.spec.len());
+        for (k, &(f, kind, e)) in layout.spec.iter().enumerate() {
+            let a = match (k, kind) {
+                (0, _) => layout.start,
+                (1, _) => layout.start + width,
+                (_, 0) => angles[0],
+                (_, 1) => angles[1],
+                (_, 2) => std::f64::consts::FRAC_PI_2 * f64::from(e.rem_euclid(4)),
+                _ => layout.start + f * width,
+            };
+            angles.push(a);
+            lengths.push(match kind {
+                3 => 1e-9 * (0.5 + f),
+                _ => 2f64.powi(e),
+            });
+        }
+        let mut r = rows(&angles, &lengths);
+        for (k, &(_, kind, e)) in layout.spec.iter().enumerate() {
+            if kind == 2 {
+                for v in &mut r[2 * k..2 * k + 2] {
+                    if v.abs() < 1e-12 {
+                        *v = if e < 0 { -0.0 } else { 0.0 };
+                    }
+                }
+            }
+        }
+        r
+    }
+
+    /// Row sets at and around the boundary: widths π (two antipodal rows), π − δ with δ
+    /// around the tolerance 10⁻⁹, and any.
+    fn boundary_rows(n: usize) -> impl Strategy<Value = Vec<f64>> {
+        let widths = prop_oneof![
+            Just(std::f64::consts::PI),
+            (-3.0f64..3.0).prop_map(|e| std::f64::consts::PI - 1e-9 * (1.0 + e)),
+            (1e-12f64..1e-7).prop_map(|d| std::f64::consts::PI - d),
+            (0.0f64..std::f64::consts::PI),
+            (std::f64::consts::PI..6.2),
+        ];
+        (layouts(n), widths).prop_map(|(layout, width)| layout_rows(&layout, width))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The straddling-pair test gives the sorted test's decision (the same tolerance rule)
+        /// on row sets at and around the boundary, with ties and signed zeros, for n = 3…12,
+        /// rows in any order.
+        #[test]
+        fn half_plane_equals_the_sorted_test(
+            (n, null, shift) in (3usize..13).prop_flat_map(|n| (Just(n), boundary_rows(n), 0..n))
+        ) {
+            let mut t = WrenchClosureTest::new(n - 2, n);
+            let mut null = null;
+            null.rotate_left(2 * shift);
+            t.null[..2 * n].copy_from_slice(&null);
+            prop_assert_eq!(t.half_plane(), t.half_plane_sorted(), "{:?}", null);
+        }
+
+        /// At the exact floating-point boundary of the tolerance rule: the width where the
+        /// sorted test flips, found by bisection down to adjacent doubles, and the widths
+        /// next to it.
+        #[test]
+        fn half_plane_equals_the_sorted_test_at_the_flip(
+            (n, layout) in (3usize..13).prop_flat_map(|n| (Just(n), layouts(n)))
+        ) {
+            let mut t = WrenchClosureTest::new(n - 2, n);
+            // Row 1 (a cluster end) moved by (dx, dy) ulps.
+            let mut decide_nudged = |width: f64, dx: i64, dy: i64| {
+                let mut rows = layout_rows(&layout, width);
+                let ulps = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
+                rows[2] = ulps(rows[2], dx);
+                rows[3] = ulps(rows[3], dy);
+                t.null[..2 * n].copy_from_slice(&rows);
+                (t.half_plane(), t.half_plane_sorted())
+            };
+            let mut decide = |width: f64| decide_nudged(width, 0, 0);
+            let (mut lo, mut hi) = (std::f64::consts::PI - 1e-8, std::f64::consts::PI);
+            let (at_lo, at_hi) = (decide(lo).1, decide(hi).1);
+            if at_lo != at_hi {
+                while f64::from_bits(lo.to_bits() + 1) < hi {
+                    let mid = 0.5 * (lo + hi);
+                    if decide(mid).1 == at_lo { lo = mid } else { hi = mid }
+                }
+                for k in 0..4u64 {
+                    for width in [f64::from_bits(lo.to_bits() - k), f64::from_bits(hi.to_bits() + k)] {
+                        for (dx, dy) in (-3..=3).flat_map(|dx| (-3..=3).map(move |dy| (dx, dy))) {
+                            let (new, old) = decide_nudged(width, dx, dy);
+                            prop_assert_eq!(new, old, "width {:e}, nudge ({}, {})", width, dx, dy);
+                        }
+                    }
+                }
+            }
+        }
+
+        /// The whole decision equals the former one on 6 × 8 (and 3 × 5, 2 × 4) wrench
+        /// matrices W = M Bᵀ whose null space is spanned by boundary row sets (B an orthonormal
+        /// basis of its complement, M random), on random W, and on rank-deficient W.
+        #[test]
+        fn wrench_closure_equals_the_former_decision(
+            (dof, n, null, m, kind) in prop_oneof![Just((6usize, 8usize)), Just((3, 5)), Just((2, 4))]
+                .prop_flat_map(|(dof, n)| (
+                    Just(dof),
+                    Just(n),
+                    boundary_rows(n),
+                    proptest::collection::vec(-1.0f64..1.0, dof * n),
+                    0u8..4,
+                ))
+        ) {
+            let basis = DMatrix::from_row_slice(n, 2, &null);
+            let random = DMatrix::from_row_slice(dof, n, &m);
+            let w = match kind {
+                0 | 1 => {
+                    // Complement of span(N): the last n − 2 columns of Q in N = Q R.
+                    let q = basis.clone().insert_columns(2, n - 2, 0.0)
+                        + DMatrix::from_fn(n, n, |i, j| if j >= 2 && i == j { 1.0 } else { 0.0 });
+                    let q = q.qr().q();
+                    let b = q.columns(2, n - 2).into_owned();
+                    let mm = random.columns(0, dof).into_owned();
+                    if kind == 0 { &mm * b.transpose() } else { (&mm * b.transpose()) * 1e3 }
+                }
+                2 => random,
+                _ => {
+                    let mut w = random;
+                    let r = w.row(0) * -2.0;
+                    w.set_row(dof - 1, &r);
+                    w
+                }
+            };
+            let mut t = WrenchClosureTest::new(dof, n);
+            let new = t.is_wrench_closure(&w);
+            prop_assert_eq!(new, t.is_wrench_closure_reference(&w), "{}", w);
+        }
+    }
 
     fn mat(rows: usize, cols: usize, v: &[f64]) -> DMatrix<f64> {
         DMatrix::from_row_slice(rows, cols, v)
