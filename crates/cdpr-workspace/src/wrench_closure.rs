@@ -47,6 +47,8 @@ pub struct WrenchClosureTest {
     null: Vec<f64>,
     /// LP for r ≥ 3.
     lp: Option<Lp>,
+    /// Whether the CPU runs the AVX2 build of the 6 × 8 reduction (run-time detection).
+    avx2: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -73,32 +75,56 @@ impl WrenchClosureTest {
             is_pivot: vec![false; n],
             null: vec![0.0; n * n.saturating_sub(dof).max(1)],
             lp,
+            #[cfg(target_arch = "x86_64")]
+            avx2: std::arch::is_x86_feature_detected!("avx2"),
+            #[cfg(not(target_arch = "x86_64"))]
+            avx2: false,
         }
     }
 
     /// Whether the columns of `w` positively span R^DOF. `w` must be DOF × n as given to
     /// [`WrenchClosureTest::new`]; a matrix of another shape is not wrench-closure.
     pub fn is_wrench_closure(&mut self, w: &DMatrix<f64>) -> bool {
-        let (dof, n) = (self.dof, self.n);
-        if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
-            return false;
+        w.shape() == (self.dof, self.n) && self.decide(w.as_slice(), Some(w)).unwrap_or(false)
+    }
+
+    /// [`WrenchClosureTest::is_wrench_closure`] of the DOF × n matrix whose column-major
+    /// entries are `w` (W straight from the batch inverse kinematics, not copied into a
+    /// matrix), or `None` when the decision needs the linear programme (r ≥ 3) or `w` has not
+    /// DOF · n entries.
+    pub(crate) fn is_wrench_closure_columns(&mut self, w: &[f64]) -> Option<bool> {
+        if w.len() != self.dof * self.n {
+            return None;
         }
-        let r = match self.reduce(w) {
-            Some(r) => r,
-            None => return false,
+        self.decide(w, None)
+    }
+
+    /// The decision for column-major entries `w` of a DOF × n matrix; `matrix` (the same
+    /// entries) serves the linear programme, `None` when it is needed but not given.
+    fn decide(&mut self, w: &[f64], matrix: Option<&DMatrix<f64>>) -> Option<bool> {
+        let (dof, n) = (self.dof, self.n);
+        // Finiteness of every entry as one branch-free pass (vectorised), not an early exit.
+        if n <= dof || !w.iter().fold(true, |ok, v| ok & v.is_finite()) {
+            return Some(false);
+        }
+        let Some(r) = self.reduce(w) else {
+            return Some(false);
         };
         match r {
-            1 => self.one_dimensional(),
-            2 => self.half_plane(),
-            _ => self.linear_programme(w),
+            1 => Some(self.one_dimensional()),
+            2 => Some(self.half_plane()),
+            _ => matrix.map(|m| self.linear_programme(m)),
         }
     }
 
     /// RREF of W; fills the null basis and returns r = n − DOF, or `None` if rank W < DOF.
     /// The common shapes run [`WrenchClosureTest::reduce_fixed`] (the same arithmetic on the
     /// stack, sizes known at compile time: the same bits).
-    fn reduce(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    fn reduce(&mut self, w: &[f64]) -> Option<usize> {
         match (self.dof, self.n) {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
+            (6, 8) if self.avx2 => unsafe { self.reduce_fixed_avx2::<6, 8>(w) },
             (6, 8) => self.reduce_fixed::<6, 8>(w),
             (6, 7) => self.reduce_fixed::<6, 7>(w),
             (3, 5) => self.reduce_fixed::<3, 5>(w),
@@ -108,14 +134,29 @@ impl WrenchClosureTest {
         }
     }
 
+    /// [`WrenchClosureTest::reduce_fixed`] compiled for AVX2 (wider vectors for the row
+    /// updates; no fused multiply–adds, which Rust never forms: the same bits).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn reduce_fixed_avx2<const D: usize, const N: usize>(
+        &mut self,
+        w: &[f64],
+    ) -> Option<usize> {
+        self.reduce_fixed::<D, N>(w)
+    }
+
     /// [`WrenchClosureTest::reduce`] for D × N matrices, in a stack array: the operations of
     /// [`WrenchClosureTest::reduce_dynamic`] in the same order.
-    fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    #[inline(always)]
+    fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &[f64]) -> Option<usize> {
         let mut a = [[0.0f64; N]; D];
         // The largest |w_ij| by comparisons (the entries are finite: `f64::max` would give
         // the same value at twice the instructions).
         let mut largest = 0.0f64;
-        for (j, column) in w.as_slice().chunks_exact(D).enumerate() {
+        for (j, column) in w.chunks_exact(D).enumerate() {
             for (i, &v) in column.iter().enumerate() {
                 a[i][j] = v;
                 largest = if v.abs() > largest { v.abs() } else { largest };
@@ -140,7 +181,9 @@ impl WrenchClosureTest {
             if best_abs <= RANK_TOLERANCE * scale {
                 continue;
             }
-            a.swap(row, best);
+            if best != row {
+                a.swap(row, best);
+            }
             let inv = 1.0 / a[row][col];
             // While no column has been skipped (row = col), every column left of `col` is a
             // pivot column, whose entries are never read again: whole rows can then be updated
@@ -178,13 +221,17 @@ impl WrenchClosureTest {
         }
         let r = N - D;
         let null = &mut self.null[..N * r];
-        null.iter_mut().for_each(|v| *v = 0.0);
+        // Every entry written once: free rows hold the identity, pivot rows −a[p][f_k].
         let mut k = 0;
         for f in 0..N {
             if is_pivot[f] {
                 continue;
             }
-            null[f * r + k] = 1.0;
+            for (g, &pivot) in is_pivot.iter().enumerate() {
+                if !pivot {
+                    null[g * r + k] = if g == f { 1.0 } else { 0.0 };
+                }
+            }
             for (p, &pc) in pivots.iter().enumerate() {
                 null[pc * r + k] = -a[p][f];
             }
@@ -194,11 +241,11 @@ impl WrenchClosureTest {
     }
 
     /// [`WrenchClosureTest::reduce`] for any shape, in the reusable buffers.
-    fn reduce_dynamic(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    fn reduce_dynamic(&mut self, w: &[f64]) -> Option<usize> {
         let (dof, n) = (self.dof, self.n);
         for i in 0..dof {
             for j in 0..n {
-                self.a[i * n + j] = w[(i, j)];
+                self.a[i * n + j] = w[j * dof + i];
             }
         }
         let scale = self
@@ -297,30 +344,33 @@ impl WrenchClosureTest {
         let n = self.n;
         let null = &self.null[..2 * n];
         let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-        let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
+        // The largest by comparisons: the same value as `f64::max` (no NaN here).
+        let scale2 = (0..n)
+            .map(norm2)
+            .fold(0.0f64, |m, v| if v > m { v } else { m });
         let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
         if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
             return false; // a cable slack in every self-stress
         }
-        let t = diamond_angle(-null[0], -null[1]);
+        let t = total_order_key(diamond_angle(-null[0], -null[1]));
         // (angle, row) of the last row below t, the first at or above t, and the first and
-        // last overall; `total_cmp` as the sort compares.
-        let mut last_below: Option<(f64, usize)> = None;
-        let mut first_above: Option<(f64, usize)> = None;
-        let (mut first, mut last) = ((f64::INFINITY, usize::MAX), (f64::NEG_INFINITY, 0));
+        // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
+        let mut last_below: Option<(i64, usize)> = None;
+        let mut first_above: Option<(i64, usize)> = None;
+        let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
         for i in 0..n {
-            let a = diamond_angle(null[2 * i], null[2 * i + 1]);
-            if a.total_cmp(&first.0).is_lt() {
+            let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
+            if a < first.0 {
                 first = (a, i);
             }
-            if a.total_cmp(&last.0).is_ge() {
+            if a >= last.0 {
                 last = (a, i);
             }
-            if a.total_cmp(&t).is_lt() {
-                if last_below.is_none_or(|(b, _)| a.total_cmp(&b).is_ge()) {
+            if a < t {
+                if last_below.is_none_or(|(b, _)| a >= b) {
                     last_below = Some((a, i));
                 }
-            } else if first_above.is_none_or(|(b, _)| a.total_cmp(&b).is_lt()) {
+            } else if first_above.is_none_or(|(b, _)| a < b) {
                 first_above = Some((a, i));
             }
         }
@@ -345,7 +395,7 @@ impl WrenchClosureTest {
     /// The same decision by the linear programme alone (any r ≥ 1), for cross-checks.
     pub fn is_wrench_closure_by_lp(&mut self, w: &DMatrix<f64>) -> bool {
         let (dof, n) = (self.dof, self.n);
-        if w.shape() != (dof, n) || n <= dof || self.reduce(w).is_none() {
+        if w.shape() != (dof, n) || n <= dof || self.reduce(w.as_slice()).is_none() {
             return false;
         }
         let lp = self.lp.get_or_insert_with(|| Lp {
@@ -371,6 +421,13 @@ fn gap(null: &[f64], u: usize, w: usize, tol2: f64) -> bool {
     let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
     let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
     cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+}
+
+/// The integer whose order is that of [`f64::total_cmp`] (its own definition).
+#[inline]
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
 }
 
 /// A monotone stand-in for atan2(y, x) ∈ [0, 4) (the "diamond angle"), without trigonometry.
@@ -425,7 +482,7 @@ mod tests {
             if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
                 return false;
             }
-            match self.reduce_dynamic(w) {
+            match self.reduce_dynamic(w.as_slice()) {
                 None => false,
                 Some(1) => self.one_dimensional(),
                 Some(2) => self.half_plane_sorted(),
@@ -655,6 +712,7 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         let mut rank_deficient = 0;
+        let avx2_here = WrenchClosureTest::new(6, 8).avx2;
         for (dof, n) in [(6, 8), (6, 7), (3, 5), (3, 4), (2, 4)] {
             let mut t = WrenchClosureTest::new(dof, n);
             for case in 0..400 {
@@ -668,19 +726,44 @@ mod tests {
                     }
                     _ => {}
                 }
-                let fixed = t.reduce(&w);
-                let fixed_null = t.null.clone();
-                let general = t.reduce_dynamic(&w);
-                assert_eq!(fixed, general, "{dof}×{n}, case {case}");
+                let general = t.reduce_dynamic(w.as_slice());
+                let general_null = t.null.clone();
                 rank_deficient += usize::from(general.is_none());
-                if let Some(r) = general {
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                    assert_eq!(bits(&fixed_null[..n * r]), bits(&t.null[..n * r]));
+                // The portable build, and the AVX2 build where the CPU has it.
+                for avx2 in [false, avx2_here] {
+                    t.avx2 = avx2;
+                    t.null.iter_mut().for_each(|v| *v = f64::NAN);
+                    let fixed = t.reduce(w.as_slice());
+                    assert_eq!(fixed, general, "{dof}×{n}, case {case}, avx2 {avx2}");
+                    if let Some(r) = general {
+                        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&general_null[..n * r]), bits(&t.null[..n * r]));
+                    }
                 }
             }
         }
         // Zero rows and proportional rows are rank-deficient; repeated columns are not.
         assert!(rank_deficient >= 2 * 5 * 100, "{rank_deficient}");
+    }
+
+    #[test]
+    fn total_order_key_orders_as_total_cmp() {
+        let v = [
+            -1.5,
+            -0.0,
+            0.0,
+            1e-300,
+            0.25,
+            1.0,
+            3.999,
+            4.0,
+            f64::INFINITY,
+        ];
+        for a in v {
+            for b in v {
+                assert_eq!(total_order_key(a).cmp(&total_order_key(b)), a.total_cmp(&b));
+            }
+        }
     }
 
     #[test]
