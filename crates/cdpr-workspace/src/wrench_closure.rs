@@ -341,44 +341,55 @@ impl WrenchClosureTest {
     /// `tests::half_plane_equals_the_sorted_test` checks it against the sorted test, kept as
     /// the oracle.
     fn half_plane(&self) -> bool {
-        let n = self.n;
-        let null = &self.null[..2 * n];
-        let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-        // The largest by comparisons: the same value as `f64::max` (no NaN here).
-        let scale2 = (0..n)
-            .map(norm2)
-            .fold(0.0f64, |m, v| if v > m { v } else { m });
-        let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
-        if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
-            return false; // a cable slack in every self-stress
+        // Eight cables (6 DOF) with the length known at compile time: no bounds checks.
+        match <&[f64; 16]>::try_from(&self.null[..2 * self.n]) {
+            Ok(null) => straddling_pair_gap(null),
+            Err(_) => straddling_pair_gap(&self.null[..2 * self.n]),
         }
-        let t = total_order_key(diamond_angle(-null[0], -null[1]));
-        // (angle, row) of the last row below t, the first at or above t, and the first and
-        // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
-        let mut last_below: Option<(i64, usize)> = None;
-        let mut first_above: Option<(i64, usize)> = None;
-        let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
-        for i in 0..n {
-            let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
-            if a < first.0 {
-                first = (a, i);
-            }
-            if a >= last.0 {
-                last = (a, i);
-            }
-            if a < t {
-                if last_below.is_none_or(|(b, _)| a >= b) {
-                    last_below = Some((a, i));
-                }
-            } else if first_above.is_none_or(|(b, _)| a < b) {
-                first_above = Some((a, i));
-            }
-        }
-        let u = last_below.map_or(last.1, |(_, i)| i);
-        let w = first_above.map_or(first.1, |(_, i)| i);
-        gap(null, u, w, tol2)
     }
+}
 
+/// [`WrenchClosureTest::half_plane`] of the n × 2 basis `null` (row-major).
+#[inline(always)]
+fn straddling_pair_gap(null: &[f64]) -> bool {
+    let n = null.len() / 2;
+    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+    // The largest by comparisons: the same value as `f64::max` (no NaN here).
+    let scale2 = (0..n)
+        .map(norm2)
+        .fold(0.0f64, |m, v| if v > m { v } else { m });
+    let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
+    if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
+        return false; // a cable slack in every self-stress
+    }
+    let t = total_order_key(diamond_angle(-null[0], -null[1]));
+    // (angle, row) of the last row below t, the first at or above t, and the first and
+    // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
+    let mut last_below: Option<(i64, usize)> = None;
+    let mut first_above: Option<(i64, usize)> = None;
+    let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
+    for i in 0..n {
+        let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
+        if a < first.0 {
+            first = (a, i);
+        }
+        if a >= last.0 {
+            last = (a, i);
+        }
+        if a < t {
+            if last_below.is_none_or(|(b, _)| a >= b) {
+                last_below = Some((a, i));
+            }
+        } else if first_above.is_none_or(|(b, _)| a < b) {
+            first_above = Some((a, i));
+        }
+    }
+    let u = last_below.map_or(last.1, |(_, i)| i);
+    let w = first_above.map_or(first.1, |(_, i)| i);
+    gap(null, u, w, tol2)
+}
+
+impl WrenchClosureTest {
     fn linear_programme(&mut self, w: &DMatrix<f64>) -> bool {
         let Some(lp) = self.lp.as_mut() else {
             return false;
