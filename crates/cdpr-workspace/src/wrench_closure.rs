@@ -163,6 +163,9 @@ impl WrenchClosureTest {
             }
         }
         let scale = largest.max(1e-300);
+        if self.reduce_leading(a, scale) {
+            return Some(N - D);
+        }
         let mut pivots = [0usize; D];
         let mut is_pivot = [false; N];
         let mut row = 0;
@@ -238,6 +241,58 @@ impl WrenchClosureTest {
             k += 1;
         }
         Some(r)
+    }
+
+    /// The common case of [`WrenchClosureTest::reduce_fixed`]: the first D columns are the
+    /// pivot columns. The operations of its loop in the same order (no column skipped, so
+    /// pivot rows are updated whole), unrolled at compile time; writes N and returns `true`,
+    /// or returns `false` (N untouched) at the first pivot below the tolerance, where the
+    /// general loop takes over from W.
+    #[inline(always)]
+    fn reduce_leading<const D: usize, const N: usize>(
+        &mut self,
+        mut a: [[f64; N]; D],
+        scale: f64,
+    ) -> bool {
+        for col in 0..D {
+            let (mut best, mut best_abs) = (col, 0.0);
+            for (i, r) in a.iter().enumerate().skip(col) {
+                let v = r[col].abs();
+                if v > best_abs {
+                    best = i;
+                    best_abs = v;
+                }
+            }
+            if best_abs <= RANK_TOLERANCE * scale {
+                return false;
+            }
+            if best != col {
+                a.swap(col, best);
+            }
+            let inv = 1.0 / a[col][col];
+            a[col].iter_mut().for_each(|v| *v *= inv);
+            let pivot = a[col];
+            for (i, other) in a.iter_mut().enumerate() {
+                let f = other[col];
+                if i != col && f != 0.0 {
+                    for (o, p) in other.iter_mut().zip(&pivot) {
+                        *o -= f * p;
+                    }
+                }
+            }
+        }
+        // Free columns D..N: column k of N is e_{D+k} above −a[·][D+k].
+        let r = N - D;
+        let null = &mut self.null[..N * r];
+        for k in 0..r {
+            for (p, row) in a.iter().enumerate() {
+                null[p * r + k] = -row[D + k];
+            }
+            for g in 0..r {
+                null[(D + g) * r + k] = if g == k { 1.0 } else { 0.0 };
+            }
+        }
+        true
     }
 
     /// [`WrenchClosureTest::reduce`] for any shape, in the reusable buffers.
