@@ -163,8 +163,14 @@ impl WrenchClosureTest {
             }
         }
         let scale = largest.max(1e-300);
-        if self.reduce_leading(a, scale) {
+        if self.reduce_leading(&mut a, scale) {
             return Some(N - D);
+        }
+        // Rare: a leading column is not a pivot column; start again from W.
+        for (j, column) in w.chunks_exact(D).enumerate() {
+            for (i, &v) in column.iter().enumerate() {
+                a[i][j] = v;
+            }
         }
         let mut pivots = [0usize; D];
         let mut is_pivot = [false; N];
@@ -246,12 +252,12 @@ impl WrenchClosureTest {
     /// The common case of [`WrenchClosureTest::reduce_fixed`]: the first D columns are the
     /// pivot columns. The operations of its loop in the same order (no column skipped, so
     /// pivot rows are updated whole), unrolled at compile time; writes N and returns `true`,
-    /// or returns `false` (N untouched) at the first pivot below the tolerance, where the
-    /// general loop takes over from W.
+    /// or returns `false` (N untouched, `a` part-reduced) at the first pivot below the
+    /// tolerance, where the general loop takes over from W.
     #[inline(always)]
     fn reduce_leading<const D: usize, const N: usize>(
         &mut self,
-        mut a: [[f64; N]; D],
+        a: &mut [[f64; N]; D],
         scale: f64,
     ) -> bool {
         for col in 0..D {
