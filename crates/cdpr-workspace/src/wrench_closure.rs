@@ -10,13 +10,19 @@
 //!   condition fails).
 //! - r = 1: the null vector has components of a single strict sign.
 //! - r = 2: the rows ν_i ∈ R² lie in an open half-plane iff the largest angular gap between
-//!   consecutive directions exceeds π, i.e. some consecutive pair (sorted by angle) has a
-//!   negative cross product (an O(n log n) test without trigonometry).
+//!   consecutive directions exceeds π, i.e. some consecutive pair (in angle order) has a
+//!   negative cross product, beyond a relative margin of 10⁻⁹. Only the pair on either side
+//!   of the direction −ν_0 can be that pair, so it is found in one O(n) pass without sorting
+//!   and without trigonometry (the decision of the former sorted test, kept as the oracle of
+//!   the property tests).
 //! - r ≥ 3: a linear programme, W t = 0 with t ≥ 1 (the scale of t is free), solved with the
 //!   `L1` method of `cdpr-tension` under bounds [1, ∞).
 //!
 //! N comes from the reduced row echelon form of W (partial pivoting), computed in reusable
-//! buffers: no allocation per pose for r ≤ 2.
+//! buffers: no allocation per pose for r ≤ 2. The common shapes run on stack arrays, the case
+//! where the first DOF columns are the pivot columns unrolled, and 6 × 8 in an AVX2 build when
+//! the CPU has it (run-time detection): all of them the same operations in the same order as
+//! the general reduction, hence the same bits.
 //!
 //! ## References
 //! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
