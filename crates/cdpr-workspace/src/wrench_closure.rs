@@ -185,14 +185,7 @@ impl WrenchClosureTest {
             if row == D {
                 break;
             }
-            let (mut best, mut best_abs) = (row, 0.0);
-            for (i, r) in a.iter().enumerate().skip(row) {
-                let v = r[col].abs();
-                if v > best_abs {
-                    best = i;
-                    best_abs = v;
-                }
-            }
+            let (best, best_abs) = partial_pivot(&a, row, col);
             if best_abs <= RANK_TOLERANCE * scale {
                 continue;
             }
@@ -267,14 +260,7 @@ impl WrenchClosureTest {
         scale: f64,
     ) -> bool {
         for col in 0..D {
-            let (mut best, mut best_abs) = (col, 0.0);
-            for (i, r) in a.iter().enumerate().skip(col) {
-                let v = r[col].abs();
-                if v > best_abs {
-                    best = i;
-                    best_abs = v;
-                }
-            }
+            let (best, best_abs) = partial_pivot(a, col, col);
             if best_abs <= RANK_TOLERANCE * scale {
                 return false;
             }
@@ -490,6 +476,25 @@ impl WrenchClosureTest {
         };
         lp.solver.is_feasible(&problem).unwrap_or(false)
     }
+}
+
+/// Partial pivoting: the first row from `row` on with the largest |a[i][col]|, and that value
+/// (0 and `row` if all are zero).
+#[inline(always)]
+fn partial_pivot<const D: usize, const N: usize>(
+    a: &[[f64; N]; D],
+    row: usize,
+    col: usize,
+) -> (usize, f64) {
+    let (mut best, mut best_abs) = (row, 0.0);
+    for (i, r) in a.iter().enumerate().skip(row) {
+        let v = r[col].abs();
+        if v > best_abs {
+            best = i;
+            best_abs = v;
+        }
+    }
+    (best, best_abs)
 }
 
 /// Whether the counter-clockwise angle from row u to row w of the n × 2 basis `null` exceeds π
