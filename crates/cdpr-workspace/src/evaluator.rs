@@ -407,6 +407,8 @@ impl PoseEvaluator {
             return;
         }
         let block = self.robot.dof() * self.robot.cable_count();
+        // Wrench closure alone: decided on the batch's W in place (no copy into the matrix).
+        let closure_only = matches!(self.criteria.as_slice(), [Criterion::WrenchClosure]);
         let mut batch = std::mem::take(&mut self.scratch.batch);
         batch.w.resize(BATCH * block, 0.0);
         batch.valid.resize(BATCH, false);
@@ -422,11 +424,15 @@ impl PoseEvaluator {
                 // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
                 // non-finite position; a non-finite rotation is checked here).
                 *f = valid[k] && pose.rotation.matrix().iter().all(|v| v.is_finite()) && {
-                    self.scratch
-                        .w
-                        .as_mut_slice()
-                        .copy_from_slice(&w[k * block..(k + 1) * block]);
-                    self.run_criteria(pose, true).unwrap_or(false)
+                    let wk = &w[k * block..(k + 1) * block];
+                    let direct = match self.scratch.closure.as_mut() {
+                        Some(test) if closure_only => test.is_wrench_closure_columns(wk),
+                        _ => None,
+                    };
+                    direct.unwrap_or_else(|| {
+                        self.scratch.w.as_mut_slice().copy_from_slice(wk);
+                        self.run_criteria(pose, true).unwrap_or(false)
+                    })
                 };
             }
         }

@@ -10,13 +10,19 @@
 //!   condition fails).
 //! - r = 1: the null vector has components of a single strict sign.
 //! - r = 2: the rows ν_i ∈ R² lie in an open half-plane iff the largest angular gap between
-//!   consecutive directions exceeds π, i.e. some consecutive pair (sorted by angle) has a
-//!   negative cross product (an O(n log n) test without trigonometry).
+//!   consecutive directions exceeds π, i.e. some consecutive pair (in angle order) has a
+//!   negative cross product, beyond a relative margin of 10⁻⁹. Only the pair on either side
+//!   of the direction −ν_0 can be that pair, so it is found in one O(n) pass without sorting
+//!   and without trigonometry (the decision of the former sorted test, kept as the oracle of
+//!   the property tests).
 //! - r ≥ 3: a linear programme, W t = 0 with t ≥ 1 (the scale of t is free), solved with the
 //!   `L1` method of `cdpr-tension` under bounds [1, ∞).
 //!
 //! N comes from the reduced row echelon form of W (partial pivoting), computed in reusable
-//! buffers: no allocation per pose for r ≤ 2.
+//! buffers: no allocation per pose for r ≤ 2. The common shapes run on stack arrays, the case
+//! where the first DOF columns are the pivot columns unrolled, and 6 × 8 in an AVX2 build when
+//! the CPU has it (run-time detection): all of them the same operations in the same order as
+//! the general reduction, hence the same bits.
 //!
 //! ## References
 //! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
@@ -45,11 +51,10 @@ pub struct WrenchClosureTest {
     is_pivot: Vec<bool>,
     /// Null basis N, n × r, row-major (row i = ν_i).
     null: Vec<f64>,
-    /// Pseudo-angles of the rows for r = 2, and their sorting permutation.
-    angles: Vec<f64>,
-    order: Vec<usize>,
     /// LP for r ≥ 3.
     lp: Option<Lp>,
+    /// Whether the CPU runs the AVX2 build of the 6 × 8 reduction (run-time detection).
+    avx2: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -75,35 +80,57 @@ impl WrenchClosureTest {
             pivots: Vec::with_capacity(dof),
             is_pivot: vec![false; n],
             null: vec![0.0; n * n.saturating_sub(dof).max(1)],
-            angles: vec![0.0; n],
-            order: vec![0; n],
             lp,
+            #[cfg(target_arch = "x86_64")]
+            avx2: std::arch::is_x86_feature_detected!("avx2"),
+            #[cfg(not(target_arch = "x86_64"))]
+            avx2: false,
         }
     }
 
     /// Whether the columns of `w` positively span R^DOF. `w` must be DOF × n as given to
     /// [`WrenchClosureTest::new`]; a matrix of another shape is not wrench-closure.
     pub fn is_wrench_closure(&mut self, w: &DMatrix<f64>) -> bool {
-        let (dof, n) = (self.dof, self.n);
-        if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
-            return false;
+        w.shape() == (self.dof, self.n) && self.decide(w.as_slice(), Some(w)).unwrap_or(false)
+    }
+
+    /// [`WrenchClosureTest::is_wrench_closure`] of the DOF × n matrix whose column-major
+    /// entries are `w` (W straight from the batch inverse kinematics, not copied into a
+    /// matrix), or `None` when the decision needs the linear programme (r ≥ 3) or `w` has not
+    /// DOF · n entries.
+    pub(crate) fn is_wrench_closure_columns(&mut self, w: &[f64]) -> Option<bool> {
+        if w.len() != self.dof * self.n {
+            return None;
         }
-        let r = match self.reduce(w) {
-            Some(r) => r,
-            None => return false,
+        self.decide(w, None)
+    }
+
+    /// The decision for column-major entries `w` of a DOF × n matrix; `matrix` (the same
+    /// entries) serves the linear programme, `None` when it is needed but not given.
+    fn decide(&mut self, w: &[f64], matrix: Option<&DMatrix<f64>>) -> Option<bool> {
+        let (dof, n) = (self.dof, self.n);
+        // Finiteness of every entry as one branch-free pass (vectorised), not an early exit.
+        if n <= dof || !w.iter().fold(true, |ok, v| ok & v.is_finite()) {
+            return Some(false);
+        }
+        let Some(r) = self.reduce(w) else {
+            return Some(false);
         };
         match r {
-            1 => self.one_dimensional(),
-            2 => self.half_plane(),
-            _ => self.linear_programme(w),
+            1 => Some(self.one_dimensional()),
+            2 => Some(self.half_plane()),
+            _ => matrix.map(|m| self.linear_programme(m)),
         }
     }
 
     /// RREF of W; fills the null basis and returns r = n − DOF, or `None` if rank W < DOF.
     /// The common shapes run [`WrenchClosureTest::reduce_fixed`] (the same arithmetic on the
     /// stack, sizes known at compile time: the same bits).
-    fn reduce(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    fn reduce(&mut self, w: &[f64]) -> Option<usize> {
         match (self.dof, self.n) {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
+            (6, 8) if self.avx2 => unsafe { self.reduce_fixed_avx2::<6, 8>(w) },
             (6, 8) => self.reduce_fixed::<6, 8>(w),
             (6, 7) => self.reduce_fixed::<6, 7>(w),
             (3, 5) => self.reduce_fixed::<3, 5>(w),
@@ -113,20 +140,44 @@ impl WrenchClosureTest {
         }
     }
 
+    /// [`WrenchClosureTest::reduce_fixed`] compiled for AVX2 (wider vectors for the row
+    /// updates; no fused multiply–adds, which Rust never forms: the same bits).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn reduce_fixed_avx2<const D: usize, const N: usize>(
+        &mut self,
+        w: &[f64],
+    ) -> Option<usize> {
+        self.reduce_fixed::<D, N>(w)
+    }
+
     /// [`WrenchClosureTest::reduce`] for D × N matrices, in a stack array: the operations of
     /// [`WrenchClosureTest::reduce_dynamic`] in the same order.
-    fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    #[inline(always)]
+    fn reduce_fixed<const D: usize, const N: usize>(&mut self, w: &[f64]) -> Option<usize> {
         let mut a = [[0.0f64; N]; D];
         // The largest |w_ij| by comparisons (the entries are finite: `f64::max` would give
         // the same value at twice the instructions).
         let mut largest = 0.0f64;
-        for (j, column) in w.as_slice().chunks_exact(D).enumerate() {
+        for (j, column) in w.chunks_exact(D).enumerate() {
             for (i, &v) in column.iter().enumerate() {
                 a[i][j] = v;
                 largest = if v.abs() > largest { v.abs() } else { largest };
             }
         }
         let scale = largest.max(1e-300);
+        if self.reduce_leading(&mut a, scale) {
+            return Some(N - D);
+        }
+        // Rare: a leading column is not a pivot column; start again from W.
+        for (j, column) in w.chunks_exact(D).enumerate() {
+            for (i, &v) in column.iter().enumerate() {
+                a[i][j] = v;
+            }
+        }
         let mut pivots = [0usize; D];
         let mut is_pivot = [false; N];
         let mut row = 0;
@@ -134,18 +185,13 @@ impl WrenchClosureTest {
             if row == D {
                 break;
             }
-            let (mut best, mut best_abs) = (row, 0.0);
-            for (i, r) in a.iter().enumerate().skip(row) {
-                let v = r[col].abs();
-                if v > best_abs {
-                    best = i;
-                    best_abs = v;
-                }
-            }
+            let (best, best_abs) = partial_pivot(&a, row, col);
             if best_abs <= RANK_TOLERANCE * scale {
                 continue;
             }
-            a.swap(row, best);
+            if best != row {
+                a.swap(row, best);
+            }
             let inv = 1.0 / a[row][col];
             // While no column has been skipped (row = col), every column left of `col` is a
             // pivot column, whose entries are never read again: whole rows can then be updated
@@ -183,13 +229,17 @@ impl WrenchClosureTest {
         }
         let r = N - D;
         let null = &mut self.null[..N * r];
-        null.iter_mut().for_each(|v| *v = 0.0);
+        // Every entry written once: free rows hold the identity, pivot rows −a[p][f_k].
         let mut k = 0;
         for f in 0..N {
             if is_pivot[f] {
                 continue;
             }
-            null[f * r + k] = 1.0;
+            for (g, &pivot) in is_pivot.iter().enumerate() {
+                if !pivot {
+                    null[g * r + k] = if g == f { 1.0 } else { 0.0 };
+                }
+            }
             for (p, &pc) in pivots.iter().enumerate() {
                 null[pc * r + k] = -a[p][f];
             }
@@ -198,12 +248,57 @@ impl WrenchClosureTest {
         Some(r)
     }
 
+    /// The common case of [`WrenchClosureTest::reduce_fixed`]: the first D columns are the
+    /// pivot columns. The operations of its loop in the same order (no column skipped, so
+    /// pivot rows are updated whole), unrolled at compile time; writes N and returns `true`,
+    /// or returns `false` (N untouched, `a` part-reduced) at the first pivot below the
+    /// tolerance, where the general loop takes over from W.
+    #[inline(always)]
+    fn reduce_leading<const D: usize, const N: usize>(
+        &mut self,
+        a: &mut [[f64; N]; D],
+        scale: f64,
+    ) -> bool {
+        for col in 0..D {
+            let (best, best_abs) = partial_pivot(a, col, col);
+            if best_abs <= RANK_TOLERANCE * scale {
+                return false;
+            }
+            if best != col {
+                a.swap(col, best);
+            }
+            let inv = 1.0 / a[col][col];
+            a[col].iter_mut().for_each(|v| *v *= inv);
+            let pivot = a[col];
+            for (i, other) in a.iter_mut().enumerate() {
+                let f = other[col];
+                if i != col && f != 0.0 {
+                    for (o, p) in other.iter_mut().zip(&pivot) {
+                        *o -= f * p;
+                    }
+                }
+            }
+        }
+        // Free columns D..N: column k of N is e_{D+k} above −a[·][D+k].
+        let r = N - D;
+        let null = &mut self.null[..N * r];
+        for k in 0..r {
+            for (p, row) in a.iter().enumerate() {
+                null[p * r + k] = -row[D + k];
+            }
+            for g in 0..r {
+                null[(D + g) * r + k] = if g == k { 1.0 } else { 0.0 };
+            }
+        }
+        true
+    }
+
     /// [`WrenchClosureTest::reduce`] for any shape, in the reusable buffers.
-    fn reduce_dynamic(&mut self, w: &DMatrix<f64>) -> Option<usize> {
+    fn reduce_dynamic(&mut self, w: &[f64]) -> Option<usize> {
         let (dof, n) = (self.dof, self.n);
         for i in 0..dof {
             for j in 0..n {
-                self.a[i * n + j] = w[(i, j)];
+                self.a[i * n + j] = w[j * dof + i];
             }
         }
         let scale = self
@@ -281,30 +376,73 @@ impl WrenchClosureTest {
         v.iter().all(|&x| x > tol) || v.iter().all(|&x| x < -tol)
     }
 
-    fn half_plane(&mut self) -> bool {
-        let n = self.n;
-        let null = &self.null[..2 * n];
-        let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-        let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
-        let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
-        for i in 0..n {
-            if norm2(i) <= tol2 * scale2 {
-                return false; // this cable is slack in every self-stress
-            }
-            self.angles[i] = diamond_angle(null[2 * i], null[2 * i + 1]);
-            self.order[i] = i;
+    /// r = 2: the rows ν_i lie in an open half-plane. The decision is that of sorting the rows
+    /// by pseudo-angle (stable: ties in index order) and asking whether some cyclically
+    /// consecutive pair (u, w) has `gap(u, w)` (a negative cross product, |sin| of the angle
+    /// beyond `STRICT_TOLERANCE`), but without the sort, in O(n):
+    ///
+    /// - the pair tested is the one straddling t = angle(−ν_0): u the last row (in the order
+    ///   above) with angle < t, w the first with angle ≥ t (cyclically: the last and first rows
+    ///   overall when one side is empty). u, w are consecutive in that order, so a `true` here
+    ///   is a `true` of the sorted test.
+    /// - conversely, if some consecutive pair (u*, w*) passes `gap`, the rows lie in the closed
+    ///   arc from w* to u* of width < π − 10⁻⁹ rad, and −ν_0 lies in the open arc from u* to w*
+    ///   at least 10⁻⁹ rad from its ends. The pseudo-angle grows at least 1/2 per radian and
+    ///   is computed within ~10⁻¹⁵, so t separates the angles of u* and w* and the pair
+    ///   straddling t is (u*, w*).
+    ///
+    /// `tests::half_plane_equals_the_sorted_test` checks it against the sorted test, kept as
+    /// the oracle.
+    fn half_plane(&self) -> bool {
+        // Eight cables (6 DOF) with the length known at compile time: no bounds checks.
+        match <&[f64; 16]>::try_from(&self.null[..2 * self.n]) {
+            Ok(null) => straddling_pair_gap(null),
+            Err(_) => straddling_pair_gap(&self.null[..2 * self.n]),
         }
-        let (angles, order) = (&self.angles, &mut self.order[..n]);
-        order.sort_unstable_by(|&a, &b| angles[a].total_cmp(&angles[b]));
-        // All gaps between consecutive directions sum to 2π, so at most one exceeds π: the one
-        // whose (counter-clockwise) ends u, w have a negative cross product.
-        (0..n).any(|k| {
-            let (u, w) = (order[k], order[(k + 1) % n]);
-            let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
-            cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
-        })
     }
+}
 
+/// [`WrenchClosureTest::half_plane`] of the n × 2 basis `null` (row-major).
+#[inline(always)]
+fn straddling_pair_gap(null: &[f64]) -> bool {
+    let n = null.len() / 2;
+    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+    // The largest by comparisons: the same value as `f64::max` (no NaN here).
+    let scale2 = (0..n)
+        .map(norm2)
+        .fold(0.0f64, |m, v| if v > m { v } else { m });
+    let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
+    if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
+        return false; // a cable slack in every self-stress
+    }
+    let t = total_order_key(diamond_angle(-null[0], -null[1]));
+    // (angle, row) of the last row below t, the first at or above t, and the first and
+    // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
+    let mut last_below: Option<(i64, usize)> = None;
+    let mut first_above: Option<(i64, usize)> = None;
+    let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
+    for i in 0..n {
+        let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
+        if a < first.0 {
+            first = (a, i);
+        }
+        if a >= last.0 {
+            last = (a, i);
+        }
+        if a < t {
+            if last_below.is_none_or(|(b, _)| a >= b) {
+                last_below = Some((a, i));
+            }
+        } else if first_above.is_none_or(|(b, _)| a < b) {
+            first_above = Some((a, i));
+        }
+    }
+    let u = last_below.map_or(last.1, |(_, i)| i);
+    let w = first_above.map_or(first.1, |(_, i)| i);
+    gap(null, u, w, tol2)
+}
+
+impl WrenchClosureTest {
     fn linear_programme(&mut self, w: &DMatrix<f64>) -> bool {
         let Some(lp) = self.lp.as_mut() else {
             return false;
@@ -321,7 +459,7 @@ impl WrenchClosureTest {
     /// The same decision by the linear programme alone (any r ≥ 1), for cross-checks.
     pub fn is_wrench_closure_by_lp(&mut self, w: &DMatrix<f64>) -> bool {
         let (dof, n) = (self.dof, self.n);
-        if w.shape() != (dof, n) || n <= dof || self.reduce(w).is_none() {
+        if w.shape() != (dof, n) || n <= dof || self.reduce(w.as_slice()).is_none() {
             return false;
         }
         let lp = self.lp.get_or_insert_with(|| Lp {
@@ -338,6 +476,41 @@ impl WrenchClosureTest {
         };
         lp.solver.is_feasible(&problem).unwrap_or(false)
     }
+}
+
+/// Partial pivoting: the first row from `row` on with the largest |a[i][col]|, and that value
+/// (0 and `row` if all are zero).
+#[inline(always)]
+fn partial_pivot<const D: usize, const N: usize>(
+    a: &[[f64; N]; D],
+    row: usize,
+    col: usize,
+) -> (usize, f64) {
+    let (mut best, mut best_abs) = (row, 0.0);
+    for (i, r) in a.iter().enumerate().skip(row) {
+        let v = r[col].abs();
+        if v > best_abs {
+            best = i;
+            best_abs = v;
+        }
+    }
+    (best, best_abs)
+}
+
+/// Whether the counter-clockwise angle from row u to row w of the n × 2 basis `null` exceeds π
+/// by more than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
+#[inline]
+fn gap(null: &[f64], u: usize, w: usize, tol2: f64) -> bool {
+    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+    let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+    cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+}
+
+/// The integer whose order is that of [`f64::total_cmp`] (its own definition).
+#[inline]
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
 }
 
 /// A monotone stand-in for atan2(y, x) ∈ [0, 4) (the "diamond angle"), without trigonometry.
@@ -359,6 +532,222 @@ fn diamond_angle(x: f64, y: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    impl WrenchClosureTest {
+        /// The r = 2 test as it was before the straddling pair (the oracle): sort the rows by
+        /// pseudo-angle, then look for a consecutive pair passing `gap`.
+        fn half_plane_sorted(&self) -> bool {
+            let n = self.n;
+            let null = &self.null[..2 * n];
+            let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
+            let scale2 = (0..n).map(norm2).fold(0.0f64, f64::max);
+            let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
+            let mut angles = vec![0.0; n];
+            for (i, a) in angles.iter_mut().enumerate() {
+                if norm2(i) <= tol2 * scale2 {
+                    return false;
+                }
+                *a = diamond_angle(null[2 * i], null[2 * i + 1]);
+            }
+            let mut order: Vec<usize> = (0..n).collect();
+            order.sort_unstable_by(|&a, &b| angles[a].total_cmp(&angles[b]));
+            (0..n).any(|k| {
+                let (u, w) = (order[k], order[(k + 1) % n]);
+                let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+                cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
+            })
+        }
+
+        /// The whole decision as before (general reduction, sorted half-plane test).
+        fn is_wrench_closure_reference(&mut self, w: &DMatrix<f64>) -> bool {
+            let (dof, n) = (self.dof, self.n);
+            if w.shape() != (dof, n) || n <= dof || w.as_slice().iter().any(|v| !v.is_finite()) {
+                return false;
+            }
+            match self.reduce_dynamic(w.as_slice()) {
+                None => false,
+                Some(1) => self.one_dimensional(),
+                Some(2) => self.half_plane_sorted(),
+                Some(_) => self.linear_programme(w),
+            }
+        }
+    }
+
+    /// Rows of an n × 2 null basis at the angles `angles` (radians) with lengths `lengths`.
+    fn rows(angles: &[f64], lengths: &[f64]) -> Vec<f64> {
+        angles
+            .iter()
+            .zip(lengths)
+            .flat_map(|(a, l)| [l * a.cos(), l * a.sin()])
+            .collect()
+    }
+
+    /// How to place n rows of a null basis around a cluster of a given width: its start angle
+    /// and, per row, (fraction, kind, exponent).
+    #[derive(Debug, Clone)]
+    struct Layout {
+        start: f64,
+        spec: Vec<(f64, u8, i32)>,
+    }
+
+    /// Layouts at the boundary of the rule: cluster ends on an axis or anywhere; rows at the
+    /// ends (exact ties), at the axes (±0 components), tiny rows near the slack threshold,
+    /// lengths that are powers of two (exact ties of the pseudo-angle), rows anywhere inside.
+    fn layouts(n: usize) -> impl Strategy<Value = Layout> {
+        (
+            0.0f64..std::f64::consts::TAU,
+            proptest::collection::vec((0.0f64..1.0, 0u8..8, -2i32..3), n),
+            0u8..4,
+        )
+            .prop_map(|(start, spec, quarter)| Layout {
+                start: match quarter {
+                    0 => 0.0,
+                    1 => std::f64::consts::FRAC_PI_2,
+                    _ => start,
+                },
+                spec,
+            })
+    }
+
+    /// The rows of `layout` for a cluster of width `width` (radians): the first two rows are
+    /// its ends.
+    fn layout_rows(layout: &Layout, width: f64) -> Vec<f64> {
+        let mut angles: Vec<f64> = Vec::with_capacity(layout.spec.len());
+        let mut lengths = Vec::with_capacity(layout.spec.len());
+        for (k, &(f, kind, e)) in layout.spec.iter().enumerate() {
+            let a = match (k, kind) {
+                (0, _) => layout.start,
+                (1, _) => layout.start + width,
+                (_, 0) => angles[0],
+                (_, 1) => angles[1],
+                (_, 2) => std::f64::consts::FRAC_PI_2 * f64::from(e.rem_euclid(4)),
+                _ => layout.start + f * width,
+            };
+            angles.push(a);
+            lengths.push(match kind {
+                3 => 1e-9 * (0.5 + f),
+                _ => 2f64.powi(e),
+            });
+        }
+        let mut r = rows(&angles, &lengths);
+        for (k, &(_, kind, e)) in layout.spec.iter().enumerate() {
+            if kind == 2 {
+                for v in &mut r[2 * k..2 * k + 2] {
+                    if v.abs() < 1e-12 {
+                        *v = if e < 0 { -0.0 } else { 0.0 };
+                    }
+                }
+            }
+        }
+        r
+    }
+
+    /// Row sets at and around the boundary: widths π (two antipodal rows), π − δ with δ
+    /// around the tolerance 10⁻⁹, and any.
+    fn boundary_rows(n: usize) -> impl Strategy<Value = Vec<f64>> {
+        let widths = prop_oneof![
+            Just(std::f64::consts::PI),
+            (-3.0f64..3.0).prop_map(|e| std::f64::consts::PI - 1e-9 * (1.0 + e)),
+            (1e-12f64..1e-7).prop_map(|d| std::f64::consts::PI - d),
+            (0.0f64..std::f64::consts::PI),
+            (std::f64::consts::PI..6.2),
+        ];
+        (layouts(n), widths).prop_map(|(layout, width)| layout_rows(&layout, width))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The straddling-pair test gives the sorted test's decision (the same tolerance rule)
+        /// on row sets at and around the boundary, with ties and signed zeros, for n = 3…12,
+        /// rows in any order.
+        #[test]
+        fn half_plane_equals_the_sorted_test(
+            (n, null, shift) in (3usize..13).prop_flat_map(|n| (Just(n), boundary_rows(n), 0..n))
+        ) {
+            let mut t = WrenchClosureTest::new(n - 2, n);
+            let mut null = null;
+            null.rotate_left(2 * shift);
+            t.null[..2 * n].copy_from_slice(&null);
+            prop_assert_eq!(t.half_plane(), t.half_plane_sorted(), "{:?}", null);
+        }
+
+        /// At the exact floating-point boundary of the tolerance rule: the width where the
+        /// sorted test flips, found by bisection down to adjacent doubles, and the widths
+        /// next to it.
+        #[test]
+        fn half_plane_equals_the_sorted_test_at_the_flip(
+            (n, layout) in (3usize..13).prop_flat_map(|n| (Just(n), layouts(n)))
+        ) {
+            let mut t = WrenchClosureTest::new(n - 2, n);
+            // Row 1 (a cluster end) moved by (dx, dy) ulps.
+            let mut decide_nudged = |width: f64, dx: i64, dy: i64| {
+                let mut rows = layout_rows(&layout, width);
+                let ulps = |v: f64, k: i64| f64::from_bits((v.to_bits() as i64 + k) as u64);
+                rows[2] = ulps(rows[2], dx);
+                rows[3] = ulps(rows[3], dy);
+                t.null[..2 * n].copy_from_slice(&rows);
+                (t.half_plane(), t.half_plane_sorted())
+            };
+            let mut decide = |width: f64| decide_nudged(width, 0, 0);
+            let (mut lo, mut hi) = (std::f64::consts::PI - 1e-8, std::f64::consts::PI);
+            let (at_lo, at_hi) = (decide(lo).1, decide(hi).1);
+            if at_lo != at_hi {
+                while f64::from_bits(lo.to_bits() + 1) < hi {
+                    let mid = 0.5 * (lo + hi);
+                    if decide(mid).1 == at_lo { lo = mid } else { hi = mid }
+                }
+                for k in 0..4u64 {
+                    for width in [f64::from_bits(lo.to_bits() - k), f64::from_bits(hi.to_bits() + k)] {
+                        for (dx, dy) in (-3..=3).flat_map(|dx| (-3..=3).map(move |dy| (dx, dy))) {
+                            let (new, old) = decide_nudged(width, dx, dy);
+                            prop_assert_eq!(new, old, "width {:e}, nudge ({}, {})", width, dx, dy);
+                        }
+                    }
+                }
+            }
+        }
+
+        /// The whole decision equals the former one on 6 × 8 (and 3 × 5, 2 × 4) wrench
+        /// matrices W = M Bᵀ whose null space is spanned by boundary row sets (B an orthonormal
+        /// basis of its complement, M random), on random W, and on rank-deficient W.
+        #[test]
+        fn wrench_closure_equals_the_former_decision(
+            (dof, n, null, m, kind) in prop_oneof![Just((6usize, 8usize)), Just((3, 5)), Just((2, 4))]
+                .prop_flat_map(|(dof, n)| (
+                    Just(dof),
+                    Just(n),
+                    boundary_rows(n),
+                    proptest::collection::vec(-1.0f64..1.0, dof * n),
+                    0u8..4,
+                ))
+        ) {
+            let basis = DMatrix::from_row_slice(n, 2, &null);
+            let random = DMatrix::from_row_slice(dof, n, &m);
+            let w = match kind {
+                0 | 1 => {
+                    // Complement of span(N): the last n − 2 columns of Q in N = Q R.
+                    let q = basis.clone().insert_columns(2, n - 2, 0.0)
+                        + DMatrix::from_fn(n, n, |i, j| if j >= 2 && i == j { 1.0 } else { 0.0 });
+                    let q = q.qr().q();
+                    let b = q.columns(2, n - 2).into_owned();
+                    let mm = random.columns(0, dof).into_owned();
+                    if kind == 0 { &mm * b.transpose() } else { (&mm * b.transpose()) * 1e3 }
+                }
+                2 => random,
+                _ => {
+                    let mut w = random;
+                    let r = w.row(0) * -2.0;
+                    w.set_row(dof - 1, &r);
+                    w
+                }
+            };
+            let mut t = WrenchClosureTest::new(dof, n);
+            let new = t.is_wrench_closure(&w);
+            prop_assert_eq!(new, t.is_wrench_closure_reference(&w), "{}", w);
+        }
+    }
 
     fn mat(rows: usize, cols: usize, v: &[f64]) -> DMatrix<f64> {
         DMatrix::from_row_slice(rows, cols, v)
@@ -406,6 +795,7 @@ mod tests {
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         let mut rank_deficient = 0;
+        let avx2_here = WrenchClosureTest::new(6, 8).avx2;
         for (dof, n) in [(6, 8), (6, 7), (3, 5), (3, 4), (2, 4)] {
             let mut t = WrenchClosureTest::new(dof, n);
             for case in 0..400 {
@@ -419,19 +809,44 @@ mod tests {
                     }
                     _ => {}
                 }
-                let fixed = t.reduce(&w);
-                let fixed_null = t.null.clone();
-                let general = t.reduce_dynamic(&w);
-                assert_eq!(fixed, general, "{dof}×{n}, case {case}");
+                let general = t.reduce_dynamic(w.as_slice());
+                let general_null = t.null.clone();
                 rank_deficient += usize::from(general.is_none());
-                if let Some(r) = general {
-                    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-                    assert_eq!(bits(&fixed_null[..n * r]), bits(&t.null[..n * r]));
+                // The portable build, and the AVX2 build where the CPU has it.
+                for avx2 in [false, avx2_here] {
+                    t.avx2 = avx2;
+                    t.null.iter_mut().for_each(|v| *v = f64::NAN);
+                    let fixed = t.reduce(w.as_slice());
+                    assert_eq!(fixed, general, "{dof}×{n}, case {case}, avx2 {avx2}");
+                    if let Some(r) = general {
+                        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(bits(&general_null[..n * r]), bits(&t.null[..n * r]));
+                    }
                 }
             }
         }
         // Zero rows and proportional rows are rank-deficient; repeated columns are not.
         assert!(rank_deficient >= 2 * 5 * 100, "{rank_deficient}");
+    }
+
+    #[test]
+    fn total_order_key_orders_as_total_cmp() {
+        let v = [
+            -1.5,
+            -0.0,
+            0.0,
+            1e-300,
+            0.25,
+            1.0,
+            3.999,
+            4.0,
+            f64::INFINITY,
+        ];
+        for a in v {
+            for b in v {
+                assert_eq!(total_order_key(a).cmp(&total_order_key(b)), a.total_cmp(&b));
+            }
+        }
     }
 
     #[test]
