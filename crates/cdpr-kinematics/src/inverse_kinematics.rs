@@ -186,9 +186,12 @@ impl Robot {
         }
         kin.motion = self.motion();
         kin.cables.resize(self.cable_count(), CableState::default());
-        kin.pulleys.clear();
+        // The pulley path overwrites every entry: resize only (no refill) when the buffer
+        // already fits.
         if self.has_pulleys() {
             kin.pulleys.resize(self.cable_count(), None);
+        } else {
+            kin.pulleys.clear();
         }
         let r = pose.rotation.matrix();
         // One threshold per pose: lengths are compared with the size of the robot and the pose.

@@ -229,17 +229,37 @@ fn pulley_plane(px: f64, py: f64, h: f64, rho: f64) -> PulleyPlane {
 }
 
 impl PulleyPlane {
-    /// The attachment on the swivel axis (s ≤ `threshold`) or inside the pulley
-    /// (l_f ≤ `threshold`), with the distance that vanished; NaN counts as degenerate.
-    #[inline(always)]
+    /// [`degeneracy`] of this cable.
+    #[cfg(test)]
     fn degeneracy(&self, threshold: f64) -> Option<(PulleyDegeneracy, f64)> {
-        if self.s.is_nan() || self.s <= threshold {
-            Some((PulleyDegeneracy::OnSwivelAxis, self.s))
-        } else if self.free2.is_nan() || self.free2 <= threshold * threshold {
-            Some((PulleyDegeneracy::InsidePulley, self.bm2.sqrt()))
-        } else {
-            None
-        }
+        degeneracy(self.s, self.free2, self.bm2, threshold)
+    }
+}
+
+/// The attachment on the swivel axis (s ≤ `threshold`) or inside the pulley
+/// (l_f² ≤ `threshold`²), with the distance that vanished; NaN counts as degenerate. Reads only
+/// s, l_f² and BM² of a [`PulleyPlane`] (so that the block update loads nothing else).
+#[inline(always)]
+fn degeneracy(s: f64, free2: f64, bm2: f64, threshold: f64) -> Option<(PulleyDegeneracy, f64)> {
+    if s.is_nan() || s <= threshold {
+        Some((PulleyDegeneracy::OnSwivelAxis, s))
+    } else if free2.is_nan() || free2 <= threshold * threshold {
+        Some((PulleyDegeneracy::InsidePulley, bm2.sqrt()))
+    } else {
+        None
+    }
+}
+
+/// The error for pulley cable `i`, which [`degeneracy`] finds degenerate.
+#[cold]
+#[inline(never)]
+fn degenerate_pulley(i: usize, s: f64, free2: f64, bm2: f64, threshold: f64) -> KinematicsError {
+    let (reason, distance) = degeneracy(s, free2, bm2, threshold)
+        .expect("called only for a degenerate cable (same test as `degeneracy`)");
+    KinematicsError::DegeneratePulley {
+        cable: i,
+        reason,
+        distance,
     }
 }
 
@@ -297,21 +317,6 @@ impl PlaneBlock {
         self.cos_gamma[j] = p.cos_gamma;
         self.sin_gamma[j] = p.sin_gamma;
         self.inv_s[j] = p.inv_s;
-    }
-
-    #[inline(always)]
-    fn get(&self, j: usize) -> PulleyPlane {
-        PulleyPlane {
-            s: self.s[j],
-            free2: self.free2[j],
-            bm2: self.bm2[j],
-            free_length: self.free_length[j],
-            cos_beta: self.cos_beta[j],
-            sin_beta: self.sin_beta[j],
-            cos_gamma: self.cos_gamma[j],
-            sin_gamma: self.sin_gamma[j],
-            inv_s: self.inv_s[j],
-        }
     }
 }
 
@@ -494,30 +499,27 @@ pub(crate) fn update_cables_portable(
         }
         // Stage 5: the states, in cable order (the first degenerate cable is the error).
         let lane = |v: &[[f64; BLOCK]; 3], j: usize| Vector3::new(v[0][j], v[1][j], v[2][j]);
-        for (j, ((cable, state), pulley_state)) in cables
-            .iter()
-            .zip(states.iter_mut())
-            .zip(pulleys.iter_mut())
-            .enumerate()
-        {
+        // Index loop over equal-length slices: no bounds checks, no iterator state.
+        let n = cables.len();
+        let (states, pulleys) = (&mut states[..n], &mut pulleys[..n]);
+        for (j, cable) in cables.iter().enumerate() {
             let i = block * BLOCK + j;
             let (attachment, attachment_point) = (lane(&attachment, j), lane(&point, j));
             if cable.pulley.is_some() {
-                if let Some((reason, distance)) = plane.get(j).degeneracy(threshold) {
-                    return Err(KinematicsError::DegeneratePulley {
-                        cable: i,
-                        reason,
-                        distance,
-                    });
+                let (s, free2) = (plane.s[j], plane.free2[j]);
+                // `degeneracy`'s test inline, its answer (the error) out of line.
+                if s.is_nan() || s <= threshold || free2.is_nan() || free2 <= threshold * threshold
+                {
+                    return Err(degenerate_pulley(i, s, free2, plane.bm2[j], threshold));
                 }
-                *state = CableState {
+                states[j] = CableState {
                     vector: lane(&free_vector, j),
                     length: length[j],
                     unit: lane(&unit, j),
                     attachment,
                     attachment_point,
                 };
-                *pulley_state = Some(PulleyState {
+                pulleys[j] = Some(PulleyState {
                     free_length: plane.free_length[j],
                     swivel_direction: [plane.cos_gamma[j], plane.sin_gamma[j]],
                     wrap_angle: wrap[j],
@@ -526,8 +528,8 @@ pub(crate) fn update_cables_portable(
                     swivel_ratio: ratio[j],
                 });
             } else {
-                *state = straight_cable(cable, attachment, attachment_point, threshold, i)?;
-                *pulley_state = None;
+                states[j] = straight_cable(cable, attachment, attachment_point, threshold, i)?;
+                pulleys[j] = None;
             }
         }
     }

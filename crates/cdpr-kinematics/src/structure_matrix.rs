@@ -17,31 +17,9 @@
 
 use crate::MotionPattern;
 use crate::PoseKinematics;
-use nalgebra::{DMatrix, Vector3};
+use nalgebra::DMatrix;
 
 impl PoseKinematics {
-    /// Writes column i of W for the cable with unit vector `u` and attachment `a`.
-    #[inline]
-    fn wrench_column(motion: MotionPattern, u: &Vector3<f64>, a: &Vector3<f64>, col: &mut [f64]) {
-        match motion {
-            MotionPattern::Point2 => {
-                col[0] = u.x;
-                col[1] = u.y;
-            }
-            MotionPattern::Planar => {
-                col[0] = u.x;
-                col[1] = u.y;
-                col[2] = a.x * u.y - a.y * u.x;
-            }
-            MotionPattern::Point3 => col.copy_from_slice(u.as_slice()),
-            MotionPattern::Spatial => {
-                let m = a.cross(u);
-                col[..3].copy_from_slice(u.as_slice());
-                col[3..].copy_from_slice(m.as_slice());
-            }
-        }
-    }
-
     /// The DOF × n wrench (structure) matrix W, eq. (6.11) / Picard, Caro, Plestan & Claveau 2020, eq. (2).
     ///
     /// ```
@@ -67,9 +45,33 @@ impl PoseKinematics {
         if w.shape() != (dof, n) {
             *w = DMatrix::zeros(dof, n);
         }
-        let motion = self.motion();
-        for (c, mut col) in self.cables().iter().zip(w.column_iter_mut()) {
-            Self::wrench_column(motion, &c.unit, &c.attachment, col.as_mut_slice());
+        // One loop per motion pattern (the match outside the loop, the column length a
+        // constant): column i is [u_i; a_i × u_i] restricted to the pattern's wrench components.
+        let (w, cables) = (w.as_mut_slice(), self.cables());
+        match self.motion() {
+            MotionPattern::Point2 => {
+                for (col, c) in w.chunks_exact_mut(2).zip(cables) {
+                    (col[0], col[1]) = (c.unit.x, c.unit.y);
+                }
+            }
+            MotionPattern::Planar => {
+                for (col, c) in w.chunks_exact_mut(3).zip(cables) {
+                    let (u, a) = (&c.unit, &c.attachment);
+                    (col[0], col[1], col[2]) = (u.x, u.y, a.x * u.y - a.y * u.x);
+                }
+            }
+            MotionPattern::Point3 => {
+                for (col, c) in w.chunks_exact_mut(3).zip(cables) {
+                    (col[0], col[1], col[2]) = (c.unit.x, c.unit.y, c.unit.z);
+                }
+            }
+            MotionPattern::Spatial => {
+                for (col, c) in w.chunks_exact_mut(6).zip(cables) {
+                    let (u, m) = (&c.unit, c.attachment.cross(&c.unit));
+                    (col[0], col[1], col[2]) = (u.x, u.y, u.z);
+                    (col[3], col[4], col[5]) = (m.x, m.y, m.z);
+                }
+            }
         }
     }
 
@@ -109,6 +111,79 @@ mod tests {
         assert_relative_eq!(w[(2, 2)], -0.05 / l3, epsilon = 1e-15);
         // Cable 4: ℓ = (0.9, −0.4), a = (0.1, −0.1): moment = 0.1(−0.4) − (−0.1)(0.9) = 0.05.
         assert_relative_eq!(w[(2, 3)], 0.05 / l3, epsilon = 1e-15);
+    }
+
+    /// Every motion pattern's column is [u; b × u] restricted to its wrench components, bit for
+    /// bit, also when the output matrix has to be resized.
+    #[test]
+    fn columns_of_every_motion_pattern() {
+        use crate::{Cable, MotionPattern, Robot};
+        use nalgebra::{DMatrix, Rotation3, Vector3};
+        let cables: Vec<Cable> = (0..7)
+            .map(|i| {
+                let t = i as f64;
+                Cable {
+                    frame: Vector3::new(
+                        2.0 * (1.1 * t).cos(),
+                        2.0 * (1.1 * t).sin(),
+                        1.0 + 0.1 * t,
+                    ),
+                    platform: Vector3::new(0.1 * (2.3 * t).cos(), 0.1 * (2.3 * t).sin(), 0.05),
+                    pulley: None,
+                }
+            })
+            .collect();
+        let spatial = Pose::new(
+            Vector3::new(0.1, -0.2, 0.3),
+            Rotation3::new(Vector3::new(0.1, 0.2, -0.3)),
+        );
+        for (motion, pose) in [
+            (MotionPattern::Point2, Pose::point(0.1, -0.2, 0.0)),
+            (MotionPattern::Planar, Pose::planar(0.1, -0.2, 0.3)),
+            (MotionPattern::Point3, Pose::point(0.1, -0.2, 0.3)),
+            (MotionPattern::Spatial, spatial),
+        ] {
+            let planar = matches!(motion, MotionPattern::Point2 | MotionPattern::Planar);
+            let cables = cables
+                .iter()
+                .map(|c| {
+                    let flat =
+                        |v: Vector3<f64>| Vector3::new(v.x, v.y, if planar { 0.0 } else { v.z });
+                    let point = matches!(motion, MotionPattern::Point2 | MotionPattern::Point3);
+                    Cable {
+                        frame: flat(c.frame),
+                        platform: if point {
+                            Vector3::zeros()
+                        } else {
+                            flat(c.platform)
+                        },
+                        pulley: None,
+                    }
+                })
+                .collect();
+            let kin = Robot::new(motion, cables)
+                .unwrap()
+                .inverse_kinematics(&pose)
+                .unwrap();
+            let mut w = DMatrix::zeros(1, 1);
+            kin.write_wrench_matrix(&mut w);
+            assert_eq!(w.shape(), (motion.dof(), 7));
+            for (i, c) in kin.cables().iter().enumerate() {
+                let (u, m) = (c.unit, c.attachment.cross(&c.unit));
+                let full = [u.x, u.y, u.z, m.x, m.y, m.z];
+                let expected: Vec<f64> = match motion {
+                    MotionPattern::Point2 => vec![u.x, u.y],
+                    MotionPattern::Planar => vec![u.x, u.y, m.z],
+                    MotionPattern::Point3 => vec![u.x, u.y, u.z],
+                    MotionPattern::Spatial => full.to_vec(),
+                };
+                assert_eq!(
+                    w.column(i).as_slice(),
+                    &expected[..],
+                    "{motion:?} cable {i}"
+                );
+            }
+        }
     }
 
     #[test]
