@@ -645,15 +645,28 @@ impl Region {
     }
 
     /// Whether `c` lies in a polygon with positive area (counter-clockwise).
+    ///
+    /// An edge shorter than 10⁻⁹ of the polygon's size joins two vertices that are one point up to
+    /// rounding (clipping can leave such a pair); its direction is rounding noise, so it is not
+    /// tested: its neighbours bound the polygon there.
     pub fn contains(&self, c: P2) -> bool {
         let k = self.verts.len();
         if k < 3 || self.double_area() <= 0.0 {
             return false;
         }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for v in &self.verts {
+            for a in 0..2 {
+                lo[a] = lo[a].min(v[a]);
+                hi[a] = hi[a].max(v[a]);
+            }
+        }
+        let short = (1e-9 * (hi[0] - lo[0]).max(hi[1] - lo[1])).powi(2);
         (0..k).all(|j| {
             let p = self.verts[j];
             let q = self.verts[next(j, k)];
-            (q[0] - p[0]) * (c[1] - p[1]) - (q[1] - p[1]) * (c[0] - p[0]) >= 0.0
+            let d = [q[0] - p[0], q[1] - p[1]];
+            dot(d, d) <= short || d[0] * (c[1] - p[1]) - d[1] * (c[0] - p[0]) >= 0.0
         })
     }
 
@@ -884,6 +897,34 @@ impl FeasiblePolygon {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// CAROCA with swivel pulleys (CASPR model) at its home pose, 150 kg, t ∈ [0, 1000] N: the
+    /// clipped polygon ends in two vertices 1.7·10⁻¹⁰ apart. The edge between them has a direction
+    /// made of rounding, and the cross-product test used to put the interior point λ = 0 (the
+    /// minimum-norm tensions, all in bounds) outside it: l2 then projected it onto the boundary and
+    /// returned t = (0, 328.6, 630.9, …) N, ‖t‖² = 1.23·10⁶ N², instead of t0 (‖t0‖² = 8.33·10⁵ N²).
+    #[test]
+    fn a_vertex_pair_made_of_rounding_does_not_exclude_interior_points() {
+        let r = Region {
+            verts: vec![
+                [-4.2819356678132845, -903.3303178308754],
+                [910.5910843651232, 36.93305996002893],
+                [2.994385269499825, 920.8728464442395],
+                [-912.4974251177787, -12.1812992430009],
+                [-912.4974251177941, -12.181299242833234],
+            ],
+            ..Region::default()
+        };
+        assert!(r.double_area() > 0.0);
+        for c in [[0.0, 0.0], [100.0, -200.0], [-900.0, -12.0], [1.0, 900.0]] {
+            assert!(r.contains(c), "{c:?}");
+            assert_eq!(r.project(c), c);
+        }
+        // Points outside stay outside, including beyond the short edge.
+        for c in [[-913.0, -12.18], [0.0, 1000.0], [920.0, 40.0]] {
+            assert!(!r.contains(c), "{c:?}");
+        }
+    }
 
     #[test]
     fn square_clipped_to_triangle() {

@@ -165,3 +165,35 @@ fn every_command_takes_kinematics() {
         );
     }
 }
+
+/// When the minimum-norm tensions t0 = −W⁺ w_ext lie within the bounds they are the l2 optimum:
+/// CAROCA with swivel pulleys (CASPR model) at its home pose, every method of r = 2 that minimises
+/// ‖t‖₂ must return them. The build before this session's r = 2 rewrite returned
+/// t = (0, 328.6, 630.9, 327.6, 0.9, 329.6, 629.7, 327.3) N here (see the feasible-polygon unit
+/// test `a_vertex_pair_made_of_rounding_does_not_exclude_interior_points`).
+#[test]
+fn l2_returns_the_minimum_norm_tensions_when_they_are_in_bounds() {
+    let caroca = robot("caspr-caroca-pulleys.toml");
+    let run = |method: &str| {
+        json(&[
+            "tension",
+            &caroca,
+            "--pose",
+            "0,0,1,0,0,0",
+            "--method",
+            method,
+            "--json",
+        ])
+    };
+    let pinv = run("pinv");
+    assert_eq!(pinv["feasible"], true);
+    let t0 = floats(&pinv["tensions"]);
+    let l2 = floats(&run("l2")["tensions"]);
+    for (i, (a, b)) in l2.iter().zip(&t0).enumerate() {
+        assert!(
+            (a - b).abs() <= 1e-9 * 1000.0,
+            "cable {}: {a} N vs {b} N",
+            i + 1
+        );
+    }
+}
