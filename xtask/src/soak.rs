@@ -24,6 +24,12 @@
 //!   undecided and the answer is counted as `borderline` (not judged), as for "infeasible"
 //!   answers.
 //!
+//! - **optimality** (problems with every t_min ≥ 0): the optimisers l1 (min Σ t_i), l2
+//!   (min ‖t‖₂), linf (min max t_i), l1-max and l2-max (max) are compared with every verified
+//!   "feasible" answer of the other methods on the same problem (pinv's minimum-norm tensions,
+//!   the barycentre, the closed forms, the other optimisers: independent algorithms). An answer
+//!   that another one beats by more than 10⁻⁷ · max(1, |objective|) counts as `not_optimal`.
+//!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
 //! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
 //! solution only; improved-closed-form: Pott 2014, may miss a feasible set) are counted but not
@@ -32,7 +38,7 @@
 //!
 //! `--json` prints one object `{"methods": {NAME: {"solves", "feasible", "infeasible",
 //! "unbounded", "not_applicable", "false_feasible", "false_infeasible", "false_unbounded",
-//! "borderline", "singular", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
+//! "borderline", "singular", "not_optimal", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
 //!
 //! ## References
 //! - T. Ogita, S. M. Rump, S. Oishi, *Accurate sum and dot product*, SIAM J. Sci. Comput. 26(6),
@@ -90,6 +96,8 @@ pub struct Counts {
     pub false_unbounded: u64,
     /// "infeasible" answers with a depth within ±10⁻⁶ (not judged).
     pub borderline: u64,
+    /// Optimisers' answers beaten by another method's verified answer (see the module doc).
+    pub not_optimal: u64,
     /// "singular pose" answers (W numerically rank-deficient).
     pub singular: u64,
     /// "infeasible" answers of a heuristic method on a clearly non-empty set (not errors).
@@ -109,6 +117,7 @@ impl Counts {
         self.false_infeasible += o.false_infeasible;
         self.false_unbounded += o.false_unbounded;
         self.borderline += o.borderline;
+        self.not_optimal += o.not_optimal;
         self.singular += o.singular;
         self.missed_by_heuristic += o.missed_by_heuristic;
         self.errors += o.errors;
@@ -133,6 +142,7 @@ impl Report {
             c.false_feasible == 0
                 && c.false_infeasible == 0
                 && c.false_unbounded == 0
+                && c.not_optimal == 0
                 && c.errors == 0
         })
     }
@@ -476,6 +486,8 @@ pub fn soak_range(
         let mut depth_cache: Option<Option<f64>> = None;
         // Whether a verified "feasible" answer proved the set non-empty.
         let mut witness = false;
+        // Verified "feasible" answers, for the optimality check.
+        let mut answers: Vec<(Method, DVector<f64>)> = Vec::new();
         for (solver, &method) in solvers.iter_mut().zip(Method::ALL.iter()) {
             let c = report.methods.entry(method.name()).or_default();
             let complete = COMPLETE.contains(&method);
@@ -512,6 +524,7 @@ pub fn soak_range(
                         fail("false feasible", e, &mut report.failures);
                     } else {
                         witness = true;
+                        answers.push((method, s.tensions.clone()));
                     }
                 }
                 TensionOutcome::Infeasible(Infeasibility::Unbounded { .. }) => {
@@ -568,8 +581,57 @@ pub fn soak_range(
                 }
             }
         }
+        if d.bounds.min().iter().all(|&t| t >= 0.0) {
+            for (method, t) in &answers {
+                let Some((f, maximise)) = objective(*method) else {
+                    continue;
+                };
+                let own = f(t);
+                let tol = 1e-7 * own.abs().max(1.0);
+                let beaten = answers.iter().find(|(_, u)| {
+                    if maximise {
+                        f(u) > own + tol
+                    } else {
+                        f(u) < own - tol
+                    }
+                });
+                if let Some((other, u)) = beaten {
+                    let c = report.methods.entry(method.name()).or_default();
+                    c.not_optimal += 1;
+                    if report.failures.len() < 20 {
+                        report.failures.push(format!(
+                            "problem {index}, {method}: not optimal: {} gives {:e} against {own:e}",
+                            other.name(),
+                            f(u)
+                        ));
+                    }
+                }
+            }
+        }
     }
     report
+}
+
+/// The objective an optimiser minimises (or maximises: `true`) over t ≥ 0, if it is one.
+#[allow(clippy::type_complexity)]
+fn objective(method: Method) -> Option<(fn(&DVector<f64>) -> f64, bool)> {
+    fn sum(t: &DVector<f64>) -> f64 {
+        t.sum()
+    }
+    fn norm(t: &DVector<f64>) -> f64 {
+        t.norm()
+    }
+    fn largest(t: &DVector<f64>) -> f64 {
+        t.max()
+    }
+    match method {
+        Method::L1 => Some((sum, false)),
+        Method::L1Max => Some((sum, true)),
+        Method::L2 => Some((norm, false)),
+        Method::L2Max => Some((norm, true)),
+        Method::Linf => Some((largest, false)),
+        _ => None,
+    }
 }
 
 /// Runs `problems` problems on `threads` threads.
@@ -680,6 +742,7 @@ pub fn run(args: &[String]) -> ExitCode {
                         "false_infeasible": c.false_infeasible,
                         "false_unbounded": c.false_unbounded,
                         "borderline": c.borderline,
+                        "not_optimal": c.not_optimal,
                         "singular": c.singular,
                         "missed_by_heuristic": c.missed_by_heuristic,
                         "errors": c.errors,
@@ -710,7 +773,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 .join(", ")
         );
         println!(
-            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
             "method",
             "solves",
             "feasible",
@@ -719,6 +782,7 @@ pub fn run(args: &[String]) -> ExitCode {
             "false_f",
             "false_i",
             "false_u",
+            "not_opt",
             "border",
             "not_appl",
             "singular",
@@ -727,7 +791,7 @@ pub fn run(args: &[String]) -> ExitCode {
         for m in Method::ALL {
             let c = report.methods.get(m.name()).cloned().unwrap_or_default();
             println!(
-                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
                 format!(
                     "{}{}",
                     m.name(),
@@ -744,6 +808,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 c.false_feasible,
                 c.false_infeasible,
                 c.false_unbounded,
+                c.not_optimal,
                 c.borderline,
                 c.not_applicable,
                 c.singular,
