@@ -841,6 +841,21 @@ mod tests {
         }
     }
 
+    /// l2-max at r = 5 with infinite t_max and tensions of 10⁶–10⁷ N: the vertex walk rejected
+    /// vertices whose rounding (10⁻⁹ N) exceeded 10⁻¹⁰ of a 10 N bound and missed the maximum
+    /// behind them (problems 295857 and 857204: not optimal against l1-max); walking through
+    /// them must not turn an uncertifiable vertex into "infeasible" (problem 804927).
+    #[test]
+    fn soak_regressions_l2_max_at_large_tensions() {
+        for index in [295_857, 857_204, 804_927] {
+            let report = soak_range(20_261_122, index..index + 1, |_| {});
+            for f in &report.failures {
+                eprintln!("{f}");
+            }
+            assert!(report.clean(), "problem {index}: {:#?}", report.methods);
+        }
+    }
+
     /// The soak that stays (issue 13 §8): 2 000 problems, no false answer from a complete
     /// method, and every kind of problem drawn (fixed cables, infinite t_max, both verdicts).
     #[test]

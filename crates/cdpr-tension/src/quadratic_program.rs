@@ -18,7 +18,7 @@
 //! - The thesis chapter on planar tendon-driven manipulators (ch. 6), §6.3.2, eq. (6.17) and Appendix E.
 
 use crate::active_set::{ActiveSet, DenseEnd};
-use crate::certificate::bound_violation;
+use crate::certificate::{bound_violation, snap_and_certify};
 use crate::feasible_polygon::Region;
 use crate::linear_program::write_tensions;
 use crate::null_space::NullSpace;
@@ -121,6 +121,19 @@ pub(crate) fn l2_max_high_redundancy(
         }
     }
     match search.l2_max(ns, problem.bounds, t) {
+        // The walk passes through vertices feasible within their own rounding; an answer
+        // that misses the certificate is left to the candidate enumeration.
+        Ok(Ok(()))
+            if snap_and_certify(
+                problem.wrench_matrix,
+                problem.external_wrench,
+                problem.bounds,
+                t,
+            )
+            .is_err() =>
+        {
+            l2_max_by_vertices(ns, problem.bounds, t)
+        }
         Ok(answer) => answer,
         Err(GaveUp) => l2_max_by_vertices(ns, problem.bounds, t),
     }

@@ -57,6 +57,20 @@ pub const MAX_BASES: usize = 200_000;
 /// Relative feasibility tolerance of a vertex (as the candidate enumeration).
 const FEASIBLE: f64 = 1e-10;
 
+/// Whether the walk may pass through a vertex: each tension within [`FEASIBLE`] of its bound
+/// (relative to the bound), or within the rounding of the vertex itself, 10⁻¹² · max_j |t_j|.
+/// A vertex with tensions of 10⁷ N carries errors of 10⁻⁹ N, more than 10⁻¹⁰ of a 10 N bound;
+/// rejecting it would cut the walk's graph there and miss the vertices behind it (soak problems
+/// 295857 and 857204). The answer is certified by the caller, which falls back to the candidate
+/// enumeration when it fails (soak problem 804927).
+fn vertex_feasible(bounds: &TensionBounds, t: &[f64]) -> bool {
+    let scale = 1e-12 * t.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let (lo, hi) = (bounds.min(), bounds.max());
+    (0..t.len()).all(|i| {
+        bound_violation(lo[i], hi[i], t[i]) <= FEASIBLE || (lo[i] - t[i]).max(t[i] - hi[i]) <= scale
+    })
+}
+
 /// Relative slack within which two bounds count as reached together (a degenerate vertex).
 const TIE: f64 = 1e-9;
 
@@ -203,8 +217,7 @@ impl VertexSearch {
                 self.cables.clear();
                 self.cables.extend_from_slice(&self.pool_cables[at..]);
                 self.pool_cables.truncate(at);
-                let (lo, hi) = (bounds.min(), bounds.max());
-                if !(0..n).all(|i| bound_violation(lo[i], hi[i], self.t[i]) <= FEASIBLE) {
+                if !vertex_feasible(bounds, &self.t) {
                     continue;
                 }
             } else {
@@ -264,7 +277,7 @@ impl VertexSearch {
             }
         }
         tensions(ns, &self.lambda, &mut self.t);
-        (0..n).all(|i| bound_violation(bounds.min()[i], bounds.max()[i], self.t[i]) <= FEASIBLE)
+        vertex_feasible(bounds, &self.t)
     }
 
     /// The tableau T = N A_S⁻¹ (n × r, column k in tab[k n..]: the rate of every tension along
