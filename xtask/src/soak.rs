@@ -832,13 +832,7 @@ mod tests {
     /// 10⁻⁵–10⁻⁴ (the feasible segment collapsed to a point that the other fixed cable missed).
     #[test]
     fn soak_regressions_fixed_cables_with_tiny_null_space_rows() {
-        for index in [544_506, 868_887, 917_609] {
-            let report = soak_range(20_261_122, index..index + 1, |_| {});
-            for f in &report.failures {
-                eprintln!("{f}");
-            }
-            assert!(report.clean(), "problem {index}: {:#?}", report.methods);
-        }
+        assert_clean(&[544_506, 868_887, 917_609]);
     }
 
     /// l2-max at r = 5 with infinite t_max and tensions of 10⁶–10⁷ N: the vertex walk rejected
@@ -847,7 +841,12 @@ mod tests {
     /// them must not turn an uncertifiable vertex into "infeasible" (problem 804927).
     #[test]
     fn soak_regressions_l2_max_at_large_tensions() {
-        for index in [295_857, 857_204, 804_927] {
+        assert_clean(&[295_857, 857_204, 804_927]);
+    }
+
+    /// Soak problems (seed 20261122) that must have no false or non-optimal answer.
+    fn assert_clean(indices: &[u64]) {
+        for &index in indices {
             let report = soak_range(20_261_122, index..index + 1, |_| {});
             for f in &report.failures {
                 eprintln!("{f}");
