@@ -678,9 +678,11 @@ Draws N random tension problems (default 100000; planar robots with 3-8 cables, 
 6-12; wide and tight bounds, fixed cables, infinite t_max; feasible and infeasible wrenches),
 runs every method and checks each answer independently: every \"feasible\" by a compensated
 residual and the bounds, every \"infeasible\" by an LP solved with Clarabel directly, every
-\"unbounded\" by a recession-cone LP. Exit code 1 if a complete method gave a false answer.
+\"unbounded\" by a recession-cone LP, and the optimum of l1, l2, linf, l1-max and l2-max
+against every other method's verified answer (not_optimal: beaten by more than 1e-7 relative).
+Exit code 1 if a complete method gave a false answer or an optimiser a non-optimal one.
 Progress on stderr; --json prints one object {\"methods\": {NAME: {\"solves\", \"false_feasible\",
-\"false_infeasible\", ...}}, ...}.";
+\"false_infeasible\", \"not_optimal\", ...}}, ...}.";
 
 /// `cargo xtask soak`.
 pub fn run(args: &[String]) -> ExitCode {
