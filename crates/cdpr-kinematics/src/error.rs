@@ -85,6 +85,14 @@ pub enum KinematicsError {
         /// DOF of its motion pattern.
         dof: usize,
     },
+    /// A cable index that the robot does not have (e.g. in [`crate::Robot::permuted`]).
+    #[error("no cable {} (the robot has {cables} cables, numbered from 1)", .cable + 1)]
+    NoSuchCable {
+        /// The index given (0-based; the message counts from 1).
+        cable: usize,
+        /// Cables of the robot.
+        cables: usize,
+    },
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]
     UnknownMotion(String),

@@ -303,16 +303,24 @@ impl Robot {
         r
     }
 
-    /// The same robot with its cables reordered: `order[k]` is the old index of new cable k.
-    pub fn permuted(&self, order: &[usize]) -> Self {
-        let cables: Vec<Cable> = order.iter().map(|&i| self.cables[i]).collect();
-        Self {
-            motion: self.motion,
-            pulley_blocks: PulleyBlocks::new(&cables),
-            cables,
-            length_scale: self.length_scale,
-            has_pulleys: self.has_pulleys,
+    /// The robot made of the cables `order` picks, in that order: `order[k]` is the old index of
+    /// new cable k. A permutation reorders the cables; a shorter list keeps a subset (which is
+    /// validated as a new robot: its pulley flag and length scale are its own).
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Robot};
+    /// use nalgebra::Vector2;
+    /// let c = |x: f64, y: f64| Cable::point2(Vector2::new(x, y));
+    /// let robot = Robot::new(MotionPattern::Point2, vec![c(0.0, 0.0), c(1.0, 0.0), c(0.0, 1.0)]).unwrap();
+    /// assert_eq!(robot.permuted(&[2, 0]).unwrap().cables()[0], robot.cables()[2]);
+    /// assert_eq!(robot.permuted(&[3]), Err(KinematicsError::NoSuchCable { cable: 3, cables: 3 }));
+    /// ```
+    pub fn permuted(&self, order: &[usize]) -> Result<Self, KinematicsError> {
+        let cables = self.cables.len();
+        if let Some(&cable) = order.iter().find(|&&i| i >= cables) {
+            return Err(KinematicsError::NoSuchCable { cable, cables });
         }
+        Self::new(self.motion, order.iter().map(|&i| self.cables[i]).collect())
     }
 
     /// The cables' geometry in blocks for the pulley inverse kinematics.
@@ -324,6 +332,30 @@ impl Robot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_subset_of_cables_is_a_robot_of_its_own() {
+        let straight = Cable::spatial(Vector3::new(2.0, 0.0, 1.0), Vector3::new(0.1, 0.0, 0.0));
+        let mut guided = Cable::spatial(Vector3::new(-2.0, 0.0, 1.0), Vector3::zeros());
+        guided.pulley = Some(Pulley::from_axis(0.05, Vector3::z()));
+        let robot = Robot::new(MotionPattern::Spatial, vec![straight, guided]).unwrap();
+        assert!(robot.has_pulleys());
+        let reordered = robot.permuted(&[1, 0]).unwrap();
+        assert_eq!(reordered.cables(), &[guided, straight]);
+        assert!(reordered.has_pulleys());
+        assert_eq!(reordered.length_scale(), robot.length_scale());
+        let first = robot.permuted(&[0]).unwrap();
+        assert!(!first.has_pulleys());
+        assert_eq!(first.length_scale(), Vector3::new(2.0, 0.0, 1.0).norm());
+        assert_eq!(robot.permuted(&[]), Err(KinematicsError::NoCables));
+        assert_eq!(
+            robot.permuted(&[0, 2]),
+            Err(KinematicsError::NoSuchCable {
+                cable: 2,
+                cables: 2
+            })
+        );
+    }
 
     #[test]
     fn rejects_bad_geometry() {

@@ -191,7 +191,7 @@ mod tests {
         let r = thesis_four_cable();
         let kin = r.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
         assert!(kin.jacobian_determinant().is_none());
-        let three = r.permuted(&[0, 1, 2]);
+        let three = r.permuted(&[0, 1, 2]).unwrap();
         let kin = three
             .inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0))
             .unwrap();

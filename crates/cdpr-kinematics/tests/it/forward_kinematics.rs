@@ -217,7 +217,7 @@ fn bad_input_is_an_error() {
         robot.forward_kinematics(&[1.0, f64::NAN, 1.0, 1.0], &guess, s),
         Err(KinematicsError::NotFinite { .. })
     ));
-    let two = robot.permuted(&[0, 1]);
+    let two = robot.permuted(&[0, 1]).unwrap();
     assert!(matches!(
         ForwardKinematics::new(&two, s),
         Err(KinematicsError::TooFewCables { cables: 2, dof: 3 })

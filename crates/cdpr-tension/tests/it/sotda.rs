@@ -157,7 +157,7 @@ fn sotda_settings_and_redundancy_are_checked() {
     };
     assert!(TensionSolver::sotda(bad).solve(&p).is_err());
     // 7 cables: redundancy 1, not applicable.
-    let seven = robot.permuted(&[0, 1, 2, 3, 4, 5, 6]);
+    let seven = robot.permuted(&[0, 1, 2, 3, 4, 5, 6]).unwrap();
     let s7 = setup(
         &seven,
         &Pose::spatial(Vector3::zeros(), 0.0, 0.0, 0.0),
