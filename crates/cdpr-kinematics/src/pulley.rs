@@ -289,35 +289,6 @@ fn tangent(pulley: &Pulley, b: &Vector3<f64>, plane: &PulleyPlane, wrap: f64) ->
     }
 }
 
-/// [`PulleyPlane`] of a block of cables, one array per quantity.
-#[derive(Default)]
-struct PlaneBlock {
-    s: [f64; BLOCK],
-    free2: [f64; BLOCK],
-    bm2: [f64; BLOCK],
-    free_length: [f64; BLOCK],
-    cos_beta: [f64; BLOCK],
-    sin_beta: [f64; BLOCK],
-    cos_gamma: [f64; BLOCK],
-    sin_gamma: [f64; BLOCK],
-    inv_s: [f64; BLOCK],
-}
-
-impl PlaneBlock {
-    #[inline(always)]
-    fn set(&mut self, j: usize, p: PulleyPlane) {
-        self.s[j] = p.s;
-        self.free2[j] = p.free2;
-        self.bm2[j] = p.bm2;
-        self.free_length[j] = p.free_length;
-        self.cos_beta[j] = p.cos_beta;
-        self.sin_beta[j] = p.sin_beta;
-        self.cos_gamma[j] = p.cos_gamma;
-        self.sin_gamma[j] = p.sin_gamma;
-        self.inv_s[j] = p.inv_s;
-    }
-}
-
 /// A robot's cables in blocks of [`BLOCK`], one array per coordinate, as [`update_cables`]
 /// reads them (built once, with the robot; empty for a robot without pulleys).
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -470,15 +441,22 @@ pub(crate) fn update_cables_portable(
             }
         }
         // Stage 2: the pulley plane; stage 3: the wrap angle.
-        let mut plane = PlaneBlock::default();
+        // One array per quantity, each its own local (one block-sized struct was cleared by a
+        // `memset` call on every pose).
+        let (mut s, mut free2, mut bm2, mut free_length) =
+            ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
+        let (mut cos_beta, mut sin_beta) = ([0.0; BLOCK], [0.0; BLOCK]);
+        let (mut cos_gamma, mut sin_gamma, mut inv_s) = ([0.0; BLOCK], [0.0; BLOCK], [0.0; BLOCK]);
         for j in 0..BLOCK {
-            plane.set(j, pulley_plane(p[0][j], p[1][j], p[2][j], rho[j]));
+            let plane = pulley_plane(p[0][j], p[1][j], p[2][j], rho[j]);
+            (s[j], free2[j], bm2[j], free_length[j]) =
+                (plane.s, plane.free2, plane.bm2, plane.free_length);
+            (cos_beta[j], sin_beta[j]) = (plane.cos_beta, plane.sin_beta);
+            (cos_gamma[j], sin_gamma[j], inv_s[j]) =
+                (plane.cos_gamma, plane.sin_gamma, plane.inv_s);
         }
         let mut wrap = [0.0; BLOCK];
-        for (wrap, (&cos_beta, &sin_beta)) in wrap
-            .iter_mut()
-            .zip(plane.cos_beta.iter().zip(&plane.sin_beta))
-        {
+        for (wrap, (&cos_beta, &sin_beta)) in wrap.iter_mut().zip(cos_beta.iter().zip(&sin_beta)) {
             *wrap = wrap_angle(cos_beta, sin_beta);
         }
         // Stage 4: the tangent point (as `tangent`, one coordinate at a time; Q's columns are
@@ -487,19 +465,19 @@ pub(crate) fn update_cables_portable(
         let (mut exit_point, mut normal) = ([[0.0; BLOCK]; 3], [[0.0; BLOCK]; 3]);
         let (mut length, mut ratio) = ([0.0; BLOCK], [0.0; BLOCK]);
         for j in 0..BLOCK {
-            let (cos_beta, sin_beta) = (plane.cos_beta[j], plane.sin_beta[j]);
-            let (cos_gamma, sin_gamma) = (plane.cos_gamma[j], plane.sin_gamma[j]);
+            let (cos_beta, sin_beta) = (cos_beta[j], sin_beta[j]);
+            let (cos_gamma, sin_gamma) = (cos_gamma[j], sin_gamma[j]);
             for c in 0..3 {
                 let (e1, e2, k) = (q[c][j], q[3 + c][j], q[6 + c][j]);
                 let radial_direction = e1 * cos_gamma + e2 * sin_gamma;
                 let u = -(radial_direction * sin_beta + k * cos_beta);
                 unit[c][j] = u;
-                free_vector[c][j] = u * plane.free_length[j];
+                free_vector[c][j] = u * free_length[j];
                 exit_point[c][j] = point[c][j] + free_vector[c][j];
                 normal[c][j] = e2 * cos_gamma - e1 * sin_gamma;
             }
-            length[j] = rho[j] * wrap[j] + plane.free_length[j];
-            ratio[j] = rho[j] * (1.0 - cos_beta) * plane.inv_s[j];
+            length[j] = rho[j] * wrap[j] + free_length[j];
+            ratio[j] = rho[j] * (1.0 - cos_beta) * inv_s[j];
         }
         // Stage 5: the states, in cable order (the first degenerate cable is the error).
         let lane = |v: &[[f64; BLOCK]; 3], j: usize| Vector3::new(v[0][j], v[1][j], v[2][j]);
@@ -510,11 +488,11 @@ pub(crate) fn update_cables_portable(
             let i = block * BLOCK + j;
             let (attachment, attachment_point) = (lane(&attachment, j), lane(&point, j));
             if cable.pulley.is_some() {
-                let (s, free2) = (plane.s[j], plane.free2[j]);
+                let (s, free2) = (s[j], free2[j]);
                 // `degeneracy`'s test inline, its answer (the error) out of line.
                 if s.is_nan() || s <= threshold || free2.is_nan() || free2 <= threshold * threshold
                 {
-                    return Err(degenerate_pulley(i, s, free2, plane.bm2[j], threshold));
+                    return Err(degenerate_pulley(i, s, free2, bm2[j], threshold));
                 }
                 states[j] = CableState {
                     vector: lane(&free_vector, j),
@@ -524,8 +502,8 @@ pub(crate) fn update_cables_portable(
                     attachment_point,
                 };
                 pulleys[j] = Some(PulleyState {
-                    free_length: plane.free_length[j],
-                    swivel_direction: [plane.cos_gamma[j], plane.sin_gamma[j]],
+                    free_length: free_length[j],
+                    swivel_direction: [cos_gamma[j], sin_gamma[j]],
                     wrap_angle: wrap[j],
                     exit_point: lane(&exit_point, j),
                     plane_normal: lane(&normal, j),
