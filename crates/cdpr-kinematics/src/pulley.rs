@@ -304,6 +304,9 @@ struct PulleyBlock {
     platform: [[f64; BLOCK]; 3],
     q: [[f64; BLOCK]; 9],
     rho: [f64; BLOCK],
+    /// Every lane holds a pulley cable (a full block): the AVX2 build may store its states
+    /// four cables at a time.
+    all_pulleys: bool,
 }
 
 impl PulleyBlocks {
@@ -320,6 +323,8 @@ impl PulleyBlocks {
                         platform: [[0.0; BLOCK]; 3],
                         q: [[0.0; BLOCK]; 9],
                         rho: [0.0; BLOCK],
+                        all_pulleys: cables.len() == BLOCK
+                            && cables.iter().all(|c| c.pulley.is_some()),
                     };
                     (block.q[0], block.q[4], block.q[8]) =
                         ([1.0; BLOCK], [1.0; BLOCK], [1.0; BLOCK]);
@@ -376,7 +381,7 @@ pub(crate) fn update_cables(
             )
         };
     }
-    update_cables_portable(
+    update_cables_portable::<false>(
         cables, geometry, rotation, position, threshold, states, pulleys,
     )
 }
@@ -393,14 +398,16 @@ fn update_cables_avx2(
     states: &mut [CableState],
     pulleys: &mut [Option<PulleyState>],
 ) -> Result<(), KinematicsError> {
-    update_cables_portable(
+    update_cables_portable::<true>(
         cables, geometry, rotation, position, threshold, states, pulleys,
     )
 }
 
-/// [`update_cables`] for any CPU.
+/// [`update_cables`] for any CPU. `WIDE` (set only by [`update_cables_avx2`], on a CPU with
+/// AVX2) stores the states of a block whose lanes are all pulley cables four cables at a time
+/// ([`store_states_avx2`]): the same values, moved by vector shuffles instead of one by one.
 #[inline(always)]
-pub(crate) fn update_cables_portable(
+pub(crate) fn update_cables_portable<const WIDE: bool>(
     cables: &[Cable],
     geometry: &PulleyBlocks,
     rotation: &Matrix3<f64>,
@@ -420,6 +427,7 @@ pub(crate) fn update_cables_portable(
             platform,
             q,
             rho,
+            all_pulleys,
         } = &geometry.0[block];
         // Stage 1: attachments R b̄ (as nalgebra's matrix–vector product: column by column),
         // attachment points B and p = Qᵀ(B − a) (entry k of Q column-major is q[k]).
@@ -484,6 +492,55 @@ pub(crate) fn update_cables_portable(
         // Index loop over equal-length slices: no bounds checks, no iterator state.
         let n = cables.len();
         let (states, pulleys) = (&mut states[..n], &mut pulleys[..n]);
+        #[cfg(target_arch = "x86_64")]
+        if WIDE && *all_pulleys {
+            for j in 0..BLOCK {
+                let (s, free2) = (s[j], free2[j]);
+                if s.is_nan() || s <= threshold || free2.is_nan() || free2 <= threshold * threshold
+                {
+                    return Err(degenerate_pulley(
+                        block * BLOCK + j,
+                        s,
+                        free2,
+                        bm2[j],
+                        threshold,
+                    ));
+                }
+            }
+            let cable_fields = [
+                &free_vector[0],
+                &free_vector[1],
+                &free_vector[2],
+                &length,
+                &unit[0],
+                &unit[1],
+                &unit[2],
+                &attachment[0],
+                &attachment[1],
+                &attachment[2],
+                &point[0],
+                &point[1],
+                &point[2],
+            ];
+            let pulley_fields = [
+                &free_length,
+                &cos_gamma,
+                &sin_gamma,
+                &wrap,
+                &exit_point[0],
+                &exit_point[1],
+                &exit_point[2],
+                &normal[0],
+                &normal[1],
+                &normal[2],
+                &ratio,
+            ];
+            // SAFETY: `WIDE` is true only in `update_cables_avx2`, which runs on CPUs with
+            // AVX2; the block is full (`all_pulleys`), so `states` and `pulleys` hold
+            // `BLOCK` entries.
+            unsafe { store_states_avx2(&cable_fields, &pulley_fields, states, pulleys) };
+            continue;
+        }
         for (j, cable) in cables.iter().enumerate() {
             let i = block * BLOCK + j;
             let (attachment, attachment_point) = (lane(&attachment, j), lane(&point, j));
@@ -516,6 +573,96 @@ pub(crate) fn update_cables_portable(
         }
     }
     Ok(())
+}
+
+/// Transposes four rows of four values (row r = field r of four cables) into four columns
+/// (column j = four consecutive fields of cable j).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn transpose4(rows: [std::arch::x86_64::__m256d; 4]) -> [std::arch::x86_64::__m256d; 4] {
+    use std::arch::x86_64::*;
+    let t0 = _mm256_unpacklo_pd(rows[0], rows[1]);
+    let t1 = _mm256_unpackhi_pd(rows[0], rows[1]);
+    let t2 = _mm256_unpacklo_pd(rows[2], rows[3]);
+    let t3 = _mm256_unpackhi_pd(rows[2], rows[3]);
+    [
+        _mm256_permute2f128_pd::<0x20>(t0, t2),
+        _mm256_permute2f128_pd::<0x20>(t1, t3),
+        _mm256_permute2f128_pd::<0x31>(t0, t2),
+        _mm256_permute2f128_pd::<0x31>(t1, t3),
+    ]
+}
+
+/// Writes the [`CableState`] and [`PulleyState`] of a full block of pulley cables from their
+/// fields (one array per field, in the order the `#[repr(C)]` structs declare them), four
+/// cables at a time: 4 × 4 transposes and whole-vector stores instead of one store per value.
+/// Only data moves, so the states equal those of the one-by-one loop bit for bit.
+///
+/// # Safety
+/// The CPU supports AVX2; `states` and `pulleys` hold at least [`BLOCK`] entries.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn store_states_avx2(
+    cable_fields: &[&[f64; BLOCK]; 13],
+    pulley_fields: &[&[f64; BLOCK]; 11],
+    states: &mut [CableState],
+    pulleys: &mut [Option<PulleyState>],
+) {
+    use std::arch::x86_64::*;
+    const _: () = assert!(size_of::<CableState>() == 13 * size_of::<f64>());
+    const _: () = assert!(size_of::<PulleyState>() == 11 * size_of::<f64>());
+    assert!(states.len() >= BLOCK && pulleys.len() >= BLOCK);
+    for half in [0, 4] {
+        // SAFETY (loads): each field array holds BLOCK ≥ half + 4 values.
+        let load = |f: &[f64; BLOCK]| unsafe { _mm256_loadu_pd(f.as_ptr().add(half)) };
+        let rows = |fields: &[&[f64; BLOCK]], first: usize| {
+            let row = |k: usize| {
+                fields
+                    .get(first + k)
+                    .map_or(_mm256_setzero_pd(), |f| load(f))
+            };
+            [row(0), row(1), row(2), row(3)]
+        };
+        // CableState: fields 0–3, 4–7, 8–11 as vectors, field 12 alone.
+        let cable_groups = [
+            transpose4(rows(cable_fields, 0)),
+            transpose4(rows(cable_fields, 4)),
+            transpose4(rows(cable_fields, 8)),
+        ];
+        let last = cable_fields[12];
+        for j in 0..4 {
+            // SAFETY: `CableState` is `#[repr(C)]` with 13 `f64` (its `Vector3`s are
+            // `#[repr(C)]` arrays): 13 contiguous values, written within the struct.
+            unsafe {
+                let out = (&raw mut states[half + j]).cast::<f64>();
+                _mm256_storeu_pd(out, cable_groups[0][j]);
+                _mm256_storeu_pd(out.add(4), cable_groups[1][j]);
+                _mm256_storeu_pd(out.add(8), cable_groups[2][j]);
+                *out.add(12) = last[half + j];
+            }
+        }
+        // PulleyState: fields 0–3, 4–7 as vectors, 8–10 as two values and one.
+        let pulley_groups = [
+            transpose4(rows(pulley_fields, 0)),
+            transpose4(rows(pulley_fields, 4)),
+            transpose4(rows(pulley_fields, 8)),
+        ];
+        for j in 0..4 {
+            let slot = pulleys[half + j].get_or_insert(PulleyState::ZERO);
+            // SAFETY: `PulleyState` is `#[repr(C)]` with 11 `f64`: 11 contiguous values,
+            // written within the struct.
+            unsafe {
+                let out = (slot as *mut PulleyState).cast::<f64>();
+                _mm256_storeu_pd(out, pulley_groups[0][j]);
+                _mm256_storeu_pd(out.add(4), pulley_groups[1][j]);
+                let tail = pulley_groups[2][j];
+                _mm_storeu_pd(out.add(8), _mm256_castpd256_pd128(tail));
+                _mm_store_sd(out.add(10), _mm256_extractf128_pd::<1>(tail));
+            }
+        }
+    }
 }
 
 /// (cos α_k, sin α_k) of the halving angles α_k = π/8, π/16, π/32, π/64 of [`wrap_angle`]'s
@@ -715,10 +862,16 @@ mod tests {
     /// 11 cables (a full block and part of a second), tilted pulleys of several radii, two
     /// straight cables among them.
     fn mixed_robot() -> crate::Robot {
-        let cables = (0..11)
+        robot_with(11, |i| i % 5 != 3)
+    }
+
+    /// `cables` cables on tilted pulleys of several radii, those where `has_pulley` is false
+    /// straight.
+    fn robot_with(cables: usize, has_pulley: impl Fn(usize) -> bool) -> crate::Robot {
+        let cables = (0..cables)
             .map(|i| {
                 let t = i as f64;
-                let pulley = (i % 5 != 3).then(|| {
+                let pulley = has_pulley(i).then(|| {
                     let down = if i % 4 == 0 { -1.0 } else { 1.0 };
                     Pulley::from_axis(
                         0.02 + 0.01 * t,
@@ -736,12 +889,21 @@ mod tests {
     }
 
     /// The block update (AVX2 build where the CPU has it), its portable build and the per-cable
-    /// equations [`pulley_cable`] give the same bits.
+    /// equations [`pulley_cable`] give the same bits: with straight cables and a part block
+    /// (stored one cable at a time), and with two full blocks of pulley cables (stored four at
+    /// a time by the AVX2 build).
     #[test]
     fn block_update_equals_the_cable_equations_bit_for_bit() {
+        assert_eq!(block_update_pulley_cables(&mixed_robot()), 200 * 9);
+        let full = robot_with(16, |_| true);
+        assert!(full.pulley_blocks().0.iter().all(|b| b.all_pulleys));
+        assert_eq!(block_update_pulley_cables(&full), 200 * 16);
+    }
+
+    /// Compares the three paths at 200 poses; returns the pulley cables compared.
+    fn block_update_pulley_cables(robot: &crate::Robot) -> usize {
         use crate::Pose;
         use nalgebra::Rotation3;
-        let robot = mixed_robot();
         let n = robot.cable_count();
         let mut pulley_cables = 0;
         for k in 0..200 {
@@ -762,7 +924,7 @@ mod tests {
             let threshold = crate::inverse_kinematics::DEGENERATE_LENGTH
                 * robot.length_scale().max(pose.position.norm());
             let (mut states, mut pulleys) = (vec![CableState::default(); n], vec![None; n]);
-            update_cables_portable(
+            update_cables_portable::<false>(
                 robot.cables(),
                 robot.pulley_blocks(),
                 pose.rotation.matrix(),
@@ -813,7 +975,7 @@ mod tests {
                 );
             }
         }
-        assert_eq!(pulley_cables, 200 * 9);
+        pulley_cables
     }
 
     /// The first degenerate cable in index order is the error, in either block.
