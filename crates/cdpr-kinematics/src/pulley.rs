@@ -982,8 +982,11 @@ mod tests {
     #[test]
     fn block_update_reports_the_first_degenerate_cable() {
         use crate::{KinematicsError, Pose};
-        let robot = mixed_robot();
-        for i in [0, 3, 9, 10] {
+        // Mixed blocks (one cable at a time) and full pulley blocks (four at a time in the
+        // AVX2 build).
+        let (mixed, full) = (mixed_robot(), robot_with(16, |_| true));
+        let cases = [0, 3, 9, 10].map(|i| (&mixed, i));
+        for (robot, i) in cases.into_iter().chain([0, 5, 8, 15].map(|i| (&full, i))) {
             // Put the platform origin (attachment offset undone) on cable i's frame point.
             let cable = &robot.cables()[i];
             let pose = Pose::new(
