@@ -342,6 +342,15 @@ impl<'a> ForwardKinematics<'a> {
                 continue;
             };
             let step = delta.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            // The step rule of Madsen, Nielsen & Tingleff, tested before the trial pose is
+            // evaluated: a step this short cannot move the pose at the precision of the
+            // lengths (below, either outcome of the trial ends the loop as converged), so when
+            // x already solves the lengths the trial's inverse kinematics is skipped.
+            if step <= step_tolerance && max_residual(&self.kin, lengths) <= self.settings.tolerance
+            {
+                converged = true;
+                break;
+            }
             let trial = displaced(motion, &x, &delta);
             let accepted = match self.robot.update_kinematics(&trial, &mut self.trial) {
                 Ok(()) => {

@@ -22,7 +22,11 @@ use nalgebra::Vector3;
 pub(crate) const DEGENERATE_LENGTH: f64 = 1e-12;
 
 /// The state of one cable at one pose, all in base coordinates.
+///
+/// `#[repr(C)]`: 13 `f64` in the declared order (the pulley block stores them four cables at
+/// a time).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[repr(C)]
 pub struct CableState {
     /// ℓ^i: from the platform attachment to the frame anchor, eq. (6.2); with a pulley, to the
     /// tangent point **C** (the free segment).
@@ -39,7 +43,11 @@ pub struct CableState {
 }
 
 /// What the swivel-pulley model adds to a [`CableState`] (Pott 2018; module `pulley`).
+///
+/// `#[repr(C)]`: 11 `f64` in the declared order (the pulley block stores them four cables at
+/// a time).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(C)]
 pub struct PulleyState {
     /// l_f = ‖ℓ^i‖: the free (straight) length (m).
     pub free_length: f64,
@@ -60,6 +68,16 @@ pub struct PulleyState {
 }
 
 impl PulleyState {
+    /// Every field zero: the placeholder a buffer slot holds before its first write.
+    pub(crate) const ZERO: Self = Self {
+        free_length: 0.0,
+        swivel_direction: [0.0; 2],
+        wrap_angle: 0.0,
+        exit_point: Vector3::new(0.0, 0.0, 0.0),
+        plane_normal: Vector3::new(0.0, 0.0, 0.0),
+        swivel_ratio: 0.0,
+    };
+
     /// Swivel angle γ = atan2(p_y, p_x) of the pulley (rad, in (−π, π]).
     pub fn swivel_angle(&self) -> f64 {
         self.swivel_direction[1].atan2(self.swivel_direction[0])

@@ -306,3 +306,32 @@ fn path_solves_start_from_the_previous_pose() {
     }
     assert!(fk.solve_path(&lengths[..7], &poses[0]).is_err());
 }
+
+/// The step rule comes before the trial pose: from a guess 3·10⁻¹⁴ m from the pose of the
+/// lengths (residual within the tolerance, Gauss–Newton step below 10⁻¹³ × the length scale)
+/// the solver stops at the guess itself, without moving it by that step, for both cable models.
+#[test]
+fn a_step_below_the_tolerance_leaves_a_solving_pose_unmoved() {
+    for robot in [ipanema_like_8(), ipanema_like_8_pulleys()] {
+        let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+        let mut unmoved = 0;
+        for k in 0..20 {
+            let t = k as f64;
+            let pose = Pose::spatial(
+                Vector3::new(0.3 * t.sin(), 0.2 * t.cos(), 1.0 + 0.1 * (0.7 * t).sin()),
+                0.05 * t.cos(),
+                -0.04 * t.sin(),
+                0.03 * (1.3 * t).cos(),
+            );
+            let lengths: Vec<f64> = robot.inverse_kinematics(&pose).unwrap().lengths().collect();
+            let guess = Pose::new(pose.position + Vector3::new(3e-14, 0.0, 0.0), pose.rotation);
+            let sol = fk.solve(&lengths, &guess).unwrap();
+            assert_eq!(sol.status, ForwardStatus::Solved);
+            assert!(sol.converged && sol.iterations <= 1, "{sol:?}");
+            if sol.pose == guess {
+                unmoved += 1;
+            }
+        }
+        assert_eq!(unmoved, 20);
+    }
+}
