@@ -13,7 +13,7 @@
 //! - Thesis eq. (6.23): the constant-orientation workspace definition.
 
 use crate::criteria::square_determinant;
-use crate::wrench_closure::WrenchClosureTest;
+use crate::wrench_closure::{LANES, WrenchClosureTest};
 use crate::{Criterion, PoseContext, WorkspaceError};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
 use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
@@ -409,6 +409,8 @@ impl PoseEvaluator {
         let block = self.robot.dof() * self.robot.cable_count();
         // Wrench closure alone: decided on the batch's W in place (no copy into the matrix).
         let closure_only = matches!(self.criteria.as_slice(), [Criterion::WrenchClosure]);
+        let closure_six_eight =
+            closure_only && (self.robot.dof(), self.robot.cable_count()) == (6, 8);
         let mut batch = std::mem::take(&mut self.scratch.batch);
         batch.w.resize(BATCH * block, 0.0);
         batch.valid.resize(BATCH, false);
@@ -420,10 +422,23 @@ impl PoseEvaluator {
             self.robot
                 .wrench_matrices(chunk, w, valid)
                 .expect("buffers sized for the chunk");
-            for (k, (pose, f)) in chunk.iter().zip(verdicts).enumerate() {
-                // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
-                // non-finite position; a non-finite rotation is checked here).
-                *f = valid[k] && pose.rotation.matrix().iter().all(|v| v.is_finite()) && {
+            // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
+            // non-finite position; a non-finite rotation is checked here).
+            let poses_ok =
+                |k: usize| valid[k] && chunk[k].rotation.matrix().iter().all(|v| v.is_finite());
+            let mut done = 0;
+            if let Some(test) = self.scratch.closure.as_mut().filter(|_| closure_six_eight) {
+                // Four poses at a time (SIMD across poses), then the remainder below.
+                done = chunk.len() / LANES * LANES;
+                for (g, group) in verdicts[..done].chunks_exact_mut(LANES).enumerate() {
+                    let first = g * LANES;
+                    let wanted = std::array::from_fn(|l| poses_ok(first + l));
+                    let blocks = &w[first * block..(first + LANES) * block];
+                    group.copy_from_slice(&test.decide_four_6x8(blocks, wanted));
+                }
+            }
+            for (k, (pose, f)) in chunk.iter().zip(verdicts.iter_mut()).enumerate().skip(done) {
+                *f = poses_ok(k) && {
                     let wk = &w[k * block..(k + 1) * block];
                     let direct = match self.scratch.closure.as_mut() {
                         Some(test) if closure_only => test.is_wrench_closure_columns(wk),
