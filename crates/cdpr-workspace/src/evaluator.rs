@@ -406,11 +406,13 @@ impl PoseEvaluator {
             }
             return;
         }
-        let block = self.robot.dof() * self.robot.cable_count();
         // Wrench closure alone: decided on the batch's W in place (no copy into the matrix).
         let closure_only = matches!(self.criteria.as_slice(), [Criterion::WrenchClosure]);
-        let closure_six_eight =
-            closure_only && (self.robot.dof(), self.robot.cable_count()) == (6, 8);
+        if closure_only && (self.robot.dof(), self.robot.cable_count()) == (6, 8) {
+            self.wrench_closure_six_eight(poses, feasible);
+            return;
+        }
+        let block = self.robot.dof() * self.robot.cable_count();
         let mut batch = std::mem::take(&mut self.scratch.batch);
         batch.w.resize(BATCH * block, 0.0);
         batch.valid.resize(BATCH, false);
@@ -426,18 +428,7 @@ impl PoseEvaluator {
             // non-finite position; a non-finite rotation is checked here).
             let poses_ok =
                 |k: usize| valid[k] && chunk[k].rotation.matrix().iter().all(|v| v.is_finite());
-            let mut done = 0;
-            if let Some(test) = self.scratch.closure.as_mut().filter(|_| closure_six_eight) {
-                // Four poses at a time (SIMD across poses), then the remainder below.
-                done = chunk.len() / LANES * LANES;
-                for (g, group) in verdicts[..done].chunks_exact_mut(LANES).enumerate() {
-                    let first = g * LANES;
-                    let wanted = std::array::from_fn(|l| poses_ok(first + l));
-                    let blocks = &w[first * block..(first + LANES) * block];
-                    group.copy_from_slice(&test.decide_four_6x8(blocks, wanted));
-                }
-            }
-            for (k, (pose, f)) in chunk.iter().zip(verdicts.iter_mut()).enumerate().skip(done) {
+            for (k, (pose, f)) in chunk.iter().zip(verdicts).enumerate() {
                 *f = poses_ok(k) && {
                     let wk = &w[k * block..(k + 1) * block];
                     let direct = match self.scratch.closure.as_mut() {
@@ -452,6 +443,36 @@ impl PoseEvaluator {
             }
         }
         self.scratch.batch = batch;
+    }
+
+    /// [`PoseEvaluator::feasible_batch`] for wrench closure alone on a 6-DOF, 8-cable robot
+    /// (the IPAnema-type robots): four poses at a time from W in lanes
+    /// (`Robot::wrench_matrix_lanes`) to the decision (SIMD across poses throughout, no
+    /// transposition in between); the last group is padded with copies of its last pose,
+    /// which are not decided.
+    fn wrench_closure_six_eight(&mut self, poses: &[Pose], feasible: &mut [bool]) {
+        let test = self
+            .scratch
+            .closure
+            .as_mut()
+            .expect("a wrench-closure test exists for the wrench-closure criterion");
+        let mut columns = [[[0.0; LANES]; 6]; 8];
+        for (group, verdicts) in poses.chunks(LANES).zip(feasible.chunks_mut(LANES)) {
+            let padded: [Pose; LANES] = std::array::from_fn(|l| group[l.min(group.len() - 1)]);
+            let valid = self
+                .robot
+                .wrench_matrix_lanes(&padded, &mut columns)
+                .expect("a 6-DOF (spatial) robot and one column per cable");
+            // A non-finite pose is infeasible, as in `is_feasible` (the kinematics flag a
+            // non-finite position; a non-finite rotation is checked here).
+            let wanted = std::array::from_fn(|l| {
+                l < group.len()
+                    && valid[l]
+                    && padded[l].rotation.matrix().iter().all(|v| v.is_finite())
+            });
+            let decided = test.decide_four_6x8(&columns, wanted);
+            verdicts.copy_from_slice(&decided[..group.len()]);
+        }
     }
 
     /// Eq. (6.23): every criterion, cheapest first; the first failure ends the test.

@@ -407,7 +407,7 @@ impl WrenchClosureTest {
 pub(crate) const LANES: usize = 4;
 
 /// One f64 per pose of a group.
-type Lanes = [f64; LANES];
+pub(crate) type Lanes = [f64; LANES];
 
 /// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop
 /// the compiler turns into SIMD instructions; `if` becomes a blend).
@@ -434,27 +434,23 @@ struct LaneReduction {
 }
 
 impl WrenchClosureTest {
-    /// The decisions of four 6 × 8 wrench matrices, the column-major blocks of `w`
-    /// (4 × 48 entries): [`WrenchClosureTest::is_wrench_closure_columns`] of each block, with
-    /// the finiteness check, the scale and the reduction of the common case (leading pivot
-    /// columns, [`WrenchClosureTest::reduce_leading`]) computed across the four poses at once.
-    /// The reduction performs the operations of the single-pose path on the same values (row
+    /// The decisions of four 6 × 8 wrench matrices given as lanes, `columns[j][i][l]` =
+    /// W(i, j) of pose l (the layout of `Robot::wrench_matrix_lanes`):
+    /// [`WrenchClosureTest::is_wrench_closure_columns`] of each, with the finiteness check,
+    /// the scale and the reduction of the common case (leading pivot columns,
+    /// [`WrenchClosureTest::reduce_leading`]) computed across the four poses at once. The
+    /// reduction performs the operations of the single-pose path on the same values (row
     /// exchanges tracked as positions, not moved), hence the same bits; a pose outside the
-    /// common case goes through the single-pose path.
-    /// Lanes with `wanted[l]` false are not decided (`false`).
-    pub(crate) fn decide_four_6x8(&mut self, w: &[f64], wanted: [bool; LANES]) -> [bool; LANES] {
-        assert!(
-            self.dof == 6 && self.n == 8 && w.len() == LANES * 48,
-            "four 6 × 8 wrench matrices"
-        );
-        let mut a = [[[0.0; LANES]; 8]; 6];
-        for (l, block) in w.chunks_exact(48).enumerate() {
-            for (j, column) in block.chunks_exact(6).enumerate() {
-                for (i, &v) in column.iter().enumerate() {
-                    a[i][j][l] = v;
-                }
-            }
-        }
+    /// common case goes through the single-pose path. Lanes with `wanted[l]` false are not
+    /// decided (`false`).
+    pub(crate) fn decide_four_6x8(
+        &mut self,
+        columns: &[[Lanes; 6]; 8],
+        wanted: [bool; LANES],
+    ) -> [bool; LANES] {
+        assert!(self.dof == 6 && self.n == 8, "6 × 8 wrench matrices");
+        let mut a: [[Lanes; 8]; 6] =
+            std::array::from_fn(|i| std::array::from_fn(|j| columns[j][i]));
         let reduction = match self.avx2 {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
@@ -468,14 +464,16 @@ impl WrenchClosureTest {
                 // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2.
                 let null = &mut self.null[..16];
                 for (row, position) in a.iter().zip(&reduction.position) {
-                    let p = position[l] as usize;
+                    // A position is an integer 0–5 (exact in f64).
+                    let p = position[l] as u8 as usize;
                     null[2 * p] = -row[6][l];
                     null[2 * p + 1] = -row[7][l];
                 }
                 null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
                 self.half_plane()
             } else {
-                self.decide(&w[48 * l..48 * (l + 1)], None).unwrap_or(false)
+                let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
+                self.decide(&w, None).unwrap_or(false)
             }
         })
     }
@@ -1012,11 +1010,12 @@ mod tests {
         ) {
             let mut t = WrenchClosureTest::new(6, 8);
             let single: Vec<bool> = ws.iter().map(|w| t.is_wrench_closure(w)).collect();
-            let blocks: Vec<f64> = ws.iter().flat_map(|w| w.as_slice().to_vec()).collect();
+            let columns: [[Lanes; 6]; 8] =
+                std::array::from_fn(|j| std::array::from_fn(|i| std::array::from_fn(|l| ws[l][(i, j)])));
             let avx2_here = t.avx2;
             for avx2 in [false, avx2_here] {
                 t.avx2 = avx2;
-                let four = t.decide_four_6x8(&blocks, wanted);
+                let four = t.decide_four_6x8(&columns, wanted);
                 for l in 0..LANES {
                     prop_assert_eq!(four[l], wanted[l] && single[l], "lane {}, avx2 {}", l, avx2);
                 }
