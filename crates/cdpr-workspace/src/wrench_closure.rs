@@ -449,8 +449,7 @@ impl WrenchClosureTest {
         wanted: [bool; LANES],
     ) -> [bool; LANES] {
         assert!(self.dof == 6 && self.n == 8, "6 × 8 wrench matrices");
-        let mut a: [[Lanes; 8]; 6] =
-            std::array::from_fn(|i| std::array::from_fn(|j| columns[j][i]));
+        let mut a = *columns;
         let reduction = match self.avx2 {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
@@ -463,11 +462,11 @@ impl WrenchClosureTest {
             } else if reduction.leading[l] {
                 // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2.
                 let null = &mut self.null[..16];
-                for (row, position) in a.iter().zip(&reduction.position) {
+                for (i, position) in reduction.position.iter().enumerate() {
                     // A position is an integer 0–5 (exact in f64).
                     let p = position[l] as u8 as usize;
-                    null[2 * p] = -row[6][l];
-                    null[2 * p + 1] = -row[7][l];
+                    null[2 * p] = -a[6][i][l];
+                    null[2 * p + 1] = -a[7][i][l];
                 }
                 null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
                 self.half_plane()
@@ -486,12 +485,12 @@ impl WrenchClosureTest {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 8]; 6]) -> LaneReduction {
+unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     reduce_leading_lanes(a)
 }
 
 /// Finiteness, scale and [`WrenchClosureTest::reduce_leading`] of four 6 × 8 matrices, one
-/// per lane of `a[row][column]`. Each step does, lane by lane, what the single-pose loop does:
+/// per lane of `a[column][row]`. Each step does, lane by lane, what the single-pose loop does:
 /// partial pivoting picks the first row in position order with the largest |a_ic| (rows
 /// keep their place; `position` records the exchanges), the pivot row is scaled by 1/pivot,
 /// and every other row with a non-zero entry in the pivot column gets `o −= f · p`. Only the
@@ -499,13 +498,13 @@ unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 8]; 6]) -> LaneReduction {
 /// entries left of the pivot column are never read again. A lane whose pivot falls below the
 /// rank tolerance is flagged (`leading` false) and its values are meaningless.
 #[inline(always)]
-fn reduce_leading_lanes(a: &mut [[Lanes; 8]; 6]) -> LaneReduction {
+fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     // Finiteness (as `decide`) and the largest |w_ij| by comparisons (as `reduce_fixed`).
     let mut finite: Mask = [u64::MAX; LANES];
     let mut largest = [0.0f64; LANES];
-    for row in a.iter() {
-        for column in row {
-            let v = lanes!(l => column[l].abs());
+    for column in a.iter() {
+        for entry in column {
+            let v = lanes!(l => entry[l].abs());
             for l in 0..LANES {
                 finite[l] &= mask(v[l] < f64::INFINITY);
             }
@@ -534,7 +533,7 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 8]; 6]) -> LaneReduction {
 /// Step `C` of [`reduce_leading_lanes`]: pivot column `C`, lane by lane.
 #[inline(always)]
 fn pivot_step<const C: usize>(
-    a: &mut [[Lanes; 8]; 6],
+    a: &mut [[Lanes; 6]; 8],
     position: &mut [Lanes; 6],
     leading: &mut Mask,
     tolerance: &Lanes,
@@ -546,8 +545,8 @@ fn pivot_step<const C: usize>(
     // whole-lane operations without branches.
     let mut best_abs = [0.0f64; LANES];
     let mut best_position = [f64::INFINITY; LANES];
-    for (row, pos) in a.iter().zip(position.iter()) {
-        let v = lanes!(l => row[C][l].abs());
+    for (entry, pos) in a[C].iter().zip(position.iter()) {
+        let v = lanes!(l => entry[l].abs());
         let take: Mask = std::array::from_fn(|l| {
             mask(pos[l] >= col)
                 & (mask(v[l] > best_abs[l])
@@ -563,22 +562,23 @@ fn pivot_step<const C: usize>(
         std::array::from_fn(|i| std::array::from_fn(|l| mask(position[i][l] == best_position[l])));
     // The pivot row, scaled by 1/pivot (columns C..8).
     let mut pivot = [[0.0f64; LANES]; 8];
-    for (row, is) in a.iter().zip(&chosen) {
+    for (i, is) in chosen.iter().enumerate() {
         for j in C..8 {
-            pivot[j] = lanes!(l => select(is[l], row[j][l], pivot[j][l]));
+            pivot[j] = lanes!(l => select(is[l], a[j][i][l], pivot[j][l]));
         }
     }
     let inv = lanes!(l => 1.0 / pivot[C][l]);
     for p in pivot[C + 1..].iter_mut() {
         *p = lanes!(l => p[l] * inv[l]);
     }
-    for (row, is) in a.iter_mut().zip(&chosen) {
-        let f = row[C];
+    for (i, is) in chosen.iter().enumerate() {
+        let f = a[C][i];
         let eliminate: Mask = std::array::from_fn(|l| mask(f[l] != 0.0));
         for j in C + 1..8 {
-            let reduced = lanes!(l => row[j][l] - f[l] * pivot[j][l]);
-            let other = lanes!(l => select(eliminate[l], reduced[l], row[j][l]));
-            row[j] = lanes!(l => select(is[l], pivot[j][l], other[l]));
+            let e = a[j][i];
+            let reduced = lanes!(l => e[l] - f[l] * pivot[j][l]);
+            let other = lanes!(l => select(eliminate[l], reduced[l], e[l]));
+            a[j][i] = lanes!(l => select(is[l], pivot[j][l], other[l]));
         }
     }
     // Exchange positions C and that of the pivot row.
@@ -1012,6 +1012,37 @@ mod tests {
             let single: Vec<bool> = ws.iter().map(|w| t.is_wrench_closure(w)).collect();
             let columns: [[Lanes; 6]; 8] =
                 std::array::from_fn(|j| std::array::from_fn(|i| std::array::from_fn(|l| ws[l][(i, j)])));
+            // The reduction itself, bit for bit: the lanes' flags and null bases against the
+            // single-pose `reduce_leading` of each matrix.
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let mut lanes_a = columns;
+            let reduction = reduce_leading_lanes(&mut lanes_a);
+            for (l, w) in ws.iter().enumerate() {
+                let finite = w.iter().all(|v| v.is_finite());
+                prop_assert_eq!(reduction.finite[l], finite);
+                if !finite {
+                    continue;
+                }
+                let mut a = [[0.0f64; 8]; 6];
+                let mut largest = 0.0f64;
+                for i in 0..6 {
+                    for j in 0..8 {
+                        a[i][j] = w[(i, j)];
+                        largest = largest.max(w[(i, j)].abs());
+                    }
+                }
+                let leading = t.reduce_leading(&mut a, largest.max(1e-300));
+                prop_assert_eq!(reduction.leading[l], leading, "lane {}", l);
+                if leading {
+                    let mut null = [0.0; 12];
+                    for (i, position) in reduction.position.iter().enumerate() {
+                        let p = position[l] as usize;
+                        null[2 * p] = -lanes_a[6][i][l];
+                        null[2 * p + 1] = -lanes_a[7][i][l];
+                    }
+                    prop_assert_eq!(bits(&null), bits(&t.null[..12]), "lane {}", l);
+                }
+            }
             let avx2_here = t.avx2;
             for avx2 in [false, avx2_here] {
                 t.avx2 = avx2;
