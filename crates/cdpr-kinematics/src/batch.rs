@@ -88,6 +88,87 @@ impl Robot {
         })
     }
 
+    /// W of four poses of a spatial robot in structure-of-arrays layout: `out[j][i][l]` is
+    /// W(i, j) of pose `l` (cable j's column `[u_j ; a_j × u_j]`, eq. (6.11), one lane per
+    /// pose), for consumers that work on four poses at once (SIMD across poses) and would
+    /// otherwise transpose [`Robot::wrench_matrices`]'s blocks back. Returns which poses have
+    /// a wrench matrix (as `valid` there; the lanes of the others hold no meaningful values).
+    /// The values are those of [`Robot::wrench_matrices`], bit for bit (the same kernel).
+    /// Errors when the robot is not spatial or `out` has not one column per cable. Robots with
+    /// pulleys go through `update_kinematics` pose by pose (one `PoseKinematics` allocated per
+    /// call); otherwise nothing is allocated.
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Pose, reference_robots::ipanema_like_8};
+    /// let robot = ipanema_like_8();
+    /// let poses = [0.0, 0.1, 0.2, 0.3].map(|x| Pose::spatial([x, 0.0, 1.0].into(), 0.0, 0.05, 0.0));
+    /// let mut out = [[[0.0; 4]; 6]; 8];
+    /// assert_eq!(robot.wrench_matrix_lanes(&poses, &mut out).unwrap(), [true; 4]);
+    /// let w = robot.inverse_kinematics(&poses[2]).unwrap().wrench_matrix();
+    /// assert_eq!(out[7][4][2], w[(4, 7)]);
+    /// ```
+    pub fn wrench_matrix_lanes(
+        &self,
+        poses: &[Pose; LANES],
+        out: &mut [[[f64; LANES]; 6]],
+    ) -> Result<[bool; LANES], KinematicsError> {
+        self.wrench_matrix_lanes_on(poses, out, detected_path())
+    }
+
+    /// [`Robot::wrench_matrix_lanes`] through the portable (SSE2) build whatever the CPU, so
+    /// that tests can compare it with the AVX2 build. Not API.
+    #[doc(hidden)]
+    pub fn wrench_matrix_lanes_portable(
+        &self,
+        poses: &[Pose; LANES],
+        out: &mut [[[f64; LANES]; 6]],
+    ) -> Result<[bool; LANES], KinematicsError> {
+        self.wrench_matrix_lanes_on(poses, out, LanePath::Portable)
+    }
+
+    fn wrench_matrix_lanes_on(
+        &self,
+        poses: &[Pose; LANES],
+        out: &mut [[[f64; LANES]; 6]],
+        path: LanePath,
+    ) -> Result<[bool; LANES], KinematicsError> {
+        if self.motion() != MotionPattern::Spatial {
+            return Err(KinematicsError::WrongDimension {
+                what: "rows of the lane columns (6, spatial robots only)".into(),
+                motion: self.motion().name(),
+                expected: self.motion().dof(),
+                found: 6,
+            });
+        }
+        if out.len() != self.cable_count() {
+            return Err(KinematicsError::WrongDimension {
+                what: "lane columns (one per cable)".into(),
+                motion: self.motion().name(),
+                expected: self.cable_count(),
+                found: out.len(),
+            });
+        }
+        if self.has_pulleys() {
+            let mut w = vec![0.0; LANES * 6 * self.cable_count()];
+            let mut valid = [false; LANES];
+            self.wrench_matrices_by_pose(poses, &mut w, &mut valid);
+            for (l, block) in w.chunks_exact(6 * self.cable_count()).enumerate() {
+                for (column, src) in out.iter_mut().zip(block.chunks_exact(6)) {
+                    for (row, &v) in column.iter_mut().zip(src) {
+                        row[l] = v;
+                    }
+                }
+            }
+            return Ok(valid);
+        }
+        Ok(match path {
+            // SAFETY: `Avx2` is chosen only when the CPU reports AVX2 (`detected_path`).
+            #[cfg(target_arch = "x86_64")]
+            LanePath::Avx2 => unsafe { spatial_group_columns_avx2(self, poses, out) },
+            LanePath::Portable => spatial_group_columns(self, poses, out),
+        })
+    }
+
     /// [`Robot::wrench_matrices`] through the portable (SSE2) build of the structure-of-arrays
     /// kernel whatever the CPU, so that tests can compare it with the AVX2 build. Not API.
     #[doc(hidden)]
@@ -240,7 +321,7 @@ fn spatial_lanes(
         // that checks it first).
         #[cfg(target_arch = "x86_64")]
         LanePath::Avx2 => unsafe { spatial_groups_avx2(robot, &poses[..groups], head, ok_head) },
-        LanePath::Portable => spatial_groups(robot, &poses[..groups], head, ok_head),
+        LanePath::Portable => spatial_groups::<false>(robot, &poses[..groups], head, ok_head),
     };
     count
         + robot.straight::<6>(&poses[groups..], tail, ok_tail, |u, a, col| {
@@ -262,13 +343,18 @@ unsafe fn spatial_groups_avx2(
     out: &mut [f64],
     valid: &mut [bool],
 ) -> usize {
-    spatial_groups(robot, poses, out, valid)
+    spatial_groups::<true>(robot, poses, out, valid)
 }
 
 /// Whole groups of [`LANES`] poses (`poses.len()` a multiple of it), each written straight into
 /// the blocks of its poses.
 #[inline(always)]
-fn spatial_groups(robot: &Robot, poses: &[Pose], out: &mut [f64], valid: &mut [bool]) -> usize {
+fn spatial_groups<const AVX2: bool>(
+    robot: &Robot,
+    poses: &[Pose],
+    out: &mut [f64],
+    valid: &mut [bool],
+) -> usize {
     let block = 6 * robot.cable_count();
     let mut scratch = [[[0.0; LANES]; 6]; MAX_LANE_CABLES];
     let mut count = 0;
@@ -277,27 +363,108 @@ fn spatial_groups(robot: &Robot, poses: &[Pose], out: &mut [f64], valid: &mut [b
         .zip(out.chunks_exact_mut(LANES * block))
         .zip(valid.chunks_exact_mut(LANES))
     {
-        let good = spatial_group(robot, group, blocks, &mut scratch);
+        let good = spatial_group::<AVX2>(robot, group, blocks, &mut scratch);
         ok.copy_from_slice(&good);
         count += good.iter().filter(|&&g| g).count();
     }
     count
 }
 
-/// One group of [`LANES`] poses, structure of arrays: for each cable the expressions of
-/// `update_kinematics` (eqs. (6.2)–(6.4)) and of the column `[u_i ; a_i × u_i]`, evaluated in
-/// the same order as nalgebra's (**T ā** = ((T₀ ā_x + T₁ ā_y) + T₂ ā_z), ‖ℓ‖² = (x² + y²) + z²,
-/// three divisions by ‖ℓ‖), one lane per pose, then stored into the pose's block of `blocks`.
-/// Returns which poses are valid (finite position, every cable longer than the
-/// degenerate-length threshold).
+/// One group of [`LANES`] poses: [`spatial_group_columns`] into `scratch`, then stored into
+/// the pose's block of `blocks`.
 #[inline(always)]
-fn spatial_group(
+fn spatial_group<const AVX2: bool>(
     robot: &Robot,
     group: &[Pose],
     blocks: &mut [f64],
     scratch: &mut Columns,
 ) -> [bool; LANES] {
     let block = 6 * robot.cable_count();
+    let n = robot.cable_count();
+    let group: &[Pose; LANES] = group.try_into().expect("a group of LANES poses");
+    let good = spatial_group_columns(robot, group, &mut scratch[..n]);
+    if AVX2 {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `AVX2` is true only in `spatial_groups_avx2`, which runs on CPUs with AVX2.
+        unsafe {
+            store_blocks_avx2(&scratch[..n], blocks)
+        };
+    } else {
+        for (l, dst) in blocks.chunks_exact_mut(block).enumerate() {
+            for (d, column) in dst.chunks_exact_mut(6).zip(&scratch[..n]) {
+                for (v, row) in d.iter_mut().zip(column) {
+                    *v = row[l];
+                }
+            }
+        }
+    }
+    good
+}
+
+/// The lanes of `columns` into the blocks of the four poses (the copy loop of
+/// [`spatial_group`]: data movement only, the same values), with 4 × 4 transposes in
+/// registers: per cable, rows 0–3 of the four poses as four 256-bit stores and rows 4–5 as
+/// four 128-bit stores, instead of 24 scalar stores.
+///
+/// # Safety
+/// The CPU must support AVX2 (AVX is enough).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn store_blocks_avx2(columns: &[[[f64; LANES]; 6]], blocks: &mut [f64]) {
+    use std::arch::x86_64::{
+        _mm_storeu_pd, _mm256_castpd256_pd128, _mm256_extractf128_pd, _mm256_loadu_pd,
+        _mm256_permute2f128_pd, _mm256_storeu_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd,
+    };
+    let block = 6 * columns.len();
+    assert_eq!(blocks.len(), LANES * block, "four blocks of 6 × n");
+    let out = blocks.as_mut_ptr();
+    for (j, column) in columns.iter().enumerate() {
+        // SAFETY: every read is one of the six lane arrays of `column`, every write lies in
+        // `blocks` (pose l's entries 6j..6j + 6, l < 4: below 4 · 6n, the length asserted).
+        unsafe {
+            let [r0, r1, r2, r3, r4, r5] = column.each_ref().map(|r| _mm256_loadu_pd(r.as_ptr()));
+            let (t0, t1) = (_mm256_unpacklo_pd(r0, r1), _mm256_unpackhi_pd(r0, r1));
+            let (t2, t3) = (_mm256_unpacklo_pd(r2, r3), _mm256_unpackhi_pd(r2, r3));
+            let (u0, u1) = (_mm256_unpacklo_pd(r4, r5), _mm256_unpackhi_pd(r4, r5));
+            let at = |l: usize| out.add(l * block + 6 * j);
+            _mm256_storeu_pd(at(0), _mm256_permute2f128_pd::<0x20>(t0, t2));
+            _mm256_storeu_pd(at(1), _mm256_permute2f128_pd::<0x20>(t1, t3));
+            _mm256_storeu_pd(at(2), _mm256_permute2f128_pd::<0x31>(t0, t2));
+            _mm256_storeu_pd(at(3), _mm256_permute2f128_pd::<0x31>(t1, t3));
+            _mm_storeu_pd(at(0).add(4), _mm256_castpd256_pd128(u0));
+            _mm_storeu_pd(at(1).add(4), _mm256_castpd256_pd128(u1));
+            _mm_storeu_pd(at(2).add(4), _mm256_extractf128_pd::<1>(u0));
+            _mm_storeu_pd(at(3).add(4), _mm256_extractf128_pd::<1>(u1));
+        }
+    }
+}
+
+/// [`spatial_group_columns`] compiled with AVX2 enabled.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn spatial_group_columns_avx2(
+    robot: &Robot,
+    group: &[Pose; LANES],
+    columns: &mut [[[f64; LANES]; 6]],
+) -> [bool; LANES] {
+    spatial_group_columns(robot, group, columns)
+}
+
+/// One group of [`LANES`] poses, structure of arrays (`columns[j][i][l]`, cable × row × pose): for each cable the expressions of
+/// `update_kinematics` (eqs. (6.2)–(6.4)) and of the column `[u_i ; a_i × u_i]`, evaluated in
+/// the same order as nalgebra's (**T ā** = ((T₀ ā_x + T₁ ā_y) + T₂ ā_z), ‖ℓ‖² = (x² + y²) + z²,
+/// three divisions by ‖ℓ‖), one lane per pose.
+/// Returns which poses are valid (finite position, every cable longer than the
+/// degenerate-length threshold).
+#[inline(always)]
+fn spatial_group_columns(
+    robot: &Robot,
+    group: &[Pose; LANES],
+    columns: &mut [[[f64; LANES]; 6]],
+) -> [bool; LANES] {
     let mut u = [[0.0; LANES]; 3];
     let mut t = [[[0.0; LANES]; 3]; 3];
     let mut threshold = [0.0; LANES];
@@ -316,8 +483,7 @@ fn spatial_group(
     // 1.0 while every cable so far is longer than the threshold, 0.0 after (a mask that
     // vectorises; a NaN length fails `>`).
     let mut long = [1.0f64; LANES];
-    let n = robot.cable_count();
-    for (cable, column) in robot.cables().iter().zip(&mut scratch[..n]) {
+    for (cable, column) in robot.cables().iter().zip(columns) {
         let (p, c) = (&cable.platform, &cable.frame);
         // Every step is one operation on whole lanes (what the compiler turns into one SIMD
         // instruction per step).
@@ -342,13 +508,6 @@ fn spatial_group(
             lanes!(l => a[2][l] * e[0][l] - a[0][l] * e[2][l]),
             lanes!(l => a[0][l] * e[1][l] - a[1][l] * e[0][l]),
         ];
-    }
-    for (l, dst) in blocks.chunks_exact_mut(block).enumerate() {
-        for (d, column) in dst.chunks_exact_mut(6).zip(&scratch[..n]) {
-            for (v, row) in d.iter_mut().zip(column) {
-                *v = row[l];
-            }
-        }
     }
     std::array::from_fn(|l| good[l] && long[l] == 1.0)
 }

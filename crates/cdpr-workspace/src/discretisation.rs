@@ -198,23 +198,25 @@ impl GridWorkspace {
         let cell_area = grid.cell_measure(dim);
         // Clipped cells: weight 2^−(number of grid indices at 0 or m), summed in integers
         // scaled by 2^dim (exact for any grid size a machine can hold).
+        // The grid indices are stepped like an odometer (x fastest), not divided out of the
+        // flat index: this pass runs on one thread after the parallel evaluation.
         let p = grid.points_per_axis();
         let m = grid.resolution;
-        let halves = |mut idx: usize| {
-            let mut k = 0;
-            for _ in 0..dim {
-                let i = idx % p;
-                k += usize::from(i == 0 || i == m);
-                idx /= p;
+        let mut index = [0usize; 3];
+        let mut scaled: u128 = 0;
+        for &f in &feasible {
+            if f {
+                let halves = index[..dim].iter().filter(|&&i| i == 0 || i == m).count();
+                scaled += 1u128 << (dim - halves);
             }
-            k
-        };
-        let scaled: u128 = feasible
-            .iter()
-            .enumerate()
-            .filter(|&(_, &f)| f)
-            .map(|(idx, _)| 1u128 << (dim - halves(idx)))
-            .sum();
+            for i in &mut index[..dim] {
+                *i += 1;
+                if *i < p {
+                    break;
+                }
+                *i = 0;
+            }
+        }
         let clipped_area = scaled as f64 / (1u128 << dim) as f64 * cell_area;
         Self {
             grid,
@@ -555,6 +557,45 @@ mod tests {
                     assert_eq!(*u, grid.point(dim, start + k), "m = {m}, dim = {dim}");
                 }
             }
+        }
+    }
+
+    /// The clipped measure from the odometer equals the weights computed from the flat index
+    /// by division (2^−(indices at 0 or m) per feasible point), on pseudo-random verdicts in
+    /// 2-D and 3-D.
+    #[test]
+    fn clipped_cells_from_the_odometer_equal_the_divided_indices() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        for (dim, m) in [(2, 1), (2, 7), (3, 1), (3, 4), (3, 9)] {
+            let region = Region::cuboid(Vector3::new(0.0, 0.0, 0.0), Vector3::new(1.0, 2.0, 3.0));
+            let grid = Grid::new(m, region);
+            let p = m + 1;
+            let feasible: Vec<bool> = (0..grid.point_count(dim))
+                .map(|_| {
+                    seed ^= seed << 13;
+                    seed ^= seed >> 7;
+                    seed ^= seed << 17;
+                    seed % 3 != 0
+                })
+                .collect();
+            let weight = |idx: usize| {
+                let halves = (0..dim)
+                    .filter(|&a| {
+                        let i = idx / p.pow(a as u32) % p;
+                        i == 0 || i == m
+                    })
+                    .count();
+                0.5f64.powi(halves as i32)
+            };
+            let expected: f64 = (0..feasible.len())
+                .filter(|&idx| feasible[idx])
+                .map(weight)
+                .sum();
+            let ws = GridWorkspace::from_verdicts(grid, dim, feasible);
+            assert!(
+                (ws.clipped_area / ws.cell_area - expected).abs() < 1e-9,
+                "{dim}-D, m = {m}"
+            );
         }
     }
 

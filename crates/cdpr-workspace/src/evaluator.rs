@@ -13,7 +13,7 @@
 //! - Thesis eq. (6.23): the constant-orientation workspace definition.
 
 use crate::criteria::square_determinant;
-use crate::wrench_closure::WrenchClosureTest;
+use crate::wrench_closure::{LANES, WrenchClosureTest};
 use crate::{Criterion, PoseContext, WorkspaceError};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
 use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
@@ -406,9 +406,13 @@ impl PoseEvaluator {
             }
             return;
         }
-        let block = self.robot.dof() * self.robot.cable_count();
         // Wrench closure alone: decided on the batch's W in place (no copy into the matrix).
         let closure_only = matches!(self.criteria.as_slice(), [Criterion::WrenchClosure]);
+        if closure_only && (self.robot.dof(), self.robot.cable_count()) == (6, 8) {
+            self.wrench_closure_six_eight(poses, feasible);
+            return;
+        }
+        let block = self.robot.dof() * self.robot.cable_count();
         let mut batch = std::mem::take(&mut self.scratch.batch);
         batch.w.resize(BATCH * block, 0.0);
         batch.valid.resize(BATCH, false);
@@ -420,10 +424,12 @@ impl PoseEvaluator {
             self.robot
                 .wrench_matrices(chunk, w, valid)
                 .expect("buffers sized for the chunk");
+            // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
+            // non-finite position; a non-finite rotation is checked here).
+            let poses_ok =
+                |k: usize| valid[k] && chunk[k].rotation.matrix().iter().all(|v| v.is_finite());
             for (k, (pose, f)) in chunk.iter().zip(verdicts).enumerate() {
-                // A non-finite pose is infeasible, as in `is_feasible` (the batch flags a
-                // non-finite position; a non-finite rotation is checked here).
-                *f = valid[k] && pose.rotation.matrix().iter().all(|v| v.is_finite()) && {
+                *f = poses_ok(k) && {
                     let wk = &w[k * block..(k + 1) * block];
                     let direct = match self.scratch.closure.as_mut() {
                         Some(test) if closure_only => test.is_wrench_closure_columns(wk),
@@ -437,6 +443,36 @@ impl PoseEvaluator {
             }
         }
         self.scratch.batch = batch;
+    }
+
+    /// [`PoseEvaluator::feasible_batch`] for wrench closure alone on a 6-DOF, 8-cable robot
+    /// (the IPAnema-type robots): four poses at a time from W in lanes
+    /// (`Robot::wrench_matrix_lanes`) to the decision (SIMD across poses throughout, no
+    /// transposition in between); the last group is padded with copies of its last pose,
+    /// which are not decided.
+    fn wrench_closure_six_eight(&mut self, poses: &[Pose], feasible: &mut [bool]) {
+        let test = self
+            .scratch
+            .closure
+            .as_mut()
+            .expect("a wrench-closure test exists for the wrench-closure criterion");
+        let mut columns = [[[0.0; LANES]; 6]; 8];
+        for (group, verdicts) in poses.chunks(LANES).zip(feasible.chunks_mut(LANES)) {
+            let padded: [Pose; LANES] = std::array::from_fn(|l| group[l.min(group.len() - 1)]);
+            let valid = self
+                .robot
+                .wrench_matrix_lanes(&padded, &mut columns)
+                .expect("a 6-DOF (spatial) robot and one column per cable");
+            // A non-finite pose is infeasible, as in `is_feasible` (the kinematics flag a
+            // non-finite position; a non-finite rotation is checked here).
+            let wanted = std::array::from_fn(|l| {
+                l < group.len()
+                    && valid[l]
+                    && padded[l].rotation.matrix().iter().all(|v| v.is_finite())
+            });
+            let decided = test.decide_four_6x8(&columns, wanted);
+            verdicts.copy_from_slice(&decided[..group.len()]);
+        }
     }
 
     /// Eq. (6.23): every criterion, cheapest first; the first failure ends the test.

@@ -402,6 +402,207 @@ impl WrenchClosureTest {
     }
 }
 
+/// Poses per group of [`WrenchClosureTest::decide_four_6x8`] (four f64 lanes: one AVX2
+/// register).
+pub(crate) const LANES: usize = 4;
+
+/// One f64 per pose of a group.
+pub(crate) type Lanes = [f64; LANES];
+
+/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop
+/// the compiler turns into SIMD instructions; `if` becomes a blend).
+macro_rules! lanes {
+    ($l:ident => $e:expr) => {{
+        let mut lane = [0.0f64; LANES];
+        for $l in 0..LANES {
+            lane[$l] = $e;
+        }
+        lane
+    }};
+}
+
+/// What [`reduce_leading_lanes`] found for each pose of a group.
+struct LaneReduction {
+    /// Every entry of W finite.
+    finite: [bool; LANES],
+    /// The first six columns were the pivot columns (the common case): the null basis is
+    /// in the columns 6 and 7 of the reduced rows.
+    leading: [bool; LANES],
+    /// Position (0–5) of each physical row after the row exchanges of partial pivoting, per
+    /// lane (small integers as f64).
+    position: [Lanes; 6],
+}
+
+impl WrenchClosureTest {
+    /// The decisions of four 6 × 8 wrench matrices given as lanes, `columns[j][i][l]` =
+    /// W(i, j) of pose l (the layout of `Robot::wrench_matrix_lanes`):
+    /// [`WrenchClosureTest::is_wrench_closure_columns`] of each, with the finiteness check,
+    /// the scale and the reduction of the common case (leading pivot columns,
+    /// [`WrenchClosureTest::reduce_leading`]) computed across the four poses at once. The
+    /// reduction performs the operations of the single-pose path on the same values (row
+    /// exchanges tracked as positions, not moved), hence the same bits; a pose outside the
+    /// common case goes through the single-pose path. Lanes with `wanted[l]` false are not
+    /// decided (`false`).
+    pub(crate) fn decide_four_6x8(
+        &mut self,
+        columns: &[[Lanes; 6]; 8],
+        wanted: [bool; LANES],
+    ) -> [bool; LANES] {
+        assert!(self.dof == 6 && self.n == 8, "6 × 8 wrench matrices");
+        let mut a = *columns;
+        let reduction = match self.avx2 {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
+            true => unsafe { reduce_leading_lanes_avx2(&mut a) },
+            _ => reduce_leading_lanes(&mut a),
+        };
+        std::array::from_fn(|l| {
+            if !(wanted[l] && reduction.finite[l]) {
+                false
+            } else if reduction.leading[l] {
+                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2.
+                let null = &mut self.null[..16];
+                for (i, position) in reduction.position.iter().enumerate() {
+                    // A position is an integer 0–5 (exact in f64).
+                    let p = position[l] as u8 as usize;
+                    null[2 * p] = -a[6][i][l];
+                    null[2 * p + 1] = -a[7][i][l];
+                }
+                null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
+                self.half_plane()
+            } else {
+                let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
+                self.decide(&w, None).unwrap_or(false)
+            }
+        })
+    }
+}
+
+/// [`reduce_leading_lanes`] compiled for AVX2 (no fused multiply–adds, which Rust never
+/// forms: the same bits).
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
+    reduce_leading_lanes(a)
+}
+
+/// Finiteness, scale and [`WrenchClosureTest::reduce_leading`] of four 6 × 8 matrices, one
+/// per lane of `a[column][row]`. Each step does, lane by lane, what the single-pose loop does:
+/// partial pivoting picks the first row in position order with the largest |a_ic| (rows
+/// keep their place; `position` records the exchanges), the pivot row is scaled by 1/pivot,
+/// and every other row with a non-zero entry in the pivot column gets `o −= f · p`. Only the
+/// columns right of the pivot are updated: the single-pose loop updates whole rows, but its
+/// entries left of the pivot column are never read again. A lane whose pivot falls below the
+/// rank tolerance is flagged (`leading` false) and its values are meaningless.
+#[inline(always)]
+fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
+    // Finiteness (as `decide`) and the largest |w_ij| by comparisons (as `reduce_fixed`).
+    let mut finite: Mask = [u64::MAX; LANES];
+    let mut largest = [0.0f64; LANES];
+    for column in a.iter() {
+        for entry in column {
+            let v = lanes!(l => entry[l].abs());
+            for l in 0..LANES {
+                finite[l] &= mask(v[l] < f64::INFINITY);
+            }
+            largest = lanes!(l => select(mask(v[l] > largest[l]), v[l], largest[l]));
+        }
+    }
+    // `largest.max(1e-300)` (largest is finite and ≥ 0 where it matters).
+    let tolerance =
+        lanes!(l => RANK_TOLERANCE * select(mask(largest[l] < 1e-300), 1e-300, largest[l]));
+    let mut position: [Lanes; 6] = std::array::from_fn(|i| [i as f64; LANES]);
+    let mut leading = finite;
+    // One step per pivot column, each unrolled for its column at compile time.
+    pivot_step::<0>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<1>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<2>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<3>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<4>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<5>(a, &mut position, &mut leading, &tolerance);
+    LaneReduction {
+        finite: finite.map(|m| m != 0),
+        leading: leading.map(|m| m != 0),
+        position,
+    }
+}
+
+/// Step `C` of [`reduce_leading_lanes`]: pivot column `C`, lane by lane.
+#[inline(always)]
+fn pivot_step<const C: usize>(
+    a: &mut [[Lanes; 6]; 8],
+    position: &mut [Lanes; 6],
+    leading: &mut Mask,
+    tolerance: &Lanes,
+) {
+    let col = C as f64;
+    // Partial pivoting among the rows at positions ≥ C: the largest |a_iC|, the smallest
+    // position among equals (the single-pose scan keeps the first, by `>`). Masks are
+    // all-ones/all-zeros words combined with bitwise operations, selects are bitwise blends:
+    // whole-lane operations without branches.
+    let mut best_abs = [0.0f64; LANES];
+    let mut best_position = [f64::INFINITY; LANES];
+    for (entry, pos) in a[C].iter().zip(position.iter()) {
+        let v = lanes!(l => entry[l].abs());
+        let take: Mask = std::array::from_fn(|l| {
+            mask(pos[l] >= col)
+                & (mask(v[l] > best_abs[l])
+                    | (mask(v[l] == best_abs[l]) & mask(pos[l] < best_position[l])))
+        });
+        best_abs = lanes!(l => select(take[l], v[l], best_abs[l]));
+        best_position = lanes!(l => select(take[l], pos[l], best_position[l]));
+    }
+    for l in 0..LANES {
+        leading[l] &= !mask(best_abs[l] <= tolerance[l]);
+    }
+    let chosen: [Mask; 6] =
+        std::array::from_fn(|i| std::array::from_fn(|l| mask(position[i][l] == best_position[l])));
+    // The pivot row, scaled by 1/pivot (columns C..8).
+    let mut pivot = [[0.0f64; LANES]; 8];
+    for (i, is) in chosen.iter().enumerate() {
+        for j in C..8 {
+            pivot[j] = lanes!(l => select(is[l], a[j][i][l], pivot[j][l]));
+        }
+    }
+    let inv = lanes!(l => 1.0 / pivot[C][l]);
+    for p in pivot[C + 1..].iter_mut() {
+        *p = lanes!(l => p[l] * inv[l]);
+    }
+    for (i, is) in chosen.iter().enumerate() {
+        let f = a[C][i];
+        let eliminate: Mask = std::array::from_fn(|l| mask(f[l] != 0.0));
+        for j in C + 1..8 {
+            let e = a[j][i];
+            let reduced = lanes!(l => e[l] - f[l] * pivot[j][l]);
+            let other = lanes!(l => select(eliminate[l], reduced[l], e[l]));
+            a[j][i] = lanes!(l => select(is[l], pivot[j][l], other[l]));
+        }
+    }
+    // Exchange positions C and that of the pivot row.
+    for (pos, is) in position.iter_mut().zip(&chosen) {
+        let other = lanes!(l => select(mask(pos[l] == col), best_position[l], pos[l]));
+        *pos = lanes!(l => select(is[l], col, other[l]));
+    }
+}
+
+/// One all-ones (true) or all-zeros (false) word per lane.
+type Mask = [u64; LANES];
+
+/// The all-ones word for `true`, zero for `false`.
+#[inline(always)]
+fn mask(b: bool) -> u64 {
+    0u64.wrapping_sub(u64::from(b))
+}
+
+/// `a` where `m` is all ones, `b` where it is zero, by bits.
+#[inline(always)]
+fn select(m: u64, a: f64, b: f64) -> f64 {
+    f64::from_bits((m & a.to_bits()) | (!m & b.to_bits()))
+}
+
 /// [`WrenchClosureTest::half_plane`] of the n × 2 basis `null` (row-major).
 #[inline(always)]
 fn straddling_pair_gap(null: &[f64]) -> bool {
@@ -746,6 +947,110 @@ mod tests {
             let mut t = WrenchClosureTest::new(dof, n);
             let new = t.is_wrench_closure(&w);
             prop_assert_eq!(new, t.is_wrench_closure_reference(&w), "{}", w);
+        }
+    }
+
+    /// A 6 × 8 wrench matrix for the four-pose tests: W = M Bᵀ with the null space spanned by
+    /// a boundary row set (kinds 0, 1), random (2), rank-deficient (3), entries from a small
+    /// set so that partial pivoting meets exact ties (4), or with a non-finite entry (5).
+    fn six_eight() -> impl Strategy<Value = DMatrix<f64>> {
+        (
+            boundary_rows(8),
+            proptest::collection::vec(-1.0f64..1.0, 48),
+            proptest::collection::vec(0usize..5, 48),
+            0u8..6,
+        )
+            .prop_map(|(null, m, small, kind)| {
+                let random = DMatrix::from_row_slice(6, 8, &m);
+                match kind {
+                    0 | 1 => {
+                        let basis = DMatrix::from_row_slice(8, 2, &null);
+                        let q = basis.insert_columns(2, 6, 0.0)
+                            + DMatrix::from_fn(
+                                8,
+                                8,
+                                |i, j| if j >= 2 && i == j { 1.0 } else { 0.0 },
+                            );
+                        let b = q.qr().q().columns(2, 6).into_owned();
+                        let w = random.columns(0, 6).into_owned() * b.transpose();
+                        if kind == 0 { w } else { w * 1e3 }
+                    }
+                    2 => random,
+                    3 => {
+                        let mut w = random;
+                        let r = w.row(0) * -2.0;
+                        w.set_row(5, &r);
+                        w
+                    }
+                    4 => DMatrix::from_iterator(
+                        6,
+                        8,
+                        small.iter().map(|&k| [0.0, 1.0, -1.0, 0.5, -0.0][k]),
+                    ),
+                    _ => {
+                        let mut w = random;
+                        w[(small[0], small[1] + 3)] =
+                            [f64::NAN, f64::INFINITY, -f64::INFINITY, f64::NAN, 1e308][small[2]];
+                        w
+                    }
+                }
+            })
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2048))]
+
+        /// Four poses at a time (`decide_four_6x8`, SIMD across poses) give the single-pose
+        /// decisions, in the portable build and in the AVX2 build where the CPU has it, and
+        /// undecided lanes are `false`.
+        #[test]
+        fn four_at_a_time_equals_one_at_a_time(
+            ws in proptest::collection::vec(six_eight(), 4),
+            wanted in proptest::array::uniform4(prop::bool::weighted(0.9)),
+        ) {
+            let mut t = WrenchClosureTest::new(6, 8);
+            let single: Vec<bool> = ws.iter().map(|w| t.is_wrench_closure(w)).collect();
+            let columns: [[Lanes; 6]; 8] =
+                std::array::from_fn(|j| std::array::from_fn(|i| std::array::from_fn(|l| ws[l][(i, j)])));
+            // The reduction itself, bit for bit: the lanes' flags and null bases against the
+            // single-pose `reduce_leading` of each matrix.
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let mut lanes_a = columns;
+            let reduction = reduce_leading_lanes(&mut lanes_a);
+            for (l, w) in ws.iter().enumerate() {
+                let finite = w.iter().all(|v| v.is_finite());
+                prop_assert_eq!(reduction.finite[l], finite);
+                if !finite {
+                    continue;
+                }
+                let mut a = [[0.0f64; 8]; 6];
+                let mut largest = 0.0f64;
+                for i in 0..6 {
+                    for j in 0..8 {
+                        a[i][j] = w[(i, j)];
+                        largest = largest.max(w[(i, j)].abs());
+                    }
+                }
+                let leading = t.reduce_leading(&mut a, largest.max(1e-300));
+                prop_assert_eq!(reduction.leading[l], leading, "lane {}", l);
+                if leading {
+                    let mut null = [0.0; 12];
+                    for (i, position) in reduction.position.iter().enumerate() {
+                        let p = position[l] as usize;
+                        null[2 * p] = -lanes_a[6][i][l];
+                        null[2 * p + 1] = -lanes_a[7][i][l];
+                    }
+                    prop_assert_eq!(bits(&null), bits(&t.null[..12]), "lane {}", l);
+                }
+            }
+            let avx2_here = t.avx2;
+            for avx2 in [false, avx2_here] {
+                t.avx2 = avx2;
+                let four = t.decide_four_6x8(&columns, wanted);
+                for l in 0..LANES {
+                    prop_assert_eq!(four[l], wanted[l] && single[l], "lane {}, avx2 {}", l, avx2);
+                }
+            }
         }
     }
 

@@ -168,3 +168,93 @@ fn avx2_build_runs_where_available() {
     let robot = ipanema_like_8();
     check_bitwise(&robot, &poses(MotionPattern::Spatial, 1000));
 }
+
+type LanePath = fn(&Robot, &[Pose; 4], &mut [[[f64; 4]; 6]]) -> Result<[bool; 4], KinematicsError>;
+
+/// `Robot::wrench_matrix_lanes` (both builds) against `Robot::wrench_matrices`: the same bits
+/// lane by lane and the same validity, for each group of four of `poses` (a multiple of 4).
+fn check_lanes(robot: &Robot, poses: &[Pose]) {
+    let n = robot.cable_count();
+    let mut blocks = vec![0.0; poses.len() * 6 * n];
+    let mut valid = vec![false; poses.len()];
+    robot
+        .wrench_matrices(poses, &mut blocks, &mut valid)
+        .unwrap();
+    let paths: [LanePath; 2] = [
+        Robot::wrench_matrix_lanes,
+        Robot::wrench_matrix_lanes_portable,
+    ];
+    for path in paths {
+        for (g, group) in poses.chunks_exact(4).enumerate() {
+            let mut out = vec![[[f64::NAN; 4]; 6]; n];
+            let ok = path(robot, group.try_into().unwrap(), &mut out).unwrap();
+            for l in 0..4 {
+                let k = 4 * g + l;
+                assert_eq!(ok[l], valid[k], "pose {k}");
+                if ok[l] {
+                    for j in 0..n {
+                        for i in 0..6 {
+                            assert_eq!(
+                                out[j][i][l].to_bits(),
+                                blocks[k * 6 * n + 6 * j + i].to_bits()
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+proptest! {
+    /// W in lanes (four poses, cable × row × pose) is the batch W bit for bit, hence the
+    /// single-pose W, on random spatial robots (up to 20 cables: beyond the 16 of the block
+    /// kernel too) with degenerate poses among them.
+    #[test]
+    fn wrench_matrix_lanes_equal_the_batch_bit_for_bit(
+        robot in arb_robot(MotionPattern::Spatial, 7..=20),
+        mut poses in prop::collection::vec(arb_pose(MotionPattern::Spatial), 8),
+        degenerate in prop::collection::vec((0usize..8, 0usize..20), 0..3),
+    ) {
+        for (k, i) in degenerate {
+            let cable = &robot.cables()[i % robot.cable_count()];
+            let r = poses[k].rotation;
+            poses[k].position = cable.frame - r * cable.platform;
+        }
+        check_lanes(&robot, &poses);
+    }
+}
+
+/// Lanes with pulleys (pose by pose), with a NaN position; wrong shapes are errors.
+#[test]
+fn wrench_matrix_lanes_with_pulleys_and_errors() {
+    let mut p = poses(MotionPattern::Spatial, 8);
+    p[5].position.y = f64::NAN;
+    check_lanes(&ipanema_like_8_pulleys(), &p);
+    check_lanes(&ipanema_like_8(), &p);
+    let four: [Pose; 4] = p[..4].try_into().unwrap();
+    let err = ipanema_like_8()
+        .wrench_matrix_lanes(&four, &mut [[[0.0; 4]; 6]; 7])
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        KinematicsError::WrongDimension {
+            expected: 8,
+            found: 7,
+            ..
+        }
+    ));
+    let planar = thesis_four_cable();
+    let four = [Pose::planar(0.0, 0.0, 0.0); 4];
+    let err = planar
+        .wrench_matrix_lanes(&four, &mut vec![[[0.0; 4]; 6]; planar.cable_count()])
+        .unwrap_err();
+    assert!(matches!(
+        err,
+        KinematicsError::WrongDimension {
+            expected: 3,
+            found: 6,
+            ..
+        }
+    ));
+}
