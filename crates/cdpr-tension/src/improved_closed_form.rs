@@ -167,15 +167,7 @@ fn iterate<const M: usize, const N: usize>(
         // (A Aᵀ) y = rhs; t_free −= Aᵀ y.
         y.copy_from_slice(rhs);
         cholesky_solve(aat, m, y);
-        for ((col, ti), &free) in ws.chunks_exact(m).zip(t.iter_mut()).zip(active.iter()) {
-            if free {
-                let mut s = 0.0;
-                for k in 0..m {
-                    s += col[k] * y[k];
-                }
-                *ti -= s;
-            }
-        }
+        subtract_at_y::<N>(ws, m, y, active, t);
         // The free cable with the largest violation of its limits, in force units (Pott
         // 2014); a tension counts as violating beyond the certificate's relative tolerance.
         let (mut worst, mut wv) = (n, 0.0);
@@ -212,6 +204,38 @@ fn iterate<const M: usize, const N: usize>(
     }
 }
 
+/// t_i −= w_iᵀ y for the free cables. With n = N fixed at compile time, two cables at a
+/// time (each dot product summed over k in order, as in the scalar loop: the same bits).
+#[inline(always)]
+fn subtract_at_y<const N: usize>(ws: &[f64], m: usize, y: &[f64], active: &[bool], t: &mut [f64]) {
+    if N > 0 && N % 2 == 0 {
+        for i in (0..N).step_by(2) {
+            let (a, b) = (&ws[i * m..i * m + m], &ws[(i + 1) * m..(i + 1) * m + m]);
+            let mut s = [0.0; 2];
+            for k in 0..m {
+                s[0] += a[k] * y[k];
+                s[1] += b[k] * y[k];
+            }
+            if active[i] {
+                t[i] -= s[0];
+            }
+            if active[i + 1] {
+                t[i + 1] -= s[1];
+            }
+        }
+        return;
+    }
+    for ((col, ti), &free) in ws.chunks_exact(m).zip(t.iter_mut()).zip(active.iter()) {
+        if free {
+            let mut s = 0.0;
+            for k in 0..m {
+                s += col[k] * y[k];
+            }
+            *ti -= s;
+        }
+    }
+}
+
 /// rhs = w_ext + W t and the lower triangle of A Aᵀ over the free cables (into `aat`, its
 /// diagonal also into `diag`): one outer product per free cable (each entry sums over the
 /// cables in the same order as an entry-by-entry loop, so the same bits, without a branch per
@@ -235,20 +259,28 @@ fn factorise<const M: usize>(
         }
     }
     if M > 0 {
-        // DOF known at compile time: the triangle in a local array the compiler unrolls.
-        let mut acc = [[0.0; M]; M];
+        // DOF known at compile time (M ≤ 7): the triangle in pairs of adjacent entries,
+        // acc[r][p] = (entry (r, 2p), entry (r, 2p + 1)), which the compiler keeps in vector
+        // registers (for M = 6, 12 pairs instead of 21 scalars that spill). Every entry is the
+        // same sum in the same order; the entries past the diagonal are computed and dropped.
+        let mut acc = [[[0.0; 2]; 4]; M];
         for (col, &free) in ws.chunks_exact(M).zip(active.iter()) {
             if free {
+                let mut pad = [0.0; 8];
+                pad[..M].copy_from_slice(col);
                 for r in 0..M {
                     let cr = col[r];
-                    for c in 0..=r {
-                        acc[r][c] += cr * col[c];
+                    for p in 0..=r / 2 {
+                        acc[r][p][0] += cr * pad[2 * p];
+                        acc[r][p][1] += cr * pad[2 * p + 1];
                     }
                 }
             }
         }
         for r in 0..M {
-            aat[r * M..r * M + r + 1].copy_from_slice(&acc[r][..=r]);
+            for c in 0..=r {
+                aat[r * M + c] = acc[r][c / 2][c % 2];
+            }
         }
     } else {
         for r in 0..m {
