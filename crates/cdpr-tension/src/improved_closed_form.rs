@@ -252,10 +252,22 @@ fn factorise<const M: usize>(
     rhs: &mut [f64],
     diag: &mut [f64],
 ) {
-    rhs.copy_from_slice(we);
-    for (col, &ti) in ws.chunks_exact(m).zip(t.iter()) {
-        for k in 0..m {
-            rhs[k] += col[k] * ti;
+    if M > 0 {
+        // In a local array (kept in registers, two rows per vector), same order of sums.
+        let mut acc = [0.0; 8];
+        acc[..M].copy_from_slice(we);
+        for (col, &ti) in ws.chunks_exact(M).zip(t.iter()) {
+            for k in 0..M {
+                acc[k] += col[k] * ti;
+            }
+        }
+        rhs.copy_from_slice(&acc[..M]);
+    } else {
+        rhs.copy_from_slice(we);
+        for (col, &ti) in ws.chunks_exact(m).zip(t.iter()) {
+            for k in 0..m {
+                rhs[k] += col[k] * ti;
+            }
         }
     }
     if M > 0 {
