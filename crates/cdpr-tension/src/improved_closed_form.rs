@@ -20,9 +20,14 @@
 //! (`id_cf_icfm`, absolute violation, 10⁻⁶ absolute tolerance); cdpyr instead saturates the
 //! violating cable of largest |t_i|. `tests/it/improved_closed_form.rs` compares this
 //! implementation with a direct transcription of the iteration (pseudo-inverse per step).
-//! Needs finite t_max. Each step solves one DOF × DOF Cholesky system on reused buffers.
+//! Needs finite t_max. The first step factors A Aᵀ (Cholesky, DOF × DOF); each saturation
+//! downdates that factor by the removed column in O(DOF²) (Golub & Van Loan, §6.5.4) rather
+//! than rebuilding and refactoring it, with a fresh factorisation when the downdate would cancel
+//! most of a pivot (more than 99 %).
 //!
 //! ## References
+//! - Golub, G. H. & Van Loan, C. F. (2013), *Matrix Computations*, 4th ed., §6.5.4 (updating
+//!   and downdating the Cholesky factorisation).
 //! - Pott, A. (2014), *An improved force distribution algorithm for over-constrained
 //!   cable-driven parallel robots*, Computational Kinematics, pp. 139–146.
 //! - Pott, Bruckmann & Mikelsons (2009), *Closed-form force distribution for parallel wire
