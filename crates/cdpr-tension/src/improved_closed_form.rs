@@ -177,7 +177,10 @@ fn iterate<const M: usize, const N: usize>(
         // 2014); a tension counts as violating beyond the certificate's relative tolerance.
         let (mut worst, mut wv) = (n, 0.0);
         for i in 0..n {
+            // Inside [lo, hi] the violation is ≤ 0: the division only for tensions outside
+            // (or NaN), the same decision.
             if active[i]
+                && !(t[i] >= lo[i] && t[i] <= hi[i])
                 && bound_violation(lo[i], hi[i], t[i]) > crate::certificate::BOUND_TOLERANCE
             {
                 let v = (lo[i] - t[i]).max(t[i] - hi[i]);
