@@ -128,19 +128,8 @@ impl NullSpace {
         for k in 0..M {
             let mut best = k;
             let mut best_norm = -1.0;
-            // Squared norms two columns at a time, compared in order of j as before.
-            let mut norms = [0.0f64; M];
-            let mut j = k;
-            while j < M {
-                let (c0, c1) = (&a[j], &a[(j + 1).min(M - 1)]);
-                let s = masked_dot2(k, [c0, c1], [c0, c1]);
-                norms[j] = s[0];
-                if j + 1 < M {
-                    norms[j + 1] = s[1];
-                }
-                j += 2;
-            }
-            for (j, &s) in norms.iter().enumerate().skip(k) {
+            for (j, col) in a.iter().enumerate().skip(k) {
+                let s: f64 = col[k..].iter().map(|v| v * v).sum();
                 if s > best_norm {
                     best_norm = s;
                     best = j;
@@ -164,27 +153,14 @@ impl NullSpace {
             rdiag[k] = alpha;
             ratio *= norm / rows[k];
             let v = a[k];
-            // Two columns at a time (each with its own sums in the same order as one at a time).
-            let mut j = k + 1;
-            while j < M {
-                let (head, tail) = a.split_at_mut(j + 1);
-                let c0 = &mut head[j];
-                if let Some(c1) = tail.first_mut() {
-                    let s = masked_dot2(k, [&v, &v], [c0, c1]);
-                    let (s0, s1) = (s[0] * bk, s[1] * bk);
-                    for i in 0..N {
-                        let (u0, u1) = (c0[i] - s0 * v[i], c1[i] - s1 * v[i]);
-                        c0[i] = if i >= k { u0 } else { c0[i] };
-                        c1[i] = if i >= k { u1 } else { c1[i] };
-                    }
-                    j += 2;
-                } else {
-                    let s = masked_dot2(k, [&v, &v], [c0, c0])[0] * bk;
-                    for i in 0..N {
-                        let u = c0[i] - s * v[i];
-                        c0[i] = if i >= k { u } else { c0[i] };
-                    }
-                    j += 1;
+            for col in a.iter_mut().skip(k + 1) {
+                let mut s = 0.0;
+                for i in k..N {
+                    s += v[i] * col[i];
+                }
+                s *= bk;
+                for i in k..N {
+                    col[i] -= s * v[i];
                 }
             }
         }
@@ -335,22 +311,6 @@ impl NullSpace {
             }
         }
     }
-}
-
-/// Σ_{i ≥ k} a_i b_i summed in order of i from +0, for two pairs at once (a₀·b₀, a₁·b₁), over
-/// the whole fixed-length arrays with the terms i < k replaced by +0 (+0 + +0 = +0, so the same
-/// bits as a loop from k starting at 0; for sums of squares also as `Iterator::sum` from −0,
-/// since −0 + (+0) = +0): loops the compiler unrolls, without a run-time start.
-#[inline(always)]
-fn masked_dot2<const N: usize>(k: usize, a: [&[f64; N]; 2], b: [&[f64; N]; 2]) -> [f64; 2] {
-    let mut s = [0.0; 2];
-    for i in 0..N {
-        let p = [a[0][i] * b[0][i], a[1][i] * b[1][i]];
-        let keep = i >= k;
-        s[0] += if keep { p[0] } else { 0.0 };
-        s[1] += if keep { p[1] } else { 0.0 };
-    }
-    s
 }
 
 #[cfg(test)]
