@@ -2,7 +2,9 @@
 //! `valgrind --tool=callgrind <binary> OPERATION REPS` runs OPERATION (`ik_w`,
 //! `ik_w_batch`, `ik_w_batch_portable`, `improved_closed_form`, `barycenter`, `l2`, `l1`, `linf`) REPS times over the 20 000 poses of
 //! the fixture; instructions per call = (count at REPS − count at 0) / (20 000 · REPS). It prints
-//! the feasible count and a digest of the tensions' bits (to compare two builds' answers).
+//! the feasible count and a digest of the tensions' bits (to compare two builds' answers). With
+//! `TENSIONS_OUT=FILE` it also writes the first pass's tensions in N (8 little-endian f64 per pose,
+//! NaN for no answer), to measure how far two builds' answers are apart.
 
 use cdpr_benches::issue_17::fixture;
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
@@ -59,16 +61,28 @@ fn main() {
     let mut ok = 0usize;
     // FNV-1a over the bits of every feasible answer: equal digests, bit-identical tensions.
     let mut digest = 0xcbf2_9ce4_8422_2325u64;
-    for _ in 0..reps {
+    let out_path = std::env::var_os("TENSIONS_OUT");
+    let mut dump = Vec::new();
+    for pass in 0..reps {
         for w in &ws {
             let p = TensionProblem::new(w, &f.load, &f.bounds);
-            if solver.solve_into(black_box(&p), &mut t).unwrap().is_ok() {
+            let feasible = solver.solve_into(black_box(&p), &mut t).unwrap().is_ok();
+            if feasible {
                 ok += 1;
                 for x in t.iter() {
                     digest = (digest ^ x.to_bits()).wrapping_mul(0x100_0000_01b3);
                 }
             }
+            if pass == 0 && out_path.is_some() {
+                for x in t.iter() {
+                    let v = if feasible { *x } else { f64::NAN };
+                    dump.extend_from_slice(&v.to_le_bytes());
+                }
+            }
         }
+    }
+    if let Some(path) = out_path {
+        std::fs::write(path, dump).expect("TENSIONS_OUT is writable");
     }
     println!("{op}: {ok} feasible answers in {reps} passes, tension digest {digest:016x}");
 }
