@@ -396,8 +396,11 @@ impl WrenchClosureTest {
     fn half_plane(&self) -> bool {
         // Eight cables (6 DOF) with the length known at compile time: no bounds checks.
         match <&[f64; 16]>::try_from(&self.null[..2 * self.n]) {
-            Ok(null) => straddling_pair_gap(null),
-            Err(_) => straddling_pair_gap(&self.null[..2 * self.n]),
+            Ok(null) => straddling_pair_gap(8, 0, |i| (null[2 * i], null[2 * i + 1])),
+            Err(_) => {
+                let null = &self.null[..2 * self.n];
+                straddling_pair_gap(self.n, 0, |i| (null[2 * i], null[2 * i + 1]))
+            }
         }
     }
 }
@@ -460,16 +463,21 @@ impl WrenchClosureTest {
             if !(wanted[l] && reduction.finite[l]) {
                 false
             } else if reduction.leading[l] {
-                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2.
-                let null = &mut self.null[..16];
+                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2, given
+                // as constants (their norms and pseudo-angles fold at compile time), and −e_1
+                // is the reference direction (any row is one: see `straddling_pair_gap`).
+                let mut null = [0.0f64; 12];
                 for (i, position) in reduction.position.iter().enumerate() {
                     // A position is an integer 0–5 (exact in f64).
-                    let p = position[l] as u8 as usize;
+                    let p = usize::from(position[l] as u8).min(5);
                     null[2 * p] = -a[6][i][l];
                     null[2 * p + 1] = -a[7][i][l];
                 }
-                null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
-                self.half_plane()
+                straddling_pair_gap(8, 6, |i| match i {
+                    6 => (1.0, 0.0),
+                    7 => (0.0, 1.0),
+                    _ => (null[2 * i], null[2 * i + 1]),
+                })
             } else {
                 let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
                 self.decide(&w, None).unwrap_or(false)
@@ -603,27 +611,38 @@ fn select(m: u64, a: f64, b: f64) -> f64 {
     f64::from_bits((m & a.to_bits()) | (!m & b.to_bits()))
 }
 
-/// [`WrenchClosureTest::half_plane`] of the n × 2 basis `null` (row-major).
+/// [`WrenchClosureTest::half_plane`] of the n rows `row(i)` = ν_i of a null basis, with
+/// −ν_`reference` as the direction t that the tested pair straddles. Any row will do: when some
+/// consecutive pair (u*, w*) passes `gap`, the rows, ν_`reference` among them, lie in a closed
+/// arc of width < π − 10⁻⁹ rad, so −ν_`reference` lies in the open arc from u* to w*, at least
+/// 10⁻⁹ rad from its ends (`tests::half_plane_equals_the_sorted_test` checks every choice).
 #[inline(always)]
-fn straddling_pair_gap(null: &[f64]) -> bool {
-    let n = null.len() / 2;
-    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-    // The largest by comparisons: the same value as `f64::max` (no NaN here).
-    let scale2 = (0..n)
-        .map(norm2)
-        .fold(0.0f64, |m, v| if v > m { v } else { m });
+fn straddling_pair_gap(n: usize, reference: usize, row: impl Fn(usize) -> (f64, f64)) -> bool {
+    let norm2 = |(x, y): (f64, f64)| x * x + y * y;
+    // The largest and the smallest norm by comparisons in one pass: `smallest ≤ tol2 · scale2`
+    // is "some row has norm2 ≤ tol2 · scale2" (NaN norms take part in neither).
+    let (mut scale2, mut smallest) = (0.0f64, f64::INFINITY);
+    for i in 0..n {
+        let v = norm2(row(i));
+        scale2 = if v > scale2 { v } else { scale2 };
+        smallest = if v < smallest { v } else { smallest };
+    }
     let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
-    if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
+    if smallest <= tol2 * scale2 {
         return false; // a cable slack in every self-stress
     }
-    let t = total_order_key(diamond_angle(-null[0], -null[1]));
-    // (angle, row) of the last row below t, the first at or above t, and the first and
-    // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
-    let mut last_below: Option<(i64, usize)> = None;
-    let mut first_above: Option<(i64, usize)> = None;
+    let (rx, ry) = row(reference);
+    let t = total_order_key(diamond_angle(-rx, -ry));
+    // (angle, row) of the last row below t, the first at or above t, and the first and last
+    // overall; angles compared as `f64::total_cmp` does (the sort's comparison). `NONE` marks
+    // "no row yet"; every key is ≥ i64::MIN, so the first row below t always replaces it.
+    const NONE: usize = usize::MAX;
+    let mut last_below = (i64::MIN, NONE);
+    let mut first_above = (i64::MAX, NONE);
     let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
     for i in 0..n {
-        let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
+        let (x, y) = row(i);
+        let a = total_order_key(diamond_angle(x, y));
         if a < first.0 {
             first = (a, i);
         }
@@ -631,16 +650,24 @@ fn straddling_pair_gap(null: &[f64]) -> bool {
             last = (a, i);
         }
         if a < t {
-            if last_below.is_none_or(|(b, _)| a >= b) {
-                last_below = Some((a, i));
+            if a >= last_below.0 {
+                last_below = (a, i);
             }
-        } else if first_above.is_none_or(|(b, _)| a < b) {
-            first_above = Some((a, i));
+        } else if a < first_above.0 || first_above.1 == NONE {
+            first_above = (a, i);
         }
     }
-    let u = last_below.map_or(last.1, |(_, i)| i);
-    let w = first_above.map_or(first.1, |(_, i)| i);
-    gap(null, u, w, tol2)
+    let u = if last_below.1 == NONE {
+        last.1
+    } else {
+        last_below.1
+    };
+    let w = if first_above.1 == NONE {
+        first.1
+    } else {
+        first_above.1
+    };
+    gap(row(u), row(w), tol2)
 }
 
 impl WrenchClosureTest {
@@ -698,12 +725,12 @@ fn partial_pivot<const D: usize, const N: usize>(
     (best, best_abs)
 }
 
-/// Whether the counter-clockwise angle from row u to row w of the n × 2 basis `null` exceeds π
-/// by more than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
-#[inline]
-fn gap(null: &[f64], u: usize, w: usize, tol2: f64) -> bool {
-    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-    let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+/// Whether the counter-clockwise angle from row u to row w of a null basis exceeds π by more
+/// than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
+#[inline(always)]
+fn gap(u: (f64, f64), w: (f64, f64), tol2: f64) -> bool {
+    let norm2 = |(x, y): (f64, f64)| x * x + y * y;
+    let cross = u.0 * w.1 - u.1 * w.0;
     cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
 }
 
@@ -871,7 +898,13 @@ mod tests {
             let mut null = null;
             null.rotate_left(2 * shift);
             t.null[..2 * n].copy_from_slice(&null);
-            prop_assert_eq!(t.half_plane(), t.half_plane_sorted(), "{:?}", null);
+            let sorted = t.half_plane_sorted();
+            prop_assert_eq!(t.half_plane(), sorted, "{:?}", null);
+            // Every row serves as the reference direction (the four-pose path takes row 6).
+            for reference in 0..n {
+                let straddling = straddling_pair_gap(n, reference, |i| (null[2 * i], null[2 * i + 1]));
+                prop_assert_eq!(straddling, sorted, "reference {}, {:?}", reference, null);
+            }
         }
 
         /// At the exact floating-point boundary of the tolerance rule: the width where the
@@ -889,7 +922,12 @@ mod tests {
                 rows[2] = ulps(rows[2], dx);
                 rows[3] = ulps(rows[3], dy);
                 t.null[..2 * n].copy_from_slice(&rows);
-                (t.half_plane(), t.half_plane_sorted())
+                let sorted = t.half_plane_sorted();
+                // Whether the decision with every row as the reference direction is the sorted one.
+                let every_reference = (0..n).all(|k| {
+                    straddling_pair_gap(n, k, |i| (rows[2 * i], rows[2 * i + 1])) == sorted
+                });
+                (t.half_plane(), sorted, every_reference)
             };
             let mut decide = |width: f64| decide_nudged(width, 0, 0);
             let (mut lo, mut hi) = (std::f64::consts::PI - 1e-8, std::f64::consts::PI);
@@ -902,8 +940,9 @@ mod tests {
                 for k in 0..4u64 {
                     for width in [f64::from_bits(lo.to_bits() - k), f64::from_bits(hi.to_bits() + k)] {
                         for (dx, dy) in (-3..=3).flat_map(|dx| (-3..=3).map(move |dy| (dx, dy))) {
-                            let (new, old) = decide_nudged(width, dx, dy);
+                            let (new, old, every_reference) = decide_nudged(width, dx, dy);
                             prop_assert_eq!(new, old, "width {:e}, nudge ({}, {})", width, dx, dy);
+                            prop_assert!(every_reference, "width {:e}, nudge ({}, {})", width, dx, dy);
                         }
                     }
                 }
