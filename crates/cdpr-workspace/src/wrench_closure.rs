@@ -457,7 +457,7 @@ impl WrenchClosureTest {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
             true => unsafe { reduce_leading_lanes_avx2(&mut a) },
-            _ => reduce_leading_lanes(&mut a),
+            _ => reduce_leading_lanes::<false>(&mut a),
         };
         std::array::from_fn(|l| {
             if !(wanted[l] && reduction.finite[l]) {
@@ -494,7 +494,7 @@ impl WrenchClosureTest {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
-    reduce_leading_lanes(a)
+    reduce_leading_lanes::<true>(a)
 }
 
 /// Finiteness, scale and [`WrenchClosureTest::reduce_leading`] of four 6 × 8 matrices, one
@@ -504,9 +504,10 @@ unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
 /// and every other row with a non-zero entry in the pivot column gets `o −= f · p`. Only the
 /// columns right of the pivot are updated: the single-pose loop updates whole rows, but its
 /// entries left of the pivot column are never read again. A lane whose pivot falls below the
-/// rank tolerance is flagged (`leading` false) and its values are meaningless.
+/// rank tolerance is flagged (`leading` false) and its values are meaningless. `AVX` (only in
+/// [`reduce_leading_lanes_avx2`]) makes the selects blend instructions ([`blend`]).
 #[inline(always)]
-fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
+fn reduce_leading_lanes<const AVX: bool>(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     // Finiteness (as `decide`) and the largest |w_ij| by comparisons (as `reduce_fixed`).
     let mut finite: Mask = [u64::MAX; LANES];
     let mut largest = [0.0f64; LANES];
@@ -516,7 +517,8 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
             for l in 0..LANES {
                 finite[l] &= mask(v[l] < f64::INFINITY);
             }
-            largest = lanes!(l => select(mask(v[l] > largest[l]), v[l], largest[l]));
+            let larger: Mask = std::array::from_fn(|l| mask(v[l] > largest[l]));
+            largest = blend::<AVX>(larger, v, largest);
         }
     }
     // `largest.max(1e-300)` (largest is finite and ≥ 0 where it matters).
@@ -525,12 +527,12 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     let mut position: [Lanes; 6] = std::array::from_fn(|i| [i as f64; LANES]);
     let mut leading = finite;
     // One step per pivot column, each unrolled for its column at compile time.
-    pivot_step::<0>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<1>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<2>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<3>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<4>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<5>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<0, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<1, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<2, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<3, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<4, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<5, AVX>(a, &mut position, &mut leading, &tolerance);
     LaneReduction {
         finite: finite.map(|m| m != 0),
         leading: leading.map(|m| m != 0),
@@ -540,7 +542,7 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
 
 /// Step `C` of [`reduce_leading_lanes`]: pivot column `C`, lane by lane.
 #[inline(always)]
-fn pivot_step<const C: usize>(
+fn pivot_step<const C: usize, const AVX: bool>(
     a: &mut [[Lanes; 6]; 8],
     position: &mut [Lanes; 6],
     leading: &mut Mask,
@@ -560,8 +562,8 @@ fn pivot_step<const C: usize>(
                 & (mask(v[l] > best_abs[l])
                     | (mask(v[l] == best_abs[l]) & mask(pos[l] < best_position[l])))
         });
-        best_abs = lanes!(l => select(take[l], v[l], best_abs[l]));
-        best_position = lanes!(l => select(take[l], pos[l], best_position[l]));
+        best_abs = blend::<AVX>(take, v, best_abs);
+        best_position = blend::<AVX>(take, *pos, best_position);
     }
     for l in 0..LANES {
         leading[l] &= !mask(best_abs[l] <= tolerance[l]);
@@ -572,7 +574,7 @@ fn pivot_step<const C: usize>(
     let mut pivot = [[0.0f64; LANES]; 8];
     for (i, is) in chosen.iter().enumerate() {
         for j in C..8 {
-            pivot[j] = lanes!(l => select(is[l], a[j][i][l], pivot[j][l]));
+            pivot[j] = blend::<AVX>(*is, a[j][i], pivot[j]);
         }
     }
     let inv = lanes!(l => 1.0 / pivot[C][l]);
@@ -585,14 +587,15 @@ fn pivot_step<const C: usize>(
         for j in C + 1..8 {
             let e = a[j][i];
             let reduced = lanes!(l => e[l] - f[l] * pivot[j][l]);
-            let other = lanes!(l => select(eliminate[l], reduced[l], e[l]));
-            a[j][i] = lanes!(l => select(is[l], pivot[j][l], other[l]));
+            let other = blend::<AVX>(eliminate, reduced, e);
+            a[j][i] = blend::<AVX>(*is, pivot[j], other);
         }
     }
     // Exchange positions C and that of the pivot row.
     for (pos, is) in position.iter_mut().zip(&chosen) {
-        let other = lanes!(l => select(mask(pos[l] == col), best_position[l], pos[l]));
-        *pos = lanes!(l => select(is[l], col, other[l]));
+        let at_col: Mask = std::array::from_fn(|l| mask(pos[l] == col));
+        let other = blend::<AVX>(at_col, best_position, *pos);
+        *pos = blend::<AVX>(*is, [col; LANES], other);
     }
 }
 
@@ -603,6 +606,29 @@ type Mask = [u64; LANES];
 #[inline(always)]
 fn mask(b: bool) -> u64 {
     0u64.wrapping_sub(u64::from(b))
+}
+
+/// [`select`] lane by lane. With `AVX` one `vblendvpd` (the compiler turns the bitwise
+/// form into three instructions): the same bits, a select is exact.
+#[inline(always)]
+fn blend<const AVX: bool>(m: Mask, a: Lanes, b: Lanes) -> Lanes {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        use std::arch::x86_64::{__m256d, _mm256_blendv_pd};
+        use std::mem::transmute;
+        // SAFETY: `AVX` is true only in `reduce_leading_lanes_avx2`, which runs on CPUs with
+        // AVX2 (run-time detection in `WrenchClosureTest::new`); the transmutes are between
+        // 32-byte plain-data types. `blendv` takes `a` where the sign bit of `m` is set, and
+        // every lane of `m` is all ones or all zeros.
+        return unsafe {
+            transmute::<__m256d, Lanes>(_mm256_blendv_pd(
+                transmute::<Lanes, __m256d>(b),
+                transmute::<Lanes, __m256d>(a),
+                transmute::<Mask, __m256d>(m),
+            ))
+        };
+    }
+    lanes!(l => select(m[l], a[l], b[l]))
 }
 
 /// `a` where `m` is all ones, `b` where it is zero, by bits.
@@ -1055,7 +1081,7 @@ mod tests {
             // single-pose `reduce_leading` of each matrix.
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let mut lanes_a = columns;
-            let reduction = reduce_leading_lanes(&mut lanes_a);
+            let reduction = reduce_leading_lanes::<false>(&mut lanes_a);
             for (l, w) in ws.iter().enumerate() {
                 let finite = w.iter().all(|v| v.is_finite());
                 prop_assert_eq!(reduction.finite[l], finite);
@@ -1082,7 +1108,30 @@ mod tests {
                     prop_assert_eq!(bits(&null), bits(&t.null[..12]), "lane {}", l);
                 }
             }
+            // The AVX2 build of the reduction gives the portable one's flags, and its bits in
+            // every lane in the common case (a broken AVX2 reduction could otherwise hide
+            // behind the single-pose fallback; other lanes hold meaningless values, NaNs whose
+            // sign may differ).
             let avx2_here = t.avx2;
+            #[cfg(target_arch = "x86_64")]
+            if avx2_here {
+                let mut lanes_b = columns;
+                // SAFETY: the CPU supports AVX2 (run-time detection in `new`).
+                let avx = unsafe { reduce_leading_lanes_avx2(&mut lanes_b) };
+                prop_assert_eq!(avx.finite, reduction.finite);
+                prop_assert_eq!(avx.leading, reduction.leading);
+                let lane = |m: &[[Lanes; 6]; 8], p: &[Lanes; 6], l: usize| {
+                    let v: Vec<f64> = m.iter().flatten().chain(p).map(|x| x[l]).collect();
+                    bits(&v)
+                };
+                for l in (0..LANES).filter(|&l| reduction.leading[l]) {
+                    prop_assert_eq!(
+                        lane(&lanes_b, &avx.position, l),
+                        lane(&lanes_a, &reduction.position, l),
+                        "lane {}", l
+                    );
+                }
+            }
             for avx2 in [false, avx2_here] {
                 t.avx2 = avx2;
                 let four = t.decide_four_6x8(&columns, wanted);
