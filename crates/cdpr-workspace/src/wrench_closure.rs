@@ -463,21 +463,18 @@ impl WrenchClosureTest {
             if !(wanted[l] && reduction.finite[l]) {
                 false
             } else if reduction.leading[l] {
-                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2, given
-                // as constants (their norms and pseudo-angles fold at compile time), and −e_1
-                // is the reference direction (any row is one: see `straddling_pair_gap`).
-                let mut null = [0.0f64; 12];
+                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2. (Built
+                // in a local array with rows 6, 7 as constants it ran 1.6 times slower,
+                // although in fewer instructions.)
+                let null = &mut self.null[..16];
                 for (i, position) in reduction.position.iter().enumerate() {
                     // A position is an integer 0–5 (exact in f64).
-                    let p = usize::from(position[l] as u8).min(5);
+                    let p = position[l] as u8 as usize;
                     null[2 * p] = -a[6][i][l];
                     null[2 * p + 1] = -a[7][i][l];
                 }
-                straddling_pair_gap(8, 6, |i| match i {
-                    6 => (1.0, 0.0),
-                    7 => (0.0, 1.0),
-                    _ => (null[2 * i], null[2 * i + 1]),
-                })
+                null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
+                self.half_plane()
             } else {
                 let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
                 self.decide(&w, None).unwrap_or(false)
@@ -926,7 +923,7 @@ mod tests {
             t.null[..2 * n].copy_from_slice(&null);
             let sorted = t.half_plane_sorted();
             prop_assert_eq!(t.half_plane(), sorted, "{:?}", null);
-            // Every row serves as the reference direction (the four-pose path takes row 6).
+            // Every row serves as the reference direction (the proof in `straddling_pair_gap`).
             for reference in 0..n {
                 let straddling = straddling_pair_gap(n, reference, |i| (null[2 * i], null[2 * i + 1]));
                 prop_assert_eq!(straddling, sorted, "reference {}, {:?}", reference, null);
