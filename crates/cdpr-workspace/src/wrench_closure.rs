@@ -396,8 +396,11 @@ impl WrenchClosureTest {
     fn half_plane(&self) -> bool {
         // Eight cables (6 DOF) with the length known at compile time: no bounds checks.
         match <&[f64; 16]>::try_from(&self.null[..2 * self.n]) {
-            Ok(null) => straddling_pair_gap(null),
-            Err(_) => straddling_pair_gap(&self.null[..2 * self.n]),
+            Ok(null) => straddling_pair_gap(8, 0, |i| (null[2 * i], null[2 * i + 1])),
+            Err(_) => {
+                let null = &self.null[..2 * self.n];
+                straddling_pair_gap(self.n, 0, |i| (null[2 * i], null[2 * i + 1]))
+            }
         }
     }
 }
@@ -454,13 +457,15 @@ impl WrenchClosureTest {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
             true => unsafe { reduce_leading_lanes_avx2(&mut a) },
-            _ => reduce_leading_lanes(&mut a),
+            _ => reduce_leading_lanes::<false>(&mut a),
         };
         std::array::from_fn(|l| {
             if !(wanted[l] && reduction.finite[l]) {
                 false
             } else if reduction.leading[l] {
-                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2.
+                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2. (Built
+                // in a local array with rows 6, 7 as constants it ran 1.6 times slower,
+                // although in fewer instructions.)
                 let null = &mut self.null[..16];
                 for (i, position) in reduction.position.iter().enumerate() {
                     // A position is an integer 0–5 (exact in f64).
@@ -486,7 +491,7 @@ impl WrenchClosureTest {
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
-    reduce_leading_lanes(a)
+    reduce_leading_lanes::<true>(a)
 }
 
 /// Finiteness, scale and [`WrenchClosureTest::reduce_leading`] of four 6 × 8 matrices, one
@@ -496,9 +501,10 @@ unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
 /// and every other row with a non-zero entry in the pivot column gets `o −= f · p`. Only the
 /// columns right of the pivot are updated: the single-pose loop updates whole rows, but its
 /// entries left of the pivot column are never read again. A lane whose pivot falls below the
-/// rank tolerance is flagged (`leading` false) and its values are meaningless.
+/// rank tolerance is flagged (`leading` false) and its values are meaningless. `AVX` (only in
+/// [`reduce_leading_lanes_avx2`]) makes the selects blend instructions ([`blend`]).
 #[inline(always)]
-fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
+fn reduce_leading_lanes<const AVX: bool>(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     // Finiteness (as `decide`) and the largest |w_ij| by comparisons (as `reduce_fixed`).
     let mut finite: Mask = [u64::MAX; LANES];
     let mut largest = [0.0f64; LANES];
@@ -508,7 +514,8 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
             for l in 0..LANES {
                 finite[l] &= mask(v[l] < f64::INFINITY);
             }
-            largest = lanes!(l => select(mask(v[l] > largest[l]), v[l], largest[l]));
+            let larger: Mask = std::array::from_fn(|l| mask(v[l] > largest[l]));
+            largest = blend::<AVX>(larger, v, largest);
         }
     }
     // `largest.max(1e-300)` (largest is finite and ≥ 0 where it matters).
@@ -517,12 +524,12 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
     let mut position: [Lanes; 6] = std::array::from_fn(|i| [i as f64; LANES]);
     let mut leading = finite;
     // One step per pivot column, each unrolled for its column at compile time.
-    pivot_step::<0>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<1>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<2>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<3>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<4>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<5>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<0, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<1, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<2, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<3, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<4, AVX>(a, &mut position, &mut leading, &tolerance);
+    pivot_step::<5, AVX>(a, &mut position, &mut leading, &tolerance);
     LaneReduction {
         finite: finite.map(|m| m != 0),
         leading: leading.map(|m| m != 0),
@@ -532,7 +539,7 @@ fn reduce_leading_lanes(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
 
 /// Step `C` of [`reduce_leading_lanes`]: pivot column `C`, lane by lane.
 #[inline(always)]
-fn pivot_step<const C: usize>(
+fn pivot_step<const C: usize, const AVX: bool>(
     a: &mut [[Lanes; 6]; 8],
     position: &mut [Lanes; 6],
     leading: &mut Mask,
@@ -552,8 +559,8 @@ fn pivot_step<const C: usize>(
                 & (mask(v[l] > best_abs[l])
                     | (mask(v[l] == best_abs[l]) & mask(pos[l] < best_position[l])))
         });
-        best_abs = lanes!(l => select(take[l], v[l], best_abs[l]));
-        best_position = lanes!(l => select(take[l], pos[l], best_position[l]));
+        best_abs = blend::<AVX>(take, v, best_abs);
+        best_position = blend::<AVX>(take, *pos, best_position);
     }
     for l in 0..LANES {
         leading[l] &= !mask(best_abs[l] <= tolerance[l]);
@@ -564,7 +571,7 @@ fn pivot_step<const C: usize>(
     let mut pivot = [[0.0f64; LANES]; 8];
     for (i, is) in chosen.iter().enumerate() {
         for j in C..8 {
-            pivot[j] = lanes!(l => select(is[l], a[j][i][l], pivot[j][l]));
+            pivot[j] = blend::<AVX>(*is, a[j][i], pivot[j]);
         }
     }
     let inv = lanes!(l => 1.0 / pivot[C][l]);
@@ -577,14 +584,15 @@ fn pivot_step<const C: usize>(
         for j in C + 1..8 {
             let e = a[j][i];
             let reduced = lanes!(l => e[l] - f[l] * pivot[j][l]);
-            let other = lanes!(l => select(eliminate[l], reduced[l], e[l]));
-            a[j][i] = lanes!(l => select(is[l], pivot[j][l], other[l]));
+            let other = blend::<AVX>(eliminate, reduced, e);
+            a[j][i] = blend::<AVX>(*is, pivot[j], other);
         }
     }
     // Exchange positions C and that of the pivot row.
     for (pos, is) in position.iter_mut().zip(&chosen) {
-        let other = lanes!(l => select(mask(pos[l] == col), best_position[l], pos[l]));
-        *pos = lanes!(l => select(is[l], col, other[l]));
+        let at_col: Mask = std::array::from_fn(|l| mask(pos[l] == col));
+        let other = blend::<AVX>(at_col, best_position, *pos);
+        *pos = blend::<AVX>(*is, [col; LANES], other);
     }
 }
 
@@ -597,33 +605,67 @@ fn mask(b: bool) -> u64 {
     0u64.wrapping_sub(u64::from(b))
 }
 
+/// [`select`] lane by lane. With `AVX` one `vblendvpd` (the compiler turns the bitwise
+/// form into three instructions): the same bits, a select is exact.
+#[inline(always)]
+fn blend<const AVX: bool>(m: Mask, a: Lanes, b: Lanes) -> Lanes {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        use std::arch::x86_64::{__m256d, _mm256_blendv_pd};
+        use std::mem::transmute;
+        // SAFETY: `AVX` is true only in `reduce_leading_lanes_avx2`, which runs on CPUs with
+        // AVX2 (run-time detection in `WrenchClosureTest::new`); the transmutes are between
+        // 32-byte plain-data types. `blendv` takes `a` where the sign bit of `m` is set, and
+        // every lane of `m` is all ones or all zeros.
+        return unsafe {
+            transmute::<__m256d, Lanes>(_mm256_blendv_pd(
+                transmute::<Lanes, __m256d>(b),
+                transmute::<Lanes, __m256d>(a),
+                transmute::<Mask, __m256d>(m),
+            ))
+        };
+    }
+    lanes!(l => select(m[l], a[l], b[l]))
+}
+
 /// `a` where `m` is all ones, `b` where it is zero, by bits.
 #[inline(always)]
 fn select(m: u64, a: f64, b: f64) -> f64 {
     f64::from_bits((m & a.to_bits()) | (!m & b.to_bits()))
 }
 
-/// [`WrenchClosureTest::half_plane`] of the n × 2 basis `null` (row-major).
+/// [`WrenchClosureTest::half_plane`] of the n rows `row(i)` = ν_i of a null basis, with
+/// −ν_`reference` as the direction t that the tested pair straddles. Any row will do: when some
+/// consecutive pair (u*, w*) passes `gap`, the rows, ν_`reference` among them, lie in a closed
+/// arc of width < π − 10⁻⁹ rad, so −ν_`reference` lies in the open arc from u* to w*, at least
+/// 10⁻⁹ rad from its ends (`tests::half_plane_equals_the_sorted_test` checks every choice).
 #[inline(always)]
-fn straddling_pair_gap(null: &[f64]) -> bool {
-    let n = null.len() / 2;
-    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-    // The largest by comparisons: the same value as `f64::max` (no NaN here).
-    let scale2 = (0..n)
-        .map(norm2)
-        .fold(0.0f64, |m, v| if v > m { v } else { m });
+fn straddling_pair_gap(n: usize, reference: usize, row: impl Fn(usize) -> (f64, f64)) -> bool {
+    let norm2 = |(x, y): (f64, f64)| x * x + y * y;
+    // The largest and the smallest norm by comparisons in one pass: `smallest ≤ tol2 · scale2`
+    // is "some row has norm2 ≤ tol2 · scale2" (NaN norms take part in neither).
+    let (mut scale2, mut smallest) = (0.0f64, f64::INFINITY);
+    for i in 0..n {
+        let v = norm2(row(i));
+        scale2 = if v > scale2 { v } else { scale2 };
+        smallest = if v < smallest { v } else { smallest };
+    }
     let tol2 = STRICT_TOLERANCE * STRICT_TOLERANCE;
-    if (0..n).any(|i| norm2(i) <= tol2 * scale2) {
+    if smallest <= tol2 * scale2 {
         return false; // a cable slack in every self-stress
     }
-    let t = total_order_key(diamond_angle(-null[0], -null[1]));
-    // (angle, row) of the last row below t, the first at or above t, and the first and
-    // last overall; angles compared as `f64::total_cmp` does (the sort's comparison).
-    let mut last_below: Option<(i64, usize)> = None;
-    let mut first_above: Option<(i64, usize)> = None;
+    let (rx, ry) = row(reference);
+    let t = total_order_key(diamond_angle(-rx, -ry));
+    // (angle, row) of the last row below t, the first at or above t, and the first and last
+    // overall; angles compared as `f64::total_cmp` does (the sort's comparison). `NONE` marks
+    // "no row yet"; every key is ≥ i64::MIN, so the first row below t always replaces it.
+    const NONE: usize = usize::MAX;
+    let mut last_below = (i64::MIN, NONE);
+    let mut first_above = (i64::MAX, NONE);
     let (mut first, mut last) = ((i64::MAX, usize::MAX), (i64::MIN, 0));
     for i in 0..n {
-        let a = total_order_key(diamond_angle(null[2 * i], null[2 * i + 1]));
+        let (x, y) = row(i);
+        let a = total_order_key(diamond_angle(x, y));
         if a < first.0 {
             first = (a, i);
         }
@@ -631,16 +673,24 @@ fn straddling_pair_gap(null: &[f64]) -> bool {
             last = (a, i);
         }
         if a < t {
-            if last_below.is_none_or(|(b, _)| a >= b) {
-                last_below = Some((a, i));
+            if a >= last_below.0 {
+                last_below = (a, i);
             }
-        } else if first_above.is_none_or(|(b, _)| a < b) {
-            first_above = Some((a, i));
+        } else if a < first_above.0 || first_above.1 == NONE {
+            first_above = (a, i);
         }
     }
-    let u = last_below.map_or(last.1, |(_, i)| i);
-    let w = first_above.map_or(first.1, |(_, i)| i);
-    gap(null, u, w, tol2)
+    let u = if last_below.1 == NONE {
+        last.1
+    } else {
+        last_below.1
+    };
+    let w = if first_above.1 == NONE {
+        first.1
+    } else {
+        first_above.1
+    };
+    gap(row(u), row(w), tol2)
 }
 
 impl WrenchClosureTest {
@@ -698,12 +748,12 @@ fn partial_pivot<const D: usize, const N: usize>(
     (best, best_abs)
 }
 
-/// Whether the counter-clockwise angle from row u to row w of the n × 2 basis `null` exceeds π
-/// by more than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
-#[inline]
-fn gap(null: &[f64], u: usize, w: usize, tol2: f64) -> bool {
-    let norm2 = |i: usize| null[2 * i] * null[2 * i] + null[2 * i + 1] * null[2 * i + 1];
-    let cross = null[2 * u] * null[2 * w + 1] - null[2 * u + 1] * null[2 * w];
+/// Whether the counter-clockwise angle from row u to row w of a null basis exceeds π by more
+/// than the strict tolerance: ν_u × ν_w < 0 and (ν_u × ν_w)² > tol2 |ν_u|² |ν_w|².
+#[inline(always)]
+fn gap(u: (f64, f64), w: (f64, f64), tol2: f64) -> bool {
+    let norm2 = |(x, y): (f64, f64)| x * x + y * y;
+    let cross = u.0 * w.1 - u.1 * w.0;
     cross < 0.0 && cross * cross > tol2 * norm2(u) * norm2(w)
 }
 
@@ -871,7 +921,13 @@ mod tests {
             let mut null = null;
             null.rotate_left(2 * shift);
             t.null[..2 * n].copy_from_slice(&null);
-            prop_assert_eq!(t.half_plane(), t.half_plane_sorted(), "{:?}", null);
+            let sorted = t.half_plane_sorted();
+            prop_assert_eq!(t.half_plane(), sorted, "{:?}", null);
+            // Every row serves as the reference direction (the proof in `straddling_pair_gap`).
+            for reference in 0..n {
+                let straddling = straddling_pair_gap(n, reference, |i| (null[2 * i], null[2 * i + 1]));
+                prop_assert_eq!(straddling, sorted, "reference {}, {:?}", reference, null);
+            }
         }
 
         /// At the exact floating-point boundary of the tolerance rule: the width where the
@@ -889,7 +945,12 @@ mod tests {
                 rows[2] = ulps(rows[2], dx);
                 rows[3] = ulps(rows[3], dy);
                 t.null[..2 * n].copy_from_slice(&rows);
-                (t.half_plane(), t.half_plane_sorted())
+                let sorted = t.half_plane_sorted();
+                // Whether the decision with every row as the reference direction is the sorted one.
+                let every_reference = (0..n).all(|k| {
+                    straddling_pair_gap(n, k, |i| (rows[2 * i], rows[2 * i + 1])) == sorted
+                });
+                (t.half_plane(), sorted, every_reference)
             };
             let mut decide = |width: f64| decide_nudged(width, 0, 0);
             let (mut lo, mut hi) = (std::f64::consts::PI - 1e-8, std::f64::consts::PI);
@@ -902,8 +963,9 @@ mod tests {
                 for k in 0..4u64 {
                     for width in [f64::from_bits(lo.to_bits() - k), f64::from_bits(hi.to_bits() + k)] {
                         for (dx, dy) in (-3..=3).flat_map(|dx| (-3..=3).map(move |dy| (dx, dy))) {
-                            let (new, old) = decide_nudged(width, dx, dy);
+                            let (new, old, every_reference) = decide_nudged(width, dx, dy);
                             prop_assert_eq!(new, old, "width {:e}, nudge ({}, {})", width, dx, dy);
+                            prop_assert!(every_reference, "width {:e}, nudge ({}, {})", width, dx, dy);
                         }
                     }
                 }
@@ -1016,7 +1078,7 @@ mod tests {
             // single-pose `reduce_leading` of each matrix.
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             let mut lanes_a = columns;
-            let reduction = reduce_leading_lanes(&mut lanes_a);
+            let reduction = reduce_leading_lanes::<false>(&mut lanes_a);
             for (l, w) in ws.iter().enumerate() {
                 let finite = w.iter().all(|v| v.is_finite());
                 prop_assert_eq!(reduction.finite[l], finite);
@@ -1043,7 +1105,30 @@ mod tests {
                     prop_assert_eq!(bits(&null), bits(&t.null[..12]), "lane {}", l);
                 }
             }
+            // The AVX2 build of the reduction gives the portable one's flags, and its bits in
+            // every lane in the common case (a broken AVX2 reduction could otherwise hide
+            // behind the single-pose fallback; other lanes hold meaningless values, NaNs whose
+            // sign may differ).
             let avx2_here = t.avx2;
+            #[cfg(target_arch = "x86_64")]
+            if avx2_here {
+                let mut lanes_b = columns;
+                // SAFETY: the CPU supports AVX2 (run-time detection in `new`).
+                let avx = unsafe { reduce_leading_lanes_avx2(&mut lanes_b) };
+                prop_assert_eq!(avx.finite, reduction.finite);
+                prop_assert_eq!(avx.leading, reduction.leading);
+                let lane = |m: &[[Lanes; 6]; 8], p: &[Lanes; 6], l: usize| {
+                    let v: Vec<f64> = m.iter().flatten().chain(p).map(|x| x[l]).collect();
+                    bits(&v)
+                };
+                for l in (0..LANES).filter(|&l| reduction.leading[l]) {
+                    prop_assert_eq!(
+                        lane(&lanes_b, &avx.position, l),
+                        lane(&lanes_a, &reduction.position, l),
+                        "lane {}", l
+                    );
+                }
+            }
             for avx2 in [false, avx2_here] {
                 t.avx2 = avx2;
                 let four = t.decide_four_6x8(&columns, wanted);
