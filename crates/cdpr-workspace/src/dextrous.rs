@@ -204,7 +204,9 @@ impl PlanarSlice {
         let floor = LEAN_MIN_LENGTH * self.length_scale.max((px * px + py * py).sqrt());
         let mut w = [[0.0; 3]; 4];
         let mut short = false;
-        for ((wi, &[ax, ay]), &[cx, cy]) in w.iter_mut().zip(&self.attachment).zip(&self.frame) {
+        for (i, wi) in w.iter_mut().enumerate() {
+            let [ax, ay] = self.attachment[i];
+            let [cx, cy] = self.frame[i];
             // ℓ_i = c_i − (u + R a_i), eq. (6.2).
             let (vx, vy) = (cx - (px + ax), cy - (py + ay));
             let length = (vx * vx + vy * vy).sqrt();
