@@ -546,6 +546,187 @@ pub fn is_feasible_planar(
     )
 }
 
+/// [`is_feasible_planar`] prepared for a loop over poses: w_ext, the bounds and the end are
+/// fixed, only W changes. [`PlanarClosedForm::is_feasible`] performs the same floating-point
+/// operations in the same order as [`is_feasible_planar`] (signed 3 × 3 minors d_j of W, the
+/// basis of largest |d_f|, the Hadamard test, M by Cramer's rule, the interval of eq. (6.18),
+/// the end of smaller or larger Σ t, the snap and the equilibrium certificate), hence the same
+/// verdict bit for bit (test `planar_closed_form_agrees_with_is_feasible_planar`), without the
+/// generic padding, the bounds' vectors and the `Result` plumbing of the general path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanarClosedForm {
+    /// −w_ext (the right-hand side of Cramer's rule) and w_ext (the residual's start).
+    neg_we: [f64; 3],
+    we: [f64; 3],
+    tmin: [f64; 4],
+    tmax: [f64; 4],
+    /// max(1, ‖w_ext‖∞): the load part of the certificate's scale.
+    we_scale: f64,
+    maximize: bool,
+}
+
+impl PlanarClosedForm {
+    /// The prepared test, or the error [`is_feasible_planar`] gives for these bounds and w_ext.
+    pub fn new(
+        w_ext: &nalgebra::Vector3<f64>,
+        bounds: &TensionBounds,
+        maximize: bool,
+    ) -> Result<Self, TensionError> {
+        if bounds.len() != 4 {
+            return Err(TensionError::DimensionMismatch {
+                what: "tension bounds vs wrench matrix columns",
+                expected: 4,
+                found: bounds.len(),
+            });
+        }
+        let we = [w_ext[0], w_ext[1], w_ext[2]];
+        if !we.iter().all(|v| v.is_finite()) {
+            return Err(not_finite(&[], &we));
+        }
+        let we_max = we.iter().fold(0.0f64, |a, e| a.max(e.abs()));
+        Ok(Self {
+            neg_we: we.map(|v| -v),
+            we,
+            tmin: std::array::from_fn(|i| bounds.min()[i]),
+            tmax: std::array::from_fn(|i| bounds.max()[i]),
+            we_scale: 1f64.max(we_max),
+            maximize,
+        })
+    }
+
+    /// The verdict of [`is_feasible_planar`] for W with columns `w` (false when an entry is not
+    /// finite, where [`is_feasible_planar`] errs).
+    #[inline]
+    pub fn is_feasible(&self, w: &[[f64; 3]; 4]) -> bool {
+        // v · 0 is 0 for a finite v and NaN otherwise: all entries are finite iff the sum is 0.
+        let mut zero = 0.0;
+        // Π ‖row_k‖² (a zero row is singular).
+        let mut row_norm = [0.0f64; 3];
+        for col in w {
+            for k in 0..3 {
+                zero += col[k] * 0.0;
+                row_norm[k] += col[k] * col[k];
+            }
+        }
+        if zero != 0.0 || row_norm[0] == 0.0 || row_norm[1] == 0.0 || row_norm[2] == 0.0 {
+            return false;
+        }
+        let rows2 = 1.0 * row_norm[0] * row_norm[1] * row_norm[2];
+        // Signed maximal minors: W d = 0.
+        let det = |a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]| det_small::<3>(a, b, c);
+        let e = [
+            det(&w[1], &w[2], &w[3]),
+            det(&w[0], &w[2], &w[3]),
+            det(&w[0], &w[1], &w[3]),
+            det(&w[0], &w[1], &w[2]),
+        ];
+        let d = [e[0], -e[1], e[2], -e[3]];
+        let dn = e[0] * e[0] + e[1] * e[1] + e[2] * e[2] + e[3] * e[3];
+        // The basis of largest |det A| (ties to the first).
+        let (mut free, mut best, mut d_free) = (0, d[0].abs(), d[0]);
+        for (j, &dj) in d.iter().enumerate().skip(1) {
+            if dj.abs() > best * (1.0 + 1e-12) {
+                (free, best, d_free) = (j, dj.abs(), dj);
+            }
+        }
+        if !(d_free != 0.0 && dn >= SINGULARITY_RATIO * SINGULARITY_RATIO * rows2) {
+            return false;
+        }
+        let inv_free = 1.0 / d_free;
+        let n = d.map(|dj| dj * inv_free);
+        // M_A = A⁻¹ (−w_ext) by Cramer's rule, det A = (−1)^free d_free.
+        const OTHERS: [[usize; 3]; 4] = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+        let o = OTHERS[free];
+        let inv_a = if free % 2 == 0 { inv_free } else { -inv_free };
+        let rhs = &self.neg_we;
+        let mut m = [0.0f64; 4];
+        m[o[0]] = det(rhs, &w[o[1]], &w[o[2]]) * inv_a;
+        m[o[1]] = det(&w[o[0]], rhs, &w[o[2]]) * inv_a;
+        m[o[2]] = det(&w[o[0]], &w[o[1]], rhs) * inv_a;
+        // Eq. (6.18) per cable; 4 marks "no defining cable".
+        let (tmin, tmax) = (&self.tmin, &self.tmax);
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        let (mut i_lo, mut b_lo, mut i_hi, mut b_hi) = (4, 0.0, 4, 0.0);
+        let mut slope = 0.0;
+        for i in 0..4 {
+            let (mi, ni, tl, th) = (m[i], n[i], tmin[i], tmax[i]);
+            slope += ni;
+            if ni.abs() <= 1e-14 {
+                if bound_violation(tl, th, mi) > BOUND_TOLERANCE {
+                    return false;
+                }
+                continue;
+            }
+            let inv_n = d_free / d[i];
+            let a = (tl - mi) * inv_n;
+            let b = (th - mi) * inv_n;
+            let ((l, bl), (h, bh)) = if ni > 0.0 {
+                ((a, tl), (b, th))
+            } else {
+                ((b, th), (a, tl))
+            };
+            if l > lo {
+                (lo, i_lo, b_lo) = (l, i, bl);
+            }
+            if h < hi {
+                (hi, i_hi, b_hi) = (h, i, bh);
+            }
+        }
+        if lo > hi {
+            // Empty, unless only by rounding (see `interval_of`).
+            let mid = 0.5 * (lo + hi);
+            let worst = (0..4)
+                .map(|i| bound_violation(tmin[i], tmax[i], m[i] + n[i] * mid))
+                .fold(f64::NEG_INFINITY, f64::max);
+            if worst > BOUND_TOLERANCE {
+                return false;
+            }
+            (lo, hi, i_lo, i_hi) = (mid, mid, 4, 4);
+        }
+        if self.maximize && !hi.is_finite() {
+            return false;
+        }
+        let take_hi = hi.is_finite()
+            && if self.maximize {
+                slope > 0.0
+            } else {
+                slope < 0.0
+            };
+        let (tb, at, bound) = if take_hi {
+            (hi, i_hi, b_hi)
+        } else {
+            (lo, i_lo, b_lo)
+        };
+        // The certificate: snap onto violated bounds within the tolerance, then
+        // ‖W t + w_ext‖∞ ≤ EQUILIBRIUM_TOLERANCE · max(1, ‖w_ext‖∞, ‖W‖∞ max|t_i|).
+        let mut res = self.we;
+        let mut rows = [0.0f64; 3];
+        let mut t_max: f64 = 0.0;
+        for i in 0..4 {
+            let mut ti = if i == at { bound } else { m[i] + n[i] * tb };
+            let (l, h) = (tmin[i], tmax[i]);
+            if !(ti >= l && ti <= h) {
+                if bound_violation(l, h, ti) > BOUND_TOLERANCE {
+                    return false;
+                }
+                ti = if ti < l { l } else { h };
+            }
+            for k in 0..3 {
+                res[k] += w[i][k] * ti;
+                rows[k] += w[i][k].abs();
+            }
+            t_max = t_max.max(ti.abs());
+        }
+        if res.iter().any(|r| r.is_nan()) {
+            return false;
+        }
+        let residual = res[0].abs().max(res[1].abs()).max(res[2].abs());
+        let w_norm = rows[0].max(rows[1]).max(rows[2]);
+        let scale = self.we_scale.max(w_norm * t_max);
+        residual.is_finite() && residual <= crate::certificate::EQUILIBRIUM_TOLERANCE * scale
+    }
+}
+
 /// The first non-finite entry of W (column-major) or w_ext, as the solver reports it.
 #[cold]
 fn not_finite(ws: &[f64], we: &[f64]) -> TensionError {
@@ -838,5 +1019,81 @@ mod tests {
             }
         }
         assert!(compared > 100, "{compared}");
+    }
+
+    /// The prepared planar test gives the verdict of `is_feasible_planar` (itself the solver's
+    /// verdict) on random, near-singular, degenerate and near-boundary problems: tensions placed
+    /// on or just across their bounds, fixed cables (t_min = t_max), no upper bound, zero and
+    /// parallel columns, non-finite entries; both ends (l1 and l1-max).
+    #[test]
+    fn planar_closed_form_agrees_with_is_feasible_planar() {
+        use nalgebra::{Matrix3x4, Vector3};
+        let mut rnd = uniform_stream(0x5851_f42d_4c95_7f2du64);
+        let (mut yes, mut no) = (0, 0);
+        for case in 0..200_000 {
+            let mut w = Matrix3x4::from_fn(|_, _| rnd());
+            match case % 11 {
+                // Two parallel columns, a zero row, a near-dependent column.
+                1 => w.set_column(1, &(w.column(0) * (1.0 + 1e-13 * rnd()))),
+                2 => w.row_mut(case % 3).fill(0.0),
+                3 => w.set_column(3, &(w.column(0) * rnd() + w.column(1) * rnd())),
+                4 => w[(case % 3, case % 4)] = [f64::NAN, f64::INFINITY][case % 2],
+                _ => {}
+            }
+            let lo = 5.0 * (rnd() + 1.0);
+            let mut hi = [lo + 100.0 * (rnd() + 1.0); 4];
+            match case % 5 {
+                1 => hi[case % 4] = lo,
+                2 => hi[case % 4] = f64::INFINITY,
+                _ => {}
+            }
+            let b = TensionBounds::new(vec![lo; 4], hi.to_vec()).unwrap();
+            // w_ext = −W t for tensions t with some cables on (or just across) a bound.
+            let t: Vec<f64> = (0..4)
+                .map(|i| {
+                    let top = if hi[i].is_finite() { hi[i] } else { lo + 50.0 };
+                    let nudge = 1.0 + [0.0, 1e-10, -1e-10, 1e-8, 0.0][case % 5];
+                    match (case / 5 + i) % 4 {
+                        0 => lo * nudge,
+                        1 => top * nudge,
+                        _ => lo + (top - lo) * 0.5 * (rnd() + 1.0),
+                    }
+                })
+                .collect();
+            let mut we: Vector3<f64> = -(w * nalgebra::Vector4::from_row_slice(&t));
+            if case % 7 == 0 {
+                we = Vector3::from_fn(|_, _| 200.0 * rnd());
+            }
+            if !we.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            for maximize in [false, true] {
+                let lean = PlanarClosedForm::new(&we, &b, maximize).unwrap();
+                let expected = is_feasible_planar(&w, &we, &b, maximize).unwrap_or(false);
+                assert_eq!(
+                    lean.is_feasible(&std::array::from_fn(|i| {
+                        [w[(0, i)], w[(1, i)], w[(2, i)]]
+                    })),
+                    expected,
+                    "case {case}, maximize {maximize}: {w} {we} {b:?}"
+                );
+                if expected { yes += 1 } else { no += 1 }
+            }
+        }
+        assert!(
+            yes > 20_000 && no > 20_000,
+            "{yes} feasible, {no} infeasible"
+        );
+        // The errors of `is_feasible_planar`, at construction.
+        let we = Vector3::new(0.0, f64::NAN, 0.0);
+        assert!(
+            PlanarClosedForm::new(&we, &TensionBounds::uniform(4, 1.0, 2.0).unwrap(), false)
+                .is_err()
+        );
+        let we = Vector3::zeros();
+        assert!(
+            PlanarClosedForm::new(&we, &TensionBounds::uniform(3, 1.0, 2.0).unwrap(), false)
+                .is_err()
+        );
     }
 }

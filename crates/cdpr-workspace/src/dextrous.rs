@@ -27,8 +27,9 @@
 use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Criterion, Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
-use cdpr_tension::{Method, TensionBounds, closed_form};
-use nalgebra::{Matrix3x4, Rotation3, Unit, Vector3};
+use cdpr_tension::Method;
+use cdpr_tension::closed_form::PlanarClosedForm;
+use nalgebra::{Rotation3, Unit, Vector3};
 
 /// A range of orientation angles [min, max] sampled at `slices` = m_sl regularly spaced values,
 /// endpoints included (radians).
@@ -127,7 +128,8 @@ const LEAN_MIN_LENGTH: f64 = 1e-9;
 /// computed on the stack. The attachments R a_i are computed once; per pose the cable vectors
 /// ℓ_i = c_i − (u + R a_i) (eq. (6.2)), the columns [u_i; (R a_i) × u_i] of W (eq. (6.11))
 /// and the closed-form tensions with their certificate
-/// ([`cdpr_tension::closed_form::is_feasible_planar`]) are the evaluator's expressions, so the
+/// ([`PlanarClosedForm`], the arithmetic of [`cdpr_tension::closed_form::is_feasible_planar`])
+/// are the evaluator's expressions, so the
 /// verdicts are the same bit for bit (test `planar_slice_agrees_with_the_evaluator`).
 #[derive(Debug, Clone)]
 pub struct PlanarSlice {
@@ -138,9 +140,8 @@ pub struct PlanarSlice {
     length_scale: f64,
     /// The largest cable-length floor (−∞ without one).
     min_length: f64,
-    bounds: TensionBounds,
-    /// (w_ext, l1-max?) of every tension criterion.
-    tension: Vec<(Vector3<f64>, bool)>,
+    /// Algorithm 6.1 with its certificate for every tension criterion (w_ext, end).
+    tension: Vec<PlanarClosedForm>,
 }
 
 impl PlanarSlice {
@@ -170,7 +171,8 @@ impl PlanarSlice {
                         Method::L1Max => true,
                         _ => return None,
                     };
-                    tension.push((Vector3::new(wrench[0], wrench[1], wrench[2]), maximize));
+                    let we = Vector3::new(wrench[0], wrench[1], wrench[2]);
+                    tension.push(PlanarClosedForm::new(&we, eval.bounds(), maximize).ok()?);
                 }
                 _ => return None,
             }
@@ -186,7 +188,6 @@ impl PlanarSlice {
             attachment: std::array::from_fn(|i| [attachment[i].x, attachment[i].y]),
             length_scale: robot.length_scale(),
             min_length,
-            bounds: eval.bounds().clone(),
             tension,
         })
     }
@@ -201,9 +202,9 @@ impl PlanarSlice {
         let (px, py) = (position.x, position.y);
         // ‖u‖ and the cable vectors as the evaluator's 3-vectors with z = 0: the same roundings.
         let floor = LEAN_MIN_LENGTH * self.length_scale.max((px * px + py * py).sqrt());
-        let mut w = Matrix3x4::zeros();
+        let mut w = [[0.0; 3]; 4];
         let mut short = false;
-        for i in 0..4 {
+        for (i, wi) in w.iter_mut().enumerate() {
             let [ax, ay] = self.attachment[i];
             let [cx, cy] = self.frame[i];
             // ℓ_i = c_i − (u + R a_i), eq. (6.2).
@@ -214,19 +215,12 @@ impl PlanarSlice {
             }
             short |= length < self.min_length;
             let (ux, uy) = (vx / length, vy / length);
-            w[(0, i)] = ux;
-            w[(1, i)] = uy;
-            w[(2, i)] = ax * uy - ay * ux;
+            *wi = [ux, uy, ax * uy - ay * ux];
         }
         if short {
             return Some(false);
         }
-        for (we, maximize) in &self.tension {
-            if !closed_form::is_feasible_planar(&w, we, &self.bounds, *maximize).unwrap_or(false) {
-                return Some(false);
-            }
-        }
-        Some(true)
+        Some(self.tension.iter().all(|t| t.is_feasible(&w)))
     }
 }
 
