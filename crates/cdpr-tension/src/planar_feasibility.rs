@@ -61,12 +61,21 @@ pub(crate) enum Decision {
     Undecided,
 }
 
-/// Half-plane n·λ ≥ β with its margin δ (tension units).
+/// Half-plane n·λ ≥ β with its margin δ (tension units), as n·λ ≥ β + δ (tightened) and
+/// n·λ ≥ β − δ (relaxed).
 #[derive(Debug, Clone, Copy)]
 struct HalfPlane {
     n: P2,
-    beta: f64,
-    delta: f64,
+    tight: f64,
+    relaxed: f64,
+}
+
+impl HalfPlane {
+    /// β ± δ.
+    #[inline(always)]
+    fn beta<const TIGHT: bool>(&self) -> f64 {
+        if TIGHT { self.tight } else { self.relaxed }
+    }
 }
 
 #[inline(always)]
@@ -85,8 +94,8 @@ pub(crate) fn decide(ns: &NullSpace, bounds: &TensionBounds) -> Decision {
     let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
     let empty = HalfPlane {
         n: [0.0; 2],
-        beta: 0.0,
-        delta: 0.0,
+        tight: 0.0,
+        relaxed: 0.0,
     };
     let mut h = [empty; 2 * MAX_CABLES];
     for i in 0..n {
@@ -96,25 +105,27 @@ pub(crate) fn decide(ns: &NullSpace, bounds: &TensionBounds) -> Decision {
             return Decision::Undecided;
         }
         let delta = MARGIN * lo[i].abs().max(hi[i].abs()).max(t0.abs()).max(1.0);
+        let (b_lo, b_hi) = (lo[i] - t0, t0 - hi[i]);
         h[i] = HalfPlane {
             n: a,
-            beta: lo[i] - t0,
-            delta,
+            tight: b_lo + delta,
+            relaxed: b_lo - delta,
         };
         h[n + i] = HalfPlane {
             n: [-a[0], -a[1]],
-            beta: t0 - hi[i],
-            delta,
+            tight: b_hi + delta,
+            relaxed: b_hi - delta,
         };
     }
     let h = &h[..2 * n];
     // The minimum-norm tensions (λ = −g ≈ 0) as the start.
     let start = [-ns.g[0], -ns.g[1]];
-    let (k, x) = match seidel(h, 1.0, start) {
+    let (k, x) = match seidel::<true>(h, start) {
         Ok(x) => {
             if (0..n).all(|i| {
                 let t = ns.tension2(i, x);
-                let m = 0.5 * h[i].delta;
+                // δ_i/2 = (tightened − relaxed)/4.
+                let m = 0.25 * (h[i].tight - h[i].relaxed);
                 t >= lo[i] + m && t <= hi[i] - m
             }) {
                 return Decision::Feasible(x);
@@ -125,28 +136,28 @@ pub(crate) fn decide(ns: &NullSpace, bounds: &TensionBounds) -> Decision {
     };
     // x lies in the tightened h_1 … h_{k−1}, inside the relaxed ones: if it violates the relaxed
     // h_k too, an empty relaxed interval on that line proves the relaxed polygon empty.
-    if dot(h[k].n, x) < h[k].beta - h[k].delta && interval(h, -1.0, k, x).is_none() {
+    if dot(h[k].n, x) < h[k].relaxed && interval::<false>(h, k, x).is_none() {
         return Decision::Infeasible;
     }
-    if seidel(h, -1.0, start).is_err() {
+    if seidel::<false>(h, start).is_err() {
         return Decision::Infeasible;
     }
     Decision::Undecided
 }
 
-/// Seidel's incremental algorithm (module docs) on n·λ ≥ β + side·δ from `x` (any point):
+/// Seidel's incremental algorithm (module docs) on the tightened (`TIGHT`) or relaxed
+/// half-planes from `x` (any point):
 /// a point of every half-plane (up to rounding), or `Err((k, x))` when the interval on the line
 /// of half-plane k came out empty, x being the point (in h_1 … h_{k−1}, outside h_k) that left it.
 #[inline(always)]
-fn seidel(h: &[HalfPlane], side: f64, mut x: P2) -> Result<P2, (usize, P2)> {
+fn seidel<const TIGHT: bool>(h: &[HalfPlane], mut x: P2) -> Result<P2, (usize, P2)> {
     for (k, hk) in h.iter().enumerate() {
-        let bk = hk.beta + side * hk.delta;
-        if dot(hk.n, x) >= bk {
+        if dot(hk.n, x) >= hk.beta::<TIGHT>() {
             continue;
         }
         // The point of the line n_k·λ = β_k nearest x, p = x + (β_k − n_k·x)/|n_k|² n_k, and
         // the direction u along the line: λ = p + s u, moved as little as the interval allows.
-        match interval(h, side, k, x) {
+        match interval::<TIGHT>(h, k, x) {
             Some((p, u, s_lo, s_hi)) => {
                 let s = 0.0f64.max(s_lo).min(s_hi);
                 x = [p[0] + s * u[0], p[1] + s * u[1]];
@@ -158,19 +169,19 @@ fn seidel(h: &[HalfPlane], side: f64, mut x: P2) -> Result<P2, (usize, P2)> {
 }
 
 /// The line of half-plane k through the point p nearest x, its direction u, and the interval
-/// [s_lo, s_hi] of p + s u inside h_1 … h_{k−1} (relaxed or tightened by `side`); `None` when
+/// [s_lo, s_hi] of p + s u inside h_1 … h_{k−1} (tightened or relaxed); `None` when
 /// empty.
 #[inline(always)]
-fn interval(h: &[HalfPlane], side: f64, k: usize, x: P2) -> Option<(P2, P2, f64, f64)> {
+fn interval<const TIGHT: bool>(h: &[HalfPlane], k: usize, x: P2) -> Option<(P2, P2, f64, f64)> {
     let hk = h[k];
     let nk = hk.n;
-    let step = (hk.beta + side * hk.delta - dot(nk, x)) / dot(nk, nk);
+    let step = (hk.beta::<TIGHT>() - dot(nk, x)) / dot(nk, nk);
     let p = [x[0] + step * nk[0], x[1] + step * nk[1]];
     let u = [-nk[1], nk[0]];
     let (mut s_lo, mut s_hi) = (f64::NEG_INFINITY, f64::INFINITY);
     for hj in &h[..k] {
         let den = dot(hj.n, u);
-        let num = hj.beta + side * hj.delta - dot(hj.n, p);
+        let num = hj.beta::<TIGHT>() - dot(hj.n, p);
         if den > 0.0 {
             s_lo = s_lo.max(num / den);
         } else if den < 0.0 {

@@ -21,6 +21,11 @@
 //! | barycenter | – | – | polygon by an edge walk from the l1 vertex, else clipped | – |
 //! | sotda | – | – | polygon | – |
 //!
+//! [`TensionSolver::is_feasible`] of the complete methods (l1, l1-max, l2, l2-max, linf, the
+//! barycentre) at r = 2 decides the feasible polygon without the method's optimum (Seidel's
+//! incremental LP with a margin, private module `planar_feasibility`) and falls back to the
+//! table's path only near the polygon's boundary: same verdicts, each "feasible" certified.
+//!
 //! The active-set solvers (r ≥ 3; linf from r = 2; private module `active_set`, on the null-space
 //! parametrisation) fall back to Clarabel ([`crate::interior_point()`]) only on a
 //! numerical failure (iteration cap, dependent working set, an answer that fails the
