@@ -30,6 +30,11 @@
 //!   the barycentre, the closed forms, the other optimisers: independent algorithms). An answer
 //!   that another one beats by more than 10⁻⁷ · max(1, |objective|) counts as `not_optimal`.
 //!
+//! - **the workspace verdict**: `TensionSolver::is_feasible`, which workspace grids call when
+//!   they need no tensions (at redundancy 2 it decides the feasible polygon's emptiness without
+//!   the method's optimum), must equal whether `solve` returned tensions; otherwise
+//!   `verdict_mismatch`.
+//!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
 //! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
 //! solution only; improved-closed-form: Pott 2014, may miss a feasible set) are counted but not
@@ -38,7 +43,7 @@
 //!
 //! `--json` prints one object `{"methods": {NAME: {"solves", "feasible", "infeasible",
 //! "unbounded", "not_applicable", "false_feasible", "false_infeasible", "false_unbounded",
-//! "borderline", "singular", "not_optimal", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
+//! "borderline", "singular", "not_optimal", "verdict_mismatch", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
 //!
 //! ## References
 //! - T. Ogita, S. M. Rump, S. Oishi, *Accurate sum and dot product*, SIAM J. Sci. Comput. 26(6),
@@ -98,6 +103,8 @@ pub struct Counts {
     pub borderline: u64,
     /// Optimisers' answers beaten by another method's verified answer (see the module doc).
     pub not_optimal: u64,
+    /// `is_feasible` (the workspace verdict) disagreeing with `solve` on the same problem.
+    pub verdict_mismatch: u64,
     /// "singular pose" answers (W numerically rank-deficient).
     pub singular: u64,
     /// "infeasible" answers of a heuristic method on a clearly non-empty set (not errors).
@@ -118,6 +125,7 @@ impl Counts {
         self.false_unbounded += o.false_unbounded;
         self.borderline += o.borderline;
         self.not_optimal += o.not_optimal;
+        self.verdict_mismatch += o.verdict_mismatch;
         self.singular += o.singular;
         self.missed_by_heuristic += o.missed_by_heuristic;
         self.errors += o.errors;
@@ -143,6 +151,7 @@ impl Report {
                 && c.false_infeasible == 0
                 && c.false_unbounded == 0
                 && c.not_optimal == 0
+                && c.verdict_mismatch == 0
                 && c.errors == 0
         })
     }
@@ -516,6 +525,18 @@ pub fn soak_range(
                     report_failures.push(format!("problem {index}, {method}: {kind}: {detail}"));
                 }
             };
+            let solved = matches!(out, TensionOutcome::Feasible(_));
+            match solver.is_feasible(&problem) {
+                Ok(verdict) if verdict == solved => {}
+                other => {
+                    c.verdict_mismatch += 1;
+                    fail(
+                        "verdict mismatch",
+                        format!("is_feasible gives {other:?}, solve found tensions: {solved}"),
+                        &mut report.failures,
+                    );
+                }
+            }
             match &out {
                 TensionOutcome::Feasible(s) => {
                     c.feasible += 1;
@@ -679,8 +700,10 @@ Draws N random tension problems (default 100000; planar robots with 3-8 cables, 
 runs every method and checks each answer independently: every \"feasible\" by a compensated
 residual and the bounds, every \"infeasible\" by an LP solved with Clarabel directly, every
 \"unbounded\" by a recession-cone LP, and the optimum of l1, l2, linf, l1-max and l2-max
-against every other method's verified answer (not_optimal: beaten by more than 1e-7 relative).
-Exit code 1 if a complete method gave a false answer or an optimiser a non-optimal one.
+against every other method's verified answer (not_optimal: beaten by more than 1e-7 relative);
+and that is_feasible, the verdict workspace grids use, agrees with solve (verdict_mismatch).
+Exit code 1 if a complete method gave a false answer, an optimiser a non-optimal one, or a
+verdict disagreed.
 Progress on stderr; --json prints one object {\"methods\": {NAME: {\"solves\", \"false_feasible\",
 \"false_infeasible\", \"not_optimal\", ...}}, ...}.";
 
@@ -745,6 +768,7 @@ pub fn run(args: &[String]) -> ExitCode {
                         "false_unbounded": c.false_unbounded,
                         "borderline": c.borderline,
                         "not_optimal": c.not_optimal,
+                        "verdict_mismatch": c.verdict_mismatch,
                         "singular": c.singular,
                         "missed_by_heuristic": c.missed_by_heuristic,
                         "errors": c.errors,
@@ -775,7 +799,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 .join(", ")
         );
         println!(
-            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
             "method",
             "solves",
             "feasible",
@@ -785,6 +809,7 @@ pub fn run(args: &[String]) -> ExitCode {
             "false_i",
             "false_u",
             "not_opt",
+            "verdict",
             "border",
             "not_appl",
             "singular",
@@ -793,7 +818,7 @@ pub fn run(args: &[String]) -> ExitCode {
         for m in Method::ALL {
             let c = report.methods.get(m.name()).cloned().unwrap_or_default();
             println!(
-                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
                 format!(
                     "{}{}",
                     m.name(),
@@ -811,6 +836,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 c.false_infeasible,
                 c.false_unbounded,
                 c.not_optimal,
+                c.verdict_mismatch,
                 c.borderline,
                 c.not_applicable,
                 c.singular,
