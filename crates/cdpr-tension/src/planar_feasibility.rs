@@ -18,18 +18,15 @@
 //!
 //! Tightened and relaxed bounds keep the verdicts those of the polygon clipping:
 //!
-//! 1. the run is on the bounds *tightened* by a margin δ_i = max(10⁻⁷ · max(|t_min,i|,
-//!    |t_max,i|, |t0_i|, 1), 10⁻¹¹ · s), s the largest |t0_j|, |t_min,j|, |t_max,j| of any
-//!    cable: a point found there is checked directly (every t_i at least δ_i/2 inside its
+//! 1. the run is on the bounds *tightened* by a margin δ_i = 10⁻⁷ · max(|t_min,i|, |t_max,i|,
+//!    |t0_i|, 1): a point found there is checked directly (every t_i at least δ_i/2 inside its
 //!    bounds) and then certified by [`crate::certify`] like every answer — "clearly feasible";
 //! 2. when an interval comes out empty, the same line and the same x are tried with the bounds
 //!    *relaxed* by δ_i (x is inside the relaxed h_1 … h_{k−1}; if it violates the relaxed h_k
 //!    the argument above holds for the relaxed half-planes), else a second run on the relaxed
 //!    bounds: an empty interval proves the polygon empty even with every bound widened by
-//!    δ_i, at least a thousand times the clipping tolerance (10⁻¹⁰ relative to the bound, or
-//!    10⁻¹⁴ · s, `feasible_polygon`), so the clipping finds it empty too — "clearly
-//!    infeasible". The solvers use this too: at r = 2 a clearly infeasible polygon is not
-//!    clipped (`TensionSolver`'s dispatch) — the same `NoFeasibleTension` answer.
+//!    δ_i, a thousand times the clipping tolerance (10⁻¹⁰ relative, `feasible_polygon`), so
+//!    the clipping finds it empty too — "clearly infeasible".
 //!
 //! Anything else (a polygon narrower than about δ, a failed check or certificate, a fixed
 //! cable t_min = t_max, an infinite t_max, a null-space row ≈ 0, more than 16 cables) is
@@ -50,9 +47,6 @@ use crate::null_space::NullSpace;
 
 /// Margin δ_i relative to max(|t_min,i|, |t_max,i|, |t0_i|, 1) (module docs).
 const MARGIN: f64 = 1e-7;
-
-/// Smallest margin relative to the largest tension or bound of any cable (module docs).
-const SCALE_MARGIN: f64 = 1e-11;
 
 /// Cables up to which the decision runs (fixed arrays).
 const MAX_CABLES: usize = 16;
@@ -105,19 +99,13 @@ pub(crate) fn decide(ns: &NullSpace, bounds: &TensionBounds) -> Decision {
         relaxed: 0.0,
     };
     let mut h = [empty; 2 * MAX_CABLES];
-    // The polygon's clipping tolerance has a data-scale term, 10⁻¹⁴ · max(|t0|, |t_min|,
-    // |t_max|) over all cables (`feasible_polygon`); δ_i stays ≥ 1000 times it.
-    let scale = (0..n).fold(0.0f64, |s, i| {
-        s.max(ns.t0[i].abs()).max(lo[i].abs()).max(hi[i].abs())
-    });
     for i in 0..n {
         let (a, t0) = (ns.row2(i), ns.t0[i]);
         // Bounds are finite or +∞ and t_min ≤ t_max (`TensionBounds`).
         if lo[i] >= hi[i] || !hi[i].is_finite() || a[0].abs() + a[1].abs() < 1e-12 {
             return Decision::Undecided;
         }
-        let delta = (MARGIN * lo[i].abs().max(hi[i].abs()).max(t0.abs()).max(1.0))
-            .max(SCALE_MARGIN * scale);
+        let delta = MARGIN * lo[i].abs().max(hi[i].abs()).max(t0.abs()).max(1.0);
         let (b_lo, b_hi) = (lo[i] - t0, t0 - hi[i]);
         h[i] = HalfPlane {
             n: a,

@@ -504,22 +504,6 @@ impl TensionSolver {
                 {
                     return Ok(Ok(Some(residual)));
                 }
-                // An empty polygon, proved with every bound relaxed by the feasibility decision's
-                // margin (10⁷ times wider than the polygon's clipping tolerance), is what
-                // `Region::build` would find too: the same answer without clipping it.
-                if r == 2
-                    && matches!(
-                        method,
-                        Method::L2
-                            | Method::L1
-                            | Method::L1Max
-                            | Method::L2Max
-                            | Method::Barycenter
-                    )
-                    && planar_feasibility::decide(&self.ns, p.bounds) == Decision::Infeasible
-                {
-                    return Ok(Err(Infeasibility::NoFeasibleTension));
-                }
                 if !self.region.build(&self.ns, p.bounds) {
                     return Ok(Err(Infeasibility::NoFeasibleTension));
                 }
