@@ -74,7 +74,6 @@ pub mod minimum_norm;
 pub mod null_space;
 mod outcome;
 mod planar_active_set;
-mod planar_feasibility;
 pub mod profile;
 pub mod quadratic_program;
 pub mod solver;

@@ -21,11 +21,6 @@
 //! | barycenter | – | – | polygon by an edge walk from the l1 vertex, else clipped | – |
 //! | sotda | – | – | polygon | – |
 //!
-//! [`TensionSolver::is_feasible`] of the complete methods (l1, l1-max, l2, l2-max, linf, the
-//! barycentre) at r = 2 decides the feasible polygon without the method's optimum (Seidel's
-//! incremental LP with a margin, private module `planar_feasibility`) and falls back to the
-//! table's path only near the polygon's boundary: same verdicts, each "feasible" certified.
-//!
 //! The active-set solvers (r ≥ 3; linf from r = 2; private module `active_set`, on the null-space
 //! parametrisation) fall back to Clarabel ([`crate::interior_point()`]) only on a
 //! numerical failure (iteration cap, dependent working set, an answer that fails the
@@ -46,7 +41,6 @@ use crate::minimum_norm::{exact_small, minimum_norm};
 use crate::null_space::NullSpace;
 use crate::outcome::validate;
 use crate::planar_active_set;
-use crate::planar_feasibility::{self, Decision};
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
 use crate::{
@@ -194,60 +188,9 @@ impl TensionSolver {
 
     /// Same verdict as `solve(..).is_feasible()`, without allocating after the first call
     /// (except on the interior-point path, see the module docs).
-    ///
-    /// For the complete methods at redundancy 2 (l1, l1-max, l2, l2-max, linf, barycentre:
-    /// each finds tensions if and only if the feasible polygon is non-empty) the verdict is that
-    /// of the polygon, decided without the method's optimum (module `planar_feasibility`):
-    /// "feasible" from a certified tension vector at least a margin inside every bound,
-    /// "infeasible" from a polygon that stays empty with every bound relaxed by that margin;
-    /// a problem near the boundary goes to the method's own solve. The certified tensions of a
-    /// "feasible" verdict are then not the method's optimum, which this call does not report.
     #[inline]
     pub fn is_feasible(&mut self, problem: &TensionProblem) -> Result<bool, TensionError> {
-        if let Some(verdict) = self.planar_verdict(problem)? {
-            return Ok(verdict);
-        }
         Ok(self.run(problem)?.is_ok())
-    }
-
-    /// The verdict of a complete method at redundancy 2 from the feasibility of the polygon
-    /// ([`TensionSolver::is_feasible`]), or `None` when the method's own solve must decide.
-    #[inline]
-    fn planar_verdict(&mut self, p: &TensionProblem) -> Result<Option<bool>, TensionError> {
-        let (m, n) = p.wrench_matrix.shape();
-        let complete = matches!(
-            self.method,
-            Method::L1
-                | Method::L1Max
-                | Method::L2
-                | Method::L2Max
-                | Method::Linf
-                | Method::Barycenter
-        );
-        if !complete || n != m + 2 {
-            return Ok(None);
-        }
-        validate(p)?;
-        if !self.method.applies_to(2) {
-            return Err(self.method.not_applicable(2));
-        }
-        // The first step of every one of these methods at r = 2 (`dispatch`).
-        if self.ns.compute(p.wrench_matrix, p.external_wrench).is_err() {
-            return Ok(Some(false));
-        }
-        Ok(match planar_feasibility::decide(&self.ns, p.bounds) {
-            Decision::Infeasible => Some(false),
-            Decision::Undecided => None,
-            Decision::Feasible(l) => {
-                if self.t.len() != n {
-                    self.t.resize(n, 0.0);
-                }
-                write_tensions(&self.ns, l, &mut self.t);
-                snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t)
-                    .is_ok()
-                    .then_some(true)
-            }
-        })
     }
 
     /// Like [`TensionSolver::solve`] but writes the tensions into `tensions` (resized to n) and

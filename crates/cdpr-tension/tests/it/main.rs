@@ -9,7 +9,6 @@ mod improved_closed_form;
 mod infinite_bounds;
 mod input;
 mod minimum_norm_vs_l2;
-mod planar_feasibility;
 mod profile;
 mod properties;
 mod soak_regressions;
