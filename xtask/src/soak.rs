@@ -31,9 +31,8 @@
 //!   that another one beats by more than 10⁻⁷ · max(1, |objective|) counts as `not_optimal`.
 //!
 //! - **the workspace verdict**: `TensionSolver::is_feasible`, which workspace grids call when
-//!   they need no tensions (at redundancy 2 it decides the feasible polygon's emptiness without
-//!   the method's optimum), must equal whether `solve` returned tensions; otherwise
-//!   `verdict_mismatch`.
+//!   they need no tensions (any shortcut it takes must keep the verdict), must equal whether
+//!   `solve` returned tensions; otherwise `verdict_mismatch`.
 //!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
 //! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
