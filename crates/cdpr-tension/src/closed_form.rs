@@ -29,6 +29,7 @@
 //! - The thesis chapter on planar tendon-driven manipulators (ch. 6), eqs. (6.15)–(6.20), Algorithm 6.1.
 
 use crate::certificate::{BOUND_TOLERANCE, bound_violation};
+use crate::lanes::F64x4;
 use crate::null_space::SINGULARITY_RATIO;
 use crate::outcome::validate;
 use crate::{Infeasibility, TensionBounds, TensionError, TensionProblem};
@@ -725,6 +726,247 @@ impl PlanarClosedForm {
         let scale = self.we_scale.max(w_norm * t_max);
         residual.is_finite() && residual <= crate::certificate::EQUILIBRIUM_TOLERANCE * scale
     }
+
+    /// [`PlanarClosedForm::is_feasible`] of four problems at once, one per lane of the entries
+    /// of `w` (`w[i][k]`: row k of column i): bit l of the result is lane l's verdict. Every
+    /// lane performs the scalar operations in the same order; the scalar branches become
+    /// selects of both sides (the basis `free` chooses the columns of Cramer's rule by blends,
+    /// the interval ends and their cables are tracked by index). Lanes with a cable whose t_i
+    /// does not depend on t^B (|N_i| ≤ 10⁻¹⁴, a measure-zero case) are decided by the scalar
+    /// test. The same verdicts bit for bit (test `planar_closed_form_lanes_agree_with_scalar`).
+    #[inline(always)]
+    pub fn is_feasible_lanes<V: F64x4>(&self, w: &[[V; 3]; 4]) -> u32 {
+        // No closures here: they would not inherit the caller's target features.
+        let v = w[0][0];
+        let zero = v.splat(0.0);
+        // Finiteness (v · 0 is 0 or NaN) and Π ‖row_k‖².
+        let mut finite = zero;
+        let mut row_norm = [zero; 3];
+        for col in w {
+            for k in 0..3 {
+                finite = finite.add(col[k].mul(zero));
+                row_norm[k] = row_norm[k].add(col[k].mul(col[k]));
+            }
+        }
+        let mut alive = V::and(
+            V::and(finite.eq(zero), row_norm[0].ne(zero)),
+            V::and(row_norm[1].ne(zero), row_norm[2].ne(zero)),
+        );
+        let rows2 = v
+            .splat(1.0)
+            .mul(row_norm[0])
+            .mul(row_norm[1])
+            .mul(row_norm[2]);
+        let e = [
+            det_lanes(&w[1], &w[2], &w[3]),
+            det_lanes(&w[0], &w[2], &w[3]),
+            det_lanes(&w[0], &w[1], &w[3]),
+            det_lanes(&w[0], &w[1], &w[2]),
+        ];
+        let d = [e[0], e[1].neg(), e[2], e[3].neg()];
+        let dn = e[0]
+            .mul(e[0])
+            .add(e[1].mul(e[1]))
+            .add(e[2].mul(e[2]))
+            .add(e[3].mul(e[3]));
+        // The basis of largest |det A| (ties to the first); `free` as 0.0 … 3.0.
+        let (mut free, mut best, mut d_free) = (zero, d[0].abs(), d[0]);
+        let margin = v.splat(1.0 + 1e-12);
+        for (j, &dj) in d.iter().enumerate().skip(1) {
+            let better = dj.abs().gt(best.mul(margin));
+            free = V::select(better, v.splat(j as f64), free);
+            best = V::select(better, dj.abs(), best);
+            d_free = V::select(better, dj, d_free);
+        }
+        alive = V::and(
+            alive,
+            V::and(
+                d_free.ne(zero),
+                dn.ge(v.splat(SINGULARITY_RATIO * SINGULARITY_RATIO).mul(rows2)),
+            ),
+        );
+        if V::bits(alive) == 0 {
+            return 0;
+        }
+        let inv_free = v.splat(1.0).div(d_free);
+        let n = [
+            d[0].mul(inv_free),
+            d[1].mul(inv_free),
+            d[2].mul(inv_free),
+            d[3].mul(inv_free),
+        ];
+        // M_A = A⁻¹ (−w_ext) by Cramer's rule: A's columns OTHERS[free] chosen by blends.
+        let (is0, is1, is2) = (free.eq(zero), free.eq(v.splat(1.0)), free.eq(v.splat(2.0)));
+        let (upto1, upto2) = (free.le(v.splat(1.0)), free.le(v.splat(2.0)));
+        let (c0, c1, c2) = (
+            pick_lanes::<V>(is0, &w[1], &w[0]),
+            pick_lanes::<V>(upto1, &w[2], &w[1]),
+            pick_lanes::<V>(upto2, &w[3], &w[2]),
+        );
+        let odd = V::or(is1, free.eq(v.splat(3.0)));
+        let inv_a = V::select(odd, inv_free.neg(), inv_free);
+        let rhs = splat3(v, &self.neg_we);
+        let x0 = det_lanes(&rhs, &c1, &c2).mul(inv_a);
+        let x1 = det_lanes(&c0, &rhs, &c2).mul(inv_a);
+        let x2 = det_lanes(&c0, &c1, &rhs).mul(inv_a);
+        let m = [
+            V::select(is0, zero, x0),
+            V::select(is0, x0, V::select(is1, zero, x1)),
+            V::select(upto1, x1, V::select(is2, zero, x2)),
+            V::select(upto2, x2, zero),
+        ];
+        // Eq. (6.18) per cable; 4.0 marks "no defining cable".
+        let (tmin, tmax) = (splat4(v, &self.tmin), splat4(v, &self.tmax));
+        let (mut lo, mut hi) = (v.splat(f64::NEG_INFINITY), v.splat(f64::INFINITY));
+        let (mut i_lo, mut b_lo, mut i_hi, mut b_hi) = (v.splat(4.0), zero, v.splat(4.0), zero);
+        let mut slope = zero;
+        let mut fixed = V::and_not(alive, alive);
+        for i in 0..4 {
+            let (mi, ni, tl, th) = (m[i], n[i], tmin[i], tmax[i]);
+            slope = slope.add(ni);
+            fixed = V::or(fixed, ni.abs().le(v.splat(1e-14)));
+            let inv_n = d_free.div(d[i]);
+            let a = tl.sub(mi).mul(inv_n);
+            let b = th.sub(mi).mul(inv_n);
+            let pos = ni.gt(zero);
+            let (l, bl) = (V::select(pos, a, b), V::select(pos, tl, th));
+            let (h, bh) = (V::select(pos, b, a), V::select(pos, th, tl));
+            let up = l.gt(lo);
+            lo = V::select(up, l, lo);
+            i_lo = V::select(up, v.splat(i as f64), i_lo);
+            b_lo = V::select(up, bl, b_lo);
+            let down = h.lt(hi);
+            hi = V::select(down, h, hi);
+            i_hi = V::select(down, v.splat(i as f64), i_hi);
+            b_hi = V::select(down, bh, b_hi);
+        }
+        let tolerance = v.splat(BOUND_TOLERANCE);
+        let empty = lo.gt(hi);
+        if V::bits(V::and(alive, empty)) != 0 {
+            // Empty, unless only by rounding (see `interval_of`).
+            let mid = v.splat(0.5).mul(lo.add(hi));
+            let mut worst = v.splat(f64::NEG_INFINITY);
+            for i in 0..4 {
+                worst = bound_violation_lanes(self.tmin[i], self.tmax[i], m[i].add(n[i].mul(mid)))
+                    .max(worst);
+            }
+            alive = V::and_not(alive, V::and(empty, worst.gt(tolerance)));
+            (lo, hi) = (V::select(empty, mid, lo), V::select(empty, mid, hi));
+            i_lo = V::select(empty, v.splat(4.0), i_lo);
+            i_hi = V::select(empty, v.splat(4.0), i_hi);
+        }
+        let hi_finite = hi.abs().lt(v.splat(f64::INFINITY));
+        if self.maximize {
+            alive = V::and(alive, hi_finite);
+        }
+        let take_hi = V::and(
+            hi_finite,
+            if self.maximize {
+                slope.gt(zero)
+            } else {
+                slope.lt(zero)
+            },
+        );
+        let tb = V::select(take_hi, hi, lo);
+        let at = V::select(take_hi, i_hi, i_lo);
+        let bound = V::select(take_hi, b_hi, b_lo);
+        // The certificate (see `is_feasible`).
+        let mut res = splat3(v, &self.we);
+        let mut rows = [zero; 3];
+        let mut t_max = zero;
+        for i in 0..4 {
+            let (l, h) = (tmin[i], tmax[i]);
+            let mut ti = V::select(at.eq(v.splat(i as f64)), bound, m[i].add(n[i].mul(tb)));
+            let inside = V::and(ti.ge(l), ti.le(h));
+            if V::bits(V::and_not(alive, inside)) != 0 {
+                let out = V::and_not(alive, inside);
+                alive = V::and_not(
+                    alive,
+                    V::and(
+                        out,
+                        bound_violation_lanes(self.tmin[i], self.tmax[i], ti).gt(tolerance),
+                    ),
+                );
+                ti = V::select(inside, ti, V::select(ti.lt(l), l, h));
+            }
+            for k in 0..3 {
+                res[k] = res[k].add(w[i][k].mul(ti));
+                rows[k] = rows[k].add(w[i][k].abs());
+            }
+            t_max = ti.abs().max(t_max);
+        }
+        let nan = V::or(
+            V::or(res[0].ne(res[0]), res[1].ne(res[1])),
+            res[2].ne(res[2]),
+        );
+        let residual = res[0].abs().max(res[1].abs()).max(res[2].abs());
+        let w_norm = rows[0].max(rows[1]).max(rows[2]);
+        let scale = w_norm.mul(t_max).max(v.splat(self.we_scale));
+        let certified = V::and(
+            residual.lt(v.splat(f64::INFINITY)),
+            residual.le(v
+                .splat(crate::certificate::EQUILIBRIUM_TOLERANCE)
+                .mul(scale)),
+        );
+        let mut verdicts = V::bits(V::and_not(V::and(alive, certified), nan));
+        // Lanes with a fixed cable: the scalar test (its early exit is not a select).
+        let fixed = V::bits(fixed);
+        if fixed != 0 {
+            self.fixed_lanes(w, fixed, &mut verdicts);
+        }
+        verdicts
+    }
+
+    /// The scalar verdicts of the lanes set in `lanes` (rare: kept out of the inlined kernel).
+    #[cold]
+    #[inline(never)]
+    fn fixed_lanes<V: F64x4>(&self, w: &[[V; 3]; 4], lanes: u32, verdicts: &mut u32) {
+        let entries = w.map(|col| col.map(V::to_array));
+        for l in (0..4).filter(|l| lanes >> l & 1 == 1) {
+            let wl = entries.map(|col| col.map(|v| v[l]));
+            *verdicts = (*verdicts & !(1 << l)) | (self.is_feasible(&wl) as u32) << l;
+        }
+    }
+}
+
+/// `det_small::<3>` lane by lane (the same operations in the same order).
+#[inline(always)]
+fn det_lanes<V: F64x4>(a: &[V; 3], b: &[V; 3], c: &[V; 3]) -> V {
+    a[0].mul(b[1].mul(c[2]).sub(b[2].mul(c[1])))
+        .sub(b[0].mul(a[1].mul(c[2]).sub(a[2].mul(c[1]))))
+        .add(c[0].mul(a[1].mul(b[2]).sub(a[2].mul(b[1]))))
+}
+
+/// `if m { a } else { b }` for 3-vectors of lanes.
+#[inline(always)]
+fn pick_lanes<V: F64x4>(m: V::Mask, a: &[V; 3], b: &[V; 3]) -> [V; 3] {
+    [
+        V::select(m, a[0], b[0]),
+        V::select(m, a[1], b[1]),
+        V::select(m, a[2], b[2]),
+    ]
+}
+
+#[inline(always)]
+fn splat3<V: F64x4>(v: V, a: &[f64; 3]) -> [V; 3] {
+    [v.splat(a[0]), v.splat(a[1]), v.splat(a[2])]
+}
+
+#[inline(always)]
+fn splat4<V: F64x4>(v: V, a: &[f64; 4]) -> [V; 4] {
+    [v.splat(a[0]), v.splat(a[1]), v.splat(a[2]), v.splat(a[3])]
+}
+
+/// [`bound_violation`]`(lo, hi, t)` lane by lane (the same operations).
+#[inline(always)]
+fn bound_violation_lanes<V: F64x4>(lo: f64, hi: f64, t: V) -> V {
+    let below = t.splat(lo).sub(t).div(t.splat(lo.abs().max(1.0)));
+    let above = if hi.is_finite() {
+        t.sub(t.splat(hi)).div(t.splat(hi.abs().max(1.0)))
+    } else {
+        t.splat(f64::NEG_INFINITY)
+    };
+    V::select(t.ne(t), t.splat(f64::INFINITY), below.max(above))
 }
 
 /// The first non-finite entry of W (column-major) or w_ext, as the solver reports it.
@@ -1025,6 +1267,115 @@ mod tests {
     /// verdict) on random, near-singular, degenerate and near-boundary problems: tensions placed
     /// on or just across their bounds, fixed cables (t_min = t_max), no upper bound, zero and
     /// parallel columns, non-finite entries; both ends (l1 and l1-max).
+    /// W of planar problem `case`: random, or with two parallel columns, a zero row, a
+    /// near-dependent column (a cable whose tension does not depend on t^B), a non-finite entry.
+    fn planar_matrix(case: usize, rnd: &mut impl FnMut() -> f64) -> nalgebra::Matrix3x4<f64> {
+        let mut w = nalgebra::Matrix3x4::from_fn(|_, _| rnd());
+        match case % 11 {
+            1 => w.set_column(1, &(w.column(0) * (1.0 + 1e-13 * rnd()))),
+            2 => w.row_mut(case % 3).fill(0.0),
+            3 => w.set_column(3, &(w.column(0) * rnd() + w.column(1) * rnd())),
+            4 => w[(case % 3, case % 4)] = [f64::NAN, f64::INFINITY][case % 2],
+            _ => {}
+        }
+        w
+    }
+
+    /// Planar problem `case`: W ([`planar_matrix`]), bounds (some fixed cables, some infinite
+    /// t_max) and w_ext = −W t for tensions t on, or just across, their bounds (or a random
+    /// w_ext); `None` when w_ext is not finite.
+    fn planar_problem(
+        case: usize,
+        rnd: &mut impl FnMut() -> f64,
+    ) -> Option<(
+        nalgebra::Matrix3x4<f64>,
+        nalgebra::Vector3<f64>,
+        TensionBounds,
+    )> {
+        use nalgebra::Vector3;
+        let w = planar_matrix(case, rnd);
+        let lo = 5.0 * (rnd() + 1.0);
+        let mut hi = [lo + 100.0 * (rnd() + 1.0); 4];
+        match case % 5 {
+            1 => hi[case % 4] = lo,
+            2 => hi[case % 4] = f64::INFINITY,
+            _ => {}
+        }
+        let b = TensionBounds::new(vec![lo; 4], hi.to_vec()).unwrap();
+        let t: Vec<f64> = (0..4)
+            .map(|i| {
+                let top = if hi[i].is_finite() { hi[i] } else { lo + 50.0 };
+                let nudge = 1.0 + [0.0, 1e-10, -1e-10, 1e-8, 0.0][case % 5];
+                match (case / 5 + i) % 4 {
+                    0 => lo * nudge,
+                    1 => top * nudge,
+                    _ => lo + (top - lo) * 0.5 * (rnd() + 1.0),
+                }
+            })
+            .collect();
+        let mut we: Vector3<f64> = -(w * nalgebra::Vector4::from_row_slice(&t));
+        if case % 7 == 0 {
+            we = Vector3::from_fn(|_, _| 200.0 * rnd());
+        }
+        we.iter().all(|v| v.is_finite()).then_some((w, we, b))
+    }
+
+    /// The four lanes of [`PlanarClosedForm::is_feasible_lanes`], in the portable build and (on
+    /// a CPU with AVX2) the AVX2 build, give the scalar [`PlanarClosedForm::is_feasible`] verdict
+    /// of each lane: one lane holds a problem of [`planar_problem`] (borderline tensions, fixed
+    /// cables, infinite t_max, degenerate W, NaN), the others the same W perturbed by 10⁻¹²
+    /// (borderline too) or another [`planar_matrix`].
+    #[test]
+    fn planar_closed_form_lanes_agree_with_scalar() {
+        use crate::lanes::{F64x4, Portable};
+        let mut rnd = uniform_stream(0x1405_7b7e_f767_814fu64);
+        let (mut yes, mut no, mut fixed) = (0, 0, 0);
+        for case in 0..100_000 {
+            let Some((w0, we, b)) = planar_problem(case, &mut rnd) else {
+                continue;
+            };
+            let mut ws = [w0; 4];
+            ws[1] = w0.map(|v| v * (1.0 + 1e-12 * rnd()));
+            ws[2] = planar_matrix(case / 3 + 5, &mut rnd);
+            ws[3] = planar_matrix(case / 7 + 3, &mut rnd);
+            ws.rotate_left(case % 4);
+            let cols: [[[f64; 3]; 4]; 4] =
+                ws.map(|w| std::array::from_fn(|i| [w[(0, i)], w[(1, i)], w[(2, i)]]));
+            let lanes = |v: Portable| -> [[Portable; 3]; 4] {
+                std::array::from_fn(|i| std::array::from_fn(|k| v.load(cols.map(|c| c[i][k]))))
+            };
+            for maximize in [false, true] {
+                let cf = PlanarClosedForm::new(&we, &b, maximize).unwrap();
+                let expected = (0..4)
+                    .map(|l| (cf.is_feasible(&cols[l]) as u32) << l)
+                    .sum::<u32>();
+                let portable = cf.is_feasible_lanes(&lanes(Portable([0.0; 4])));
+                assert_eq!(
+                    portable, expected,
+                    "case {case}, maximize {maximize}: {ws:?} {we} {b:?}"
+                );
+                #[cfg(target_arch = "x86_64")]
+                if let Some(v) = crate::lanes::Avx2::detect() {
+                    let w: [[crate::lanes::Avx2; 3]; 4] = std::array::from_fn(|i| {
+                        std::array::from_fn(|k| v.load(cols.map(|c| c[i][k])))
+                    });
+                    assert_eq!(
+                        cf.is_feasible_lanes(&w),
+                        expected,
+                        "AVX2, case {case}, maximize {maximize}"
+                    );
+                }
+                yes += expected.count_ones();
+                no += 4 - expected.count_ones();
+                fixed += (case % 11 == 3) as u32;
+            }
+        }
+        assert!(
+            yes > 50_000 && no > 50_000 && fixed > 1000,
+            "{yes} feasible, {no} infeasible"
+        );
+    }
+
     #[test]
     fn planar_closed_form_agrees_with_is_feasible_planar() {
         use nalgebra::{Matrix3x4, Vector3};

@@ -68,6 +68,7 @@ mod error;
 pub mod feasible_polygon;
 pub mod improved_closed_form;
 pub mod interior_point;
+pub mod lanes;
 pub mod linear_program;
 mod method;
 pub mod minimum_norm;

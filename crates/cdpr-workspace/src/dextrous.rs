@@ -24,11 +24,12 @@
 //! - Thesis §6.5, eq. (6.28).
 //! - Du Plessis & Snyman (2003), dextrous workspaces of parallel manipulators (the thesis chapter ref. \[18\]).
 
-use crate::discretisation::{checked_orientation, map_grid};
+use crate::discretisation::{checked_orientation, map_grid, map_grid_tasks};
 use crate::{Criterion, Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
 use cdpr_tension::Method;
 use cdpr_tension::closed_form::PlanarClosedForm;
+use cdpr_tension::lanes::F64x4;
 use nalgebra::{Rotation3, Unit, Vector3};
 
 /// A range of orientation angles [min, max] sampled at `slices` = m_sl regularly spaced values,
@@ -199,7 +200,17 @@ impl PlanarSlice {
         if position.z != 0.0 {
             return None;
         }
-        let (px, py) = (position.x, position.y);
+        let (w, short) = self.wrench_columns(position.x, position.y)?;
+        if short {
+            return Some(false);
+        }
+        Some(self.tension.iter().all(|t| t.is_feasible(&w)))
+    }
+
+    /// The columns [u_i; (R a_i) × u_i] of W (eq. (6.11)) at (x, y, 0), and whether a cable is
+    /// shorter than the length floor; `None` when a cable is nearly degenerate.
+    #[inline(always)]
+    fn wrench_columns(&self, px: f64, py: f64) -> Option<([[f64; 3]; 4], bool)> {
         // ‖u‖ and the cable vectors as the evaluator's 3-vectors with z = 0: the same roundings.
         let floor = LEAN_MIN_LENGTH * self.length_scale.max((px * px + py * py).sqrt());
         let mut w = [[0.0; 3]; 4];
@@ -217,11 +228,226 @@ impl PlanarSlice {
             let (ux, uy) = (vx / length, vy / length);
             *wi = [ux, uy, ax * uy - ay * ux];
         }
-        if short {
-            return Some(false);
-        }
-        Some(self.tension.iter().all(|t| t.is_feasible(&w)))
+        Some((w, short))
     }
+
+    /// [`PlanarSlice::is_feasible`] at four positions (x, y, 0), one per lane of `x` and `y`:
+    /// `(verdicts, deferred)`, bit l for lane l; a deferred lane is one where
+    /// [`PlanarSlice::is_feasible`] gives `None` (its verdict bit is meaningless). Each lane
+    /// performs the scalar operations in the same order ([`PlanarSlice::wrench_columns`], then
+    /// [`PlanarClosedForm::is_feasible_lanes`]): the same verdicts bit for bit (tests
+    /// `planar_slice_agrees_with_the_evaluator`, `wrench_columns_lanes_are_the_scalar_bits`).
+    #[inline(always)]
+    pub fn is_feasible_lanes<V: F64x4>(&self, x: V, y: V) -> (u32, u32) {
+        let (w, long, short) = self.wrench_columns_lanes(x, y);
+        let deferred = !V::bits(long) & 0b1111;
+        let mut verdicts = V::bits(V::and_not(long, short));
+        for t in &self.tension {
+            if verdicts == 0 {
+                break;
+            }
+            verdicts &= t.is_feasible_lanes(&w);
+        }
+        (verdicts, deferred)
+    }
+
+    /// [`PlanarSlice::wrench_columns`] lane by lane: W, the lanes where no cable is degenerate
+    /// (`Some`), the lanes with a cable below the length floor.
+    #[inline(always)]
+    fn wrench_columns_lanes<V: F64x4>(&self, x: V, y: V) -> ([[V; 3]; 4], V::Mask, V::Mask) {
+        // No closures here: they would not inherit the caller's target features.
+        let floor = x.splat(LEAN_MIN_LENGTH).mul(
+            x.mul(x)
+                .add(y.mul(y))
+                .sqrt()
+                .max(x.splat(self.length_scale)),
+        );
+        let zero = x.splat(0.0);
+        let (mut long, mut short) = (zero.eq(zero), zero.ne(zero));
+        let min_length = x.splat(self.min_length);
+        let mut w = [[zero; 3]; 4];
+        for (i, wi) in w.iter_mut().enumerate() {
+            let ([ax, ay], [cx, cy]) = (self.attachment[i], self.frame[i]);
+            let (ax, ay) = (x.splat(ax), x.splat(ay));
+            let (vx, vy) = (x.splat(cx).sub(x.add(ax)), x.splat(cy).sub(y.add(ay)));
+            let length = vx.mul(vx).add(vy.mul(vy)).sqrt();
+            long = V::and(long, length.gt(floor));
+            short = V::or(short, length.lt(min_length));
+            let (ux, uy) = (vx.div(length), vy.div(length));
+            *wi = [ux, uy, ax.mul(uy).sub(ay.mul(ux))];
+        }
+        (w, long, short)
+    }
+}
+
+/// Buffers of [`dextrous_verdicts_lean`], reused from call to call (no allocation once warm).
+#[derive(Debug, Clone, Default)]
+pub struct LeanScratch {
+    alive: Vec<u32>,
+    central: Vec<u32>,
+}
+
+/// The orientation at which a point is asked: `Some(k)` the k-th sampled orientation, `None`
+/// the central one when it is not sampled.
+pub type OrientationIndex = Option<usize>;
+
+/// Eq. (6.28) by the lean planar path over `points`, in the order of tests of
+/// [`dextrous_workspace_about_axis`] (both extremes, the central orientation, the others), one
+/// orientation at a time over the points still feasible, four points at a time
+/// ([`PlanarSlice::is_feasible_lanes`], AVX2 when the CPU has it). `slices` are the m_sl sampled
+/// orientations in order; `central` is the index of the central one among them, or its own
+/// slice. `verdicts[i]` receives (dextrous, feasible at both extremes, central check violated)
+/// of `points[i]` (it must hold `(false, false, false)` on entry); `deferred(k, u)` gives the
+/// verdict at a point that [`PlanarSlice::is_feasible`] defers (the evaluator's).
+pub fn dextrous_verdicts_lean(
+    slices: &[PlanarSlice],
+    central: Result<usize, &PlanarSlice>,
+    points: &[Vector3<f64>],
+    verdicts: &mut [(bool, bool, bool)],
+    scratch: &mut LeanScratch,
+    mut deferred: impl FnMut(OrientationIndex, &Vector3<f64>) -> bool,
+) {
+    let n = slices.len();
+    assert!(n > 0 && verdicts.len() == points.len() && points.len() < u32::MAX as usize);
+    let path = LanePath::detect();
+    let LeanScratch {
+        alive,
+        central: central_ok,
+    } = scratch;
+    alive.clear();
+    alive.extend(0..points.len() as u32);
+    let mut keep = |k: OrientationIndex, list: &mut Vec<u32>, rejected: &mut dyn FnMut(usize)| {
+        let slice = k.map_or_else(|| central.unwrap_err(), |k| &slices[k]);
+        path.keep_feasible(slice, points, list, &mut |u| deferred(k, u), rejected)
+    };
+    keep(Some(0), alive, &mut |_| {});
+    if n > 1 {
+        keep(Some(n - 1), alive, &mut |_| {});
+    }
+    for &i in alive.iter() {
+        verdicts[i as usize] = (false, true, false);
+    }
+    central_ok.clear();
+    central_ok.extend_from_slice(alive);
+    let central_index = central.ok();
+    keep(central_index, central_ok, &mut |i| {
+        verdicts[i].2 = true
+    });
+    if central_index.is_some() {
+        std::mem::swap(alive, central_ok);
+    }
+    for k in (1..n.saturating_sub(1)).filter(|&k| Some(k) != central_index) {
+        keep(Some(k), alive, &mut |_| {});
+    }
+    for &i in alive.iter() {
+        verdicts[i as usize].0 = true;
+    }
+}
+
+/// Which build of [`keep_feasible`] runs.
+#[derive(Clone, Copy)]
+enum LanePath {
+    #[cfg(target_arch = "x86_64")]
+    Avx2(cdpr_tension::lanes::Avx2),
+    Portable,
+}
+
+impl LanePath {
+    /// AVX2 if the CPU has it (`is_x86_feature_detected!` caches its answer).
+    fn detect() -> Self {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(v) = cdpr_tension::lanes::Avx2::detect() {
+            return LanePath::Avx2(v);
+        }
+        LanePath::Portable
+    }
+
+    fn keep_feasible(
+        self,
+        slice: &PlanarSlice,
+        points: &[Vector3<f64>],
+        list: &mut Vec<u32>,
+        deferred: &mut dyn FnMut(&Vector3<f64>) -> bool,
+        rejected: &mut dyn FnMut(usize),
+    ) {
+        match self {
+            // SAFETY: an `Avx2` value exists only on a CPU with AVX2.
+            #[cfg(target_arch = "x86_64")]
+            LanePath::Avx2(v) => unsafe {
+                keep_feasible_avx2(v, slice, points, list, deferred, rejected)
+            },
+            LanePath::Portable => {
+                let v = cdpr_tension::lanes::Portable([0.0; 4]);
+                keep_feasible(v, slice, points, list, deferred, rejected)
+            }
+        }
+    }
+}
+
+/// [`keep_feasible`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2 (`v` exists).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn keep_feasible_avx2(
+    v: cdpr_tension::lanes::Avx2,
+    slice: &PlanarSlice,
+    points: &[Vector3<f64>],
+    list: &mut Vec<u32>,
+    deferred: &mut dyn FnMut(&Vector3<f64>) -> bool,
+    rejected: &mut dyn FnMut(usize),
+) {
+    keep_feasible(v, slice, points, list, deferred, rejected)
+}
+
+/// Keeps in `list` (indices into `points`, in order) the points feasible at `slice`'s
+/// orientation and calls `rejected` with the others: four at a time through
+/// [`PlanarSlice::is_feasible_lanes`] (the last group padded with its last point); the points
+/// it defers, or off the plane z = 0, through `deferred`.
+#[inline(always)]
+fn keep_feasible<V: F64x4>(
+    v: V,
+    slice: &PlanarSlice,
+    points: &[Vector3<f64>],
+    list: &mut Vec<u32>,
+    deferred: &mut dyn FnMut(&Vector3<f64>) -> bool,
+    rejected: &mut dyn FnMut(usize),
+) {
+    let (len, mut kept, mut j) = (list.len(), 0, 0);
+    while j < len {
+        let k = (len - j).min(4);
+        let last = list[j + k - 1] as usize;
+        let mut index = [last; 4];
+        for (l, i) in index[..k].iter_mut().enumerate() {
+            *i = list[j + l] as usize;
+        }
+        let u = [
+            points[index[0]],
+            points[index[1]],
+            points[index[2]],
+            points[index[3]],
+        ];
+        let (verdicts, defer) = slice.is_feasible_lanes(
+            v.load([u[0].x, u[1].x, u[2].x, u[3].x]),
+            v.load([u[0].y, u[1].y, u[2].y, u[3].y]),
+        );
+        for l in 0..k {
+            let ok = if defer >> l & 1 == 1 || u[l].z != 0.0 {
+                deferred(&u[l])
+            } else {
+                verdicts >> l & 1 == 1
+            };
+            if ok {
+                list[kept] = index[l] as u32;
+                kept += 1;
+            } else {
+                rejected(index[l]);
+            }
+        }
+        j += k;
+    }
+    list.truncate(kept);
 }
 
 /// Eq. (6.28) for a planar robot: orientations φ ∈ [min, max] about z (point robots: the
@@ -297,33 +523,41 @@ pub fn dextrous_workspace_about_axis(
         .collect::<Result<Vec<_>, _>>()?;
     let central_is_slice = angles.contains(&range.central());
     // The lean planar path, when every orientation has it (the same verdicts).
-    let lean = |r: &Rotation3<f64>| PlanarSlice::new(eval, r);
-    let lean: Option<(PlanarSlice, PlanarSlice, PlanarSlice, Vec<PlanarSlice>)> = (|| {
-        Some((
-            lean(&first)?,
-            lean(&last)?,
-            lean(&central)?,
-            others.iter().map(lean).collect::<Option<Vec<_>>>()?,
-        ))
-    })();
+    let all: Vec<Rotation3<f64>> = angles.iter().map(|&a| rot(a)).collect::<Result<_, _>>()?;
+    let lean = all
+        .iter()
+        .map(|r| PlanarSlice::new(eval, r))
+        .collect::<Option<Vec<_>>>()
+        .zip(PlanarSlice::new(eval, &central));
     // Per point: (dextrous, feasible at both extremes, violation of the central check).
-    let verdicts = map_grid(eval, grid, dim, |ev, u| {
-        let mut ok = |r: &Rotation3<f64>, s: Option<&PlanarSlice>| {
-            s.and_then(|s| s.is_feasible(&u))
-                .unwrap_or_else(|| ev.is_feasible_finite_rotation(&Pose::new(u, *r)))
-        };
-        let l = lean.as_ref();
-        if !ok(&first, l.map(|l| &l.0)) || (angles.len() > 1 && !ok(&last, l.map(|l| &l.1))) {
-            return (false, false, false);
-        }
-        let central_ok = ok(&central, l.map(|l| &l.2));
-        let dextrous = (central_ok || !central_is_slice)
-            && others
-                .iter()
-                .enumerate()
-                .all(|(k, r)| ok(r, l.map(|l| &l.3[k])));
-        (dextrous, true, !central_ok)
-    });
+    let verdicts = if let Some((slices, central_slice)) = &lean {
+        let central_index = angles.iter().position(|&a| a == range.central());
+        let central_lean = central_index.ok_or(central_slice);
+        let state = (eval.clone(), Vec::new(), LeanScratch::default());
+        map_grid_tasks(
+            &state,
+            grid,
+            dim,
+            |(ev, points, scratch), axes, start, slots| {
+                points.clear();
+                axes.for_each_point(start, slots, |_, u| points.push(u));
+                dextrous_verdicts_lean(slices, central_lean, points, slots, scratch, |k, u| {
+                    let r = k.map_or(&central, |k| &all[k]);
+                    ev.is_feasible_finite_rotation(&Pose::new(*u, *r))
+                });
+            },
+        )
+    } else {
+        map_grid(eval, grid, dim, |ev, u| {
+            let mut ok = |r: &Rotation3<f64>| ev.is_feasible_finite_rotation(&Pose::new(u, *r));
+            if !ok(&first) || (angles.len() > 1 && !ok(&last)) {
+                return (false, false, false);
+            }
+            let central_ok = ok(&central);
+            let dextrous = (central_ok || !central_is_slice) && others.iter().all(&mut ok);
+            (dextrous, true, !central_ok)
+        })
+    };
     let feasible: Vec<bool> = verdicts.iter().map(|v| v.0).collect();
     let violations = verdicts.iter().filter(|v| v.2).count();
     let central_check = CentralCheck {
@@ -398,6 +632,95 @@ pub fn euler_box(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`PlanarSlice::wrench_columns_lanes`] gives [`PlanarSlice::wrench_columns`]'s W bit for
+    /// bit in every lane, in the portable and (on a CPU with it) the AVX2 build, and the same
+    /// degenerate and short cables: positions over and beyond the frame, on a frame anchor,
+    /// tiny and huge coordinates.
+    #[test]
+    fn wrench_columns_lanes_are_the_scalar_bits() {
+        use cdpr_kinematics::{Cable, Robot};
+        use cdpr_tension::TensionBounds;
+        use cdpr_tension::lanes::Portable;
+        let cable = |c: [f64; 2], a: [f64; 2]| Cable {
+            frame: Vector3::new(c[0], c[1], 0.0),
+            platform: Vector3::new(a[0], a[1], 0.0),
+            pulley: None,
+        };
+        let robot = Robot::new(
+            MotionPattern::Planar,
+            vec![
+                cable([1.0, 0.9451], [0.0707, 0.0707]),
+                cable([-1.0, 0.2232], [-0.0707, 0.0707]),
+                cable([-1.0, 0.0446], [-0.1, -0.1]),
+                cable([0.9069, -1.0], [0.1, -0.1]),
+            ],
+        )
+        .unwrap();
+        let criteria = vec![
+            Criterion::TensionFeasible {
+                method: Method::L1,
+                wrench: nalgebra::DVector::from_row_slice(&[5.0, -10.0, 1.0]),
+            },
+            Criterion::MinCableLength(0.3),
+        ];
+        let eval = PoseEvaluator::new(
+            robot,
+            TensionBounds::uniform(4, 5.0, 100.0).unwrap(),
+            criteria,
+        )
+        .unwrap();
+        let r = Rotation3::from_axis_angle(&Vector3::z_axis(), 0.17);
+        let slice = PlanarSlice::new(&eval, &r).unwrap();
+        // A frame anchor minus the rotated attachment: a zero-length cable.
+        let a0 = r * Vector3::new(0.0707, 0.0707, 0.0);
+        let mut xs: Vec<[f64; 2]> = (0..=40)
+            .flat_map(|i| (0..=40).map(move |j| [-1.3 + 0.065 * i as f64, -1.3 + 0.065 * j as f64]))
+            .collect();
+        xs.extend([
+            [1.0 - a0.x, 0.9451 - a0.y],
+            [1e-300, -1e-300],
+            [3e150, -2e150],
+            [0.0, 0.0],
+        ]);
+        let bits = |w: &[[f64; 3]; 4]| w.map(|c| c.map(f64::to_bits));
+        let mut degenerate = 0;
+        for j in 0..xs.len() {
+            let p: [[f64; 2]; 4] = std::array::from_fn(|l| xs[(j + 7 * l) % xs.len()]);
+            let expected = p.map(|[x, y]| slice.wrench_columns(x, y));
+            degenerate += expected.iter().filter(|e| e.is_none()).count();
+            let check = |w: [[[f64; 4]; 3]; 4], long: u32, short: u32| {
+                for (l, e) in expected.iter().enumerate() {
+                    assert_eq!(long >> l & 1 == 1, e.is_some(), "lane {l} at {:?}", p[l]);
+                    if let Some((we, se)) = e {
+                        let wl = w.map(|c| c.map(|v| v[l]));
+                        assert_eq!(bits(&wl), bits(we), "lane {l} at {:?}", p[l]);
+                        assert_eq!(short >> l & 1 == 1, *se, "lane {l} at {:?}", p[l]);
+                    }
+                }
+            };
+            let v = Portable([0.0; 4]);
+            let (w, long, short) =
+                slice.wrench_columns_lanes(v.load(p.map(|p| p[0])), v.load(p.map(|p| p[1])));
+            check(
+                w.map(|c| c.map(|v| v.0)),
+                Portable::bits(long),
+                Portable::bits(short),
+            );
+            #[cfg(target_arch = "x86_64")]
+            if let Some(v) = cdpr_tension::lanes::Avx2::detect() {
+                use cdpr_tension::lanes::Avx2;
+                let (w, long, short) =
+                    slice.wrench_columns_lanes(v.load(p.map(|p| p[0])), v.load(p.map(|p| p[1])));
+                check(
+                    w.map(|c| c.map(Avx2::to_array)),
+                    Avx2::bits(long),
+                    Avx2::bits(short),
+                );
+            }
+        }
+        assert!(degenerate >= 4, "{degenerate}");
+    }
 
     #[test]
     fn angles_include_endpoints() {

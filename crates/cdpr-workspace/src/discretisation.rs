@@ -304,7 +304,7 @@ pub(crate) fn checked_orientation(
 
 /// The coordinates of a grid along each axis, computed once per grid (the values of
 /// [`Grid::point`], without its per-point divisions).
-struct Axes {
+pub(crate) struct Axes {
     /// Points per axis, m + 1.
     p: usize,
     dim: usize,
@@ -323,7 +323,7 @@ impl Axes {
 
     /// Calls `visit(slot, u)` for the points of flat indices `start..start + out.len()`, in order.
     #[inline]
-    fn for_each_point<T>(
+    pub(crate) fn for_each_point<T>(
         &self,
         start: usize,
         out: &mut [T],
@@ -398,7 +398,7 @@ where
 
 /// [`map_grid`] with the task as the unit: `task(state, axes, start, slots)` fills the verdicts
 /// of the points of flat indices `start..start + slots.len()`.
-fn map_grid_tasks<S, T, F>(eval: &S, grid: &Grid, dim: usize, task_fn: F) -> Vec<T>
+pub(crate) fn map_grid_tasks<S, T, F>(eval: &S, grid: &Grid, dim: usize, task_fn: F) -> Vec<T>
 where
     S: Clone + Send + Sync,
     T: Send + Copy + Default,

@@ -97,8 +97,9 @@ pub use chord::{
 pub use criteria::{Criterion, CustomCriterion, CustomTest, PoseContext};
 pub use criteria_spec::{CriteriaError, CriterionSpec, parse_criteria};
 pub use dextrous::{
-    CentralCheck, DextrousWorkspace, OrientationRange, PlanarSlice, dextrous_workspace,
-    dextrous_workspace_about_axis, dextrous_workspace_over, euler_box,
+    CentralCheck, DextrousWorkspace, LeanScratch, OrientationIndex, OrientationRange, PlanarSlice,
+    dextrous_verdicts_lean, dextrous_workspace, dextrous_workspace_about_axis,
+    dextrous_workspace_over, euler_box,
 };
 pub use discretisation::{
     Grid, GridWorkspace, VolumeConvention, constant_orientation_workspace, planar_workspace,

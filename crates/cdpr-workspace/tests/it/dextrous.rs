@@ -285,6 +285,7 @@ fn planar_slice_agrees_with_the_evaluator() {
             // A cable of zero length: the attachment point on its frame anchor.
             let c = &robot.cables()[0];
             positions.push(c.frame - r * c.platform);
+            check_lanes(&lean, &positions);
             for u in positions {
                 let expected = eval.is_feasible(&cdpr_kinematics::Pose::new(u, r));
                 match lean.is_feasible(&u) {
@@ -305,6 +306,36 @@ fn planar_slice_agrees_with_the_evaluator() {
         "{feasible} / {infeasible}"
     );
     assert!(deferred <= 60 * 3, "{deferred}");
+}
+
+/// [`PlanarSlice::is_feasible_lanes`] in both builds (portable, and AVX2 on a CPU with it) gives
+/// [`PlanarSlice::is_feasible`] lane by lane (verdict, or deferred for `None`), for the
+/// positions four at a time in several lane orders.
+fn check_lanes(lean: &cdpr_workspace::PlanarSlice, positions: &[Vector3<f64>]) {
+    use cdpr_tension::lanes::{F64x4, Portable};
+    fn check<V: F64x4>(v: V, lean: &cdpr_workspace::PlanarSlice, u: [Vector3<f64>; 4]) {
+        let (verdicts, deferred) =
+            lean.is_feasible_lanes(v.load(u.map(|u| u.x)), v.load(u.map(|u| u.y)));
+        for (l, u) in u.iter().enumerate() {
+            match lean.is_feasible(u) {
+                Some(ok) => {
+                    assert_eq!(deferred >> l & 1, 0, "lane {l}, u {u:?}");
+                    assert_eq!(verdicts >> l & 1 == 1, ok, "lane {l}, u {u:?}");
+                }
+                None => assert_eq!(deferred >> l & 1, 1, "lane {l}, u {u:?}"),
+            }
+        }
+    }
+    for shift in [0, 1, 3] {
+        for j in 0..positions.len() {
+            let u = std::array::from_fn(|l| positions[(j + shift * l) % positions.len()]);
+            check(Portable([0.0; 4]), lean, u);
+            #[cfg(target_arch = "x86_64")]
+            if let Some(v) = cdpr_tension::lanes::Avx2::detect() {
+                check(v, lean, u);
+            }
+        }
+    }
 }
 
 /// The lean path applies only where it is the evaluator's path: another method or criterion,
@@ -359,4 +390,109 @@ fn table_6_10_run_1_dextrous_matches_the_general_slices() {
     let g = Grid::new(60, Region::planar(-1.0, 1.0, -1.0, 1.0));
     let dex = check_against_slices(&eval, &range, &g);
     assert!(dex.feasible_points > 100 && dex.feasible_points < dex.total_points / 2);
+}
+
+/// The lean driver [`dextrous_verdicts_lean`] (orientation by orientation, four points at a
+/// time, deferred points through the evaluator) gives the per-point order of tests of the
+/// scalar path: (dextrous, both extremes, central violated), with slices of different loads so
+/// that the central orientation (sampled, or not sampled) fails where the others pass.
+#[test]
+fn dextrous_verdicts_lean_follow_the_scalar_order_of_tests() {
+    use cdpr_kinematics::Pose;
+    use cdpr_kinematics::reference_robots::thesis_manipulator;
+    use cdpr_workspace::{LeanScratch, PlanarSlice, dextrous_verdicts_lean};
+    let robot = thesis_manipulator(&[
+        [1.0, 0.9451],
+        [-1.0, 0.2232],
+        [-1.0, 0.0446],
+        [0.9069, -1.0],
+    ]);
+    let evaluator = |fy: f64| {
+        PoseEvaluator::new(
+            robot.clone(),
+            TensionBounds::uniform(4, 5.0, 100.0).unwrap(),
+            vec![
+                Criterion::TensionFeasible {
+                    method: Method::L1,
+                    wrench: nalgebra::DVector::from_row_slice(&[5.0, fy, 1.0]),
+                },
+                Criterion::MinCableLength(0.1),
+            ],
+        )
+        .unwrap()
+    };
+    let rot = |phi: f64| Rotation3::from_axis_angle(&Vector3::z_axis(), phi);
+    // Positions on a grid (442 points: the last group of four is padded) and on a frame anchor.
+    let mut points: Vec<Vector3<f64>> = (0..21)
+        .flat_map(|i| {
+            (0..21).map(move |j| Vector3::new(-1.0 + 0.1 * j as f64, -1.0 + 0.1 * i as f64, 0.0))
+        })
+        .collect();
+    let c = &robot.cables()[1];
+    points.push(c.frame - rot(-0.2) * c.platform);
+    // (load, angle) of each sampled orientation; the heavy load at index `heavy`.
+    for (loads, central_sampled) in [
+        (vec![-10.0, -40.0, -10.0], true),
+        (vec![-10.0, -10.0, -10.0, -40.0, -10.0], true),
+        (vec![-10.0, -10.0, -40.0, -10.0], false),
+    ] {
+        let n = loads.len();
+        let angles: Vec<f64> = (0..n)
+            .map(|k| -0.2 + 0.4 * k as f64 / (n - 1) as f64)
+            .collect();
+        let mut evals: Vec<PoseEvaluator> = loads.iter().map(|&f| evaluator(f)).collect();
+        let slices: Vec<PlanarSlice> = evals
+            .iter()
+            .zip(&angles)
+            .map(|(e, &a)| PlanarSlice::new(e, &rot(a)).unwrap())
+            .collect();
+        let mut central_eval = evaluator(-40.0);
+        let central_slice = PlanarSlice::new(&central_eval, &rot(0.0)).unwrap();
+        let central_index = central_sampled.then_some(n / 2);
+        let central = central_index.ok_or(&central_slice);
+        let mut ok = |k: Option<usize>, u: &Vector3<f64>| match k {
+            Some(k) => evals[k].is_feasible(&Pose::new(*u, rot(angles[k]))),
+            None => central_eval.is_feasible(&Pose::new(*u, rot(0.0))),
+        };
+        let expected: Vec<(bool, bool, bool)> = points
+            .iter()
+            .map(|u| {
+                if !ok(Some(0), u) || !ok(Some(n - 1), u) {
+                    return (false, false, false);
+                }
+                let central_ok = ok(central_index, u);
+                let others = (1..n - 1)
+                    .filter(|&k| Some(k) != central_index)
+                    .all(|k| ok(Some(k), u));
+                (
+                    (central_ok || central_index.is_none()) && others,
+                    true,
+                    !central_ok,
+                )
+            })
+            .collect();
+        let mut got = vec![(false, false, false); points.len()];
+        let mut deferred = 0;
+        dextrous_verdicts_lean(
+            &slices,
+            central,
+            &points,
+            &mut got,
+            &mut LeanScratch::default(),
+            |k, u| {
+                deferred += 1;
+                ok(k, u)
+            },
+        );
+        assert_eq!(got, expected, "loads {loads:?}");
+        assert!(deferred >= 1, "the anchor point is deferred");
+        let count = |f: fn(&(bool, bool, bool)) -> bool| expected.iter().filter(|v| f(v)).count();
+        assert!(
+            count(|v| v.0) > 20 && count(|v| v.1) > count(|v| v.0) + 10,
+            "{loads:?}: {} {} {}",
+            count(|v| v.0),
+            count(|v| v.1),
+            count(|v| v.2)
+        );
+    }
 }

@@ -9,9 +9,9 @@ use cdpr::plot::{Figure, Panels, WorkspacePlot};
 use cdpr::polytope::RequiredWrenchSet;
 use cdpr::tension::Method;
 use cdpr::workspace::{
-    CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, OrientationRange, OrientationSet,
-    OrientationWorkspaceKind, PlanarSlice, PoseEvaluator, Region, VolumeConvention,
-    chord_workspace,
+    CentralCheck, ChordSettings, Criterion, Grid, GridWorkspace, LeanScratch, OrientationRange,
+    OrientationSet, OrientationWorkspaceKind, PlanarSlice, PoseEvaluator, Region, VolumeConvention,
+    chord_workspace, dextrous_verdicts_lean,
 };
 use indicatif::ProgressBar;
 use nalgebra::{DVector, Rotation3, Unit, Vector3};
@@ -494,6 +494,40 @@ where
     rows.into_iter().flatten().collect()
 }
 
+/// [`map_rows`] a row at a time: `f(state, points, verdicts)` fills the verdicts of one row's
+/// points (`T::default()` on entry).
+pub fn map_row_blocks<S, T, F>(
+    state: &S,
+    grid: &Grid,
+    dim: usize,
+    bar: &ProgressBar,
+    f: F,
+) -> Vec<T>
+where
+    S: Clone + Send + Sync,
+    T: Send + Copy + Default,
+    F: Fn(&mut S, &[Vector3<f64>], &mut [T]) + Sync,
+{
+    let row = grid.points_per_axis();
+    let total = grid.point_count(dim);
+    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
+        .into_par_iter()
+        .map_init(
+            || (state.clone(), Vec::new()),
+            |(s, points), r| {
+                points.clear();
+                points
+                    .extend((r * row..((r + 1) * row).min(total)).map(|idx| grid.point(dim, idx)));
+                let mut out = vec![T::default(); points.len()];
+                f(s, points, &mut out);
+                bar.inc(1);
+                out
+            },
+        )
+        .collect();
+    rows.into_iter().flatten().collect()
+}
+
 /// Algorithm 6.2 at a fixed orientation, with a progress bar (same verdicts as
 /// `cdpr::workspace::constant_orientation_workspace`).
 pub fn grid_workspace(
@@ -587,32 +621,45 @@ pub fn dextrous(
         central,
     };
     let n = angles.len();
-    let lean = lean.as_ref();
-    let verdicts = map_rows(&slices, grid, dim, bar, |s, u| {
-        let ok = |s: &mut Slices, k: usize| {
-            lean.and_then(|l| l.0[k].is_feasible(&u))
-                .unwrap_or_else(|| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k])))
+    let verdicts = if let Some((lean, central_lean)) = &lean {
+        // Row by row, four points at a time, orientation by orientation.
+        let central = match &slices.central {
+            Ok(k) => Ok(*k),
+            Err(_) => Err(central_lean
+                .as_ref()
+                .expect("built with the central evaluator")),
         };
-        if !ok(s, 0) || (n > 1 && !ok(s, n - 1)) {
-            return (false, false, false);
-        }
-        let (central_ok, central_index) = match &mut s.central {
-            Ok(k) => {
-                let k = *k;
-                (ok(s, k), Some(k))
+        let state = (slices, LeanScratch::default());
+        map_row_blocks(&state, grid, dim, bar, |(s, scratch), points, out| {
+            dextrous_verdicts_lean(lean, central, points, out, scratch, |k, u| match k {
+                Some(k) => s.evals[k].is_feasible(&Pose::new(*u, s.rotations[k])),
+                None => match &mut s.central {
+                    Err((ev, r)) => ev.is_feasible(&Pose::new(*u, *r)),
+                    Ok(k) => s.evals[*k].is_feasible(&Pose::new(*u, s.rotations[*k])),
+                },
+            })
+        })
+    } else {
+        map_rows(&slices, grid, dim, bar, |s, u| {
+            let ok =
+                |s: &mut Slices, k: usize| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k]));
+            if !ok(s, 0) || (n > 1 && !ok(s, n - 1)) {
+                return (false, false, false);
             }
-            Err((ev, r)) => (
-                lean.and_then(|l| l.1.as_ref()?.is_feasible(&u))
-                    .unwrap_or_else(|| ev.is_feasible(&Pose::new(u, *r))),
-                None,
-            ),
-        };
-        let others_ok = (1..n.saturating_sub(1))
-            .filter(|&k| Some(k) != central_index)
-            .all(|k| ok(s, k));
-        let dextrous = (central_ok || central_index.is_none()) && others_ok;
-        (dextrous, true, !central_ok)
-    });
+            let (central_ok, central_index) = match &mut s.central {
+                Ok(k) => {
+                    let k = *k;
+                    (ok(s, k), Some(k))
+                }
+                Err((ev, r)) => (ev.is_feasible(&Pose::new(u, *r)), None),
+            };
+            let others_ok = (1..n.saturating_sub(1))
+                .filter(|&k| Some(k) != central_index)
+                .all(|k| ok(s, k));
+            let dextrous = (central_ok || central_index.is_none()) && others_ok;
+            (dextrous, true, !central_ok)
+        })
+    };
     bar.finish_and_clear();
     let violations = verdicts.iter().filter(|v| v.2).count();
     Ok(Dextrous {
