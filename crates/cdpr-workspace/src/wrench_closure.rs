@@ -30,6 +30,12 @@
 //!   cable-driven parallel mechanisms", Mech. Mach. Theory 41: the null-space test.
 //! - CASPR (Lau et al. 2016): the wrench-closure workspace condition.
 
+mod simd;
+
+#[cfg(target_arch = "x86_64")]
+use simd::Avx;
+use simd::{F64x4, Portable};
+
 use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector};
 
@@ -412,66 +418,55 @@ pub(crate) const LANES: usize = 4;
 /// One f64 per pose of a group.
 pub(crate) type Lanes = [f64; LANES];
 
-/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop
-/// the compiler turns into SIMD instructions; `if` becomes a blend).
-macro_rules! lanes {
-    ($l:ident => $e:expr) => {{
-        let mut lane = [0.0f64; LANES];
-        for $l in 0..LANES {
-            lane[$l] = $e;
-        }
-        lane
-    }};
-}
-
-/// What [`reduce_leading_lanes`] found for each pose of a group.
-struct LaneReduction {
+/// What [`decide_lanes`] found for each pose of a group.
+struct LaneDecision {
     /// Every entry of W finite.
     finite: [bool; LANES],
     /// The first six columns were the pivot columns (the common case): the null basis is
     /// in the columns 6 and 7 of the reduced rows.
     leading: [bool; LANES],
-    /// Position (0–5) of each physical row after the row exchanges of partial pivoting, per
-    /// lane (small integers as f64).
-    position: [Lanes; 6],
+    /// Some coordinate of the null basis is NaN (overflow in the reduction): the half-plane
+    /// test is left to the single-pose [`straddling_pair_gap`], which orders NaN rows by
+    /// their `f64::total_cmp` keys.
+    nan: [bool; LANES],
+    /// [`WrenchClosureTest::half_plane`] of the null basis (meaningful where `leading` is
+    /// set and `nan` is not).
+    closure: [bool; LANES],
+    /// Rows 0–5 of the null basis N (its coordinates x, y per row); rows 6 and 7 are e₁, e₂.
+    null: [[Lanes; 6]; 2],
 }
 
 impl WrenchClosureTest {
     /// The decisions of four 6 × 8 wrench matrices given as lanes, `columns[j][i][l]` =
     /// W(i, j) of pose l (the layout of `Robot::wrench_matrix_lanes`):
     /// [`WrenchClosureTest::is_wrench_closure_columns`] of each, with the finiteness check,
-    /// the scale and the reduction of the common case (leading pivot columns,
-    /// [`WrenchClosureTest::reduce_leading`]) computed across the four poses at once. The
-    /// reduction performs the operations of the single-pose path on the same values (row
-    /// exchanges tracked as positions, not moved), hence the same bits; a pose outside the
-    /// common case goes through the single-pose path. Lanes with `wanted[l]` false are not
-    /// decided (`false`).
+    /// the scale, the reduction of the common case (leading pivot columns,
+    /// [`WrenchClosureTest::reduce_leading`]) and the half-plane test computed across the four
+    /// poses at once ([`decide_lanes`]): the operations of the single-pose path on the same
+    /// values, hence the same bits. A pose outside the common case goes through the
+    /// single-pose path. Lanes with `wanted[l]` false are not decided (`false`).
     pub(crate) fn decide_four_6x8(
         &mut self,
         columns: &[[Lanes; 6]; 8],
         wanted: [bool; LANES],
     ) -> [bool; LANES] {
         assert!(self.dof == 6 && self.n == 8, "6 × 8 wrench matrices");
-        let mut a = *columns;
-        let reduction = match self.avx2 {
+        let lanes = match self.avx2 {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
-            true => unsafe { reduce_leading_lanes_avx2(&mut a) },
-            _ => reduce_leading_lanes::<false>(&mut a),
+            true => unsafe { decide_lanes_avx2(columns) },
+            _ => decide_lanes::<Portable>(columns),
         };
         std::array::from_fn(|l| {
-            if !(wanted[l] && reduction.finite[l]) {
+            if !(wanted[l] && lanes.finite[l]) {
                 false
-            } else if reduction.leading[l] {
-                // Row p of N is −(row at position p)[6..8]; rows 6, 7 are e_1, e_2. (Built
-                // in a local array with rows 6, 7 as constants it ran 1.6 times slower,
-                // although in fewer instructions.)
+            } else if lanes.leading[l] && !lanes.nan[l] {
+                lanes.closure[l]
+            } else if lanes.leading[l] {
                 let null = &mut self.null[..16];
-                for (i, position) in reduction.position.iter().enumerate() {
-                    // A position is an integer 0–5 (exact in f64).
-                    let p = position[l] as u8 as usize;
-                    null[2 * p] = -a[6][i][l];
-                    null[2 * p + 1] = -a[7][i][l];
+                for p in 0..6 {
+                    null[2 * p] = lanes.null[0][p][l];
+                    null[2 * p + 1] = lanes.null[1][p][l];
                 }
                 null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
                 self.half_plane()
@@ -483,155 +478,236 @@ impl WrenchClosureTest {
     }
 }
 
-/// [`reduce_leading_lanes`] compiled for AVX2 (no fused multiply–adds, which Rust never
-/// forms: the same bits).
+/// [`decide_lanes`] on AVX2 registers ([`Avx`]).
 ///
 /// # Safety
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn reduce_leading_lanes_avx2(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
-    reduce_leading_lanes::<true>(a)
+unsafe fn decide_lanes_avx2(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
+    decide_lanes::<Avx>(columns)
 }
 
-/// Finiteness, scale and [`WrenchClosureTest::reduce_leading`] of four 6 × 8 matrices, one
-/// per lane of `a[column][row]`. Each step does, lane by lane, what the single-pose loop does:
-/// partial pivoting picks the first row in position order with the largest |a_ic| (rows
-/// keep their place; `position` records the exchanges), the pivot row is scaled by 1/pivot,
-/// and every other row with a non-zero entry in the pivot column gets `o −= f · p`. Only the
-/// columns right of the pivot are updated: the single-pose loop updates whole rows, but its
-/// entries left of the pivot column are never read again. A lane whose pivot falls below the
-/// rank tolerance is flagged (`leading` false) and its values are meaningless. `AVX` (only in
-/// [`reduce_leading_lanes_avx2`]) makes the selects blend instructions ([`blend`]).
+/// The four-pose decision on lanes of type `V`: finiteness (as `decide`), the scale and
+/// [`WrenchClosureTest::reduce_leading`] (as `reduce_fixed`), then
+/// [`WrenchClosureTest::half_plane`] ([`half_plane_lanes`]). Each step does, lane by lane,
+/// what the single-pose path does; a branch becomes a mask and a blend. A lane whose pivot
+/// falls below the rank tolerance is flagged (`leading` false) and its values are
+/// meaningless.
 #[inline(always)]
-fn reduce_leading_lanes<const AVX: bool>(a: &mut [[Lanes; 6]; 8]) -> LaneReduction {
-    // Finiteness (as `decide`) and the largest |w_ij| by comparisons (as `reduce_fixed`).
-    let mut finite: Mask = [u64::MAX; LANES];
-    let mut largest = [0.0f64; LANES];
-    for column in a.iter() {
+fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
+    // No closures here: a closure is not compiled with the caller's target features, so the
+    // AVX2 intrinsics would become calls.
+    let mut a = [[V::splat(0.0); 6]; 8];
+    for (aj, cj) in a.iter_mut().zip(columns) {
+        for (aij, cij) in aj.iter_mut().zip(cj) {
+            *aij = V::load(cij);
+        }
+    }
+    // Finiteness, and the largest |w_ij| by comparisons, column by column.
+    let mut finite = V::splat(f64::from_bits(u64::MAX));
+    let mut largest = V::splat(0.0);
+    for column in &a {
         for entry in column {
-            let v = lanes!(l => entry[l].abs());
-            for l in 0..LANES {
-                finite[l] &= mask(v[l] < f64::INFINITY);
-            }
-            let larger: Mask = std::array::from_fn(|l| mask(v[l] > largest[l]));
-            largest = blend::<AVX>(larger, v, largest);
+            let v = entry.abs();
+            finite = finite.and(v.lt(V::splat(f64::INFINITY)));
+            largest = V::blend(v.gt(largest), v, largest);
         }
     }
     // `largest.max(1e-300)` (largest is finite and ≥ 0 where it matters).
-    let tolerance =
-        lanes!(l => RANK_TOLERANCE * select(mask(largest[l] < 1e-300), 1e-300, largest[l]));
-    let mut position: [Lanes; 6] = std::array::from_fn(|i| [i as f64; LANES]);
+    let tiny = V::splat(1e-300);
+    let tolerance = V::splat(RANK_TOLERANCE).mul(V::blend(largest.lt(tiny), tiny, largest));
     let mut leading = finite;
-    // One step per pivot column, each unrolled for its column at compile time.
-    pivot_step::<0, AVX>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<1, AVX>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<2, AVX>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<3, AVX>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<4, AVX>(a, &mut position, &mut leading, &tolerance);
-    pivot_step::<5, AVX>(a, &mut position, &mut leading, &tolerance);
-    LaneReduction {
-        finite: finite.map(|m| m != 0),
-        leading: leading.map(|m| m != 0),
-        position,
+    pivot_step::<V, 0>(&mut a, &mut leading, tolerance);
+    pivot_step::<V, 1>(&mut a, &mut leading, tolerance);
+    pivot_step::<V, 2>(&mut a, &mut leading, tolerance);
+    pivot_step::<V, 3>(&mut a, &mut leading, tolerance);
+    pivot_step::<V, 4>(&mut a, &mut leading, tolerance);
+    pivot_step::<V, 5>(&mut a, &mut leading, tolerance);
+    // Row p of N is −(row p)[6..8].
+    let (mut x, mut y) = ([V::splat(0.0); 8], [V::splat(0.0); 8]);
+    let mut null = [[[0.0; LANES]; 6]; 2];
+    for p in 0..6 {
+        (x[p], y[p]) = (a[6][p].neg(), a[7][p].neg());
+        (null[0][p], null[1][p]) = (x[p].lanes(), y[p].lanes());
+    }
+    (x[6], y[7]) = (V::splat(1.0), V::splat(1.0));
+    let (nan, closure) = half_plane_lanes(&x, &y);
+    LaneDecision {
+        finite: finite.is_set(),
+        leading: leading.is_set(),
+        nan: nan.is_set(),
+        closure: closure.is_set(),
+        null,
     }
 }
 
-/// Step `C` of [`reduce_leading_lanes`]: pivot column `C`, lane by lane.
+/// Step `C` of [`WrenchClosureTest::reduce_leading`], pivot column `C`, on lanes. Only the
+/// columns right of C are updated (the single-pose loop updates whole rows, but its entries
+/// left of the pivot column are never read again).
 #[inline(always)]
-fn pivot_step<const C: usize, const AVX: bool>(
-    a: &mut [[Lanes; 6]; 8],
-    position: &mut [Lanes; 6],
-    leading: &mut Mask,
-    tolerance: &Lanes,
-) {
-    let col = C as f64;
-    // Partial pivoting among the rows at positions ≥ C: the largest |a_iC|, the smallest
-    // position among equals (the single-pose scan keeps the first, by `>`). Masks are
-    // all-ones/all-zeros words combined with bitwise operations, selects are bitwise blends:
-    // whole-lane operations without branches.
-    let mut best_abs = [0.0f64; LANES];
-    let mut best_position = [f64::INFINITY; LANES];
-    for (entry, pos) in a[C].iter().zip(position.iter()) {
-        let v = lanes!(l => entry[l].abs());
-        let take: Mask = std::array::from_fn(|l| {
-            mask(pos[l] >= col)
-                & (mask(v[l] > best_abs[l])
-                    | (mask(v[l] == best_abs[l]) & mask(pos[l] < best_position[l])))
-        });
-        best_abs = blend::<AVX>(take, v, best_abs);
-        best_position = blend::<AVX>(take, *pos, best_position);
+fn pivot_step<V: F64x4, const C: usize>(a: &mut [[V; 6]; 8], leading: &mut V, tolerance: V) {
+    // Partial pivoting (`partial_pivot`): the first row from C on with the largest |a_iC|.
+    let mut best_abs = V::splat(0.0);
+    let mut best = V::splat(C as f64);
+    for (i, entry) in a[C].iter().enumerate().skip(C) {
+        let v = entry.abs();
+        let take = v.gt(best_abs);
+        best_abs = V::blend(take, v, best_abs);
+        best = V::blend(take, V::splat(i as f64), best);
     }
-    for l in 0..LANES {
-        leading[l] &= !mask(best_abs[l] <= tolerance[l]);
+    *leading = best_abs.le(tolerance).and_not(*leading);
+    // `a.swap(C, best)`: the pivot row gathered (columns C..8); row i > C is row C where it
+    // was the pivot row (applied as the row is read below, so that every store is a plain one).
+    let mut chosen = [V::splat(0.0); 6];
+    for (i, c) in chosen.iter_mut().enumerate().skip(C + 1) {
+        *c = best.eq(V::splat(i as f64));
     }
-    let chosen: [Mask; 6] =
-        std::array::from_fn(|i| std::array::from_fn(|l| mask(position[i][l] == best_position[l])));
-    // The pivot row, scaled by 1/pivot (columns C..8).
-    let mut pivot = [[0.0f64; LANES]; 8];
-    for (i, is) in chosen.iter().enumerate() {
+    let mut pivot = [V::splat(0.0); 8];
+    for j in C..8 {
+        pivot[j] = a[j][C];
+    }
+    for i in C + 1..6 {
         for j in C..8 {
-            pivot[j] = blend::<AVX>(*is, a[j][i], pivot[j]);
+            pivot[j] = V::blend(chosen[i], a[j][i], pivot[j]);
         }
     }
-    let inv = lanes!(l => 1.0 / pivot[C][l]);
+    // The pivot row scaled by 1/pivot; `o −= f · p` in every other row whose entry in column
+    // C is not zero (the product masked to +0 otherwise: e − (+0) is e, −0 included).
+    let inv = V::splat(1.0).div(pivot[C]);
     for p in pivot[C + 1..].iter_mut() {
-        *p = lanes!(l => p[l] * inv[l]);
+        *p = p.mul(inv);
     }
-    for (i, is) in chosen.iter().enumerate() {
-        let f = a[C][i];
-        let eliminate: Mask = std::array::from_fn(|l| mask(f[l] != 0.0));
+    for i in 0..6 {
+        if i == C {
+            continue;
+        }
+        let f = row_after_exchange::<V, C>(a, &chosen, i, C);
+        let eliminate = f.ne(V::splat(0.0));
         for j in C + 1..8 {
-            let e = a[j][i];
-            let reduced = lanes!(l => e[l] - f[l] * pivot[j][l]);
-            let other = blend::<AVX>(eliminate, reduced, e);
-            a[j][i] = blend::<AVX>(*is, pivot[j], other);
+            a[j][i] =
+                row_after_exchange::<V, C>(a, &chosen, i, j).sub(f.mul(pivot[j]).and(eliminate));
         }
     }
-    // Exchange positions C and that of the pivot row.
-    for (pos, is) in position.iter_mut().zip(&chosen) {
-        let at_col: Mask = std::array::from_fn(|l| mask(pos[l] == col));
-        let other = blend::<AVX>(at_col, best_position, *pos);
-        *pos = blend::<AVX>(*is, [col; LANES], other);
+    for j in C + 1..8 {
+        a[j][C] = pivot[j];
     }
 }
 
-/// One all-ones (true) or all-zeros (false) word per lane.
-type Mask = [u64; LANES];
-
-/// The all-ones word for `true`, zero for `false`.
+/// [`straddling_pair_gap`] with row 0 as reference, on lanes: rows 0–5 of the null basis
+/// (`x`, `y`), rows 6 and 7 e₁ and e₂, in the single-pose order (which fixes its ties).
+/// Returns the masks (NaN in the basis, half-plane verdict). Each step with the same
+/// arithmetic, branches becoming blends:
+///
+/// - the norm pass, the same comparisons in the same order;
+/// - [`diamond_angle`] as one division per row: the branch picks numerator, denominator
+///   (x ± y with the signs of the branch: −x + y, −x − y and x − y are (−x) + y, (−x) + (−y)
+///   and x + (−y) exactly) and the constant c of c − q (3 + q is 3 − (−q) exactly);
+/// - the keys of `f64::total_cmp`: without NaN rows every angle of a lane that passes the norm
+///   test lies in {−0} ∪ [0, 4] (no row is zero, so no 0/0), where the order of the bits as
+///   signed integers is that of `total_cmp` (−0 has the smallest key, the rest are
+///   non-negative);
+/// - the four running pairs (first, last, last below t, first at or above t) as blends of
+///   keys and rows, with the single-pose comparisons (strict or not) and a "none yet" flag;
+/// - [`gap`] of the chosen rows.
 #[inline(always)]
-fn mask(b: bool) -> u64 {
-    0u64.wrapping_sub(u64::from(b))
-}
-
-/// [`select`] lane by lane. With `AVX` one `vblendvpd` (the compiler turns the bitwise
-/// form into three instructions): the same bits, a select is exact.
-#[inline(always)]
-fn blend<const AVX: bool>(m: Mask, a: Lanes, b: Lanes) -> Lanes {
-    #[cfg(target_arch = "x86_64")]
-    if AVX {
-        use std::arch::x86_64::{__m256d, _mm256_blendv_pd};
-        use std::mem::transmute;
-        // SAFETY: `AVX` is true only in `reduce_leading_lanes_avx2`, which runs on CPUs with
-        // AVX2 (run-time detection in `WrenchClosureTest::new`); the transmutes are between
-        // 32-byte plain-data types. `blendv` takes `a` where the sign bit of `m` is set, and
-        // every lane of `m` is all ones or all zeros.
-        return unsafe {
-            transmute::<__m256d, Lanes>(_mm256_blendv_pd(
-                transmute::<Lanes, __m256d>(b),
-                transmute::<Lanes, __m256d>(a),
-                transmute::<Mask, __m256d>(m),
-            ))
-        };
+fn half_plane_lanes<V: F64x4>(x: &[V; 8], y: &[V; 8]) -> (V, V) {
+    let zero = V::splat(0.0);
+    // The norm pass and the NaN flag (a NaN norm is a NaN coordinate).
+    let mut scale2 = zero;
+    let mut smallest = V::splat(f64::INFINITY);
+    let mut nan = zero;
+    for i in 0..8 {
+        let v = x[i].mul(x[i]).add(y[i].mul(y[i]));
+        nan = nan.or(v.ne(v));
+        scale2 = V::blend(v.gt(scale2), v, scale2);
+        smallest = V::blend(v.lt(smallest), v, smallest);
     }
-    lanes!(l => select(m[l], a[l], b[l]))
+    let tol2 = V::splat(STRICT_TOLERANCE * STRICT_TOLERANCE);
+    let slack = smallest.le(tol2.mul(scale2));
+    let t = diamond_angle_lanes(x[0].neg(), y[0].neg());
+    // (key, x, y) of the first and last rows overall, of the last row below t and of the
+    // first at or above t.
+    let (max, min) = (
+        V::splat(f64::from_bits(i64::MAX as u64)),
+        V::splat(f64::from_bits(i64::MIN as u64)),
+    );
+    let (mut first, mut last) = ((max, x[0], y[0]), (min, x[0], y[0]));
+    let (mut below, mut above) = ((min, x[0], y[0]), (max, x[0], y[0]));
+    let (mut any_below, mut any_above) = (zero, zero);
+    for i in 0..8 {
+        let k = diamond_angle_lanes(x[i], y[i]);
+        let row = (k, x[i], y[i]);
+        let is_below = k.int_lt(t);
+        take(k.int_lt(first.0), row, &mut first);
+        take(k.int_lt(last.0).not(), row, &mut last);
+        take(k.int_lt(below.0).and_not(is_below), row, &mut below);
+        let m = is_below.and_not(k.int_lt(above.0).or(any_above.not()));
+        take(m, row, &mut above);
+        any_below = any_below.or(is_below);
+        any_above = any_above.or(m);
+    }
+    let (ux, uy) = (
+        V::blend(any_below, below.1, last.1),
+        V::blend(any_below, below.2, last.2),
+    );
+    let (wx, wy) = (
+        V::blend(any_above, above.1, first.1),
+        V::blend(any_above, above.2, first.2),
+    );
+    let cross = ux.mul(wy).sub(uy.mul(wx));
+    let nu = ux.mul(ux).add(uy.mul(uy));
+    let nw = wx.mul(wx).add(wy.mul(wy));
+    let gap = cross
+        .lt(zero)
+        .and(cross.mul(cross).gt(tol2.mul(nu).mul(nw)));
+    (nan, slack.and_not(gap))
 }
 
-/// `a` where `m` is all ones, `b` where it is zero, by bits.
+/// `pair` = `row` (key, x, y) in the lanes of the mask `m`.
 #[inline(always)]
-fn select(m: u64, a: f64, b: f64) -> f64 {
-    f64::from_bits((m & a.to_bits()) | (!m & b.to_bits()))
+fn take<V: F64x4>(m: V, row: (V, V, V), pair: &mut (V, V, V)) {
+    *pair = (
+        V::blend(m, row.0, pair.0),
+        V::blend(m, row.1, pair.1),
+        V::blend(m, row.2, pair.2),
+    );
+}
+
+/// Entry (i, j) of the matrix after the exchange of rows C and `best` of step C (i ≠ C):
+/// row C where row i is the pivot row (`chosen[i]`).
+#[inline(always)]
+fn row_after_exchange<V: F64x4, const C: usize>(
+    a: &[[V; 6]; 8],
+    chosen: &[V; 6],
+    i: usize,
+    j: usize,
+) -> V {
+    if i > C {
+        V::blend(chosen[i], a[j][C], a[j][i])
+    } else {
+        a[j][i]
+    }
+}
+
+/// [`diamond_angle`] on lanes, one division per lane (see [`half_plane_lanes`]); the same
+/// bits for coordinates that are not NaN.
+#[inline(always)]
+fn diamond_angle_lanes<V: F64x4>(x: V, y: V) -> V {
+    let zero = V::splat(0.0);
+    let sign = V::splat(-0.0);
+    let (sx, sy) = (x.lt(zero), y.lt(zero));
+    // Branches: A (y ≥ 0, x ≥ 0) y / (x + y); B (y ≥ 0, x < 0) 1 − x / (−x + y);
+    // C (y < 0, x < 0) 2 − y / (−x − y); D (y < 0, x ≥ 0) 3 + x / (x − y) = 3 − (−x / (x − y)).
+    let den = x.xor(sx.and(sign)).add(y.xor(sy.and(sign)));
+    let q = V::blend(sx.xor(sy), x, y).div(den);
+    let c = V::blend(
+        sy,
+        V::blend(sx, V::splat(2.0), V::splat(3.0)),
+        V::splat(1.0),
+    );
+    let r = c.sub(q.xor(sx.and_not(sy).and(sign)));
+    V::blend(sx.or(sy), r, q)
 }
 
 /// [`WrenchClosureTest::half_plane`] of the n rows `row(i)` = ν_i of a null basis, with
@@ -1012,6 +1088,68 @@ mod tests {
         }
     }
 
+    /// [`half_plane_lanes`] on AVX2 registers, for the tests.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn half_plane_lanes_avx2(
+        x: &[[f64; LANES]; 8],
+        y: &[[f64; LANES]; 8],
+    ) -> [[bool; LANES]; 2] {
+        let (mut vx, mut vy) = ([Avx::splat(0.0); 8], [Avx::splat(0.0); 8]);
+        for i in 0..8 {
+            (vx[i], vy[i]) = (Avx::load(&x[i]), Avx::load(&y[i]));
+        }
+        let (nan, closure) = half_plane_lanes(&vx, &vy);
+        [nan.is_set(), closure.is_set()]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The half-plane test in lanes gives the single-pose `straddling_pair_gap` on any
+        /// eight rows, four row sets at a time, at and around the boundary, with ties (equal
+        /// angles, lengths apart), signed zeros, tiny rows and NaN coordinates (flagged, not
+        /// decided), in the portable and the AVX2 build.
+        #[test]
+        fn half_plane_in_lanes_equals_one_at_a_time(
+            sets in proptest::collection::vec((boundary_rows(8), 0..8usize, 0..64usize), 4)
+        ) {
+            let mut x = [[0.0; LANES]; 8];
+            let mut y = [[0.0; LANES]; 8];
+            let mut single = [false; LANES];
+            let mut nan = [false; LANES];
+            for (l, (rows, shift, poison)) in sets.iter().enumerate() {
+                let mut rows = rows.clone();
+                rows.rotate_left(2 * shift);
+                if *poison < 16 {
+                    rows[*poison] = f64::NAN;
+                }
+                for i in 0..8 {
+                    (x[i][l], y[i][l]) = (rows[2 * i], rows[2 * i + 1]);
+                }
+                single[l] = straddling_pair_gap(8, 0, |i| (rows[2 * i], rows[2 * i + 1]));
+                nan[l] = rows.iter().any(|v| v.is_nan());
+            }
+            let lanes = |v: &[[f64; LANES]; 8]| v.map(|r| Portable::load(&r));
+            let (p_nan, p_closure) = half_plane_lanes(&lanes(&x), &lanes(&y));
+            let mut builds = vec![[p_nan.is_set(), p_closure.is_set()]];
+            #[cfg(target_arch = "x86_64")]
+            if std::arch::is_x86_feature_detected!("avx2") {
+                // SAFETY: the CPU supports AVX2 (just detected).
+                builds.push(unsafe { half_plane_lanes_avx2(&x, &y) });
+            }
+            for [b_nan, b_closure] in builds {
+                prop_assert_eq!(b_nan, nan);
+                for l in (0..LANES).filter(|&l| !nan[l]) {
+                    prop_assert_eq!(b_closure[l], single[l], "lane {}", l);
+                }
+            }
+        }
+    }
+
     /// A 6 × 8 wrench matrix for the four-pose tests: W = M Bᵀ with the null space spanned by
     /// a boundary row set (kinds 0, 1), random (2), rank-deficient (3), entries from a small
     /// set so that partial pivoting meets exact ties (4), or with a non-finite entry (5).
@@ -1077,11 +1215,10 @@ mod tests {
             // The reduction itself, bit for bit: the lanes' flags and null bases against the
             // single-pose `reduce_leading` of each matrix.
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            let mut lanes_a = columns;
-            let reduction = reduce_leading_lanes::<false>(&mut lanes_a);
+            let portable = decide_lanes::<Portable>(&columns);
             for (l, w) in ws.iter().enumerate() {
                 let finite = w.iter().all(|v| v.is_finite());
-                prop_assert_eq!(reduction.finite[l], finite);
+                prop_assert_eq!(portable.finite[l], finite);
                 if !finite {
                     continue;
                 }
@@ -1094,39 +1231,44 @@ mod tests {
                     }
                 }
                 let leading = t.reduce_leading(&mut a, largest.max(1e-300));
-                prop_assert_eq!(reduction.leading[l], leading, "lane {}", l);
+                prop_assert_eq!(portable.leading[l], leading, "lane {}", l);
                 if leading {
+                    // The null basis bit for bit, then the half-plane test on it: NaN flagged
+                    // exactly, and otherwise the single-pose verdict.
                     let mut null = [0.0; 12];
-                    for (i, position) in reduction.position.iter().enumerate() {
-                        let p = position[l] as usize;
-                        null[2 * p] = -lanes_a[6][i][l];
-                        null[2 * p + 1] = -lanes_a[7][i][l];
+                    for p in 0..6 {
+                        null[2 * p] = portable.null[0][p][l];
+                        null[2 * p + 1] = portable.null[1][p][l];
                     }
                     prop_assert_eq!(bits(&null), bits(&t.null[..12]), "lane {}", l);
+                    t.null[12..16].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
+                    prop_assert_eq!(portable.nan[l], t.null[..16].iter().any(|v| v.is_nan()));
+                    if !portable.nan[l] {
+                        prop_assert_eq!(portable.closure[l], t.half_plane(), "lane {}", l);
+                    }
                 }
             }
-            // The AVX2 build of the reduction gives the portable one's flags, and its bits in
-            // every lane in the common case (a broken AVX2 reduction could otherwise hide
-            // behind the single-pose fallback; other lanes hold meaningless values, NaNs whose
-            // sign may differ).
+            // The AVX2 build gives the portable one's flags, and its bits and verdicts in every
+            // lane in the common case (a broken AVX2 build could otherwise hide behind the
+            // single-pose fallback; other lanes hold meaningless values, NaNs whose sign may
+            // differ).
             let avx2_here = t.avx2;
             #[cfg(target_arch = "x86_64")]
             if avx2_here {
-                let mut lanes_b = columns;
                 // SAFETY: the CPU supports AVX2 (run-time detection in `new`).
-                let avx = unsafe { reduce_leading_lanes_avx2(&mut lanes_b) };
-                prop_assert_eq!(avx.finite, reduction.finite);
-                prop_assert_eq!(avx.leading, reduction.leading);
-                let lane = |m: &[[Lanes; 6]; 8], p: &[Lanes; 6], l: usize| {
-                    let v: Vec<f64> = m.iter().flatten().chain(p).map(|x| x[l]).collect();
-                    bits(&v)
-                };
-                for l in (0..LANES).filter(|&l| reduction.leading[l]) {
-                    prop_assert_eq!(
-                        lane(&lanes_b, &avx.position, l),
-                        lane(&lanes_a, &reduction.position, l),
-                        "lane {}", l
-                    );
+                let avx = unsafe { decide_lanes_avx2(&columns) };
+                prop_assert_eq!(avx.finite, portable.finite);
+                prop_assert_eq!(avx.leading, portable.leading);
+                for l in (0..LANES).filter(|&l| portable.leading[l]) {
+                    let lane = |d: &LaneDecision| {
+                        let v: Vec<f64> = d.null.iter().flatten().map(|x| x[l]).collect();
+                        bits(&v)
+                    };
+                    prop_assert_eq!(lane(&avx), lane(&portable), "lane {}", l);
+                    prop_assert_eq!(avx.nan[l], portable.nan[l], "lane {}", l);
+                    if !portable.nan[l] {
+                        prop_assert_eq!(avx.closure[l], portable.closure[l], "lane {}", l);
+                    }
                 }
             }
             for avx2 in [false, avx2_here] {
