@@ -112,6 +112,67 @@ fn equilibrium<const M: usize>(ws: &[f64], we: &[f64], t: &[f64]) -> (f64, f64) 
     finish(&res, &rows, we, t_max)
 }
 
+/// The equilibrium test `in_equilibrium(residual, scale)` of [`equilibrium`] and the residual,
+/// residual first: it is tested against max(1, ‖w_ext‖∞), a lower bound of the scale (the
+/// test is monotone in the scale), and only when that fails does a second pass over W
+/// compute ‖W‖∞ · max|t_i|. The same residual (the same sums in the same order) and the same
+/// verdict as the one-pass test, without the row norms in the usual case.
+#[inline(always)]
+fn equilibrium_test<const M: usize>(ws: &[f64], we: &[f64], t: &[f64]) -> (bool, f64) {
+    let mut res = [0.0f64; M];
+    res.copy_from_slice(&we[..M]);
+    for (col, &ti) in ws.chunks_exact(M).zip(t) {
+        for k in 0..M {
+            res[k] += col[k] * ti;
+        }
+    }
+    let (mut residual, mut we_max, mut nan) = (0.0f64, 0.0f64, false);
+    for (&r, &e) in res.iter().zip(we) {
+        residual = residual.max(r.abs());
+        nan |= r.is_nan();
+        we_max = we_max.max(e.abs());
+    }
+    if nan {
+        residual = f64::INFINITY;
+    }
+    if in_equilibrium(residual, 1f64.max(we_max)) {
+        return (true, residual);
+    }
+    full_scale_test::<M>(ws, we, t, residual)
+}
+
+/// The test against the full scale (see [`equilibrium_test`]).
+#[cold]
+#[inline(never)]
+fn full_scale_test<const M: usize>(
+    ws: &[f64],
+    we: &[f64],
+    t: &[f64],
+    residual: f64,
+) -> (bool, f64) {
+    let (r, scale) = equilibrium::<M>(ws, we, t);
+    debug_assert!(r.to_bits() == residual.to_bits());
+    (in_equilibrium(residual, scale), residual)
+}
+
+/// [`equilibrium_test`] by DOF (the one-pass test beyond 6).
+#[inline(always)]
+fn equilibrium_test_any(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (bool, f64) {
+    let (ws, we) = (w.as_slice(), w_ext.as_slice());
+    match w.nrows() {
+        1 => equilibrium_test::<1>(ws, we, t),
+        2 => equilibrium_test::<2>(ws, we, t),
+        3 => equilibrium_test::<3>(ws, we, t),
+        4 => equilibrium_test::<4>(ws, we, t),
+        5 => equilibrium_test::<5>(ws, we, t),
+        6 => equilibrium_test::<6>(ws, we, t),
+        _ => {
+            let (residual, scale) = equilibrium_dyn(w, w_ext, t);
+            (in_equilibrium(residual, scale), residual)
+        }
+    }
+}
+
 #[inline(always)]
 fn finish(res: &[f64], rows: &[f64], we: &[f64], t_max: f64) -> (f64, f64) {
     let (mut residual, mut w_norm, mut we_max) = (0.0f64, 0.0f64, 0.0f64);
@@ -179,8 +240,8 @@ pub(crate) fn snap_and_certify(
     t: &mut [f64],
 ) -> Result<f64, Certificate> {
     let inside = snap_all(bounds, t);
-    let (residual, scale) = equilibrium_any(w, w_ext, t);
-    if inside && in_equilibrium(residual, scale) {
+    let (balanced, residual) = equilibrium_test_any(w, w_ext, t);
+    if inside && balanced {
         Ok(residual)
     } else {
         Err(certify_cold(w, w_ext, bounds, t))
@@ -197,8 +258,7 @@ pub(crate) fn snap_and_certify_fixed_ok<const M: usize>(
     t: &mut [f64],
 ) -> bool {
     let inside = snap_all(bounds, t);
-    let (residual, scale) = equilibrium::<M>(ws, we, t);
-    inside && in_equilibrium(residual, scale)
+    inside && equilibrium_test::<M>(ws, we, t).0
 }
 
 /// [`snap_and_certify`] for a DOF = M known at compile time (W is M × t.len()): the same
@@ -212,8 +272,8 @@ pub(crate) fn snap_and_certify_fixed<const M: usize>(
 ) -> Result<f64, Certificate> {
     debug_assert_eq!(w.nrows(), M);
     let inside = snap_all(bounds, t);
-    let (residual, scale) = equilibrium::<M>(w.as_slice(), w_ext.as_slice(), t);
-    if inside && in_equilibrium(residual, scale) {
+    let (balanced, residual) = equilibrium_test::<M>(w.as_slice(), w_ext.as_slice(), t);
+    if inside && balanced {
         Ok(residual)
     } else {
         Err(certify_cold(w, w_ext, bounds, t))
@@ -404,6 +464,28 @@ mod tests {
             }
         }
         assert!(failures > 500 && failures < 3500, "{failures}");
+    }
+
+    /// A residual above 10⁻⁹ max(1, ‖w_ext‖∞) but within 10⁻⁹ ‖W‖∞ max|t_i| is certified (the
+    /// second pass of the residual-first test), one beyond it is not, for fixed and dynamic DOF.
+    #[test]
+    fn residual_within_the_full_scale_is_certified() {
+        for m in [1, 6, 7] {
+            // Row k: 10³ t_1 − 10³ t_2 (+ 0 t_3); t = (1000, 1000, 0): ‖W‖∞ max|t| = 2·10⁶,
+            // tolerance 2·10⁻³ N against 10⁻⁹ N from w_ext alone.
+            let w = DMatrix::from_fn(m, 3, |_, c| [1e3, -1e3, 0.0][c]);
+            let b = TensionBounds::uniform(3, 0.0, 2000.0).unwrap();
+            for (offset, valid) in [(1e-4, true), (1.9e-3, true), (2.1e-3, false)] {
+                let we = DVector::from_element(m, offset);
+                let mut t = [1000.0, 1000.0, 0.0];
+                let c = certify(&w, &we, &b, &t);
+                assert_eq!(c.is_valid(), valid, "{m} {offset} {c:?}");
+                match snap_and_certify(&w, &we, &b, &mut t) {
+                    Ok(r) => assert!(valid && r == c.residual, "{m} {offset}"),
+                    Err(e) => assert!(!valid && e == c, "{m} {offset}"),
+                }
+            }
+        }
     }
 
     /// The fixed-size residual sums in the same order as a plain row loop.

@@ -20,14 +20,18 @@
 //! (`id_cf_icfm`, absolute violation, 10⁻⁶ absolute tolerance); cdpyr instead saturates the
 //! violating cable of largest |t_i|. `tests/it/improved_closed_form.rs` compares this
 //! implementation with a direct transcription of the iteration (pseudo-inverse per step).
-//! Needs finite t_max. The first step factors A Aᵀ (Cholesky, DOF × DOF); each saturation
-//! downdates that factor by the removed column in O(DOF²) (Golub & Van Loan, §6.5.4) rather
-//! than rebuilding and refactoring it, with a fresh factorisation when the downdate would cancel
-//! most of a pivot (more than 99 %).
+//! Needs finite t_max. The first step factors A Aᵀ = L D Lᵀ (square-root-free Cholesky,
+//! DOF × DOF, with the reciprocal pivots 1/D_k kept so that the solves only multiply); each
+//! saturation downdates that factor by the removed column in O(DOF²) (Gill, Golub, Murray &
+//! Saunders 1974, method C1) rather than rebuilding and refactoring it, with a fresh
+//! factorisation when the downdate would cancel most of a pivot (more than 99 %). Without square
+//! roots and with one division per pivot, the chain of dependent operations (what bounds the
+//! speed of one 6 × 8 solve) is about half that of a Cholesky factor with divisions.
 //!
 //! ## References
-//! - Golub, G. H. & Van Loan, C. F. (2013), *Matrix Computations*, 4th ed., §6.5.4 (updating
-//!   and downdating the Cholesky factorisation).
+//! - Gill, P. E., Golub, G. H., Murray, W. & Saunders, M. A. (1974), *Methods for modifying
+//!   matrix factorizations*, Mathematics of Computation 28(126), pp. 505–535 (method C1).
+//! - Golub, G. H. & Van Loan, C. F. (2013), *Matrix Computations*, 4th ed., §4.1 (L D Lᵀ).
 //! - Pott, A. (2014), *An improved force distribution algorithm for over-constrained
 //!   cable-driven parallel robots*, Computational Kinematics, pp. 139–146.
 //! - Pott, Bruckmann & Mikelsons (2009), *Closed-form force distribution for parallel wire
@@ -51,49 +55,94 @@ impl ImprovedClosedForm {
     /// robot) run a copy of the iteration with the sizes fixed at compile time (stack buffers,
     /// unrolled loops, the same arithmetic).
     pub fn solve(&mut self, problem: &TensionProblem, t: &mut [f64]) -> Result<(), Infeasibility> {
-        self.solve_with(problem, t, true)
+        self.solve_with(problem, t, true, detected_path())
     }
 
-    /// [`Self::solve`] with the factor updated (`update`) or refactorised at every step.
+    /// [`Self::solve`] with the factor updated (`update`) or refactorised at every step, 6 × 8
+    /// problems through the build `path`.
     fn solve_with(
         &mut self,
         problem: &TensionProblem,
         t: &mut [f64],
         update: bool,
+        path: Path,
     ) -> Result<(), Infeasibility> {
         let (m, n) = problem.wrench_matrix.shape();
         self.active.clear();
         self.active.resize(n, true);
         let active = &mut self.active;
         match (m, n) {
-            (6, 8) => {
-                let mut buf = [0.0; 6 * 6 + 3 * 6];
-                iterate::<6, 8>(problem, active, &mut buf, t, update)
-            }
+            (6, 8) => match path {
+                // SAFETY: `Avx2` is chosen only when the CPU reports AVX2 (`detected_path`, or
+                // a test that checks it first).
+                #[cfg(target_arch = "x86_64")]
+                Path::Avx2 => unsafe { iterate_6x8_avx2(problem, active, t, update) },
+                Path::Portable => {
+                    let mut buf = [0.0; 6 * 6 + 4 * 6];
+                    iterate::<6, 8>(problem, active, &mut buf, t, update)
+                }
+            },
             (6, _) => {
-                let mut buf = [0.0; 6 * 6 + 3 * 6];
+                let mut buf = [0.0; 6 * 6 + 4 * 6];
                 iterate::<6, 0>(problem, active, &mut buf, t, update)
             }
             (3, _) => {
-                let mut buf = [0.0; 3 * 3 + 3 * 3];
+                let mut buf = [0.0; 3 * 3 + 4 * 3];
                 iterate::<3, 0>(problem, active, &mut buf, t, update)
             }
             _ => {
-                self.buf.resize(m * m + 3 * m, 0.0);
+                self.buf.resize(m * m + 4 * m, 0.0);
                 iterate::<0, 0>(problem, active, &mut self.buf, t, update)
             }
         }
     }
 }
 
+/// Which build of the 6 × 8 iteration runs: both compile the same source without fused
+/// multiply–adds (Rust never contracts `a * b + c`), so they give the same bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// Compiled for AVX2 (chosen at run time when the CPU has it).
+    #[cfg(target_arch = "x86_64")]
+    Avx2,
+    /// Compiled for the baseline target (SSE2 on x86-64).
+    Portable,
+}
+
+/// The fastest build this CPU runs (`is_x86_feature_detected!` caches its answer).
+#[inline]
+fn detected_path() -> Path {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        return Path::Avx2;
+    }
+    Path::Portable
+}
+
+/// [`iterate`] for 6 × 8 compiled for AVX2 (4-lane vectors; no FMA, the same bits).
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn iterate_6x8_avx2(
+    problem: &TensionProblem,
+    active: &mut [bool],
+    t: &mut [f64],
+    update: bool,
+) -> Result<(), Infeasibility> {
+    let mut buf = [0.0; 6 * 6 + 4 * 6];
+    iterate::<6, 8>(problem, active, &mut buf, t, update)
+}
+
 /// Relative size of the downdated pivot below which the factor is recomputed instead:
-/// (L'_kk / L_kk)² ≥ 10⁻² bounds the growth of rounding in one hyperbolic rotation by
-/// 1/c = L_kk / L'_kk ≤ 10 (see [`downdate`]).
+/// D'_k / D_k ≥ 10⁻² (in Cholesky terms (L'_kk / L_kk)² ≥ 10⁻²) bounds the growth of rounding
+/// in one step of the downdate by D_k / D'_k ≤ 100 (see [`downdate`]).
 const DOWNDATE_MIN_RATIO: f64 = 1e-2;
 
 /// The iteration of Pott (2014) for DOF m = M and n = N cables (0: read from W at run time).
-/// `buf` holds A Aᵀ (m × m, row-major, then its Cholesky factor L), then rhs, y and the
-/// diagonal of A Aᵀ (m each).
+/// `buf` holds A Aᵀ (m × m, row-major, lower triangle; then its factor L D Lᵀ, see [`ldl`]),
+/// then rhs, y, the diagonal of A Aᵀ and the reciprocal pivots 1/D_k (m each).
 ///
 /// When a cable j is saturated, A loses column w_j: A' A'ᵀ = A Aᵀ − w_j w_jᵀ, so (with
 /// `update`) the factor is downdated in O(m²) instead of rebuilt (O(n m²)) and refactorised
@@ -120,8 +169,9 @@ fn iterate<const M: usize, const N: usize>(
     let we = &problem.external_wrench.as_slice()[..m];
     let (aat, rest) = buf.split_at_mut(m * m);
     let (rhs, rest) = rest.split_at_mut(m);
-    let (y, diag) = rest.split_at_mut(m);
-    let (y, diag) = (&mut y[..m], &mut diag[..m]);
+    let (y, rest) = rest.split_at_mut(m);
+    let (diag, inv_d) = rest.split_at_mut(m);
+    let (y, diag, inv_d) = (&mut y[..m], &mut diag[..m], &mut inv_d[..m]);
     let (lo, hi) = (
         problem.bounds.min().as_slice(),
         problem.bounds.max().as_slice(),
@@ -136,7 +186,7 @@ fn iterate<const M: usize, const N: usize>(
     let mut saturated: Option<usize> = None;
     loop {
         let updated = match saturated {
-            Some(j) => downdate(aat, m, &ws[j * m..j * m + m], y, diag),
+            Some(j) => downdate(aat, m, &ws[j * m..j * m + m], y, diag, inv_d),
             None => false,
         };
         if updated {
@@ -148,7 +198,7 @@ fn iterate<const M: usize, const N: usize>(
             }
         } else {
             factorise::<M>(ws, we, t, active, m, aat, rhs, diag);
-            if !cholesky(aat, m) {
+            if !ldl(aat, m, inv_d) {
                 return Err(if first {
                     Infeasibility::SingularPose {
                         condition: f64::INFINITY,
@@ -158,7 +208,11 @@ fn iterate<const M: usize, const N: usize>(
                 });
             }
         }
-        let ratio: f64 = (0..m).map(|k| aat[k * m + k] / diag[k].sqrt()).product();
+        // ρ = Π_k L_kk / √diag_k of the Cholesky factor, L_kk² = D_k.
+        let ratio: f64 = (0..m)
+            .map(|k| aat[k * m + k] / diag[k])
+            .product::<f64>()
+            .sqrt();
         if ratio.is_nan() || ratio < SINGULARITY_RATIO {
             return Err(if first {
                 Infeasibility::SingularPose {
@@ -171,7 +225,7 @@ fn iterate<const M: usize, const N: usize>(
         first = false;
         // (A Aᵀ) y = rhs; t_free −= Aᵀ y.
         y.copy_from_slice(rhs);
-        cholesky_solve(aat, m, y);
+        ldl_solve(aat, inv_d, m, y);
         subtract_at_y::<N>(ws, m, y, active, t);
         // The free cable with the largest violation of its limits, in force units (Pott
         // 2014); a tension counts as violating beyond the certificate's relative tolerance.
@@ -322,32 +376,40 @@ fn factorise<const M: usize>(
     }
 }
 
-/// Rank-one Cholesky downdate L L'ᵀ = L Lᵀ − x xᵀ in place by hyperbolic rotations (Golub &
-/// Van Loan, *Matrix Computations*, §6.5.4): for each column k, r = √(L_kk² − x_k²),
-/// c = r / L_kk, s = x_k / L_kk, L_ik ← (L_ik − s x_i) / c and x_i ← c x_i − s L_ik. `x` is
-/// the removed column w_j (copied into `scratch`); `diag` (the diagonal of A Aᵀ) loses x_k².
-/// False, with `l` left partly updated, if some r² < [`DOWNDATE_MIN_RATIO`] L_kk² (too much
-/// cancellation, or A' A'ᵀ not positive definite): the caller then refactorises.
+/// Rank-one downdate L' D' L'ᵀ = L D Lᵀ − x xᵀ in place (Gill, Golub, Murray & Saunders 1974,
+/// method C1 with α = −1): for each column j, with p = x_j, D'_j = D_j + α p², β = α p / D'_j,
+/// α ← α D_j / D'_j, then x_i ← x_i − p L_ij and L_ij ← L_ij + β x_i below the diagonal. `x` is
+/// the removed column w_j (copied into `scratch`); `diag` (the diagonal of A Aᵀ) loses x_k², and
+/// `inv_d` gets the new 1/D'_j. False, with the factor left partly updated, if some
+/// D'_j < [`DOWNDATE_MIN_RATIO`] D_j (too much cancellation, or A' A'ᵀ not positive definite):
+/// the caller then refactorises.
 #[inline(always)]
-fn downdate(l: &mut [f64], m: usize, x: &[f64], scratch: &mut [f64], diag: &mut [f64]) -> bool {
-    let x0 = &mut scratch[..m];
-    x0.copy_from_slice(&x[..m]);
-    for k in 0..m {
-        let lkk = l[k * m + k];
-        let xk = x0[k];
-        let r2 = (lkk - xk) * (lkk + xk);
-        // Also false for NaN.
-        if r2.is_nan() || r2 < DOWNDATE_MIN_RATIO * lkk * lkk {
+fn downdate(
+    l: &mut [f64],
+    m: usize,
+    x: &[f64],
+    scratch: &mut [f64],
+    diag: &mut [f64],
+    inv_d: &mut [f64],
+) -> bool {
+    let z = &mut scratch[..m];
+    z.copy_from_slice(&x[..m]);
+    let mut alpha = -1.0;
+    for j in 0..m {
+        let dj = l[j * m + j];
+        let p = z[j];
+        let d_new = dj + alpha * (p * p);
+        if d_new.is_nan() || d_new < DOWNDATE_MIN_RATIO * dj {
             return false;
         }
-        let r = r2.sqrt();
-        let (c, s) = (r / lkk, xk / lkk);
-        let inv_c = lkk / r;
-        l[k * m + k] = r;
-        for i in k + 1..m {
-            let lik = (l[i * m + k] - s * x0[i]) * inv_c;
-            l[i * m + k] = lik;
-            x0[i] = c * x0[i] - s * lik;
+        let inv = 1.0 / d_new;
+        let beta = alpha * p * inv;
+        alpha *= dj * inv;
+        l[j * m + j] = d_new;
+        inv_d[j] = inv;
+        for i in j + 1..m {
+            z[i] -= p * l[i * m + j];
+            l[i * m + j] += beta * z[i];
         }
     }
     for k in 0..m {
@@ -356,46 +418,55 @@ fn downdate(l: &mut [f64], m: usize, x: &[f64], scratch: &mut [f64], diag: &mut 
     true
 }
 
-/// In-place Cholesky of the lower triangle of an m × m row-major matrix; false if not SPD.
+/// In-place square-root-free Cholesky A = L D Lᵀ of the lower triangle of an m × m row-major
+/// matrix (Golub & Van Loan §4.1): D_k on the diagonal, L (unit diagonal) below it, and
+/// c_ik = L_ik D_k above it (transposed, at (k, i): the factorisation's scratch); `inv_d` gets
+/// 1/D_k. Each column costs one division: L_ij = c_ij / D_j is a product with 1/D_j. False if
+/// A is not positive definite (a pivot ≤ 0 or NaN).
 #[inline(always)]
-fn cholesky(a: &mut [f64], m: usize) -> bool {
+fn ldl(a: &mut [f64], m: usize, inv_d: &mut [f64]) -> bool {
     for j in 0..m {
         let mut d = a[j * m + j];
         for k in 0..j {
-            d -= a[j * m + k] * a[j * m + k];
+            d -= a[j * m + k] * a[k * m + j];
         }
         if d.is_nan() || d <= 0.0 {
             return false;
         }
-        let d = d.sqrt();
+        let inv = 1.0 / d;
         a[j * m + j] = d;
+        inv_d[j] = inv;
         for i in j + 1..m {
-            let mut s = a[i * m + j];
+            let mut c = a[i * m + j];
             for k in 0..j {
-                s -= a[i * m + k] * a[j * m + k];
+                c -= a[i * m + k] * a[k * m + j];
             }
-            a[i * m + j] = s / d;
+            a[j * m + i] = c;
+            a[i * m + j] = c * inv;
         }
     }
     true
 }
 
-/// Solves L Lᵀ x = b in place.
+/// Solves L D Lᵀ x = b in place (L unit lower triangular, 1/D_k in `inv_d`).
 #[inline(always)]
-fn cholesky_solve(l: &[f64], m: usize, x: &mut [f64]) {
+fn ldl_solve(l: &[f64], inv_d: &[f64], m: usize, x: &mut [f64]) {
     for i in 0..m {
         let mut s = x[i];
         for k in 0..i {
             s -= l[i * m + k] * x[k];
         }
-        x[i] = s / l[i * m + i];
+        x[i] = s;
+    }
+    for i in 0..m {
+        x[i] *= inv_d[i];
     }
     for i in (0..m).rev() {
         let mut s = x[i];
         for k in i + 1..m {
             s -= l[k * m + i] * x[k];
         }
-        x[i] = s / l[i * m + i];
+        x[i] = s;
     }
 }
 
@@ -406,41 +477,54 @@ mod tests {
     use nalgebra::{DMatrix, DVector};
     use proptest::prelude::*;
 
-    /// The downdate against the factor of the reduced matrix computed afresh.
+    /// The factorisation, the solve and the downdate against hand-derived values: A Aᵀ of
+    /// A = [[2, 1, 0], [0, 1, 1]] is [[5, 1], [1, 2]] = L D Lᵀ with L_21 = 1/5, D = (5, 9/5);
+    /// without the column (1, 1) it is [[4, 0], [0, 1]]: L_21 = 0, D = (4, 1).
     #[test]
     fn downdate_matches_a_fresh_factorisation() {
-        // A Aᵀ of A = [[2, 1, 0], [0, 1, 1]]; remove column (1, 1).
-        let a = [2.0, 0.0, 1.0, 1.0, 0.0, 1.0];
-        let (mut l, mut fresh) = ([0.0; 4], [0.0; 4]);
-        for (col, g) in [(&a[..], &mut l), (&[2.0, 0.0, 0.0, 1.0][..], &mut fresh)] {
-            for c in col.chunks_exact(2) {
-                for r in 0..2 {
-                    for k in 0..=r {
-                        g[r * 2 + k] += c[r] * c[k];
-                    }
-                }
-            }
-        }
-        assert!(cholesky(&mut l, 2) && cholesky(&mut fresh, 2));
+        let (mut l, mut inv_d) = ([5.0, 0.0, 1.0, 2.0], [0.0; 2]);
+        assert!(ldl(&mut l, 2, &mut inv_d));
+        assert_eq!((l[0], l[2], inv_d[0]), (5.0, 0.2, 0.2));
+        assert!((l[3] - 1.8).abs() < 1e-15 && (inv_d[1] - 1.0 / 1.8).abs() < 1e-15);
+        // [[5, 1], [1, 2]] y = (7, 5): y = (1, 2).
+        let mut y = [7.0, 5.0];
+        ldl_solve(&l, &inv_d, 2, &mut y);
+        assert!(
+            (y[0] - 1.0).abs() < 1e-15 && (y[1] - 2.0).abs() < 1e-15,
+            "{y:?}"
+        );
         let mut diag = [5.0, 2.0];
-        assert!(downdate(&mut l, 2, &[1.0, 1.0], &mut [0.0; 2], &mut diag));
+        assert!(downdate(
+            &mut l,
+            2,
+            &[1.0, 1.0],
+            &mut [0.0; 2],
+            &mut diag,
+            &mut inv_d
+        ));
         assert_eq!(diag, [4.0, 1.0]);
-        // Lower triangle: L = [[2, 0], [0, 1]].
-        for (i, e) in [(0, 2.0), (2, 0.0), (3, 1.0)] {
-            assert!(
-                (l[i] - fresh[i]).abs() < 1e-15 && (l[i] - e).abs() < 1e-15,
-                "{l:?}"
-            );
+        for (got, e) in [
+            (l[0], 4.0),
+            (l[2], 0.0),
+            (l[3], 1.0),
+            (inv_d[0], 0.25),
+            (inv_d[1], 1.0),
+        ] {
+            assert!((got - e).abs() < 1e-15, "{l:?} {inv_d:?}");
         }
         // Removing a column that carries a whole direction is refused (singular remainder).
-        let mut l = [1.0, 0.0, 0.0, 1.0];
+        let (mut l, mut inv_d) = ([1.0, 0.0, 0.0, 1.0], [0.0; 2]);
+        assert!(ldl(&mut l, 2, &mut inv_d));
         assert!(!downdate(
             &mut l,
             2,
             &[1.0, 0.0],
             &mut [0.0; 2],
-            &mut [1.0, 1.0]
+            &mut [1.0, 1.0],
+            &mut inv_d
         ));
+        // Not positive definite.
+        assert!(!ldl(&mut [1.0, 0.0, 2.0, 1.0], 2, &mut inv_d));
     }
 
     /// W, w_ext and bounds of a random problem with DOF `m` and `n` cables: loads from a
@@ -458,6 +542,27 @@ mod tests {
     }
 
     proptest! {
+        /// The AVX2 build of the 6 × 8 iteration gives the bits of the portable build (the
+        /// same source without fused multiply–adds), on problems with and without saturations.
+        #[cfg(target_arch = "x86_64")]
+        #[test]
+        fn avx2_build_gives_the_portable_bits(
+            seed in proptest::collection::vec(0.0f64..1.0, 97),
+        ) {
+            if !std::arch::is_x86_feature_detected!("avx2") {
+                return Ok(());
+            }
+            let (w, we, b) = problem(6, 8, &seed);
+            let p = TensionProblem::new(&w, &we, &b);
+            let (mut ta, mut tp) = (vec![0.0; 8], vec![0.0; 8]);
+            let avx2 = ImprovedClosedForm::default().solve_with(&p, &mut ta, true, Path::Avx2);
+            let portable =
+                ImprovedClosedForm::default().solve_with(&p, &mut tp, true, Path::Portable);
+            prop_assert_eq!(format!("{avx2:?}"), format!("{portable:?}"));
+            let bits = |t: &[f64]| t.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            prop_assert_eq!(bits(&ta), bits(&tp));
+        }
+
         /// The downdated iteration gives the verdict of the plain one (factor rebuilt at every
         /// step) and tensions within 10⁻¹⁰ of the largest, for DOF 1–7 and up to 5 redundant
         /// cables (6 × 8 and DOF 6 and 3 through their fixed-size copies).
@@ -471,8 +576,8 @@ mod tests {
             let (w, we, b) = problem(m, n, &seed);
             let p = TensionProblem::new(&w, &we, &b);
             let (mut tu, mut tp) = (vec![0.0; n], vec![0.0; n]);
-            let up = ImprovedClosedForm::default().solve_with(&p, &mut tu, true);
-            let plain = ImprovedClosedForm::default().solve_with(&p, &mut tp, false);
+            let up = ImprovedClosedForm::default().solve_with(&p, &mut tu, true, Path::Portable);
+            let plain = ImprovedClosedForm::default().solve_with(&p, &mut tp, false, Path::Portable);
             // The same verdict (a singular pose's condition number may differ by rounding).
             prop_assert_eq!(
                 up.as_ref().map_err(std::mem::discriminant),

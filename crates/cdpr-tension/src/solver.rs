@@ -252,7 +252,12 @@ impl TensionSolver {
             self.prepare_sotda(p, m, n)?;
         }
         if self.method == Method::ImprovedClosedForm
-            && let Some(cable) = p.bounds.max().iter().position(|v| !v.is_finite())
+            && let Some(cable) = p
+                .bounds
+                .max()
+                .as_slice()
+                .iter()
+                .position(|v| !v.is_finite())
         {
             return Err(TensionError::NeedsFiniteBounds {
                 method: self.method,
