@@ -169,7 +169,7 @@ impl TensionSolver {
     /// problem ([`TensionError::MethodNotApplicable`], [`TensionError::NeedsFiniteBounds`]);
     /// infeasibility is an outcome.
     pub fn solve(&mut self, problem: &TensionProblem) -> Result<TensionOutcome, TensionError> {
-        Ok(match self.run(problem)? {
+        Ok(match self.run(problem, false)? {
             Ok(residual) => TensionOutcome::Feasible(TensionSolution {
                 tensions: DVector::from_column_slice(&self.t),
                 residual,
@@ -188,9 +188,14 @@ impl TensionSolver {
 
     /// Same verdict as `solve(..).is_feasible()`, without allocating after the first call
     /// (except on the interior-point path, see the module docs).
+    ///
+    /// l2 at r = 2 first tries the point of the affine set t = t0 + N λ closest to the middle
+    /// of the bounds: when it is well inside every bound and passes the certificate, the answer
+    /// is "feasible" without the l2 optimum (issue 17; `planar_active_set::central_point`).
+    /// Otherwise the method's own solve decides, so "infeasible" is always its verdict.
     #[inline]
     pub fn is_feasible(&mut self, problem: &TensionProblem) -> Result<bool, TensionError> {
-        Ok(self.run(problem)?.is_ok())
+        Ok(self.run(problem, true)?.is_ok())
     }
 
     /// Like [`TensionSolver::solve`] but writes the tensions into `tensions` (resized to n) and
@@ -201,7 +206,7 @@ impl TensionSolver {
         problem: &TensionProblem,
         tensions: &mut DVector<f64>,
     ) -> Result<Result<f64, Infeasibility>, TensionError> {
-        let out = self.run(problem)?;
+        let out = self.run(problem, false)?;
         if out.is_ok() {
             if tensions.len() != self.t.len() {
                 *tensions = DVector::zeros(self.t.len());
@@ -211,8 +216,14 @@ impl TensionSolver {
         Ok(out)
     }
 
+    /// The method's answer; `verdict_only`: any certified feasible point will do (see
+    /// [`Self::is_feasible`]).
     #[inline]
-    fn run(&mut self, p: &TensionProblem) -> Result<Result<f64, Infeasibility>, TensionError> {
+    fn run(
+        &mut self,
+        p: &TensionProblem,
+        verdict_only: bool,
+    ) -> Result<Result<f64, Infeasibility>, TensionError> {
         validate(p)?;
         let (m, n) = p.wrench_matrix.shape();
         let r = n as isize - m as isize;
@@ -237,7 +248,7 @@ impl TensionSolver {
                 _ => closed_form_small::<3>(p, maximize, &mut self.t),
             });
         }
-        self.run_general(p, m, n)
+        self.run_general(p, m, n, verdict_only)
     }
 
     /// Every method and size other than the lean closed-form path of [`Self::run`].
@@ -247,6 +258,7 @@ impl TensionSolver {
         p: &TensionProblem,
         m: usize,
         n: usize,
+        verdict_only: bool,
     ) -> Result<Result<f64, Infeasibility>, TensionError> {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
@@ -281,7 +293,7 @@ impl TensionSolver {
                 }
             }
         }
-        match self.dispatch(p)? {
+        match self.dispatch(p, verdict_only)? {
             Err(reason) => return Ok(Err(reason)),
             Ok(Some(residual)) => return Ok(Ok(residual)),
             Ok(None) => {}
@@ -308,6 +320,14 @@ impl TensionSolver {
             }
             _ => return None,
         };
+        write_tensions(&self.ns, l, &mut self.t);
+        snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
+    }
+
+    /// The certified residual of [`planar_active_set::central_point`] (r = 2), if any.
+    #[inline]
+    fn central(&mut self, p: &TensionProblem) -> Option<f64> {
+        let l = planar_active_set::central_point(&self.ns, p.bounds)?;
         write_tensions(&self.ns, l, &mut self.t);
         snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
     }
@@ -371,6 +391,7 @@ impl TensionSolver {
     fn dispatch(
         &mut self,
         p: &TensionProblem,
+        verdict_only: bool,
     ) -> Result<Result<Option<f64>, Infeasibility>, TensionError> {
         let r = p.redundancy();
         let method = self.method;
@@ -438,6 +459,13 @@ impl TensionSolver {
             _ => {
                 if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                if verdict_only
+                    && method == Method::L2
+                    && r == 2
+                    && let Some(residual) = self.central(p)
+                {
+                    return Ok(Ok(Some(residual)));
                 }
                 if matches!(
                     method,

@@ -474,3 +474,31 @@ proptest! {
         }
     }
 }
+
+/// t1 + t2 + t3 = s with t ∈ [0, 1]³ for s within 2·10⁻⁹ of 3 and of 0, where the feasible
+/// set shrinks to a point and the certificate's tolerance (10⁻⁹) exceeds the polygon's: the
+/// verdict of `is_feasible` (which may take the point nearest the middle of the bounds) is the
+/// verdict of `solve` for every redundancy-2 method.
+#[test]
+fn is_feasible_matches_solve_beside_a_vertex() {
+    let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+    let b = TensionBounds::uniform(3, 0.0, 1.0).unwrap();
+    for method in [
+        Method::L1,
+        Method::L1Max,
+        Method::L2,
+        Method::L2Max,
+        Method::Linf,
+        Method::Barycenter,
+    ] {
+        let mut s = TensionSolver::new(method);
+        for k in -200..=200 {
+            for centre in [0.0, 3.0] {
+                let we = DVector::from_vec(vec![-(centre + 1e-11 * k as f64)]);
+                let p = TensionProblem::new(&w, &we, &b);
+                let v = s.is_feasible(&p).unwrap();
+                assert_eq!(v, s.solve(&p).unwrap().is_feasible(), "{method:?}, k = {k}");
+            }
+        }
+    }
+}
