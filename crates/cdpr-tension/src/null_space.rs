@@ -313,6 +313,319 @@ impl NullSpace {
     }
 }
 
+/// Poses per group of [`four_6x8`] (four f64 lanes: one AVX2 register).
+pub const LANES: usize = 4;
+
+/// One f64 per pose of a group.
+type Lanes = [f64; LANES];
+
+/// One all-ones (true) or all-zeros (false) word per lane.
+type Mask = [u64; LANES];
+
+/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop the
+/// compiler turns into SIMD instructions).
+macro_rules! lanes {
+    ($l:ident => $e:expr) => {{
+        let mut lane = [0.0f64; LANES];
+        for $l in 0..LANES {
+            lane[$l] = $e;
+        }
+        lane
+    }};
+}
+
+/// The all-ones word for `true`, zero for `false`.
+#[inline(always)]
+fn mask(b: bool) -> u64 {
+    0u64.wrapping_sub(u64::from(b))
+}
+
+/// `a` where `m` is all ones, `b` where it is zero, lane by lane, by bits (exact). With `AVX`
+/// (only inside [`four_6x8_avx2`]) one `vblendvpd`.
+#[inline(always)]
+fn blend<const AVX: bool>(m: Mask, a: Lanes, b: Lanes) -> Lanes {
+    #[cfg(target_arch = "x86_64")]
+    if AVX {
+        use std::arch::x86_64::{__m256d, _mm256_blendv_pd};
+        use std::mem::transmute;
+        // SAFETY: `AVX` is true only in `four_6x8_avx2`, which runs on CPUs with AVX2; the
+        // transmutes are between 32-byte plain-data types; every lane of `m` is all ones or all
+        // zeros, and `blendv` takes `a` where its sign bit is set.
+        return unsafe {
+            transmute::<__m256d, Lanes>(_mm256_blendv_pd(
+                transmute::<Lanes, __m256d>(b),
+                transmute::<Lanes, __m256d>(a),
+                transmute::<Mask, __m256d>(m),
+            ))
+        };
+    }
+    lanes!(l => f64::from_bits((m[l] & a[l].to_bits()) | (!m[l] & b[l].to_bits())))
+}
+
+/// The comparison `a OP b` lane by lane as masks (false when either is NaN, as `>`, `>=` and
+/// `==` on f64). With `AVX` one `vcmppd`.
+macro_rules! compare {
+    ($name:ident, $op:tt, $imm:ident) => {
+        #[inline(always)]
+        fn $name<const AVX: bool>(a: Lanes, b: Lanes) -> Mask {
+            #[cfg(target_arch = "x86_64")]
+            if AVX {
+                use std::arch::x86_64::{__m256d, _mm256_cmp_pd, $imm};
+                use std::mem::transmute;
+                // SAFETY: as in `blend`; the ordered, quiet predicate is false for NaN.
+                return unsafe {
+                    transmute::<__m256d, Mask>(_mm256_cmp_pd::<$imm>(
+                        transmute::<Lanes, __m256d>(a),
+                        transmute::<Lanes, __m256d>(b),
+                    ))
+                };
+            }
+            std::array::from_fn(|l| mask(a[l] $op b[l]))
+        }
+    };
+}
+compare!(greater, >, _CMP_GT_OQ);
+compare!(greater_or_equal, >=, _CMP_GE_OQ);
+compare!(equal, ==, _CMP_EQ_OQ);
+
+/// `a | b` lane by lane.
+#[inline(always)]
+fn or(a: Mask, b: Mask) -> Mask {
+    std::array::from_fn(|l| a[l] | b[l])
+}
+
+/// What [`four_6x8`] computed for each of four 6 × 8 wrench matrices, lane by lane: what
+/// [`NullSpace::compute`] computes for each alone.
+pub(crate) struct FourNullSpaces {
+    /// t0, one lane per pose.
+    t0: [Lanes; 8],
+    /// The two columns of N.
+    basis: [[Lanes; 8]; 2],
+    g: [Lanes; 2],
+    /// Hadamard ratio (0 after a zero row or pivot).
+    ratio: Lanes,
+    /// A zero row or pivot (condition ∞).
+    zero: Mask,
+}
+
+impl FourNullSpaces {
+    /// Writes lane `l` into `ns`, as [`NullSpace::compute`] would have: `Err(condition)` for a
+    /// singular W.
+    pub(crate) fn write_lane(&self, l: usize, ns: &mut NullSpace) -> Result<(), f64> {
+        ns.m = 6;
+        ns.n = 8;
+        ns.t0.resize(8, 0.0);
+        ns.basis.resize(16, 0.0);
+        ns.g.resize(2, 0.0);
+        if self.zero[l] != 0 {
+            ns.ratio = 0.0;
+            return Err(f64::INFINITY);
+        }
+        ns.ratio = self.ratio[l];
+        if ns.ratio.is_nan() || ns.ratio < SINGULARITY_RATIO {
+            return Err(1.0 / ns.ratio);
+        }
+        for i in 0..8 {
+            ns.t0[i] = self.t0[i][l];
+            ns.basis[i] = self.basis[0][i][l];
+            ns.basis[8 + i] = self.basis[1][i][l];
+        }
+        ns.g[0] = self.g[0][l];
+        ns.g[1] = self.g[1][l];
+        Ok(())
+    }
+}
+
+/// Whether [`four_6x8`] runs its AVX2 build (checked once).
+fn avx2() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+        *AVX2.get_or_init(|| std::arch::is_x86_feature_detected!("avx2"))
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    false
+}
+
+/// [`NullSpace::compute`] of four 6 × 8 wrench matrices at once, `columns[j][i][l]` = W(i, j)
+/// of pose l (the layout of `Robot::wrench_matrix_lanes`), for one external wrench: the
+/// operations of the fixed-size path, in the same order, on the four poses in SIMD lanes, hence
+/// the same bits (no fused multiply–adds, which Rust never forms; square roots and divisions
+/// are correctly rounded). Each lane keeps its own column pivots: exchanges are bitwise blends.
+/// The AVX2 build is chosen at run time; [`four_6x8_portable`] is the same code for baseline
+/// x86-64.
+pub(crate) fn four_6x8(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+    #[cfg(target_arch = "x86_64")]
+    if avx2() {
+        // SAFETY: the CPU supports AVX2 (run-time detection).
+        return unsafe { four_6x8_avx2(columns, w_ext) };
+    }
+    four_6x8_portable(columns, w_ext)
+}
+
+/// [`four_6x8`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn four_6x8_avx2(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+    four_6x8_body::<true>(columns, w_ext)
+}
+
+/// [`four_6x8`] for baseline x86-64 (and the reference of the AVX2 build in tests).
+pub(crate) fn four_6x8_portable(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+    four_6x8_body::<false>(columns, w_ext)
+}
+
+#[inline(always)]
+fn four_6x8_body<const AVX: bool>(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+    const M: usize = 6;
+    const N: usize = 8;
+    // a[k] = row k of W; wp[k] = w_ext at the row now in place k (pivot exchanges).
+    let mut a = [[[0.0f64; LANES]; N]; M];
+    let mut rows = [[0.0f64; LANES]; M];
+    let mut wp = [[0.0f64; LANES]; M];
+    let mut zero: Mask = [0; LANES];
+    for k in 0..M {
+        let mut s = [0.0f64; LANES];
+        for i in 0..N {
+            let v = columns[i][k];
+            a[k][i] = v;
+            s = lanes!(l => s[l] + v[l] * v[l]);
+        }
+        zero = or(zero, equal::<AVX>(s, [0.0; LANES]));
+        rows[k] = lanes!(l => s[l].sqrt());
+        wp[k] = [w_ext[k]; LANES];
+    }
+    let mut beta = [[0.0f64; LANES]; M];
+    let mut rdiag = [[0.0f64; LANES]; M];
+    let mut ratio = [1.0f64; LANES];
+    householder_step::<0, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    householder_step::<1, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    householder_step::<2, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    householder_step::<3, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    householder_step::<4, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    householder_step::<5, AVX>(
+        &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
+    );
+    let ratio = lanes!(l => ratio[l].min(1.0));
+    // x ← Q x = H₀ H₁ ⋯ H₅ x (the sums of `Iterator::sum`, which start at −0).
+    let apply_q = |x: &mut [Lanes; N]| {
+        for k in (0..M).rev() {
+            let mut s = [-0.0f64; LANES];
+            for i in k..N {
+                s = lanes!(l => s[l] + a[k][i][l] * x[i][l]);
+            }
+            let s = lanes!(l => s[l] * beta[k][l]);
+            for i in k..N {
+                x[i] = lanes!(l => x[i][l] - s[l] * a[k][i][l]);
+            }
+        }
+    };
+    let mut t0 = [[0.0f64; LANES]; N];
+    for j in 0..M {
+        let mut s = lanes!(l => -wp[j][l]);
+        for i in 0..j {
+            s = lanes!(l => s[l] - a[j][i][l] * t0[i][l]);
+        }
+        t0[j] = lanes!(l => s[l] / rdiag[j][l]);
+    }
+    apply_q(&mut t0);
+    let mut basis = [[[0.0f64; LANES]; N]; 2];
+    let mut g = [[0.0f64; LANES]; 2];
+    for c in 0..2 {
+        let x = &mut basis[c];
+        x[M + c] = [1.0; LANES];
+        apply_q(x);
+        let mut s = [-0.0f64; LANES];
+        for i in 0..N {
+            s = lanes!(l => s[l] + x[i][l] * t0[i][l]);
+        }
+        g[c] = s;
+    }
+    FourNullSpaces {
+        t0,
+        basis,
+        g,
+        ratio,
+        zero,
+    }
+}
+
+/// Step `K` of the Householder QR with column pivoting of [`NullSpace::compute_fixed`] (6 × 8),
+/// lane by lane.
+#[inline(always)]
+fn householder_step<const K: usize, const AVX: bool>(
+    a: &mut [[Lanes; 8]; 6],
+    wp: &mut [Lanes; 6],
+    rows: &[Lanes; 6],
+    beta: &mut [Lanes; 6],
+    rdiag: &mut [Lanes; 6],
+    ratio: &mut Lanes,
+    zero: &mut Mask,
+) {
+    // Pivot: the first remaining column with the largest norm below row K (`>`, as the scan).
+    let mut best = [K as f64; LANES];
+    let mut best_norm = [-1.0f64; LANES];
+    for (j, col) in a.iter().enumerate().skip(K) {
+        let mut s = [-0.0f64; LANES];
+        for v in &col[K..] {
+            s = lanes!(l => s[l] + v[l] * v[l]);
+        }
+        let take = greater::<AVX>(s, best_norm);
+        best_norm = blend::<AVX>(take, s, best_norm);
+        best = blend::<AVX>(take, [j as f64; LANES], best);
+    }
+    for j in K + 1..6 {
+        let m = equal::<AVX>(best, [j as f64; LANES]);
+        let (head, tail) = a.split_at_mut(j);
+        for (p, q) in head[K].iter_mut().zip(tail[0].iter_mut()) {
+            let (x, y) = (*p, *q);
+            *p = blend::<AVX>(m, y, x);
+            *q = blend::<AVX>(m, x, y);
+        }
+        let (x, y) = (wp[K], wp[j]);
+        wp[K] = blend::<AVX>(m, y, x);
+        wp[j] = blend::<AVX>(m, x, y);
+    }
+    let norm = lanes!(l => best_norm[l].sqrt());
+    *zero = or(*zero, equal::<AVX>(norm, [0.0; LANES]));
+    let x0 = a[K][K];
+    let nonneg = greater_or_equal::<AVX>(x0, [0.0; LANES]);
+    let alpha = blend::<AVX>(nonneg, lanes!(l => -norm[l]), norm);
+    a[K][K] = lanes!(l => x0[l] - alpha[l]);
+    let mut vtv = [-0.0f64; LANES];
+    for v in &a[K][K..] {
+        vtv = lanes!(l => vtv[l] + v[l] * v[l]);
+    }
+    let bk = lanes!(l => 2.0 / vtv[l]);
+    beta[K] = bk;
+    rdiag[K] = alpha;
+    *ratio = lanes!(l => ratio[l] * (norm[l] / rows[K][l]));
+    let v = a[K];
+    for col in a.iter_mut().skip(K + 1) {
+        let mut s = [0.0f64; LANES];
+        for i in K..8 {
+            s = lanes!(l => s[l] + v[i][l] * col[i][l]);
+        }
+        let s = lanes!(l => s[l] * bk[l]);
+        for i in K..8 {
+            col[i] = lanes!(l => col[i][l] - s[l] * v[i][l]);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -367,6 +680,125 @@ mod tests {
                     assert_eq!(bits(&fixed.t0), bits(&dynamic.t0), "{m}x{n} {case}");
                     assert_eq!(bits(&fixed.basis), bits(&dynamic.basis), "{m}x{n} {case}");
                     assert_eq!(bits(&fixed.g), bits(&dynamic.g), "{m}x{n} {case}");
+                }
+            }
+        }
+    }
+
+    use proptest::prelude::*;
+
+    /// An entry of W: mostly random, with small integers (ties among the pivot norms), signed
+    /// zeros and tiny values.
+    fn entry() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            8 => -1.0f64..1.0,
+            4 => (-2i32..=2).prop_map(f64::from),
+            1 => Just(-0.0),
+            1 => (-1.0f64..1.0).prop_map(|v| v * 1e-160),
+        ]
+    }
+
+    /// Four 6 × 8 matrices in lanes (`columns[j][i][l]`), each made singular, rank-deficient,
+    /// tied or non-finite in one of several ways by `shape[l]`, and an external wrench.
+    fn four_problems() -> impl Strategy<Value = ([[[f64; LANES]; 6]; 8], Vec<f64>)> {
+        (
+            prop::collection::vec(entry(), 4 * 48),
+            prop::collection::vec(0u8..12, 4),
+            prop::collection::vec(prop_oneof![-100.0f64..100.0, Just(0.0), Just(-0.0)], 6),
+            prop::bool::weighted(0.25),
+        )
+            .prop_map(|(values, shape, we, unloaded)| {
+                // No load: t0 = ±0, whose signs reach g.
+                let we = if unloaded {
+                    we.iter().map(|v| v.signum() * 0.0).collect()
+                } else {
+                    we
+                };
+                let mut columns = [[[0.0; LANES]; 6]; 8];
+                for l in 0..LANES {
+                    let mut w: [[f64; 8]; 6] = std::array::from_fn(|i| {
+                        std::array::from_fn(|j| values[l * 48 + i * 8 + j])
+                    });
+                    match shape[l] {
+                        1 => w[5] = w[0],                   // two equal rows
+                        2 => w[3] = w[1].map(|v| -2.0 * v), // proportional rows
+                        3 => w[2] = [0.0; 8],               // a zero row
+                        4 => w[4] = [-0.0; 8],
+                        5 => {
+                            // Rows that permute the same integers: equal norms, ties in the
+                            // first pivot choice.
+                            let base = w[0].map(|v| (3.0 * v).round());
+                            w = std::array::from_fn(|k| std::array::from_fn(|j| base[(j + k) % 8]));
+                        }
+                        6 => w[1][3] = f64::NAN,
+                        7 => w[4][6] = f64::NEG_INFINITY,
+                        8 => w[0][0] = 1e300, // overflowing sums
+                        _ => {}
+                    }
+                    for (i, row) in w.iter().enumerate() {
+                        for (j, v) in row.iter().enumerate() {
+                            columns[j][i][l] = *v;
+                        }
+                    }
+                }
+                (columns, we)
+            })
+    }
+
+    /// The bits of a value; every NaN counts as one (the builds may differ in a NaN's sign,
+    /// which no comparison sees).
+    fn b(x: f64) -> u64 {
+        if x.is_nan() {
+            f64::NAN.to_bits()
+        } else {
+            x.to_bits()
+        }
+    }
+
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|&x| b(x)).collect()
+    }
+
+    /// Every output of a lane build, as bits.
+    fn lane_bits(f: &FourNullSpaces) -> Vec<u64> {
+        let mut out = Vec::new();
+        for l in 0..LANES {
+            out.extend(f.t0.iter().map(|v| b(v[l])));
+            out.extend(f.basis.iter().flatten().map(|v| b(v[l])));
+            out.extend(f.g.iter().map(|v| b(v[l])));
+            out.push(b(f.ratio[l]));
+            out.push(f.zero[l]);
+        }
+        out
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2048))]
+
+        /// The four-lane null space (AVX2 where the CPU has it, and the portable build) is
+        /// bit for bit the single-problem one, verdicts and ratio included; the AVX2 build
+        /// equals the portable one in every lane value.
+        #[test]
+        #[allow(clippy::needless_range_loop)]
+        fn four_at_a_time_equals_one_at_a_time((columns, we) in four_problems()) {
+            let dispatched = four_6x8(&columns, &we);
+            let portable = four_6x8_portable(&columns, &we);
+            prop_assert_eq!(lane_bits(&dispatched), lane_bits(&portable));
+            let we = DVector::from_vec(we);
+            for l in 0..LANES {
+                let w = DMatrix::from_fn(6, 8, |i, j| columns[j][i][l]);
+                let mut one = NullSpace::default();
+                let expected = one.compute(&w, &we);
+                for four in [&dispatched, &portable] {
+                    let mut ns = NullSpace::default();
+                    let got = four.write_lane(l, &mut ns);
+                    prop_assert_eq!(got.map_err(b), expected.map_err(b));
+                    prop_assert_eq!(b(ns.ratio), b(one.ratio));
+                    if expected.is_ok() {
+                        prop_assert_eq!(bits(&ns.t0), bits(&one.t0));
+                        prop_assert_eq!(bits(&ns.basis), bits(&one.basis));
+                        prop_assert_eq!(bits(&ns.g), bits(&one.g));
+                    }
                 }
             }
         }

@@ -154,6 +154,38 @@ fn satisfies(ns: &NullSpace, bounds: &TensionBounds, j: Constraint, l: P2) -> bo
     }
 }
 
+/// Margin, relative to each cable's range t_max,i − t_min,i, by which [`central_point`] must be
+/// inside every bound (plus 10⁻⁹ of the bound's size, ten times the clipping tolerance).
+const CENTRAL_MARGIN: f64 = 1e-6;
+
+/// A point of the feasible polygon well inside every bound, or `None`: λ = Nᵀ(t_mid − t0)
+/// = Nᵀ t_mid − g with t_mid = (t_min + t_max)/2, the tension closest to the middle of the
+/// bounds on the affine set t = t0 + N λ (N orthonormal). It serves only the verdict of
+/// `TensionSolver::is_feasible`: a feasibility verdict does not depend on which feasible point
+/// proves it. Each t_i must be at least 10⁻⁶ (t_max,i − t_min,i) + 10⁻⁹ max(|t_min,i|, |t_max,i|)
+/// inside its bounds, far more than the polygon's clipping tolerance and the rounding of t_i, so the polygon (and every method's solve) finds a
+/// non-empty set there too; an infinite t_max gives `None`.
+pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2> {
+    debug_assert_eq!(ns.r(), 2);
+    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let mut l = [-ns.g[0], -ns.g[1]];
+    for i in 0..ns.n {
+        let mid = 0.5 * (lo[i] + hi[i]);
+        let a = ns.row2(i);
+        l[0] += a[0] * mid;
+        l[1] += a[1] * mid;
+    }
+    for i in 0..ns.n {
+        let margin = CENTRAL_MARGIN * (hi[i] - lo[i]) + 1e-9 * lo[i].abs().max(hi[i].abs());
+        let t = ns.tension2(i, l);
+        // NaN and an infinite t_max fail here.
+        if !(t - lo[i] > margin && hi[i] - t > margin) {
+            return None;
+        }
+    }
+    Some(l)
+}
+
 /// The l2 optimum λ (the projection of −g onto the feasible polygon) by the active set of the
 /// module docs, or `None` when the polygon must decide.
 pub(crate) fn l2_projection(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2> {
@@ -477,6 +509,39 @@ fn far_out(ns: &NullSpace, bounds: &TensionBounds, l: P2) -> bool {
 mod tests {
     use super::*;
     use nalgebra::{DMatrix, DVector};
+
+    /// t1 + t2 + t3 = s with t ∈ [0, 1]³: the point of the plane nearest the middle
+    /// (½, ½, ½) of the bounds is (s/3, s/3, s/3), accepted only 1.001·10⁻⁶ inside the bounds.
+    #[test]
+    fn central_point_by_hand() {
+        let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+        let b = TensionBounds::uniform(3, 0.0, 1.0).unwrap();
+        let mut ns = NullSpace::default();
+        for (s, inside) in [
+            (1.2, true),
+            (2.9, true),
+            (3.0 - 3e-5, true),
+            (3.0e-5, true),
+            (3.0 - 3e-6, false),
+            (3.0e-6, false),
+            (3.0, false),
+            (3.0 + 2.4e-9, false),
+            (-1.0, false),
+        ] {
+            ns.compute(&w, &DVector::from_vec(vec![-s])).unwrap();
+            let got = central_point(&ns, &b);
+            assert_eq!(got.is_some(), inside, "s = {s}");
+            if let Some(l) = got {
+                for i in 0..3 {
+                    assert!((ns.tension2(i, l) - s / 3.0).abs() < 1e-14, "s = {s}");
+                }
+            }
+        }
+        // No middle for an infinite t_max.
+        let open = TensionBounds::new(vec![0.0; 3], vec![1.0, f64::INFINITY, 1.0]).unwrap();
+        ns.compute(&w, &DVector::from_vec(vec![-1.0])).unwrap();
+        assert_eq!(central_point(&ns, &open), None);
+    }
 
     /// t1 + t2 + t3 = 3 (one force, three collinear cables): min ‖t‖ is (1, 1, 1) inside the
     /// bounds [0, 3], (1.5, 0.75, 0.75) on the edge t1 = 1.5 when t1 ≥ 1.5, and

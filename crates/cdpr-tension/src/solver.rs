@@ -38,16 +38,16 @@ use crate::improved_closed_form::ImprovedClosedForm;
 use crate::interior_point::{Objective, interior_point};
 use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
-use crate::null_space::NullSpace;
+use crate::null_space::{self, NullSpace};
 use crate::outcome::validate;
 use crate::planar_active_set;
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
 use crate::{
-    Infeasibility, Method, TensionError, TensionOutcome, TensionProblem, TensionSolution,
-    barycenter, quadratic_program,
+    Infeasibility, Method, TensionBounds, TensionError, TensionOutcome, TensionProblem,
+    TensionSolution, barycenter, quadratic_program,
 };
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 
 /// Algorithm 6.1 for DOF = M ≤ 3 and n = M + 1, then the certificate (fixed sizes throughout).
 /// `maximize`: the larger-Σt end (l1-max).
@@ -121,6 +121,9 @@ pub struct TensionSolver {
     vertices: VertexSearch,
     fallbacks: u64,
     t: Vec<f64>,
+    /// The null space of the current problem, already in `ns` (computed four at a time by
+    /// [`TensionSolver::is_feasible_four_6x8`]); taken by `null_space`.
+    prepared: Option<Result<(), f64>>,
 }
 
 impl TensionSolver {
@@ -138,6 +141,7 @@ impl TensionSolver {
             vertices: VertexSearch::default(),
             fallbacks: 0,
             t: Vec::new(),
+            prepared: None,
         }
     }
 
@@ -169,7 +173,7 @@ impl TensionSolver {
     /// problem ([`TensionError::MethodNotApplicable`], [`TensionError::NeedsFiniteBounds`]);
     /// infeasibility is an outcome.
     pub fn solve(&mut self, problem: &TensionProblem) -> Result<TensionOutcome, TensionError> {
-        Ok(match self.run(problem)? {
+        Ok(match self.run(problem, false)? {
             Ok(residual) => TensionOutcome::Feasible(TensionSolution {
                 tensions: DVector::from_column_slice(&self.t),
                 residual,
@@ -188,9 +192,57 @@ impl TensionSolver {
 
     /// Same verdict as `solve(..).is_feasible()`, without allocating after the first call
     /// (except on the interior-point path, see the module docs).
+    ///
+    /// l2 at r = 2 first tries the point of the affine set t = t0 + N λ closest to the middle
+    /// of the bounds: when it is well inside every bound and passes the certificate, the answer
+    /// is "feasible" without the l2 optimum (issue 17; `planar_active_set::central_point`).
+    /// Otherwise the method's own solve decides, so "infeasible" is always its verdict.
     #[inline]
     pub fn is_feasible(&mut self, problem: &TensionProblem) -> Result<bool, TensionError> {
-        Ok(self.run(problem)?.is_ok())
+        Ok(self.run(problem, true)?.is_ok())
+    }
+
+    /// [`TensionSolver::is_feasible`] of four problems whose 6 × 8 wrench matrices are given in
+    /// lanes, `columns[j][i][l]` = W(i, j) of problem l (the layout of
+    /// `cdpr_kinematics::Robot::wrench_matrix_lanes`), with one external wrench and one set of
+    /// bounds; `w` is scratch. For the methods whose redundancy-2 path starts from the null space
+    /// (l1, l1-max, l2, l2-max, barycentre) the four null spaces are computed at once in SIMD
+    /// lanes, bit for bit those of the single-problem path, which then goes on problem by
+    /// problem: the same verdicts. Problems with `wanted[l]` false are not decided (`Ok(false)`).
+    /// No allocation after the first call on the fast paths.
+    pub fn is_feasible_four_6x8(
+        &mut self,
+        columns: &[[[f64; null_space::LANES]; 6]; 8],
+        wanted: [bool; null_space::LANES],
+        external_wrench: &DVector<f64>,
+        bounds: &TensionBounds,
+        w: &mut DMatrix<f64>,
+    ) -> [Result<bool, TensionError>; null_space::LANES] {
+        let lanes = (matches!(
+            self.method,
+            Method::L1 | Method::L1Max | Method::L2 | Method::L2Max | Method::Barycenter
+        ) && external_wrench.len() == 6
+            && bounds.len() == 8
+            && wanted.iter().any(|&x| x))
+        .then(|| null_space::four_6x8(columns, external_wrench.as_slice()));
+        if w.shape() != (6, 8) {
+            *w = DMatrix::zeros(6, 8);
+        }
+        std::array::from_fn(|l| {
+            if !wanted[l] {
+                return Ok(false);
+            }
+            for (j, column) in columns.iter().enumerate() {
+                for (i, row) in column.iter().enumerate() {
+                    w[(i, j)] = row[l];
+                }
+            }
+            let problem = TensionProblem::new(w, external_wrench, bounds);
+            self.prepared = lanes.as_ref().map(|ns| ns.write_lane(l, &mut self.ns));
+            let verdict = self.run(&problem, true).map(|out| out.is_ok());
+            self.prepared = None;
+            verdict
+        })
     }
 
     /// Like [`TensionSolver::solve`] but writes the tensions into `tensions` (resized to n) and
@@ -201,7 +253,7 @@ impl TensionSolver {
         problem: &TensionProblem,
         tensions: &mut DVector<f64>,
     ) -> Result<Result<f64, Infeasibility>, TensionError> {
-        let out = self.run(problem)?;
+        let out = self.run(problem, false)?;
         if out.is_ok() {
             if tensions.len() != self.t.len() {
                 *tensions = DVector::zeros(self.t.len());
@@ -211,8 +263,14 @@ impl TensionSolver {
         Ok(out)
     }
 
+    /// The method's answer; `verdict_only`: any certified feasible point will do (see
+    /// [`Self::is_feasible`]).
     #[inline]
-    fn run(&mut self, p: &TensionProblem) -> Result<Result<f64, Infeasibility>, TensionError> {
+    fn run(
+        &mut self,
+        p: &TensionProblem,
+        verdict_only: bool,
+    ) -> Result<Result<f64, Infeasibility>, TensionError> {
         validate(p)?;
         let (m, n) = p.wrench_matrix.shape();
         let r = n as isize - m as isize;
@@ -237,7 +295,7 @@ impl TensionSolver {
                 _ => closed_form_small::<3>(p, maximize, &mut self.t),
             });
         }
-        self.run_general(p, m, n)
+        self.run_general(p, m, n, verdict_only)
     }
 
     /// Every method and size other than the lean closed-form path of [`Self::run`].
@@ -247,6 +305,7 @@ impl TensionSolver {
         p: &TensionProblem,
         m: usize,
         n: usize,
+        verdict_only: bool,
     ) -> Result<Result<f64, Infeasibility>, TensionError> {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
@@ -286,7 +345,7 @@ impl TensionSolver {
                 }
             }
         }
-        match self.dispatch(p)? {
+        match self.dispatch(p, verdict_only)? {
             Err(reason) => return Ok(Err(reason)),
             Ok(Some(residual)) => return Ok(Ok(residual)),
             Ok(None) => {}
@@ -313,6 +372,24 @@ impl TensionSolver {
             }
             _ => return None,
         };
+        write_tensions(&self.ns, l, &mut self.t);
+        snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
+    }
+
+    /// t0, N and g of `p` in `self.ns` (`Err(condition)` for a singular W): those prepared by
+    /// [`Self::is_feasible_four_6x8`], else [`NullSpace::compute`].
+    #[inline]
+    fn null_space(&mut self, p: &TensionProblem) -> Result<(), f64> {
+        match self.prepared.take() {
+            Some(prepared) => prepared,
+            None => self.ns.compute(p.wrench_matrix, p.external_wrench),
+        }
+    }
+
+    /// The certified residual of [`planar_active_set::central_point`] (r = 2), if any.
+    #[inline]
+    fn central(&mut self, p: &TensionProblem) -> Option<f64> {
+        let l = planar_active_set::central_point(&self.ns, p.bounds)?;
         write_tensions(&self.ns, l, &mut self.t);
         snap_and_certify(p.wrench_matrix, p.external_wrench, p.bounds, &mut self.t).ok()
     }
@@ -376,6 +453,7 @@ impl TensionSolver {
     fn dispatch(
         &mut self,
         p: &TensionProblem,
+        verdict_only: bool,
     ) -> Result<Result<Option<f64>, Infeasibility>, TensionError> {
         let r = p.redundancy();
         let method = self.method;
@@ -401,7 +479,7 @@ impl TensionSolver {
                     Method::L2 => Objective::L2,
                     _ => Objective::Linf,
                 };
-                if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
+                if let Err(condition) = self.null_space(p) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
                 let why = match self.dense.solve(
@@ -429,7 +507,7 @@ impl TensionSolver {
                 self.clarabel_fallback(p, objective, why)?
             }
             Method::L2Max if r > 2 => {
-                if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
+                if let Err(condition) = self.null_space(p) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
                 quadratic_program::l2_max_high_redundancy(
@@ -441,8 +519,15 @@ impl TensionSolver {
                 )
             }
             _ => {
-                if let Err(condition) = self.ns.compute(p.wrench_matrix, p.external_wrench) {
+                if let Err(condition) = self.null_space(p) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                if verdict_only
+                    && method == Method::L2
+                    && r == 2
+                    && let Some(residual) = self.central(p)
+                {
+                    return Ok(Ok(Some(residual)));
                 }
                 if matches!(
                     method,

@@ -412,6 +412,12 @@ impl PoseEvaluator {
             self.wrench_closure_six_eight(poses, feasible);
             return;
         }
+        if let [Criterion::TensionFeasible { .. }] = self.criteria.as_slice()
+            && (self.robot.dof(), self.robot.cable_count()) == (6, 8)
+        {
+            self.tension_six_eight(poses, feasible);
+            return;
+        }
         let block = self.robot.dof() * self.robot.cable_count();
         let mut batch = std::mem::take(&mut self.scratch.batch);
         batch.w.resize(BATCH * block, 0.0);
@@ -472,6 +478,45 @@ impl PoseEvaluator {
             });
             let decided = test.decide_four_6x8(&columns, wanted);
             verdicts.copy_from_slice(&decided[..group.len()]);
+        }
+    }
+
+    /// [`PoseEvaluator::feasible_batch`] for tension feasibility alone on a 6-DOF, 8-cable
+    /// robot: four poses at a time from W in lanes (`Robot::wrench_matrix_lanes`) to
+    /// `TensionSolver::is_feasible_four_6x8` (the four null spaces in SIMD lanes, bit for bit
+    /// those of `is_feasible`, which goes on pose by pose: the same verdicts). The last group is
+    /// padded as in [`Self::wrench_closure_six_eight`].
+    fn tension_six_eight(&mut self, poses: &[Pose], feasible: &mut [bool]) {
+        let Self {
+            robot,
+            bounds,
+            criteria,
+            scratch,
+            ..
+        } = self;
+        let Criterion::TensionFeasible { wrench, .. } = &criteria[0] else {
+            unreachable!("called for one tension criterion");
+        };
+        let solver = scratch.solvers[0]
+            .as_mut()
+            .expect("a solver exists for every tension criterion");
+        let mut columns = [[[0.0; LANES]; 6]; 8];
+        for (group, verdicts) in poses.chunks(LANES).zip(feasible.chunks_mut(LANES)) {
+            let padded: [Pose; LANES] = std::array::from_fn(|l| group[l.min(group.len() - 1)]);
+            let valid = robot
+                .wrench_matrix_lanes(&padded, &mut columns)
+                .expect("a 6-DOF (spatial) robot and one column per cable");
+            // As `feasible_batch`: a non-finite pose is infeasible.
+            let wanted = std::array::from_fn(|l| {
+                l < group.len()
+                    && valid[l]
+                    && padded[l].rotation.matrix().iter().all(|v| v.is_finite())
+            });
+            let decided =
+                solver.is_feasible_four_6x8(&columns, wanted, wrench, bounds, &mut scratch.w);
+            for (v, d) in verdicts.iter_mut().zip(decided) {
+                *v = d.unwrap_or(false);
+            }
         }
     }
 

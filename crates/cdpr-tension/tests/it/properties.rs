@@ -474,3 +474,83 @@ proptest! {
         }
     }
 }
+
+/// t1 + t2 + t3 = s with t ∈ [0, 1]³ for s within 2·10⁻⁹ of 3 and of 0, where the feasible
+/// set shrinks to a point and the certificate's tolerance (10⁻⁹) exceeds the polygon's: the
+/// verdict of `is_feasible` (which may take the point nearest the middle of the bounds) is the
+/// verdict of `solve` for every redundancy-2 method.
+#[test]
+fn is_feasible_matches_solve_beside_a_vertex() {
+    let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+    let b = TensionBounds::uniform(3, 0.0, 1.0).unwrap();
+    for method in [
+        Method::L1,
+        Method::L1Max,
+        Method::L2,
+        Method::L2Max,
+        Method::Linf,
+        Method::Barycenter,
+    ] {
+        let mut s = TensionSolver::new(method);
+        for k in -200..=200 {
+            for centre in [0.0, 3.0] {
+                let we = DVector::from_vec(vec![-(centre + 1e-11 * k as f64)]);
+                let p = TensionProblem::new(&w, &we, &b);
+                let v = s.is_feasible(&p).unwrap();
+                assert_eq!(v, s.solve(&p).unwrap().is_feasible(), "{method:?}, k = {k}");
+            }
+        }
+    }
+}
+
+proptest! {
+    /// `is_feasible_four_6x8` (four null spaces in SIMD lanes) gives each problem's
+    /// `is_feasible` verdict, errors included (a non-finite W), for every method that applies
+    /// at redundancy 2, on random poses of an 8-cable spatial robot.
+    #[test]
+    fn four_at_a_time_verdicts_equal_is_feasible(
+        poses in prop::collection::vec(
+            (-1.0f64..1.0, -1.0f64..1.0, 0.0f64..2.0, -0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3),
+            4,
+        ),
+        wanted in prop::collection::vec(prop::bool::weighted(0.9), 4),
+        load in prop::collection::vec(-300.0f64..300.0, 6),
+        lo in 0.0f64..50.0,
+        span in 10.0f64..2000.0,
+        poison in 0usize..6,
+    ) {
+        let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
+        let mut columns = [[[0.0; 4]; 6]; 8];
+        let mut matrices = Vec::new();
+        for (l, &(x, y, z, a, b, c)) in poses.iter().enumerate() {
+            let pose = Pose::spatial(nalgebra::Vector3::new(x, y, z), a, b, c);
+            let mut w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+            if l == poison {
+                w[(2, 5)] = f64::NAN;
+            }
+            for j in 0..8 {
+                for i in 0..6 {
+                    columns[j][i][l] = w[(i, j)];
+                }
+            }
+            matrices.push(w);
+        }
+        let we = DVector::from_vec(load);
+        let b = TensionBounds::uniform(8, lo, lo + span).unwrap();
+        let wanted: [bool; 4] = std::array::from_fn(|l| wanted[l]);
+        let mut scratch = DMatrix::zeros(1, 1);
+        for method in [Method::L1, Method::L1Max, Method::L2, Method::L2Max, Method::Linf, Method::Barycenter] {
+            let mut four = TensionSolver::new(method);
+            let mut one = TensionSolver::new(method);
+            let got = four.is_feasible_four_6x8(&columns, wanted, &we, &b, &mut scratch);
+            for l in 0..4 {
+                let expected = if wanted[l] {
+                    one.is_feasible(&TensionProblem::new(&matrices[l], &we, &b))
+                } else {
+                    Ok(false)
+                };
+                prop_assert_eq!(format!("{:?}", got[l]), format!("{expected:?}"), "{} lane {}", method, l);
+            }
+        }
+    }
+}

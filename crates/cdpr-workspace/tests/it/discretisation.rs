@@ -359,6 +359,20 @@ mod batch_equals_per_pose {
                 method: Method::L2,
                 wrench: gravity.clone(),
             }]),
+            // The four-pose tension path: null spaces in lanes (l1, barycentre), and pose by
+            // pose (linf).
+            make(vec![Criterion::TensionFeasible {
+                method: Method::L1,
+                wrench: gravity.clone(),
+            }]),
+            make(vec![Criterion::TensionFeasible {
+                method: Method::Barycenter,
+                wrench: gravity.clone(),
+            }]),
+            make(vec![Criterion::TensionFeasible {
+                method: Method::Linf,
+                wrench: gravity.clone(),
+            }]),
             // Not W-only: the pose-by-pose fallback.
             make(vec![
                 Criterion::WrenchClosure,

@@ -9,3 +9,4 @@ mod dextrous;
 mod discretisation;
 mod orientation_workspace;
 mod thesis;
+mod vsd_rig;
