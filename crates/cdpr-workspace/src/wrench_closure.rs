@@ -22,7 +22,9 @@
 //! buffers: no allocation per pose for r ≤ 2. The common shapes run on stack arrays, the case
 //! where the first DOF columns are the pivot columns unrolled, and 6 × 8 in an AVX2 build when
 //! the CPU has it (run-time detection): all of them the same operations in the same order as
-//! the general reduction, hence the same bits.
+//! the general reduction, hence the same bits. Grids decide 6 × 8 matrices four poses at a
+//! time (`WrenchClosureTest::decide_four_6x8`): reduction and half-plane test on four f64
+//! lanes (`simd`: AVX2 registers or a portable array), again with the single-pose bits.
 //!
 //! ## References
 //! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
