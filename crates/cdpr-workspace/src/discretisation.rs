@@ -194,22 +194,25 @@ impl std::fmt::Display for VolumeConvention {
 impl GridWorkspace {
     /// A workspace from per-point verdicts (counts and area derived).
     pub fn from_verdicts(grid: Grid, dim: usize, feasible: Vec<bool>) -> Self {
-        let feasible_points = feasible.iter().filter(|&&f| f).count();
         let cell_area = grid.cell_measure(dim);
         // Clipped cells: weight 2^−(number of grid indices at 0 or m), summed in integers
-        // scaled by 2^dim (exact for any grid size a machine can hold).
-        // The grid indices are stepped like an odometer (x fastest), not divided out of the
-        // flat index: this pass runs on one thread after the parallel evaluation.
+        // scaled by 2^dim (exact for any grid size a machine can hold). This pass runs on one
+        // thread after the parallel evaluation, so it goes line by line along x: the feasible
+        // points of a line counted at once, its two ends (x index 0 or m) apart, and the
+        // other indices stepped like an odometer.
         let p = grid.points_per_axis();
         let m = grid.resolution;
         let mut index = [0usize; 3];
         let mut scaled: u128 = 0;
-        for &f in &feasible {
-            if f {
-                let halves = index[..dim].iter().filter(|&&i| i == 0 || i == m).count();
-                scaled += 1u128 << (dim - halves);
-            }
-            for i in &mut index[..dim] {
+        let mut feasible_points = 0;
+        for line in feasible.chunks(p) {
+            let halves = index[1..dim].iter().filter(|&&i| i == 0 || i == m).count();
+            let count = line.iter().filter(|&&f| f).count();
+            let ends = usize::from(line[0]) + usize::from(line.len() == p && p > 1 && line[p - 1]);
+            feasible_points += count;
+            scaled += ((count - ends) as u128) << (dim - halves);
+            scaled += (ends as u128) << (dim - halves - 1);
+            for i in &mut index[1..dim] {
                 *i += 1;
                 if *i < p {
                     break;
@@ -560,9 +563,9 @@ mod tests {
         }
     }
 
-    /// The clipped measure from the odometer equals the weights computed from the flat index
+    /// The clipped measure summed line by line equals the weights computed from the flat index
     /// by division (2^−(indices at 0 or m) per feasible point), on pseudo-random verdicts in
-    /// 2-D and 3-D.
+    /// 2-D and 3-D, and so does the feasible count.
     #[test]
     fn clipped_cells_from_the_odometer_equal_the_divided_indices() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
@@ -591,7 +594,9 @@ mod tests {
                 .filter(|&idx| feasible[idx])
                 .map(weight)
                 .sum();
+            let count = feasible.iter().filter(|&&f| f).count();
             let ws = GridWorkspace::from_verdicts(grid, dim, feasible);
+            assert_eq!(ws.feasible_points, count);
             assert!(
                 (ws.clipped_area / ws.cell_area - expected).abs() < 1e-9,
                 "{dim}-D, m = {m}"

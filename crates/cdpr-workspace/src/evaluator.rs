@@ -464,17 +464,24 @@ impl PoseEvaluator {
             .expect("a wrench-closure test exists for the wrench-closure criterion");
         let mut columns = [[[0.0; LANES]; 6]; 8];
         for (group, verdicts) in poses.chunks(LANES).zip(feasible.chunks_mut(LANES)) {
-            let padded: [Pose; LANES] = std::array::from_fn(|l| group[l.min(group.len() - 1)]);
+            // Full groups are read in place; the last one is padded (not copied otherwise).
+            let padded: [Pose; LANES];
+            let four = match <&[Pose; LANES]>::try_from(group) {
+                Ok(four) => four,
+                Err(_) => {
+                    padded = std::array::from_fn(|l| group[l.min(group.len() - 1)]);
+                    &padded
+                }
+            };
             let valid = self
                 .robot
-                .wrench_matrix_lanes(&padded, &mut columns)
+                .wrench_matrix_lanes(four, &mut columns)
                 .expect("a 6-DOF (spatial) robot and one column per cable");
             // A non-finite pose is infeasible, as in `is_feasible` (the kinematics flag a
-            // non-finite position; a non-finite rotation is checked here).
+            // non-finite position; a non-finite rotation is checked here, without branches).
             let wanted = std::array::from_fn(|l| {
-                l < group.len()
-                    && valid[l]
-                    && padded[l].rotation.matrix().iter().all(|v| v.is_finite())
+                let rotation = four[l].rotation.matrix();
+                l < group.len() && valid[l] & rotation.iter().fold(true, |ok, v| ok & v.is_finite())
             });
             let decided = test.decide_four_6x8(&columns, wanted);
             verdicts.copy_from_slice(&decided[..group.len()]);

@@ -22,7 +22,9 @@
 //! buffers: no allocation per pose for r ≤ 2. The common shapes run on stack arrays, the case
 //! where the first DOF columns are the pivot columns unrolled, and 6 × 8 in an AVX2 build when
 //! the CPU has it (run-time detection): all of them the same operations in the same order as
-//! the general reduction, hence the same bits.
+//! the general reduction, hence the same bits. Grids decide 6 × 8 matrices four poses at a
+//! time (`WrenchClosureTest::decide_four_6x8`): reduction and half-plane test on four f64
+//! lanes (`simd`: AVX2 registers or a portable array), again with the single-pose bits.
 //!
 //! ## References
 //! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
@@ -457,24 +459,42 @@ impl WrenchClosureTest {
             true => unsafe { decide_lanes_avx2(columns) },
             _ => decide_lanes::<Portable>(columns),
         };
-        std::array::from_fn(|l| {
-            if !(wanted[l] && lanes.finite[l]) {
+        let mut decided = [false; LANES];
+        for (l, d) in decided.iter_mut().enumerate() {
+            *d = if !(wanted[l] && lanes.finite[l]) {
                 false
             } else if lanes.leading[l] && !lanes.nan[l] {
                 lanes.closure[l]
-            } else if lanes.leading[l] {
-                let null = &mut self.null[..16];
-                for p in 0..6 {
-                    null[2 * p] = lanes.null[0][p][l];
-                    null[2 * p + 1] = lanes.null[1][p][l];
-                }
-                null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
-                self.half_plane()
             } else {
-                let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
-                self.decide(&w, None).unwrap_or(false)
+                self.decide_lane_alone(columns, &lanes, l)
+            };
+        }
+        decided
+    }
+
+    /// The decision of lane `l` outside the common case of [`decide_lanes`] (a pivot column
+    /// skipped, or a NaN in the null basis): the single-pose half-plane test on the lanes' null
+    /// basis, or the single-pose path from W.
+    #[cold]
+    #[inline(never)]
+    fn decide_lane_alone(
+        &mut self,
+        columns: &[[Lanes; 6]; 8],
+        lanes: &LaneDecision,
+        l: usize,
+    ) -> bool {
+        if lanes.leading[l] {
+            let null = &mut self.null[..16];
+            for p in 0..6 {
+                null[2 * p] = lanes.null[0][p][l];
+                null[2 * p + 1] = lanes.null[1][p][l];
             }
-        })
+            null[12..].copy_from_slice(&[1.0, 0.0, 0.0, 1.0]);
+            self.half_plane()
+        } else {
+            let w: [f64; 48] = std::array::from_fn(|k| columns[k / 6][k % 6][l]);
+            self.decide(&w, None).unwrap_or(false)
+        }
     }
 }
 
@@ -498,18 +518,12 @@ unsafe fn decide_lanes_avx2(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
 fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
     // No closures here: a closure is not compiled with the caller's target features, so the
     // AVX2 intrinsics would become calls.
-    let mut a = [[V::splat(0.0); 6]; 8];
-    for (aj, cj) in a.iter_mut().zip(columns) {
-        for (aij, cij) in aj.iter_mut().zip(cj) {
-            *aij = V::load(cij);
-        }
-    }
     // Finiteness, and the largest |w_ij| by comparisons, column by column.
     let mut finite = V::splat(f64::from_bits(u64::MAX));
     let mut largest = V::splat(0.0);
-    for column in &a {
+    for column in columns {
         for entry in column {
-            let v = entry.abs();
+            let v = V::load(entry).abs();
             finite = finite.and(v.lt(V::splat(f64::INFINITY)));
             largest = V::blend(v.gt(largest), v, largest);
         }
@@ -518,12 +532,15 @@ fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
     let tiny = V::splat(1e-300);
     let tolerance = V::splat(RANK_TOLERANCE).mul(V::blend(largest.lt(tiny), tiny, largest));
     let mut leading = finite;
-    pivot_step::<V, 0>(&mut a, &mut leading, tolerance);
-    pivot_step::<V, 1>(&mut a, &mut leading, tolerance);
-    pivot_step::<V, 2>(&mut a, &mut leading, tolerance);
-    pivot_step::<V, 3>(&mut a, &mut leading, tolerance);
-    pivot_step::<V, 4>(&mut a, &mut leading, tolerance);
-    pivot_step::<V, 5>(&mut a, &mut leading, tolerance);
+    // The reduced matrix; step 0 reads W from `columns` (no copy) and writes every entry that
+    // later steps read.
+    let mut a = [[V::splat(0.0); 6]; 8];
+    pivot_step::<V, 0>(&mut a, columns, &mut leading, tolerance);
+    pivot_step::<V, 1>(&mut a, columns, &mut leading, tolerance);
+    pivot_step::<V, 2>(&mut a, columns, &mut leading, tolerance);
+    pivot_step::<V, 3>(&mut a, columns, &mut leading, tolerance);
+    pivot_step::<V, 4>(&mut a, columns, &mut leading, tolerance);
+    pivot_step::<V, 5>(&mut a, columns, &mut leading, tolerance);
     // Row p of N is −(row p)[6..8].
     let (mut x, mut y) = ([V::splat(0.0); 8], [V::splat(0.0); 8]);
     let mut null = [[[0.0; LANES]; 6]; 2];
@@ -546,12 +563,17 @@ fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
 /// columns right of C are updated (the single-pose loop updates whole rows, but its entries
 /// left of the pivot column are never read again).
 #[inline(always)]
-fn pivot_step<V: F64x4, const C: usize>(a: &mut [[V; 6]; 8], leading: &mut V, tolerance: V) {
+fn pivot_step<V: F64x4, const C: usize>(
+    a: &mut [[V; 6]; 8],
+    columns: &[[Lanes; 6]; 8],
+    leading: &mut V,
+    tolerance: V,
+) {
     // Partial pivoting (`partial_pivot`): the first row from C on with the largest |a_iC|.
     let mut best_abs = V::splat(0.0);
     let mut best = V::splat(C as f64);
-    for (i, entry) in a[C].iter().enumerate().skip(C) {
-        let v = entry.abs();
+    for i in C..6 {
+        let v = entry::<V, C>(a, columns, C, i).abs();
         let take = v.gt(best_abs);
         best_abs = V::blend(take, v, best_abs);
         best = V::blend(take, V::splat(i as f64), best);
@@ -564,12 +586,12 @@ fn pivot_step<V: F64x4, const C: usize>(a: &mut [[V; 6]; 8], leading: &mut V, to
         *c = best.eq(V::splat(i as f64));
     }
     let mut pivot = [V::splat(0.0); 8];
-    for j in C..8 {
-        pivot[j] = a[j][C];
+    for (j, p) in pivot.iter_mut().enumerate().skip(C) {
+        *p = entry::<V, C>(a, columns, j, C);
     }
-    for i in C + 1..6 {
-        for j in C..8 {
-            pivot[j] = V::blend(chosen[i], a[j][i], pivot[j]);
+    for (i, &is) in chosen.iter().enumerate().skip(C + 1) {
+        for (j, p) in pivot.iter_mut().enumerate().skip(C) {
+            *p = V::blend(is, entry::<V, C>(a, columns, j, i), *p);
         }
     }
     // The pivot row scaled by 1/pivot; `o −= f · p` in every other row whose entry in column
@@ -582,11 +604,11 @@ fn pivot_step<V: F64x4, const C: usize>(a: &mut [[V; 6]; 8], leading: &mut V, to
         if i == C {
             continue;
         }
-        let f = row_after_exchange::<V, C>(a, &chosen, i, C);
+        let f = row_after_exchange::<V, C>(a, columns, &chosen, i, C);
         let eliminate = f.ne(V::splat(0.0));
         for j in C + 1..8 {
-            a[j][i] =
-                row_after_exchange::<V, C>(a, &chosen, i, j).sub(f.mul(pivot[j]).and(eliminate));
+            a[j][i] = row_after_exchange::<V, C>(a, columns, &chosen, i, j)
+                .sub(f.mul(pivot[j]).and(eliminate));
         }
     }
     for j in C + 1..8 {
@@ -679,12 +701,30 @@ fn take<V: F64x4>(m: V, row: (V, V, V), pair: &mut (V, V, V)) {
 #[inline(always)]
 fn row_after_exchange<V: F64x4, const C: usize>(
     a: &[[V; 6]; 8],
+    columns: &[[Lanes; 6]; 8],
     chosen: &[V; 6],
     i: usize,
     j: usize,
 ) -> V {
+    let e = entry::<V, C>(a, columns, j, i);
     if i > C {
-        V::blend(chosen[i], a[j][C], a[j][i])
+        V::blend(chosen[i], entry::<V, C>(a, columns, j, C), e)
+    } else {
+        e
+    }
+}
+
+/// Entry (i, j) of the matrix as step C finds it: W itself for step 0, else the reduced
+/// matrix `a`.
+#[inline(always)]
+fn entry<V: F64x4, const C: usize>(
+    a: &[[V; 6]; 8],
+    columns: &[[Lanes; 6]; 8],
+    j: usize,
+    i: usize,
+) -> V {
+    if C == 0 {
+        V::load(&columns[j][i])
     } else {
         a[j][i]
     }

@@ -68,7 +68,12 @@ pub(super) trait F64x4: Copy {
     #[inline(always)]
     fn is_set(self) -> [bool; LANES] {
         let v = self.lanes();
-        [0, 1, 2, 3].map(|l| v[l].to_bits() != 0)
+        [
+            v[0].to_bits() != 0,
+            v[1].to_bits() != 0,
+            v[2].to_bits() != 0,
+            v[3].to_bits() != 0,
+        ]
     }
 }
 
