@@ -6,6 +6,8 @@
 //! and the boundary mesh of the same robot's wrench-feasible workspace with gravity (l2 tensions
 //! in [10, 1000] N, 5 kg platform, cables ≥ 0.05 m, `examples/robots/ipanema-like-8.toml`) at
 //! M = 60 over its frame, vertices refined to 1e-8 of the box (issue 16: ≤ 1 s on 2 cores).
+//! `dextrous/table_6_10_run_1_m400_l1_21_slices` is the setting of the issue-13 `cdpr dextrous`
+//! timing against numpy (401² points × 21 orientations, l1).
 
 use cdpr_benches::ipanema_like_8;
 use cdpr_kinematics::{Cable, MotionPattern, Robot};
@@ -118,6 +120,36 @@ fn dextrous(c: &mut Criterion) {
     };
     g.bench_function("four_cable_m50_l1_5_slices", |b| {
         b.iter(|| dextrous_workspace(black_box(&four), &range, &grid).unwrap())
+    });
+    // The issue-13 timing setting (Table 6.10 run 1 of the thesis chapter on planar
+    // tendon-driven manipulators, 401² points × 21 orientations): the lean path in lanes.
+    let anchors: Vec<[f64; 2]> = [0.7572f64, 2.922, 3.097, 5.449]
+        .iter()
+        .map(|&b| {
+            let rho = 1.0 / b.cos().abs().max(b.sin().abs());
+            [rho * b.cos(), rho * b.sin()]
+        })
+        .collect();
+    let table = PoseEvaluator::new(
+        cdpr_kinematics::reference_robots::thesis_manipulator(&anchors),
+        TensionBounds::uniform(4, 5.0, 100.0).unwrap(),
+        vec![
+            Cr::TensionFeasible {
+                method: Method::L1,
+                wrench: DVector::from_row_slice(&[5.0, -10.0, 1.0]),
+            },
+            Cr::MinCableLength(0.1),
+        ],
+    )
+    .unwrap();
+    let range21 = OrientationRange {
+        min: -0.2,
+        max: 0.2,
+        slices: 21,
+    };
+    let grid400 = Grid::new(400, Region::planar(-1.0, 1.0, -1.0, 1.0));
+    g.bench_function("table_6_10_run_1_m400_l1_21_slices", |b| {
+        b.iter(|| dextrous_workspace(black_box(&table), &range21, &grid400).unwrap())
     });
     g.finish();
 }

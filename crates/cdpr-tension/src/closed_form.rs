@@ -1378,46 +1378,13 @@ mod tests {
 
     #[test]
     fn planar_closed_form_agrees_with_is_feasible_planar() {
-        use nalgebra::{Matrix3x4, Vector3};
+        use nalgebra::Vector3;
         let mut rnd = uniform_stream(0x5851_f42d_4c95_7f2du64);
         let (mut yes, mut no) = (0, 0);
         for case in 0..200_000 {
-            let mut w = Matrix3x4::from_fn(|_, _| rnd());
-            match case % 11 {
-                // Two parallel columns, a zero row, a near-dependent column.
-                1 => w.set_column(1, &(w.column(0) * (1.0 + 1e-13 * rnd()))),
-                2 => w.row_mut(case % 3).fill(0.0),
-                3 => w.set_column(3, &(w.column(0) * rnd() + w.column(1) * rnd())),
-                4 => w[(case % 3, case % 4)] = [f64::NAN, f64::INFINITY][case % 2],
-                _ => {}
-            }
-            let lo = 5.0 * (rnd() + 1.0);
-            let mut hi = [lo + 100.0 * (rnd() + 1.0); 4];
-            match case % 5 {
-                1 => hi[case % 4] = lo,
-                2 => hi[case % 4] = f64::INFINITY,
-                _ => {}
-            }
-            let b = TensionBounds::new(vec![lo; 4], hi.to_vec()).unwrap();
-            // w_ext = −W t for tensions t with some cables on (or just across) a bound.
-            let t: Vec<f64> = (0..4)
-                .map(|i| {
-                    let top = if hi[i].is_finite() { hi[i] } else { lo + 50.0 };
-                    let nudge = 1.0 + [0.0, 1e-10, -1e-10, 1e-8, 0.0][case % 5];
-                    match (case / 5 + i) % 4 {
-                        0 => lo * nudge,
-                        1 => top * nudge,
-                        _ => lo + (top - lo) * 0.5 * (rnd() + 1.0),
-                    }
-                })
-                .collect();
-            let mut we: Vector3<f64> = -(w * nalgebra::Vector4::from_row_slice(&t));
-            if case % 7 == 0 {
-                we = Vector3::from_fn(|_, _| 200.0 * rnd());
-            }
-            if !we.iter().all(|v| v.is_finite()) {
+            let Some((w, we, b)) = planar_problem(case, &mut rnd) else {
                 continue;
-            }
+            };
             for maximize in [false, true] {
                 let lean = PlanarClosedForm::new(&we, &b, maximize).unwrap();
                 let expected = is_feasible_planar(&w, &we, &b, maximize).unwrap_or(false);

@@ -330,9 +330,7 @@ pub fn dextrous_verdicts_lean(
     central_ok.clear();
     central_ok.extend_from_slice(alive);
     let central_index = central.ok();
-    keep(central_index, central_ok, &mut |i| {
-        verdicts[i].2 = true
-    });
+    keep(central_index, central_ok, &mut |i| verdicts[i].2 = true);
     if central_index.is_some() {
         std::mem::swap(alive, central_ok);
     }
