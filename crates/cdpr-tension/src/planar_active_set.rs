@@ -165,9 +165,10 @@ const CENTRAL_MARGIN: f64 = 1e-6;
 /// = Nᵀ t_mid − g with t_mid = (t_min + t_max)/2, the tension closest to the middle of the
 /// bounds on the affine set t = t0 + N λ (N orthonormal). It serves only the verdict of
 /// `TensionSolver::is_feasible`: a feasibility verdict does not depend on which feasible point
-/// proves it. Each t_i must be at least 10⁻⁶ (t_max,i − t_min,i) + 10⁻⁹ max(|t_min,i|, |t_max,i|)
-/// inside its bounds, far more than the polygon's clipping tolerance and the rounding of t_i, so the polygon (and every method's solve) finds a
-/// non-empty set there too; an infinite t_max gives `None`.
+/// proves it. Each t_i must be at least
+/// 10⁻⁶ (t_max,i − t_min,i) + 10⁻⁹ max(|t_min,i|, |t_max,i|) inside its bounds, far more than
+/// the polygon's clipping tolerance and the rounding of t_i, so the polygon (and every method's
+/// solve) finds a non-empty set there too; an infinite t_max gives `None`.
 pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2> {
     debug_assert_eq!(ns.r(), 2);
     let n = ns.n;
