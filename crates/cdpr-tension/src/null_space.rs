@@ -16,6 +16,11 @@
 //! ρ = √det(W Wᵀ) / Π_k ‖row_k(W)‖ ∈ [0, 1] (invariant to the scale of each wrench row, so to the
 //! length unit), and report `condition = 1/ρ`; W counts as singular when ρ < 10⁻¹⁰.
 //!
+//! **Four at a time.** `four_6x8` factors four 6 × 8 wrench matrices in SIMD lanes (AVX2
+//! chosen at run time, a portable build otherwise) with the operations of the fixed-size path in
+//! the same order, so each lane's t0, N, g and ρ are those of `NullSpace::compute` bit for bit
+//! (workspace grids, `TensionSolver::is_feasible_four_6x8`).
+//!
 //! ## References
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6). Thesis eq. (6.14).
 //! - Golub & Van Loan, *Matrix Computations*, §5.4.1 (QR with column pivoting).
@@ -313,7 +318,8 @@ impl NullSpace {
     }
 }
 
-/// Poses per group of [`four_6x8`] (four f64 lanes: one AVX2 register).
+/// Poses per group of `four_6x8` and `TensionSolver::is_feasible_four_6x8` (four f64 lanes: one
+/// AVX2 register).
 pub const LANES: usize = 4;
 
 /// One f64 per pose of a group.

@@ -82,12 +82,15 @@ fn most_violated(
     l: P2,
     working: &[Constraint],
 ) -> Option<Constraint> {
-    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let n = ns.n;
+    let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
+    let (n1, n2, t0) = (&ns.basis[..n], &ns.basis[n..2 * n], &ns.t0[..n]);
     // Best violation v and squared row norm q, compared as v²/q.
     let (mut best, mut bv, mut bq) = (None, 0.0f64, 1.0f64);
-    for i in 0..ns.n {
-        let a = ns.row2(i);
-        let t = ns.t0[i] + a[0] * l[0] + a[1] * l[1];
+    for i in 0..n {
+        // `ns.row2(i)` at r = 2.
+        let a = [n1[i], n2[i]];
+        let t = t0[i] + a[0] * l[0] + a[1] * l[1];
         let (below, above) = (lo[i] - t, t - hi[i]);
         let (j, v, tol) = if below > 0.0 {
             (2 * i, below, VIOLATION * lo[i].abs().max(1.0))
@@ -162,22 +165,25 @@ const CENTRAL_MARGIN: f64 = 1e-6;
 /// = Nᵀ t_mid − g with t_mid = (t_min + t_max)/2, the tension closest to the middle of the
 /// bounds on the affine set t = t0 + N λ (N orthonormal). It serves only the verdict of
 /// `TensionSolver::is_feasible`: a feasibility verdict does not depend on which feasible point
-/// proves it. Each t_i must be at least 10⁻⁶ (t_max,i − t_min,i) + 10⁻⁹ max(|t_min,i|, |t_max,i|)
-/// inside its bounds, far more than the polygon's clipping tolerance and the rounding of t_i, so the polygon (and every method's solve) finds a
-/// non-empty set there too; an infinite t_max gives `None`.
+/// proves it. Each t_i must be at least
+/// 10⁻⁶ (t_max,i − t_min,i) + 10⁻⁹ max(|t_min,i|, |t_max,i|) inside its bounds, far more than
+/// the polygon's clipping tolerance and the rounding of t_i, so the polygon (and every method's
+/// solve) finds a non-empty set there too; an infinite t_max gives `None`.
 pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2> {
     debug_assert_eq!(ns.r(), 2);
-    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let n = ns.n;
+    let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
+    let (n1, n2, t0) = (&ns.basis[..n], &ns.basis[n..2 * n], &ns.t0[..n]);
     let mut l = [-ns.g[0], -ns.g[1]];
-    for i in 0..ns.n {
+    for i in 0..n {
         let mid = 0.5 * (lo[i] + hi[i]);
-        let a = ns.row2(i);
-        l[0] += a[0] * mid;
-        l[1] += a[1] * mid;
+        l[0] += n1[i] * mid;
+        l[1] += n2[i] * mid;
     }
-    for i in 0..ns.n {
+    for i in 0..n {
         let margin = CENTRAL_MARGIN * (hi[i] - lo[i]) + 1e-9 * lo[i].abs().max(hi[i].abs());
-        let t = ns.tension2(i, l);
+        // As `NullSpace::tension2`.
+        let t = t0[i] + n1[i] * l[0] + n2[i] * l[1];
         // NaN and an infinite t_max fail here.
         if !(t - lo[i] > margin && hi[i] - t > margin) {
             return None;
@@ -196,10 +202,11 @@ pub(crate) fn l2_projection(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2
 fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)> {
     let n = ns.n;
     debug_assert_eq!(ns.r(), 2);
-    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
+    let (n1, n2) = (&ns.basis[..n], &ns.basis[n..2 * n]);
     let mut unbounded = false;
     for i in 0..n {
-        let a = ns.row2(i);
+        let a = [n1[i], n2[i]];
         if lo[i] == hi[i] || a[0].abs() + a[1].abs() < 1e-12 {
             return None;
         }

@@ -232,9 +232,9 @@ impl TensionSolver {
             if !wanted[l] {
                 return Ok(false);
             }
-            for (j, column) in columns.iter().enumerate() {
-                for (i, row) in column.iter().enumerate() {
-                    w[(i, j)] = row[l];
+            for (dst, column) in w.as_mut_slice().chunks_exact_mut(6).zip(columns) {
+                for (d, row) in dst.iter_mut().zip(column) {
+                    *d = row[l];
                 }
             }
             let problem = TensionProblem::new(w, external_wrench, bounds);
