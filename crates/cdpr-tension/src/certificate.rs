@@ -412,17 +412,21 @@ pub(crate) fn polish(
 mod tests {
     use super::*;
 
-    /// The fused snap-and-certify agrees with snap_to_bounds + certify, including at the
-    /// tolerance margins, for NaN, and for every DOF (fixed and dynamic sizes).
-    #[test]
-    fn fused_check_agrees_with_snap_then_certify() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
+    /// Uniform numbers in [0, 1) from a xorshift generator.
+    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    /// The fused snap-and-certify agrees with snap_to_bounds + certify, including at the
+    /// tolerance margins, for NaN, and for every DOF (fixed and dynamic sizes).
+    #[test]
+    fn fused_check_agrees_with_snap_then_certify() {
+        let mut rnd = uniform(0x2545_f491_4f6c_dd1d);
         let mut failures = 0;
         for case in 0..4000 {
             let m = [1, 2, 3, 4, 6, 7][case % 6];
@@ -518,13 +522,7 @@ mod tests {
         if !std::arch::is_x86_feature_detected!("avx2") {
             return;
         }
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = uniform(0x9e37_79b9_7f4a_7c15);
         let mut valid = 0;
         for case in 0..2000 {
             let n = 6 + case % 7;
