@@ -155,6 +155,29 @@ fn full_scale_test<const M: usize>(
     (in_equilibrium(residual, scale), residual)
 }
 
+/// [`equilibrium_test`] for DOF 6 (spatial robots), built for AVX2 when the CPU has it
+/// (`is_x86_feature_detected!` caches its answer).
+#[inline(always)]
+fn equilibrium_test_6(ws: &[f64], we: &[f64], t: &[f64]) -> (bool, f64) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // SAFETY: the CPU reports AVX2.
+        return unsafe { equilibrium_test_6_avx2(ws, we, t) };
+    }
+    equilibrium_test::<6>(ws, we, t)
+}
+
+/// [`equilibrium_test`] for DOF 6 compiled for AVX2: the same source without fused
+/// multiply–adds (Rust never contracts `a * b + c`), so the same bits as the portable build.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn equilibrium_test_6_avx2(ws: &[f64], we: &[f64], t: &[f64]) -> (bool, f64) {
+    equilibrium_test::<6>(ws, we, t)
+}
+
 /// [`equilibrium_test`] by DOF (the one-pass test beyond 6).
 #[inline(always)]
 fn equilibrium_test_any(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (bool, f64) {
@@ -165,7 +188,7 @@ fn equilibrium_test_any(w: &DMatrix<f64>, w_ext: &DVector<f64>, t: &[f64]) -> (b
         3 => equilibrium_test::<3>(ws, we, t),
         4 => equilibrium_test::<4>(ws, we, t),
         5 => equilibrium_test::<5>(ws, we, t),
-        6 => equilibrium_test::<6>(ws, we, t),
+        6 => equilibrium_test_6(ws, we, t),
         _ => {
             let (residual, scale) = equilibrium_dyn(w, w_ext, t);
             (in_equilibrium(residual, scale), residual)
@@ -389,17 +412,21 @@ pub(crate) fn polish(
 mod tests {
     use super::*;
 
-    /// The fused snap-and-certify agrees with snap_to_bounds + certify, including at the
-    /// tolerance margins, for NaN, and for every DOF (fixed and dynamic sizes).
-    #[test]
-    fn fused_check_agrees_with_snap_then_certify() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move || {
+    /// Uniform numbers in [0, 1) from a xorshift generator.
+    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    /// The fused snap-and-certify agrees with snap_to_bounds + certify, including at the
+    /// tolerance margins, for NaN, and for every DOF (fixed and dynamic sizes).
+    #[test]
+    fn fused_check_agrees_with_snap_then_certify() {
+        let mut rnd = uniform(0x2545_f491_4f6c_dd1d);
         let mut failures = 0;
         for case in 0..4000 {
             let m = [1, 2, 3, 4, 6, 7][case % 6];
@@ -486,6 +513,37 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The AVX2 build of the DOF-6 equilibrium test gives the bits of the portable build.
+    #[cfg(target_arch = "x86_64")]
+    #[test]
+    fn avx2_equilibrium_gives_the_portable_bits() {
+        if !std::arch::is_x86_feature_detected!("avx2") {
+            return;
+        }
+        let mut rnd = uniform(0x9e37_79b9_7f4a_7c15);
+        let mut valid = 0;
+        for case in 0..2000 {
+            let n = 6 + case % 7;
+            let ws: Vec<f64> = (0..6 * n).map(|_| 2.0 * rnd() - 1.0).collect();
+            let t: Vec<f64> = (0..n).map(|_| 1000.0 * rnd()).collect();
+            // Balanced up to rounding, or off by up to 10⁻⁵ N (either side of the tolerance).
+            let mut we = vec![0.0; 6];
+            for (col, ti) in ws.chunks_exact(6).zip(&t) {
+                for k in 0..6 {
+                    we[k] -= col[k] * ti;
+                }
+            }
+            we[case % 6] += 1e-5 * rnd() * (case % 2) as f64;
+            let portable = equilibrium_test::<6>(&ws, &we, &t);
+            // SAFETY: the CPU reports AVX2.
+            let avx2 = unsafe { equilibrium_test_6_avx2(&ws, &we, &t) };
+            assert_eq!(portable.0, avx2.0, "{case}");
+            assert_eq!(portable.1.to_bits(), avx2.1.to_bits(), "{case}");
+            valid += portable.0 as usize;
+        }
+        assert!(valid > 1000 && valid < 2000, "{valid}");
     }
 
     /// The fixed-size residual sums in the same order as a plain row loop.

@@ -53,7 +53,8 @@ impl ImprovedClosedForm {
     /// Pott (2014) into `t` (callers ensure r ≥ 0 and finite t_max, see
     /// [`crate::TensionError::NeedsFiniteBounds`]). DOF 6 and 3 (and 6 × 8, the common spatial
     /// robot) run a copy of the iteration with the sizes fixed at compile time (stack buffers,
-    /// unrolled loops, the same arithmetic).
+    /// unrolled loops, the same arithmetic); 6 × 8 compiled for AVX2 when the CPU has it (the
+    /// same bits).
     pub fn solve(&mut self, problem: &TensionProblem, t: &mut [f64]) -> Result<(), Infeasibility> {
         self.solve_with(problem, t, true, detected_path())
     }
