@@ -160,20 +160,11 @@ pub(crate) fn four_6x8_lanes<V: F64x4>(
 mod tests {
     use super::*;
     use crate::certificate::snap_and_certify;
+    use crate::certificate::tests::uniform;
     use crate::linear_program::write_tensions;
     use crate::null_space::{NullSpace, four_6x8 as null_spaces};
     use crate::planar_active_set::central_point;
     use nalgebra::{DMatrix, DVector};
-
-    /// Uniform numbers in [0, 1) from a xorshift generator.
-    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
-        move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
 
     /// What the scalar path decides for lane `l`: (W finite, central point inside its margin
     /// for a regular null space, "feasible" at the central point with the residual test
