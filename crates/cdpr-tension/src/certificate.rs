@@ -409,11 +409,11 @@ pub(crate) fn polish(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    /// Uniform numbers in [0, 1) from a xorshift generator.
-    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+    /// Uniform numbers in [0, 1) from a xorshift generator (also for other modules' tests).
+    pub(crate) fn uniform(mut state: u64) -> impl FnMut() -> f64 {
         move || {
             state ^= state << 13;
             state ^= state >> 7;

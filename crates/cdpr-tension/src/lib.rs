@@ -62,6 +62,7 @@
 mod active_set;
 pub mod barycenter;
 mod bounds;
+mod central_point;
 pub mod certificate;
 pub mod closed_form;
 mod error;

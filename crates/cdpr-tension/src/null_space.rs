@@ -404,14 +404,15 @@ fn or(a: Mask, b: Mask) -> Mask {
 /// [`NullSpace::compute`] computes for each alone.
 pub(crate) struct FourNullSpaces {
     /// t0, one lane per pose.
-    t0: [Lanes; 8],
+    pub(crate) t0: [Lanes; 8],
     /// The two columns of N.
-    basis: [[Lanes; 8]; 2],
-    g: [Lanes; 2],
+    pub(crate) basis: [[Lanes; 8]; 2],
+    /// g = Nᵀ t0.
+    pub(crate) g: [Lanes; 2],
     /// Hadamard ratio (0 after a zero row or pivot).
-    ratio: Lanes,
+    pub(crate) ratio: Lanes,
     /// A zero row or pivot (condition ∞).
-    zero: Mask,
+    pub(crate) zero: Mask,
 }
 
 impl FourNullSpaces {

@@ -161,6 +161,14 @@ fn satisfies(ns: &NullSpace, bounds: &TensionBounds, j: Constraint, l: P2) -> bo
 /// inside every bound (plus 10⁻⁹ of the bound's size, ten times the clipping tolerance).
 const CENTRAL_MARGIN: f64 = 1e-6;
 
+/// The margin of [`central_point`] for cable bounds [lo, hi]:
+/// 10⁻⁶ (hi − lo) + 10⁻⁹ max(|lo|, |hi|) (∞ for an infinite hi). Shared with the four-lane
+/// build (`central_point::four_6x8`), which must decide as this one does.
+#[inline(always)]
+pub(crate) fn central_margin(lo: f64, hi: f64) -> f64 {
+    CENTRAL_MARGIN * (hi - lo) + 1e-9 * lo.abs().max(hi.abs())
+}
+
 /// A point of the feasible polygon well inside every bound, or `None`: λ = Nᵀ(t_mid − t0)
 /// = Nᵀ t_mid − g with t_mid = (t_min + t_max)/2, the tension closest to the middle of the
 /// bounds on the affine set t = t0 + N λ (N orthonormal). It serves only the verdict of
@@ -181,7 +189,7 @@ pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2
         l[1] += n2[i] * mid;
     }
     for i in 0..n {
-        let margin = CENTRAL_MARGIN * (hi[i] - lo[i]) + 1e-9 * lo[i].abs().max(hi[i].abs());
+        let margin = central_margin(lo[i], hi[i]);
         // As `NullSpace::tension2`.
         let t = t0[i] + n1[i] * l[0] + n2[i] * l[1];
         // NaN and an infinite t_max fail here.

@@ -31,6 +31,7 @@
 //! l2 1.6–2.4 µs vs 64–80 µs with Clarabel (≈ 30×), l1 3.3–3.8 µs vs 68–77 µs (≈ 20×).
 
 use crate::active_set::{ActiveSet, DenseEnd};
+use crate::central_point;
 use crate::certificate::{Certificate, snap_and_certify, snap_and_certify_fixed};
 use crate::closed_form::{self, ClosedForm};
 use crate::feasible_polygon::{self, Region};
@@ -124,6 +125,9 @@ pub struct TensionSolver {
     /// The null space of the current problem, already in `ns` (computed four at a time by
     /// [`TensionSolver::is_feasible_four_6x8`]); taken by `null_space`.
     prepared: Option<Result<(), f64>>,
+    /// The central point of the current problem is known to fail its margin (tested four at a
+    /// time by [`TensionSolver::is_feasible_four_6x8`]): `central` is not tried again.
+    off_centre: bool,
 }
 
 impl TensionSolver {
@@ -142,6 +146,7 @@ impl TensionSolver {
             fallbacks: 0,
             t: Vec::new(),
             prepared: None,
+            off_centre: false,
         }
     }
 
@@ -208,8 +213,12 @@ impl TensionSolver {
     /// bounds; `w` is scratch. For the methods whose redundancy-2 path starts from the null space
     /// (l1, l1-max, l2, l2-max, barycentre) the four null spaces are computed at once in SIMD
     /// lanes, bit for bit those of the single-problem path, which then goes on problem by
-    /// problem: the same verdicts. Problems with `wanted[l]` false are not decided (`Ok(false)`).
-    /// No allocation after the first call on the fast paths.
+    /// problem: the same verdicts. For l2 the central point of `is_feasible` and its
+    /// certificate are also taken four at a time (module `central_point`): lanes it certifies
+    /// are "feasible" at once, the others go on problem by problem without repeating what the
+    /// lanes decided (a central point outside its margin, the finiteness of W). Problems with
+    /// `wanted[l]` false are not decided (`Ok(false)`). No allocation after the first call on
+    /// the fast paths.
     pub fn is_feasible_four_6x8(
         &mut self,
         columns: &[[[f64; null_space::LANES]; 6]; 8],
@@ -218,19 +227,34 @@ impl TensionSolver {
         bounds: &TensionBounds,
         w: &mut DMatrix<f64>,
     ) -> [Result<bool, TensionError>; null_space::LANES] {
+        let we = external_wrench.as_slice();
         let lanes = (matches!(
             self.method,
             Method::L1 | Method::L1Max | Method::L2 | Method::L2Max | Method::Barycenter
-        ) && external_wrench.len() == 6
+        ) && we.len() == 6
             && bounds.len() == 8
             && wanted.iter().any(|&x| x))
-        .then(|| null_space::four_6x8(columns, external_wrench.as_slice()));
+        .then(|| null_space::four_6x8(columns, we));
+        // Bits of the lanes: certified at the central point (l2 only), central point outside
+        // its margin, W finite (with w_ext finite: validated).
+        let (certified, outside, valid) = match &lanes {
+            Some(ns) if self.method == Method::L2 => {
+                let c = central_point::four_6x8(ns, columns, we, bounds);
+                let we_finite = we.iter().all(|e| e.is_finite());
+                let valid = if we_finite { c.finite } else { 0 };
+                (c.certified, !c.inside, valid)
+            }
+            _ => (0, 0, 0),
+        };
         if w.shape() != (6, 8) {
             *w = DMatrix::zeros(6, 8);
         }
         std::array::from_fn(|l| {
             if !wanted[l] {
                 return Ok(false);
+            }
+            if certified >> l & 1 == 1 {
+                return Ok(true);
             }
             for (dst, column) in w.as_mut_slice().chunks_exact_mut(6).zip(columns) {
                 for (d, row) in dst.iter_mut().zip(column) {
@@ -239,9 +263,17 @@ impl TensionSolver {
             }
             let problem = TensionProblem::new(w, external_wrench, bounds);
             self.prepared = lanes.as_ref().map(|ns| ns.write_lane(l, &mut self.ns));
-            let verdict = self.run(&problem, true).map(|out| out.is_ok());
+            self.off_centre = outside >> l & 1 == 1;
+            let verdict = if valid >> l & 1 == 1 {
+                // `run` without `validate`, done in lanes (6 × 8, 8 bounds, W and w_ext
+                // finite): l2 applies at r = 2 and has no lean closed-form path.
+                self.run_general(&problem, 6, 8, true)
+            } else {
+                self.run(&problem, true)
+            };
             self.prepared = None;
-            verdict
+            self.off_centre = false;
+            verdict.map(|out| out.is_ok())
         })
     }
 
@@ -525,6 +557,7 @@ impl TensionSolver {
                 if verdict_only
                     && method == Method::L2
                     && r == 2
+                    && !self.off_centre
                     && let Some(residual) = self.central(p)
                 {
                     return Ok(Ok(Some(residual)));

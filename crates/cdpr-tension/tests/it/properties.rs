@@ -504,9 +504,11 @@ fn is_feasible_matches_solve_beside_a_vertex() {
 }
 
 proptest! {
-    /// `is_feasible_four_6x8` (four null spaces in SIMD lanes) gives each problem's
-    /// `is_feasible` verdict, errors included (a non-finite W), for every method that applies
-    /// at redundancy 2, on random poses of an 8-cable spatial robot.
+    /// `is_feasible_four_6x8` (four null spaces in SIMD lanes; for l2 the central point and its
+    /// certificate in lanes too) gives each problem's `is_feasible` verdict, errors included
+    /// (NaN or ∞ in W or w_ext), for every method that applies at redundancy 2, on random poses
+    /// of an 8-cable spatial robot, with W scaled by up to 10⁶ (residuals beyond the first
+    /// residual test of the certificate).
     #[test]
     fn four_at_a_time_verdicts_equal_is_feasible(
         poses in prop::collection::vec(
@@ -518,6 +520,8 @@ proptest! {
         lo in 0.0f64..50.0,
         span in 10.0f64..2000.0,
         poison in 0usize..6,
+        kind in 0usize..4,
+        scale in prop::collection::vec(prop_oneof![3 => Just(0i32), 1 => 0i32..7], 4),
     ) {
         let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
         let mut columns = [[[0.0; 4]; 6]; 8];
@@ -525,8 +529,9 @@ proptest! {
         for (l, &(x, y, z, a, b, c)) in poses.iter().enumerate() {
             let pose = Pose::spatial(nalgebra::Vector3::new(x, y, z), a, b, c);
             let mut w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+            w *= 10f64.powi(scale[l]);
             if l == poison {
-                w[(2, 5)] = f64::NAN;
+                w[(2, 5)] = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1.0][kind];
             }
             for j in 0..8 {
                 for i in 0..6 {
@@ -535,7 +540,10 @@ proptest! {
             }
             matrices.push(w);
         }
-        let we = DVector::from_vec(load);
+        let mut we = DVector::from_vec(load);
+        if kind == 3 && poison == 5 {
+            we[1] = f64::INFINITY;
+        }
         let b = TensionBounds::uniform(8, lo, lo + span).unwrap();
         let wanted: [bool; 4] = std::array::from_fn(|l| wanted[l]);
         let mut scratch = DMatrix::zeros(1, 1);
