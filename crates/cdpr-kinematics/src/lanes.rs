@@ -307,6 +307,15 @@ mod avx2 {
         };
     }
 
+    macro_rules! logic {
+        ($name:ident, $intr:ident) => {
+            #[inline(always)]
+            fn $name(a: __m256d, b: __m256d) -> __m256d {
+                unsafe { $intr(a, b) }
+            }
+        };
+    }
+
     impl F64x4 for Avx2 {
         type Mask = __m256d;
         #[inline(always)]
@@ -372,21 +381,12 @@ mod avx2 {
         fn mask(self, b: bool) -> __m256d {
             unsafe { _mm256_set1_pd(f64::from_bits(0u64.wrapping_sub(u64::from(b)))) }
         }
-        #[inline(always)]
-        fn and(a: __m256d, b: __m256d) -> __m256d {
-            unsafe { _mm256_and_pd(a, b) }
-        }
-        #[inline(always)]
-        fn or(a: __m256d, b: __m256d) -> __m256d {
-            unsafe { _mm256_or_pd(a, b) }
-        }
+        logic!(and, _mm256_and_pd);
+        logic!(or, _mm256_or_pd);
+        logic!(xor, _mm256_xor_pd);
         #[inline(always)]
         fn and_not(a: __m256d, b: __m256d) -> __m256d {
             unsafe { _mm256_andnot_pd(b, a) }
-        }
-        #[inline(always)]
-        fn xor(a: __m256d, b: __m256d) -> __m256d {
-            unsafe { _mm256_xor_pd(a, b) }
         }
         #[inline(always)]
         fn not(m: __m256d) -> __m256d {
@@ -483,6 +483,8 @@ mod tests {
                 for (k, (x, y)) in pairs.iter().enumerate() {
                     assert!(same(x.to_array(), y.0), "op {k}: {a:?} {b:?}");
                 }
+                let (m1, m2) = (va.lt(vb), va.eq(va));
+                let (q1, q2) = (pa.lt(pb), pa.eq(pa));
                 let masks = [
                     (va.gt(vb), pa.gt(pb)),
                     (va.ge(vb), pa.ge(pb)),
@@ -494,32 +496,14 @@ mod tests {
                     (v.mask(true), p.mask(true)),
                     (v.mask(false), p.mask(false)),
                     (Avx2::not(m), Portable::not(q)),
+                    (Avx2::and(m1, m2), Portable::and(q1, q2)),
+                    (Avx2::or(m1, m2), Portable::or(q1, q2)),
+                    (Avx2::and_not(m2, m1), Portable::and_not(q2, q1)),
+                    (Avx2::xor(m1, m2), Portable::xor(q1, q2)),
                 ];
                 for (k, (x, y)) in masks.iter().enumerate() {
-                    assert_eq!(
-                        Avx2::bits(*x),
-                        Portable::bits(*y),
-                        "comparison {k}: {a:?} {b:?}"
-                    );
+                    assert_eq!(Avx2::bits(*x), Portable::bits(*y), "mask {k}: {a:?} {b:?}");
                 }
-                let (m1, m2) = (va.lt(vb), va.eq(va));
-                let (q1, q2) = (pa.lt(pb), pa.eq(pa));
-                assert_eq!(
-                    Avx2::bits(Avx2::and(m1, m2)),
-                    Portable::bits(Portable::and(q1, q2))
-                );
-                assert_eq!(
-                    Avx2::bits(Avx2::or(m1, m2)),
-                    Portable::bits(Portable::or(q1, q2))
-                );
-                assert_eq!(
-                    Avx2::bits(Avx2::and_not(m2, m1)),
-                    Portable::bits(Portable::and_not(q2, q1))
-                );
-                assert_eq!(
-                    Avx2::bits(Avx2::xor(m1, m2)),
-                    Portable::bits(Portable::xor(q1, q2))
-                );
                 assert_eq!(Avx2::to_bools(m1), Portable::to_bools(q1));
             }
         }
