@@ -24,7 +24,9 @@
 //!   order of `f64::total_cmp` on non-negative values, and −0 below every one of them).
 //! - [`F64x4::max`] is `if a > b { a } else { b }` (the second operand when either is NaN, as
 //!   `maxpd`; max(−0, +0) = +0 and max(+0, −0) = −0), which equals Rust's `f64::max` whenever
-//!   the first operand is not NaN and the two are not zeros of different signs.
+//!   the first operand is not NaN and the two are not zeros of different signs;
+//!   [`F64x4::min`] likewise `if a < b { a } else { b }` (`minpd`), Rust's `f64::min` under the
+//!   same conditions (so `x.min(1.0)` of a possibly NaN `x` is `f64::min(x, 1.0)` exactly).
 //! - A select ([`F64x4::select`], [`F64x4::keep`]) copies the bits of the operand it picks;
 //!   `keep` gives +0 (all bits zero) in the lanes it drops, so `e − x.keep(m)` is `e` bit for
 //!   bit where `m` is false (e − (+0) = e, −0 included).
@@ -71,6 +73,8 @@ pub trait F64x4: Copy {
     fn neg(self) -> Self;
     /// `if self > o { self } else { o }` (`o` when either is NaN).
     fn max(self, o: Self) -> Self;
+    /// `if self < o { self } else { o }` (`o` when either is NaN).
+    fn min(self, o: Self) -> Self;
     /// `self > o` (false for NaN).
     fn gt(self, o: Self) -> Self::Mask;
     /// `self ≥ o` (false for NaN).
@@ -178,6 +182,10 @@ impl F64x4 for Portable {
     #[inline(always)]
     fn max(self, o: Self) -> Self {
         self.zip(o, |a, b| if a > b { a } else { b })
+    }
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        self.zip(o, |a, b| if a < b { a } else { b })
     }
     #[inline(always)]
     fn gt(self, o: Self) -> [bool; 4] {
@@ -337,6 +345,7 @@ mod avx2 {
         op!(mul, _mm256_mul_pd);
         op!(div, _mm256_div_pd);
         op!(max, _mm256_max_pd);
+        op!(min, _mm256_min_pd);
         #[inline(always)]
         fn sqrt(self) -> Self {
             Self(unsafe { _mm256_sqrt_pd(self.0) })
@@ -420,7 +429,8 @@ mod tests {
     ];
 
     /// Every operation of [`Avx2`] gives [`Portable`]'s bits (NaN compared as NaN), and
-    /// [`Portable`] gives the scalar expressions' (`max` as `if a > b { a } else { b }`, `keep`
+    /// [`Portable`] gives the scalar expressions' (`max` as `if a > b { a } else { b }`, `min`
+    /// as `f64::min(x, 1.0)` where the second operand is 1, `keep`
     /// +0 in the dropped lanes, `neg_where` the sign bit flipped), on signed zeros, infinities,
     /// NaN and extreme magnitudes.
     #[test]
@@ -440,6 +450,9 @@ mod tests {
             assert!(same(pa.add(pb).0, scalar(|x, y| x + y)));
             assert!(same(pa.div(pb).0, scalar(|x, y| x / y)));
             assert!(same(pa.max(pb).0, scalar(|x, y| if x > y { x } else { y })));
+            assert!(same(pa.min(pb).0, scalar(|x, y| if x < y { x } else { y })));
+            let one = p.splat(1.0);
+            assert!(same(pa.min(one).0, a.map(|x| x.min(1.0))));
             assert!(same(pa.sqrt().0, a.map(f64::sqrt)));
             assert_eq!(
                 Portable::bits(pa.ne(pb)),
@@ -464,12 +477,13 @@ mod tests {
             if let Some(v) = Avx2::detect() {
                 let (va, vb) = (v.load(a), v.load(b));
                 let (m, q) = (va.lt(vb), pa.lt(pb));
-                let pairs: [(Avx2, Portable); 11] = [
+                let pairs: [(Avx2, Portable); 12] = [
                     (va.add(vb), pa.add(pb)),
                     (va.sub(vb), pa.sub(pb)),
                     (va.mul(vb), pa.mul(pb)),
                     (va.div(vb), pa.div(pb)),
                     (va.max(vb), pa.max(pb)),
+                    (va.min(vb), pa.min(pb)),
                     (va.sqrt(), pa.sqrt()),
                     (va.abs(), pa.abs()),
                     (va.neg(), pa.neg()),
