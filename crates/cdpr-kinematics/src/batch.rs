@@ -16,6 +16,9 @@
 //! - Thesis eqs. (6.2)–(6.4), (6.11). Picard, Caro, Plestan & Claveau 2020, eqs. (1)–(2).
 
 use crate::inverse_kinematics::DEGENERATE_LENGTH;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::Avx2;
+use crate::lanes::{F64x4, Portable};
 use crate::{KinematicsError, MotionPattern, Pose, PoseKinematics, Robot};
 use nalgebra::Vector3;
 
@@ -165,7 +168,7 @@ impl Robot {
             // SAFETY: `Avx2` is chosen only when the CPU reports AVX2 (`detected_path`).
             #[cfg(target_arch = "x86_64")]
             LanePath::Avx2 => unsafe { spatial_group_columns_avx2(self, poses, out) },
-            LanePath::Portable => spatial_group_columns(self, poses, out),
+            LanePath::Portable => spatial_group_columns(Portable([0.0; LANES]), self, poses, out),
         })
     }
 
@@ -270,19 +273,6 @@ const MAX_LANE_CABLES: usize = 16;
 /// the compiler keeps the arithmetic across lanes), then copied out pose by pose.
 type Columns = [[[f64; LANES]; 6]; MAX_LANE_CABLES];
 
-/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop
-/// without closures, which the compiler turns into SIMD instructions).
-macro_rules! lanes {
-    ($l:ident => $e:expr) => {{
-        let mut lane = [0.0f64; LANES];
-        for $l in 0..LANES {
-            lane[$l] = $e;
-        }
-        lane
-    }};
-}
-
-/// One f64 per pose of a group.
 /// Which build of the structure-of-arrays kernel runs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum LanePath {
@@ -382,7 +372,16 @@ fn spatial_group<const AVX2: bool>(
     let block = 6 * robot.cable_count();
     let n = robot.cable_count();
     let group: &[Pose; LANES] = group.try_into().expect("a group of LANES poses");
-    let good = spatial_group_columns(robot, group, &mut scratch[..n]);
+    #[cfg(target_arch = "x86_64")]
+    let good = if AVX2 {
+        // SAFETY: `AVX2` is true only in `spatial_groups_avx2`, which runs on CPUs with AVX2.
+        let v = unsafe { Avx2::new_unchecked() };
+        spatial_group_columns(v, robot, group, &mut scratch[..n])
+    } else {
+        spatial_group_columns(Portable([0.0; LANES]), robot, group, &mut scratch[..n])
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let good = spatial_group_columns(Portable([0.0; LANES]), robot, group, &mut scratch[..n]);
     if AVX2 {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `AVX2` is true only in `spatial_groups_avx2`, which runs on CPUs with AVX2.
@@ -450,7 +449,8 @@ unsafe fn spatial_group_columns_avx2(
     group: &[Pose; LANES],
     columns: &mut [[[f64; LANES]; 6]],
 ) -> [bool; LANES] {
-    spatial_group_columns(robot, group, columns)
+    // SAFETY: the CPU supports AVX2 (this function's contract).
+    spatial_group_columns(unsafe { Avx2::new_unchecked() }, robot, group, columns)
 }
 
 /// One group of [`LANES`] poses, structure of arrays (`columns[j][i][l]`, cable × row × pose): for each cable the expressions of
@@ -458,56 +458,74 @@ unsafe fn spatial_group_columns_avx2(
 /// the same order as nalgebra's (**T ā** = ((T₀ ā_x + T₁ ā_y) + T₂ ā_z), ‖ℓ‖² = (x² + y²) + z²,
 /// three divisions by ‖ℓ‖), one lane per pose.
 /// Returns which poses are valid (finite position, every cable longer than the
-/// degenerate-length threshold).
+/// degenerate-length threshold). On the lanes of `V` (`w` witnesses that its instructions are
+/// available): one lane operation per step, no closures.
 #[inline(always)]
-fn spatial_group_columns(
+fn spatial_group_columns<V: F64x4>(
+    w: V,
     robot: &Robot,
     group: &[Pose; LANES],
     columns: &mut [[[f64; LANES]; 6]],
 ) -> [bool; LANES] {
-    let mut u = [[0.0; LANES]; 3];
-    let mut t = [[[0.0; LANES]; 3]; 3];
+    let mut position = [[0.0; LANES]; 3];
+    let mut rotation = [[[0.0; LANES]; 3]; 3];
     let mut threshold = [0.0; LANES];
     let mut good = [false; LANES];
     for (l, pose) in group.iter().enumerate() {
         let m = pose.rotation.matrix();
         for k in 0..3 {
-            u[k][l] = pose.position[k];
+            position[k][l] = pose.position[k];
             for j in 0..3 {
-                t[k][j][l] = m[(k, j)];
+                rotation[k][j][l] = m[(k, j)];
             }
         }
         good[l] = pose.position.iter().all(|v| v.is_finite());
         threshold[l] = DEGENERATE_LENGTH * robot.length_scale().max(pose.position.norm());
     }
-    // 1.0 while every cable so far is longer than the threshold, 0.0 after (a mask that
-    // vectorises; a NaN length fails `>`).
-    let mut long = [1.0f64; LANES];
+    let u = [
+        w.load(position[0]),
+        w.load(position[1]),
+        w.load(position[2]),
+    ];
+    let mut t = [[w.splat(0.0); 3]; 3];
+    for k in 0..3 {
+        for j in 0..3 {
+            t[k][j] = w.load(rotation[k][j]);
+        }
+    }
+    let threshold = w.load(threshold);
+    // Every cable so far longer than the threshold (a NaN length fails `>`).
+    let mut long = w.mask(true);
     for (cable, column) in robot.cables().iter().zip(columns) {
         let (p, c) = (&cable.platform, &cable.frame);
-        // Every step is one operation on whole lanes (what the compiler turns into one SIMD
-        // instruction per step).
-        let mut a = [[0.0; LANES]; 3];
-        let mut v = [[0.0; LANES]; 3];
+        let (px, py, pz) = (w.splat(p.x), w.splat(p.y), w.splat(p.z));
+        let mut a = [w.splat(0.0); 3];
+        let mut v = [w.splat(0.0); 3];
         for k in 0..3 {
-            a[k] = lanes!(l => t[k][0][l] * p.x + t[k][1][l] * p.y + t[k][2][l] * p.z);
-            v[k] = lanes!(l => c[k] - (u[k][l] + a[k][l]));
+            a[k] = t[k][0].mul(px).add(t[k][1].mul(py)).add(t[k][2].mul(pz));
+            v[k] = w.splat(c[k]).sub(u[k].add(a[k]));
         }
-        let length =
-            lanes!(l => (v[0][l] * v[0][l] + v[1][l] * v[1][l] + v[2][l] * v[2][l]).sqrt());
-        long = lanes!(l => if length[l] > threshold[l] { long[l] } else { 0.0 });
-        let mut e = [[0.0; LANES]; 3];
-        for k in 0..3 {
-            e[k] = lanes!(l => v[k][l] / length[l]);
-        }
+        let length = v[0]
+            .mul(v[0])
+            .add(v[1].mul(v[1]))
+            .add(v[2].mul(v[2]))
+            .sqrt();
+        long = V::and(long, length.gt(threshold));
+        let e = [v[0].div(length), v[1].div(length), v[2].div(length)];
         *column = [
-            e[0],
-            e[1],
-            e[2],
-            lanes!(l => a[1][l] * e[2][l] - a[2][l] * e[1][l]),
-            lanes!(l => a[2][l] * e[0][l] - a[0][l] * e[2][l]),
-            lanes!(l => a[0][l] * e[1][l] - a[1][l] * e[0][l]),
+            e[0].to_array(),
+            e[1].to_array(),
+            e[2].to_array(),
+            a[1].mul(e[2]).sub(a[2].mul(e[1])).to_array(),
+            a[2].mul(e[0]).sub(a[0].mul(e[2])).to_array(),
+            a[0].mul(e[1]).sub(a[1].mul(e[0])).to_array(),
         ];
     }
-    std::array::from_fn(|l| good[l] && long[l] == 1.0)
+    let long = V::to_bools(long);
+    [
+        good[0] && long[0],
+        good[1] && long[1],
+        good[2] && long[2],
+        good[3] && long[3],
+    ]
 }

@@ -42,6 +42,7 @@ mod error;
 mod forward_kinematics;
 pub mod interference;
 mod inverse_kinematics;
+pub mod lanes;
 mod motion;
 mod path;
 mod pose;

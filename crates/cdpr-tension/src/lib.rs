@@ -69,7 +69,9 @@ mod error;
 pub mod feasible_polygon;
 pub mod improved_closed_form;
 pub mod interior_point;
-pub mod lanes;
+/// Four f64 lanes (SIMD): the module of `cdpr-kinematics`, re-exported where it was first
+/// defined.
+pub use cdpr_kinematics::lanes;
 pub mod linear_program;
 mod method;
 pub mod minimum_norm;

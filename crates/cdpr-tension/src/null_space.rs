@@ -19,12 +19,16 @@
 //! **Four at a time.** `four_6x8` factors four 6 × 8 wrench matrices in SIMD lanes (AVX2
 //! chosen at run time, a portable build otherwise) with the operations of the fixed-size path in
 //! the same order, so each lane's t0, N, g and ρ are those of `NullSpace::compute` bit for bit
-//! (workspace grids, `TensionSolver::is_feasible_four_6x8`).
+//! (workspace grids, `TensionSolver::is_feasible_four_6x8`). The lanes are those of
+//! [`crate::lanes`].
 //!
 //! ## References
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6). Thesis eq. (6.14).
 //! - Golub & Van Loan, *Matrix Computations*, §5.4.1 (QR with column pivoting).
 
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::Avx2;
+use crate::lanes::{F64x4, Portable};
 use nalgebra::{DMatrix, DVector};
 
 /// Hadamard ratios below this count as a singular wrench matrix (condition above 10¹⁰).
@@ -328,76 +332,10 @@ type Lanes = [f64; LANES];
 /// One all-ones (true) or all-zeros (false) word per lane.
 type Mask = [u64; LANES];
 
-/// `[f64; LANES]` with lane `l` set to the expression: one operation on whole lanes (a loop the
-/// compiler turns into SIMD instructions).
-macro_rules! lanes {
-    ($l:ident => $e:expr) => {{
-        let mut lane = [0.0f64; LANES];
-        for $l in 0..LANES {
-            lane[$l] = $e;
-        }
-        lane
-    }};
-}
-
 /// The all-ones word for `true`, zero for `false`.
 #[inline(always)]
 fn mask(b: bool) -> u64 {
     0u64.wrapping_sub(u64::from(b))
-}
-
-/// `a` where `m` is all ones, `b` where it is zero, lane by lane, by bits (exact). With `AVX`
-/// (only inside [`four_6x8_avx2`]) one `vblendvpd`.
-#[inline(always)]
-fn blend<const AVX: bool>(m: Mask, a: Lanes, b: Lanes) -> Lanes {
-    #[cfg(target_arch = "x86_64")]
-    if AVX {
-        use std::arch::x86_64::{__m256d, _mm256_blendv_pd};
-        use std::mem::transmute;
-        // SAFETY: `AVX` is true only in `four_6x8_avx2`, which runs on CPUs with AVX2; the
-        // transmutes are between 32-byte plain-data types; every lane of `m` is all ones or all
-        // zeros, and `blendv` takes `a` where its sign bit is set.
-        return unsafe {
-            transmute::<__m256d, Lanes>(_mm256_blendv_pd(
-                transmute::<Lanes, __m256d>(b),
-                transmute::<Lanes, __m256d>(a),
-                transmute::<Mask, __m256d>(m),
-            ))
-        };
-    }
-    lanes!(l => f64::from_bits((m[l] & a[l].to_bits()) | (!m[l] & b[l].to_bits())))
-}
-
-/// The comparison `a OP b` lane by lane as masks (false when either is NaN, as `>`, `>=` and
-/// `==` on f64). With `AVX` one `vcmppd`.
-macro_rules! compare {
-    ($name:ident, $op:tt, $imm:ident) => {
-        #[inline(always)]
-        fn $name<const AVX: bool>(a: Lanes, b: Lanes) -> Mask {
-            #[cfg(target_arch = "x86_64")]
-            if AVX {
-                use std::arch::x86_64::{__m256d, _mm256_cmp_pd, $imm};
-                use std::mem::transmute;
-                // SAFETY: as in `blend`; the ordered, quiet predicate is false for NaN.
-                return unsafe {
-                    transmute::<__m256d, Mask>(_mm256_cmp_pd::<$imm>(
-                        transmute::<Lanes, __m256d>(a),
-                        transmute::<Lanes, __m256d>(b),
-                    ))
-                };
-            }
-            std::array::from_fn(|l| mask(a[l] $op b[l]))
-        }
-    };
-}
-compare!(greater, >, _CMP_GT_OQ);
-compare!(greater_or_equal, >=, _CMP_GE_OQ);
-compare!(equal, ==, _CMP_EQ_OQ);
-
-/// `a | b` lane by lane.
-#[inline(always)]
-fn or(a: Mask, b: Mask) -> Mask {
-    std::array::from_fn(|l| a[l] | b[l])
 }
 
 /// What [`four_6x8`] computed for each of four 6 × 8 wrench matrices, lane by lane: what
@@ -477,158 +415,174 @@ pub(crate) fn four_6x8(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpac
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn four_6x8_avx2(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
-    four_6x8_body::<true>(columns, w_ext)
+    // SAFETY: the CPU supports AVX2 (this function's contract).
+    four_6x8_body(unsafe { Avx2::new_unchecked() }, columns, w_ext)
 }
 
 /// [`four_6x8`] for baseline x86-64 (and the reference of the AVX2 build in tests).
 pub(crate) fn four_6x8_portable(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
-    four_6x8_body::<false>(columns, w_ext)
+    four_6x8_body(Portable([0.0; LANES]), columns, w_ext)
 }
 
+/// The body of [`four_6x8`] on the lanes of `V` (`v` witnesses that its instructions are
+/// available): one lane operation per scalar operation, no closures.
 #[inline(always)]
-fn four_6x8_body<const AVX: bool>(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+fn four_6x8_body<V: F64x4>(v: V, columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
     const M: usize = 6;
     const N: usize = 8;
     // a[k] = row k of W; wp[k] = w_ext at the row now in place k (pivot exchanges).
-    let mut a = [[[0.0f64; LANES]; N]; M];
-    let mut rows = [[0.0f64; LANES]; M];
-    let mut wp = [[0.0f64; LANES]; M];
-    let mut zero: Mask = [0; LANES];
+    let mut a = [[v.splat(0.0); N]; M];
+    let mut rows = [v.splat(0.0); M];
+    let mut wp = [v.splat(0.0); M];
+    let mut zero = v.mask(false);
     for k in 0..M {
-        let mut s = [0.0f64; LANES];
+        let mut s = v.splat(0.0);
         for i in 0..N {
-            let v = columns[i][k];
-            a[k][i] = v;
-            s = lanes!(l => s[l] + v[l] * v[l]);
+            let x = v.load(columns[i][k]);
+            a[k][i] = x;
+            s = s.add(x.mul(x));
         }
-        zero = or(zero, equal::<AVX>(s, [0.0; LANES]));
-        rows[k] = lanes!(l => s[l].sqrt());
-        wp[k] = [w_ext[k]; LANES];
+        zero = V::or(zero, s.eq(v.splat(0.0)));
+        rows[k] = s.sqrt();
+        wp[k] = v.splat(w_ext[k]);
     }
-    let mut beta = [[0.0f64; LANES]; M];
-    let mut rdiag = [[0.0f64; LANES]; M];
-    let mut ratio = [1.0f64; LANES];
-    householder_step::<0, AVX>(
+    let mut beta = [v.splat(0.0); M];
+    let mut rdiag = [v.splat(0.0); M];
+    let mut ratio = v.splat(1.0);
+    householder_step::<0, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<1, AVX>(
+    householder_step::<1, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<2, AVX>(
+    householder_step::<2, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<3, AVX>(
+    householder_step::<3, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<4, AVX>(
+    householder_step::<4, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<5, AVX>(
+    householder_step::<5, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    let ratio = lanes!(l => ratio[l].min(1.0));
-    // x ← Q x = H₀ H₁ ⋯ H₅ x (the sums of `Iterator::sum`, which start at −0).
-    let apply_q = |x: &mut [Lanes; N]| {
-        for k in (0..M).rev() {
-            let mut s = [-0.0f64; LANES];
-            for i in k..N {
-                s = lanes!(l => s[l] + a[k][i][l] * x[i][l]);
-            }
-            let s = lanes!(l => s[l] * beta[k][l]);
-            for i in k..N {
-                x[i] = lanes!(l => x[i][l] - s[l] * a[k][i][l]);
-            }
-        }
-    };
-    let mut t0 = [[0.0f64; LANES]; N];
+    // `f64::min(ratio, 1.0)`, NaN included (see `F64x4::min`).
+    let ratio = ratio.min(v.splat(1.0));
+    let mut t0 = [v.splat(0.0); N];
     for j in 0..M {
-        let mut s = lanes!(l => -wp[j][l]);
+        let mut s = wp[j].neg();
         for i in 0..j {
-            s = lanes!(l => s[l] - a[j][i][l] * t0[i][l]);
+            s = s.sub(a[j][i].mul(t0[i]));
         }
-        t0[j] = lanes!(l => s[l] / rdiag[j][l]);
+        t0[j] = s.div(rdiag[j]);
     }
-    apply_q(&mut t0);
-    let mut basis = [[[0.0f64; LANES]; N]; 2];
-    let mut g = [[0.0f64; LANES]; 2];
+    apply_q(v, &a, &beta, &mut t0);
+    let mut basis = [[v.splat(0.0); N]; 2];
+    let mut g = [v.splat(0.0); 2];
     for c in 0..2 {
         let x = &mut basis[c];
-        x[M + c] = [1.0; LANES];
-        apply_q(x);
-        let mut s = [-0.0f64; LANES];
+        x[M + c] = v.splat(1.0);
+        apply_q(v, &a, &beta, x);
+        let mut s = v.splat(-0.0);
         for i in 0..N {
-            s = lanes!(l => s[l] + x[i][l] * t0[i][l]);
+            s = s.add(x[i].mul(t0[i]));
         }
         g[c] = s;
     }
-    FourNullSpaces {
-        t0,
-        basis,
-        g,
-        ratio,
-        zero,
+    let mut out = FourNullSpaces {
+        t0: [[0.0; LANES]; N],
+        basis: [[[0.0; LANES]; N]; 2],
+        g: [g[0].to_array(), g[1].to_array()],
+        ratio: ratio.to_array(),
+        zero: [0; LANES],
+    };
+    for i in 0..N {
+        out.t0[i] = t0[i].to_array();
+        out.basis[0][i] = basis[0][i].to_array();
+        out.basis[1][i] = basis[1][i].to_array();
+    }
+    for (z, is) in out.zero.iter_mut().zip(V::to_bools(zero)) {
+        *z = mask(is);
+    }
+    out
+}
+
+/// x ← Q x = H₀ H₁ ⋯ H₅ x, lane by lane (the sums of `Iterator::sum`, which start at −0).
+#[inline(always)]
+fn apply_q<V: F64x4>(v: V, a: &[[V; 8]; 6], beta: &[V; 6], x: &mut [V; 8]) {
+    for k in (0..6).rev() {
+        let mut s = v.splat(-0.0);
+        for i in k..8 {
+            s = s.add(a[k][i].mul(x[i]));
+        }
+        let s = s.mul(beta[k]);
+        for i in k..8 {
+            x[i] = x[i].sub(s.mul(a[k][i]));
+        }
     }
 }
 
 /// Step `K` of the Householder QR with column pivoting of [`NullSpace::compute_fixed`] (6 × 8),
-/// lane by lane.
+/// lane by lane (any lane value, here `rows[0]`, witnesses `V`'s instructions).
 #[inline(always)]
-fn householder_step<const K: usize, const AVX: bool>(
-    a: &mut [[Lanes; 8]; 6],
-    wp: &mut [Lanes; 6],
-    rows: &[Lanes; 6],
-    beta: &mut [Lanes; 6],
-    rdiag: &mut [Lanes; 6],
-    ratio: &mut Lanes,
-    zero: &mut Mask,
+fn householder_step<const K: usize, V: F64x4>(
+    a: &mut [[V; 8]; 6],
+    wp: &mut [V; 6],
+    rows: &[V; 6],
+    beta: &mut [V; 6],
+    rdiag: &mut [V; 6],
+    ratio: &mut V,
+    zero: &mut V::Mask,
 ) {
+    let w = rows[0];
     // Pivot: the first remaining column with the largest norm below row K (`>`, as the scan).
-    let mut best = [K as f64; LANES];
-    let mut best_norm = [-1.0f64; LANES];
+    let mut best = w.splat(K as f64);
+    let mut best_norm = w.splat(-1.0);
     for (j, col) in a.iter().enumerate().skip(K) {
-        let mut s = [-0.0f64; LANES];
-        for v in &col[K..] {
-            s = lanes!(l => s[l] + v[l] * v[l]);
+        let mut s = w.splat(-0.0);
+        for x in &col[K..] {
+            s = s.add(x.mul(*x));
         }
-        let take = greater::<AVX>(s, best_norm);
-        best_norm = blend::<AVX>(take, s, best_norm);
-        best = blend::<AVX>(take, [j as f64; LANES], best);
+        let take = s.gt(best_norm);
+        best_norm = V::select(take, s, best_norm);
+        best = V::select(take, w.splat(j as f64), best);
     }
     for j in K + 1..6 {
-        let m = equal::<AVX>(best, [j as f64; LANES]);
+        let m = best.eq(w.splat(j as f64));
         let (head, tail) = a.split_at_mut(j);
         for (p, q) in head[K].iter_mut().zip(tail[0].iter_mut()) {
             let (x, y) = (*p, *q);
-            *p = blend::<AVX>(m, y, x);
-            *q = blend::<AVX>(m, x, y);
+            *p = V::select(m, y, x);
+            *q = V::select(m, x, y);
         }
         let (x, y) = (wp[K], wp[j]);
-        wp[K] = blend::<AVX>(m, y, x);
-        wp[j] = blend::<AVX>(m, x, y);
+        wp[K] = V::select(m, y, x);
+        wp[j] = V::select(m, x, y);
     }
-    let norm = lanes!(l => best_norm[l].sqrt());
-    *zero = or(*zero, equal::<AVX>(norm, [0.0; LANES]));
+    let norm = best_norm.sqrt();
+    *zero = V::or(*zero, norm.eq(w.splat(0.0)));
     let x0 = a[K][K];
-    let nonneg = greater_or_equal::<AVX>(x0, [0.0; LANES]);
-    let alpha = blend::<AVX>(nonneg, lanes!(l => -norm[l]), norm);
-    a[K][K] = lanes!(l => x0[l] - alpha[l]);
-    let mut vtv = [-0.0f64; LANES];
-    for v in &a[K][K..] {
-        vtv = lanes!(l => vtv[l] + v[l] * v[l]);
+    let nonneg = x0.ge(w.splat(0.0));
+    let alpha = V::select(nonneg, norm.neg(), norm);
+    a[K][K] = x0.sub(alpha);
+    let mut vtv = w.splat(-0.0);
+    for x in &a[K][K..] {
+        vtv = vtv.add(x.mul(*x));
     }
-    let bk = lanes!(l => 2.0 / vtv[l]);
+    let bk = w.splat(2.0).div(vtv);
     beta[K] = bk;
     rdiag[K] = alpha;
-    *ratio = lanes!(l => ratio[l] * (norm[l] / rows[K][l]));
+    *ratio = ratio.mul(norm.div(rows[K]));
     let v = a[K];
     for col in a.iter_mut().skip(K + 1) {
-        let mut s = [0.0f64; LANES];
+        let mut s = w.splat(0.0);
         for i in K..8 {
-            s = lanes!(l => s[l] + v[i][l] * col[i][l]);
+            s = s.add(v[i].mul(col[i]));
         }
-        let s = lanes!(l => s[l] * bk[l]);
+        let s = s.mul(bk);
         for i in K..8 {
-            col[i] = lanes!(l => col[i][l] - s[l] * v[i][l]);
+            col[i] = col[i].sub(s.mul(v[i]));
         }
     }
 }

@@ -24,7 +24,8 @@
 //! the CPU has it (run-time detection): all of them the same operations in the same order as
 //! the general reduction, hence the same bits. Grids decide 6 × 8 matrices four poses at a
 //! time (`WrenchClosureTest::decide_four_6x8`): reduction and half-plane test on four f64
-//! lanes (`simd`: AVX2 registers or a portable array), again with the single-pose bits.
+//! lanes (`cdpr_kinematics::lanes`: AVX2 registers or a portable array), again with the
+//! single-pose bits.
 //!
 //! ## References
 //! - Gouttefarde & Gosselin (2006), IEEE T-RO 22(3), Theorem 1 (positive spanning).
@@ -32,11 +33,9 @@
 //!   cable-driven parallel mechanisms", Mech. Mach. Theory 41: the null-space test.
 //! - CASPR (Lau et al. 2016): the wrench-closure workspace condition.
 
-mod simd;
-
 #[cfg(target_arch = "x86_64")]
-use simd::Avx;
-use simd::{F64x4, Portable};
+use cdpr_kinematics::lanes::Avx2;
+use cdpr_kinematics::lanes::{F64x4, Portable};
 
 use cdpr_tension::{Method, TensionBounds, TensionProblem, TensionSolver};
 use nalgebra::{DMatrix, DVector};
@@ -457,7 +456,7 @@ impl WrenchClosureTest {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: the CPU supports AVX2 (checked at run time in `new`).
             true => unsafe { decide_lanes_avx2(columns) },
-            _ => decide_lanes::<Portable>(columns),
+            _ => decide_lanes(Portable([0.0; LANES]), columns),
         };
         let mut decided = [false; LANES];
         for (l, d) in decided.iter_mut().enumerate() {
@@ -498,14 +497,15 @@ impl WrenchClosureTest {
     }
 }
 
-/// [`decide_lanes`] on AVX2 registers ([`Avx`]).
+/// [`decide_lanes`] on AVX2 registers ([`Avx2`]).
 ///
 /// # Safety
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn decide_lanes_avx2(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
-    decide_lanes::<Avx>(columns)
+    // SAFETY: the CPU supports AVX2 (this function's contract).
+    decide_lanes(unsafe { Avx2::new_unchecked() }, columns)
 }
 
 /// The four-pose decision on lanes of type `V`: finiteness (as `decide`), the scale and
@@ -513,28 +513,30 @@ unsafe fn decide_lanes_avx2(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
 /// [`WrenchClosureTest::half_plane`] ([`half_plane_lanes`]). Each step does, lane by lane,
 /// what the single-pose path does; a branch becomes a mask and a blend. A lane whose pivot
 /// falls below the rank tolerance is flagged (`leading` false) and its values are
-/// meaningless.
+/// meaningless. `v` witnesses that `V`'s instructions are available.
 #[inline(always)]
-fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
+fn decide_lanes<V: F64x4>(v: V, columns: &[[Lanes; 6]; 8]) -> LaneDecision {
     // No closures here: a closure is not compiled with the caller's target features, so the
     // AVX2 intrinsics would become calls.
     // Finiteness, and the largest |w_ij| by comparisons, column by column.
-    let mut finite = V::splat(f64::from_bits(u64::MAX));
-    let mut largest = V::splat(0.0);
+    let mut finite = v.mask(true);
+    let mut largest = v.splat(0.0);
     for column in columns {
         for entry in column {
-            let v = V::load(entry).abs();
-            finite = finite.and(v.lt(V::splat(f64::INFINITY)));
-            largest = V::blend(v.gt(largest), v, largest);
+            let e = v.load(*entry).abs();
+            finite = V::and(finite, e.lt(v.splat(f64::INFINITY)));
+            largest = V::select(e.gt(largest), e, largest);
         }
     }
     // `largest.max(1e-300)` (largest is finite and ≥ 0 where it matters).
-    let tiny = V::splat(1e-300);
-    let tolerance = V::splat(RANK_TOLERANCE).mul(V::blend(largest.lt(tiny), tiny, largest));
+    let tiny = v.splat(1e-300);
+    let tolerance = v
+        .splat(RANK_TOLERANCE)
+        .mul(V::select(largest.lt(tiny), tiny, largest));
     let mut leading = finite;
     // The reduced matrix; step 0 reads W from `columns` (no copy) and writes every entry that
     // later steps read.
-    let mut a = [[V::splat(0.0); 6]; 8];
+    let mut a = [[v.splat(0.0); 6]; 8];
     pivot_step::<V, 0>(&mut a, columns, &mut leading, tolerance);
     pivot_step::<V, 1>(&mut a, columns, &mut leading, tolerance);
     pivot_step::<V, 2>(&mut a, columns, &mut leading, tolerance);
@@ -542,61 +544,63 @@ fn decide_lanes<V: F64x4>(columns: &[[Lanes; 6]; 8]) -> LaneDecision {
     pivot_step::<V, 4>(&mut a, columns, &mut leading, tolerance);
     pivot_step::<V, 5>(&mut a, columns, &mut leading, tolerance);
     // Row p of N is −(row p)[6..8].
-    let (mut x, mut y) = ([V::splat(0.0); 8], [V::splat(0.0); 8]);
+    let (mut x, mut y) = ([v.splat(0.0); 8], [v.splat(0.0); 8]);
     let mut null = [[[0.0; LANES]; 6]; 2];
     for p in 0..6 {
         (x[p], y[p]) = (a[6][p].neg(), a[7][p].neg());
-        (null[0][p], null[1][p]) = (x[p].lanes(), y[p].lanes());
+        (null[0][p], null[1][p]) = (x[p].to_array(), y[p].to_array());
     }
-    (x[6], y[7]) = (V::splat(1.0), V::splat(1.0));
+    (x[6], y[7]) = (v.splat(1.0), v.splat(1.0));
     let (nan, closure) = half_plane_lanes(&x, &y);
     LaneDecision {
-        finite: finite.is_set(),
-        leading: leading.is_set(),
-        nan: nan.is_set(),
-        closure: closure.is_set(),
+        finite: V::to_bools(finite),
+        leading: V::to_bools(leading),
+        nan: V::to_bools(nan),
+        closure: V::to_bools(closure),
         null,
     }
 }
 
 /// Step `C` of [`WrenchClosureTest::reduce_leading`], pivot column `C`, on lanes. Only the
 /// columns right of C are updated (the single-pose loop updates whole rows, but its entries
-/// left of the pivot column are never read again).
+/// left of the pivot column are never read again). `tolerance` is also the witness of `V`'s
+/// instructions.
 #[inline(always)]
 fn pivot_step<V: F64x4, const C: usize>(
     a: &mut [[V; 6]; 8],
     columns: &[[Lanes; 6]; 8],
-    leading: &mut V,
+    leading: &mut V::Mask,
     tolerance: V,
 ) {
+    let v = tolerance;
     // Partial pivoting (`partial_pivot`): the first row from C on with the largest |a_iC|.
-    let mut best_abs = V::splat(0.0);
-    let mut best = V::splat(C as f64);
+    let mut best_abs = v.splat(0.0);
+    let mut best = v.splat(C as f64);
     for i in C..6 {
-        let v = entry::<V, C>(a, columns, C, i).abs();
-        let take = v.gt(best_abs);
-        best_abs = V::blend(take, v, best_abs);
-        best = V::blend(take, V::splat(i as f64), best);
+        let e = entry::<V, C>(v, a, columns, C, i).abs();
+        let take = e.gt(best_abs);
+        best_abs = V::select(take, e, best_abs);
+        best = V::select(take, v.splat(i as f64), best);
     }
-    *leading = best_abs.le(tolerance).and_not(*leading);
+    *leading = V::and_not(*leading, best_abs.le(tolerance));
     // `a.swap(C, best)`: the pivot row gathered (columns C..8); row i > C is row C where it
     // was the pivot row (applied as the row is read below, so that every store is a plain one).
-    let mut chosen = [V::splat(0.0); 6];
+    let mut chosen = [v.mask(false); 6];
     for (i, c) in chosen.iter_mut().enumerate().skip(C + 1) {
-        *c = best.eq(V::splat(i as f64));
+        *c = best.eq(v.splat(i as f64));
     }
-    let mut pivot = [V::splat(0.0); 8];
+    let mut pivot = [v.splat(0.0); 8];
     for (j, p) in pivot.iter_mut().enumerate().skip(C) {
-        *p = entry::<V, C>(a, columns, j, C);
+        *p = entry::<V, C>(v, a, columns, j, C);
     }
     for (i, &is) in chosen.iter().enumerate().skip(C + 1) {
         for (j, p) in pivot.iter_mut().enumerate().skip(C) {
-            *p = V::blend(is, entry::<V, C>(a, columns, j, i), *p);
+            *p = V::select(is, entry::<V, C>(v, a, columns, j, i), *p);
         }
     }
     // The pivot row scaled by 1/pivot; `o −= f · p` in every other row whose entry in column
-    // C is not zero (the product masked to +0 otherwise: e − (+0) is e, −0 included).
-    let inv = V::splat(1.0).div(pivot[C]);
+    // C is not zero (the product kept as +0 otherwise: e − (+0) is e, −0 included).
+    let inv = v.splat(1.0).div(pivot[C]);
     for p in pivot[C + 1..].iter_mut() {
         *p = p.mul(inv);
     }
@@ -604,11 +608,11 @@ fn pivot_step<V: F64x4, const C: usize>(
         if i == C {
             continue;
         }
-        let f = row_after_exchange::<V, C>(a, columns, &chosen, i, C);
-        let eliminate = f.ne(V::splat(0.0));
+        let f = row_after_exchange::<V, C>(v, a, columns, &chosen, i, C);
+        let eliminate = f.ne(v.splat(0.0));
         for j in C + 1..8 {
-            a[j][i] = row_after_exchange::<V, C>(a, columns, &chosen, i, j)
-                .sub(f.mul(pivot[j]).and(eliminate));
+            a[j][i] = row_after_exchange::<V, C>(v, a, columns, &chosen, i, j)
+                .sub(f.mul(pivot[j]).keep(eliminate));
         }
     }
     for j in C + 1..8 {
@@ -633,66 +637,66 @@ fn pivot_step<V: F64x4, const C: usize>(
 ///   keys and rows, with the single-pose comparisons (strict or not) and a "none yet" flag;
 /// - [`gap`] of the chosen rows.
 #[inline(always)]
-fn half_plane_lanes<V: F64x4>(x: &[V; 8], y: &[V; 8]) -> (V, V) {
-    let zero = V::splat(0.0);
+fn half_plane_lanes<V: F64x4>(x: &[V; 8], y: &[V; 8]) -> (V::Mask, V::Mask) {
+    // Any lane value witnesses that `V`'s instructions are available.
+    let v = x[0];
+    let zero = v.splat(0.0);
     // The norm pass and the NaN flag (a NaN norm is a NaN coordinate).
     let mut scale2 = zero;
-    let mut smallest = V::splat(f64::INFINITY);
-    let mut nan = zero;
+    let mut smallest = v.splat(f64::INFINITY);
+    let mut nan = v.mask(false);
     for i in 0..8 {
-        let v = x[i].mul(x[i]).add(y[i].mul(y[i]));
-        nan = nan.or(v.ne(v));
-        scale2 = V::blend(v.gt(scale2), v, scale2);
-        smallest = V::blend(v.lt(smallest), v, smallest);
+        let s = x[i].mul(x[i]).add(y[i].mul(y[i]));
+        nan = V::or(nan, s.ne(s));
+        scale2 = V::select(s.gt(scale2), s, scale2);
+        smallest = V::select(s.lt(smallest), s, smallest);
     }
-    let tol2 = V::splat(STRICT_TOLERANCE * STRICT_TOLERANCE);
+    let tol2 = v.splat(STRICT_TOLERANCE * STRICT_TOLERANCE);
     let slack = smallest.le(tol2.mul(scale2));
     let t = diamond_angle_lanes(x[0].neg(), y[0].neg());
     // (key, x, y) of the first and last rows overall, of the last row below t and of the
     // first at or above t.
     let (max, min) = (
-        V::splat(f64::from_bits(i64::MAX as u64)),
-        V::splat(f64::from_bits(i64::MIN as u64)),
+        v.splat(f64::from_bits(i64::MAX as u64)),
+        v.splat(f64::from_bits(i64::MIN as u64)),
     );
     let (mut first, mut last) = ((max, x[0], y[0]), (min, x[0], y[0]));
     let (mut below, mut above) = ((min, x[0], y[0]), (max, x[0], y[0]));
-    let (mut any_below, mut any_above) = (zero, zero);
+    let (mut any_below, mut any_above) = (v.mask(false), v.mask(false));
     for i in 0..8 {
         let k = diamond_angle_lanes(x[i], y[i]);
         let row = (k, x[i], y[i]);
-        let is_below = k.int_lt(t);
-        take(k.int_lt(first.0), row, &mut first);
-        take(k.int_lt(last.0).not(), row, &mut last);
-        take(k.int_lt(below.0).and_not(is_below), row, &mut below);
-        let m = is_below.and_not(k.int_lt(above.0).or(any_above.not()));
-        take(m, row, &mut above);
-        any_below = any_below.or(is_below);
-        any_above = any_above.or(m);
+        let is_below = k.lt_bits(t);
+        take::<V>(k.lt_bits(first.0), row, &mut first);
+        take::<V>(V::not(k.lt_bits(last.0)), row, &mut last);
+        take::<V>(V::and_not(is_below, k.lt_bits(below.0)), row, &mut below);
+        let m = V::and_not(V::or(k.lt_bits(above.0), V::not(any_above)), is_below);
+        take::<V>(m, row, &mut above);
+        any_below = V::or(any_below, is_below);
+        any_above = V::or(any_above, m);
     }
     let (ux, uy) = (
-        V::blend(any_below, below.1, last.1),
-        V::blend(any_below, below.2, last.2),
+        V::select(any_below, below.1, last.1),
+        V::select(any_below, below.2, last.2),
     );
     let (wx, wy) = (
-        V::blend(any_above, above.1, first.1),
-        V::blend(any_above, above.2, first.2),
+        V::select(any_above, above.1, first.1),
+        V::select(any_above, above.2, first.2),
     );
     let cross = ux.mul(wy).sub(uy.mul(wx));
     let nu = ux.mul(ux).add(uy.mul(uy));
     let nw = wx.mul(wx).add(wy.mul(wy));
-    let gap = cross
-        .lt(zero)
-        .and(cross.mul(cross).gt(tol2.mul(nu).mul(nw)));
-    (nan, slack.and_not(gap))
+    let gap = V::and(cross.lt(zero), cross.mul(cross).gt(tol2.mul(nu).mul(nw)));
+    (nan, V::and_not(gap, slack))
 }
 
 /// `pair` = `row` (key, x, y) in the lanes of the mask `m`.
 #[inline(always)]
-fn take<V: F64x4>(m: V, row: (V, V, V), pair: &mut (V, V, V)) {
+fn take<V: F64x4>(m: V::Mask, row: (V, V, V), pair: &mut (V, V, V)) {
     *pair = (
-        V::blend(m, row.0, pair.0),
-        V::blend(m, row.1, pair.1),
-        V::blend(m, row.2, pair.2),
+        V::select(m, row.0, pair.0),
+        V::select(m, row.1, pair.1),
+        V::select(m, row.2, pair.2),
     );
 }
 
@@ -700,31 +704,33 @@ fn take<V: F64x4>(m: V, row: (V, V, V), pair: &mut (V, V, V)) {
 /// row C where row i is the pivot row (`chosen[i]`).
 #[inline(always)]
 fn row_after_exchange<V: F64x4, const C: usize>(
+    v: V,
     a: &[[V; 6]; 8],
     columns: &[[Lanes; 6]; 8],
-    chosen: &[V; 6],
+    chosen: &[V::Mask; 6],
     i: usize,
     j: usize,
 ) -> V {
-    let e = entry::<V, C>(a, columns, j, i);
+    let e = entry::<V, C>(v, a, columns, j, i);
     if i > C {
-        V::blend(chosen[i], entry::<V, C>(a, columns, j, C), e)
+        V::select(chosen[i], entry::<V, C>(v, a, columns, j, C), e)
     } else {
         e
     }
 }
 
 /// Entry (i, j) of the matrix as step C finds it: W itself for step 0, else the reduced
-/// matrix `a`.
+/// matrix `a` (`v` is the witness of `V`'s instructions).
 #[inline(always)]
 fn entry<V: F64x4, const C: usize>(
+    v: V,
     a: &[[V; 6]; 8],
     columns: &[[Lanes; 6]; 8],
     j: usize,
     i: usize,
 ) -> V {
     if C == 0 {
-        V::load(&columns[j][i])
+        v.load(columns[j][i])
     } else {
         a[j][i]
     }
@@ -734,20 +740,15 @@ fn entry<V: F64x4, const C: usize>(
 /// bits for coordinates that are not NaN.
 #[inline(always)]
 fn diamond_angle_lanes<V: F64x4>(x: V, y: V) -> V {
-    let zero = V::splat(0.0);
-    let sign = V::splat(-0.0);
+    let zero = x.splat(0.0);
     let (sx, sy) = (x.lt(zero), y.lt(zero));
     // Branches: A (y ≥ 0, x ≥ 0) y / (x + y); B (y ≥ 0, x < 0) 1 − x / (−x + y);
     // C (y < 0, x < 0) 2 − y / (−x − y); D (y < 0, x ≥ 0) 3 + x / (x − y) = 3 − (−x / (x − y)).
-    let den = x.xor(sx.and(sign)).add(y.xor(sy.and(sign)));
-    let q = V::blend(sx.xor(sy), x, y).div(den);
-    let c = V::blend(
-        sy,
-        V::blend(sx, V::splat(2.0), V::splat(3.0)),
-        V::splat(1.0),
-    );
-    let r = c.sub(q.xor(sx.and_not(sy).and(sign)));
-    V::blend(sx.or(sy), r, q)
+    let den = x.neg_where(sx).add(y.neg_where(sy));
+    let q = V::select(V::xor(sx, sy), x, y).div(den);
+    let c = V::select(sy, V::select(sx, x.splat(2.0), x.splat(3.0)), x.splat(1.0));
+    let r = c.sub(q.neg_where(V::and_not(sy, sx)));
+    V::select(V::or(sx, sy), r, q)
 }
 
 /// [`WrenchClosureTest::half_plane`] of the n rows `row(i)` = ν_i of a null basis, with
@@ -1138,12 +1139,14 @@ mod tests {
         x: &[[f64; LANES]; 8],
         y: &[[f64; LANES]; 8],
     ) -> [[bool; LANES]; 2] {
-        let (mut vx, mut vy) = ([Avx::splat(0.0); 8], [Avx::splat(0.0); 8]);
+        // SAFETY: the CPU supports AVX2 (this function's contract).
+        let v = unsafe { Avx2::new_unchecked() };
+        let (mut vx, mut vy) = ([v.splat(0.0); 8], [v.splat(0.0); 8]);
         for i in 0..8 {
-            (vx[i], vy[i]) = (Avx::load(&x[i]), Avx::load(&y[i]));
+            (vx[i], vy[i]) = (v.load(x[i]), v.load(y[i]));
         }
         let (nan, closure) = half_plane_lanes(&vx, &vy);
-        [nan.is_set(), closure.is_set()]
+        [Avx2::to_bools(nan), Avx2::to_bools(closure)]
     }
 
     proptest! {
@@ -1173,9 +1176,8 @@ mod tests {
                 single[l] = straddling_pair_gap(8, 0, |i| (rows[2 * i], rows[2 * i + 1]));
                 nan[l] = rows.iter().any(|v| v.is_nan());
             }
-            let lanes = |v: &[[f64; LANES]; 8]| v.map(|r| Portable::load(&r));
-            let (p_nan, p_closure) = half_plane_lanes(&lanes(&x), &lanes(&y));
-            let mut builds = vec![[p_nan.is_set(), p_closure.is_set()]];
+            let (p_nan, p_closure) = half_plane_lanes(&x.map(Portable), &y.map(Portable));
+            let mut builds = vec![[Portable::to_bools(p_nan), Portable::to_bools(p_closure)]];
             #[cfg(target_arch = "x86_64")]
             if std::arch::is_x86_feature_detected!("avx2") {
                 // SAFETY: the CPU supports AVX2 (just detected).
@@ -1255,7 +1257,7 @@ mod tests {
             // The reduction itself, bit for bit: the lanes' flags and null bases against the
             // single-pose `reduce_leading` of each matrix.
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            let portable = decide_lanes::<Portable>(&columns);
+            let portable = decide_lanes(Portable([0.0; LANES]), &columns);
             for (l, w) in ws.iter().enumerate() {
                 let finite = w.iter().all(|v| v.is_finite());
                 prop_assert_eq!(portable.finite[l], finite);
