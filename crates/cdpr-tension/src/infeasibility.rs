@@ -257,13 +257,7 @@ mod tests {
     /// does fire on some problems (not a vacuous test).
     #[test]
     fn proofs_agree_with_solve_on_random_problems() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = crate::certificate::tests::uniform(0x9e37_79b9_7f4a_7c15);
         let mut solver = TensionSolver::new(Method::L2);
         let (mut proved, mut infeasible) = (0, 0);
         for _ in 0..3000 {
