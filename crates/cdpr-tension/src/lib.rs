@@ -68,6 +68,7 @@ pub mod closed_form;
 mod error;
 pub mod feasible_polygon;
 pub mod improved_closed_form;
+mod infeasibility;
 pub mod interior_point;
 /// Four f64 lanes (SIMD): the module of `cdpr-kinematics`, re-exported where it was first
 /// defined.

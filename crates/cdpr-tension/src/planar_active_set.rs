@@ -45,6 +45,7 @@
 
 use crate::TensionBounds;
 use crate::feasible_polygon::{P2, has_area};
+use crate::infeasibility::HalfPlane;
 use crate::null_space::NullSpace;
 
 /// Relative violation below which a constraint counts as satisfied (a hundredth of the
@@ -203,11 +204,44 @@ pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2
 /// The l2 optimum λ (the projection of −g onto the feasible polygon) by the active set of the
 /// module docs, or `None` when the polygon must decide.
 pub(crate) fn l2_projection(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2> {
-    l2_active_set(ns, bounds).map(|(l, _)| l)
+    l2_active_set(ns, bounds).ok().map(|(l, _)| l)
 }
 
-/// [`l2_projection`] with its final working set (the constraints active at λ).
-fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)> {
+/// [`l2_projection`], or when it fails, the three constraints it ended with if it failed
+/// because no pair of them (nor one) could be kept: the candidates of a proof of emptiness
+/// ([`crate::infeasibility::triple_proves_empty`], through [`Triple::planes`]).
+pub(crate) fn l2_search(ns: &NullSpace, bounds: &TensionBounds) -> Result<P2, Option<Triple>> {
+    match l2_active_set(ns, bounds) {
+        Ok((l, _)) => Ok(l),
+        Err(triple) => Err(triple.map(Triple)),
+    }
+}
+
+/// Three constraints of the polygon (see [`l2_search`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Triple([Constraint; 3]);
+
+impl Triple {
+    /// The half-planes of the three constraints.
+    pub(crate) fn planes(&self, ns: &NullSpace, bounds: &TensionBounds) -> [HalfPlane; 3] {
+        self.0.map(|j| {
+            let (normal, beta) = j.line(ns, bounds);
+            HalfPlane {
+                cable: j.0 / 2,
+                sign: if j.0 % 2 == 0 { 1.0 } else { -1.0 },
+                normal,
+                beta,
+            }
+        })
+    }
+}
+
+/// [`l2_projection`] with its final working set (the constraints active at λ); on failure, the
+/// working set and the violated constraint that could not join it (see [`l2_search`]).
+fn l2_active_set(
+    ns: &NullSpace,
+    bounds: &TensionBounds,
+) -> Result<(P2, Working), Option<[Constraint; 3]>> {
     let n = ns.n;
     debug_assert_eq!(ns.r(), 2);
     let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
@@ -216,7 +250,7 @@ fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)
     for i in 0..n {
         let a = [n1[i], n2[i]];
         if lo[i] == hi[i] || a[0].abs() + a[1].abs() < 1e-12 {
-            return None;
+            return Err(None);
         }
         unbounded |= !hi[i].is_finite();
     }
@@ -227,9 +261,9 @@ fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)
     for _ in 0..4 + 2 * n {
         let Some(q) = most_violated(ns, bounds, l, &working[..size]) else {
             if unbounded && far_out(ns, bounds, l) {
-                return None;
+                return Err(None);
             }
-            return Some((l, Working { set: working, size }));
+            return Ok((l, Working { set: working, size }));
         };
         let (nq, bq) = q.line(ns, bounds);
         match size {
@@ -240,14 +274,14 @@ fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)
             }
             1 => {
                 let (np, bp) = working[0].line(ns, bounds);
-                let (v, mp, mq) = vertex(np, bp, nq, bq, c)?;
+                let (v, mp, mq) = vertex(np, bp, nq, bq, c).ok_or(None)?;
                 if mp >= 0.0 && mq >= 0.0 {
                     l = v;
                     (working[1], size) = (q, 2);
                 } else {
                     let (x, mu) = onto_line(c, nq, bq);
                     if mu < 0.0 {
-                        return None;
+                        return Err(None);
                     }
                     (l, working[0]) = (x, q);
                 }
@@ -273,12 +307,12 @@ fn l2_active_set(ns: &NullSpace, bounds: &TensionBounds) -> Option<(P2, Working)
                         break;
                     }
                 }
-                let (v, keep) = next?;
+                let (v, keep) = next.ok_or(Some([p0, p1, q]))?;
                 (l, working) = (v, [keep, q]);
             }
         }
     }
-    None
+    Err(None)
 }
 
 /// Constraints active at a point of the polygon (the first `size` of `set`).
@@ -319,7 +353,7 @@ fn simplex(ns: &NullSpace, bounds: &TensionBounds, d: P2) -> Option<(P2, Working
         // Unbounded directions and answers beyond the artificial box: the polygon reports them.
         return None;
     }
-    let (mut l, mut w) = l2_active_set(ns, bounds)?;
+    let (mut l, mut w) = l2_active_set(ns, bounds).ok()?;
     let n = ns.n;
     for _ in 0..4 + 2 * n {
         let u = match w.size {

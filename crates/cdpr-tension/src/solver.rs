@@ -36,6 +36,7 @@ use crate::certificate::{Certificate, snap_and_certify, snap_and_certify_fixed};
 use crate::closed_form::{self, ClosedForm};
 use crate::feasible_polygon::{self, Region};
 use crate::improved_closed_form::ImprovedClosedForm;
+use crate::infeasibility;
 use crate::interior_point::{Objective, interior_point};
 use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
@@ -562,7 +563,33 @@ impl TensionSolver {
                 {
                     return Ok(Ok(Some(residual)));
                 }
-                if matches!(
+                if verdict_only && method == Method::L2 && r == 2 {
+                    match planar_active_set::l2_search(&self.ns, p.bounds) {
+                        Ok(l) => {
+                            write_tensions(&self.ns, l, &mut self.t);
+                            if let Ok(residual) = snap_and_certify(
+                                p.wrench_matrix,
+                                p.external_wrench,
+                                p.bounds,
+                                &mut self.t,
+                            ) {
+                                return Ok(Ok(Some(residual)));
+                            }
+                        }
+                        // No tension passes the certificate: the verdict of every solve.
+                        Err(Some(triple))
+                            if infeasibility::triple_proves_empty(
+                                &triple.planes(&self.ns, p.bounds),
+                                p.wrench_matrix,
+                                p.external_wrench,
+                                p.bounds,
+                            ) =>
+                        {
+                            return Ok(Err(Infeasibility::NoFeasibleTension));
+                        }
+                        Err(_) => {}
+                    }
+                } else if matches!(
                     method,
                     Method::L2 | Method::L1 | Method::L1Max | Method::Barycenter
                 ) && r == 2
