@@ -281,7 +281,7 @@ mod tests {
                 }
                 ws.push(w);
             }
-            let four = null_spaces(&columns, we.as_slice());
+            let four = null_spaces(&columns, we.as_slice(), &mut Default::default());
             let portable =
                 four_6x8_lanes(Portable([0.0; LANES]), &four, &columns, we.as_slice(), &b);
             #[cfg(target_arch = "x86_64")]

@@ -27,7 +27,8 @@
 //! intersection, which the l2 active set meets when it fails (module `planar_active_set`): with
 //! the multipliers μ = (n₁ × n₂, n₂ × n₀, n₀ × n₁) ≥ 0 of Σ μ_j n_j = 0 (n_j = s_j a_j) and
 //! Σ μ_j β_j > 0, the tension-space combination c = Σ_j μ_j s_j e_{i_j} is orthogonal to the
-//! null space, so c = Wᵀ y for y = (W Wᵀ)⁻¹ W c (Cholesky), and cᵀ t ≥ Σ μ_j (β_j + s_j t0_j)
+//! null space, so c = Wᵀ y for y = (W Wᵀ)⁻¹ W c (from the QR of Wᵀ that gave N:
+//! y = P R⁻¹ (Qᵀ c)₁..ₘ, `NullSpace::row_space_solve`), and cᵀ t ≥ Σ μ_j (β_j + s_j t0_j)
 //! on the bounds while −yᵀ w_ext = cᵀ t0: the minimum above is Σ μ_j β_j > 0 up to rounding
 //! (Helly's theorem in the plane: an empty polygon always has such a triple).
 //!
@@ -37,6 +38,8 @@
 
 use crate::TensionBounds;
 use crate::feasible_polygon::P2;
+use crate::lanes::{F64x4, Portable};
+use crate::null_space::{LANES, NullSpace};
 use nalgebra::{DMatrix, DVector};
 
 /// One bound of a cable as a half-plane of the feasible polygon: cable `cable`, `sign` +1 for
@@ -49,15 +52,10 @@ pub(crate) struct HalfPlane {
     pub beta: f64,
 }
 
-/// Whether three half-planes of the polygon have an empty intersection (Farkas in the plane) and
-/// the direction y they give proves that no tension passes the certificate (module docs).
-/// `false` means "not proved", never "feasible".
-pub(crate) fn triple_proves_empty(
-    planes: &[HalfPlane; 3],
-    w: &DMatrix<f64>,
-    w_ext: &DVector<f64>,
-    bounds: &TensionBounds,
-) -> bool {
+/// The multipliers μ ≥ 0 of Σ μ_j n_j = 0 for three half-planes n_j·λ ≥ β_j of the polygon
+/// when they prove its emptiness in the plane (Σ μ_j β_j > 0; module docs), else `None`.
+/// Cheap: the test of a triple before any wrench-space work.
+pub(crate) fn multipliers(planes: &[HalfPlane; 3]) -> Option<[f64; 3]> {
     let cross = |a: P2, b: P2| a[0] * b[1] - a[1] * b[0];
     let [p0, p1, p2] = planes;
     let mut mu = [
@@ -69,139 +67,125 @@ pub(crate) fn triple_proves_empty(
         mu = mu.map(|m| -m);
     }
     if !mu.iter().all(|&m| m >= 0.0) {
-        return false;
+        return None;
     }
     let gap = mu[0] * p0.beta + mu[1] * p1.beta + mu[2] * p2.beta;
-    if gap.is_nan() || gap <= 0.0 {
-        return false;
-    }
+    (gap > 0.0).then_some(mu)
+}
+
+/// Whether the wrench-space direction y = (W Wᵀ)⁻¹ W c of three half-planes with multipliers
+/// `mu` ([`multipliers`]), c = Σ_j μ_j s_j e_{i_j}, proves that no tension passes the
+/// certificate (module docs). `ns` is the null space of `w` and must hold its QR
+/// ([`NullSpace::keep_qr`]); redundancy 2, m ≤ 6. The direction y when it proves emptiness
+/// (padded with zeros to six components), `None` for "not proved", never "feasible".
+pub(crate) fn direction_proves_empty(
+    planes: &[HalfPlane; 3],
+    mu: &[f64; 3],
+    ns: &NullSpace,
+    w: &DMatrix<f64>,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+) -> Option<[f64; 6]> {
     let (m, n) = w.shape();
-    if w_ext.len() != m || bounds.len() != n {
-        return false;
+    if w_ext.len() != m || bounds.len() != n || ns.m != m || ns.n != n {
+        return None;
     }
     let (ws, we) = (w.as_slice(), w_ext.as_slice());
-    match m {
-        6 => proves::<6>(planes, &mu, ws, n, we, bounds),
-        5 => proves::<5>(planes, &mu, ws, n, we, bounds),
-        4 => proves::<4>(planes, &mu, ws, n, we, bounds),
-        3 => proves::<3>(planes, &mu, ws, n, we, bounds),
-        2 => proves::<2>(planes, &mu, ws, n, we, bounds),
-        1 => proves::<1>(planes, &mu, ws, n, we, bounds),
+    match (m, n) {
+        (6, 8) => proves::<6, 8>(planes, mu, ns, ws, we, bounds),
+        (5, 7) => proves::<5, 7>(planes, mu, ns, ws, we, bounds),
+        (4, 6) => proves::<4, 6>(planes, mu, ns, ws, we, bounds),
+        (3, 5) => proves::<3, 5>(planes, mu, ns, ws, we, bounds),
+        (2, 4) => proves::<2, 4>(planes, mu, ns, ws, we, bounds),
+        (1, 3) => proves::<1, 3>(planes, mu, ns, ws, we, bounds),
+        _ => None,
+    }
+}
+
+/// [`direction_proves_empty`] for W of M × N.
+#[inline(always)]
+fn proves<const M: usize, const N: usize>(
+    planes: &[HalfPlane; 3],
+    mu: &[f64; 3],
+    ns: &NullSpace,
+    ws: &[f64],
+    we: &[f64],
+    bounds: &TensionBounds,
+) -> Option<[f64; 6]> {
+    let mut c = [0.0; N];
+    for (plane, &mj) in planes.iter().zip(mu) {
+        if plane.cable >= N {
+            return None;
+        }
+        c[plane.cable] += mj * plane.sign;
+    }
+    let y = ns.row_space_solve::<M, N>(&c)?;
+    if !separates::<M, N>(ws, we, bounds, &y) {
+        return None;
+    }
+    let mut padded = [0.0; 6];
+    padded[..M].copy_from_slice(&y);
+    Some(padded)
+}
+
+/// [`multipliers`] then [`direction_proves_empty`], factoring W again when its QR is not kept.
+#[cfg(test)]
+pub(crate) fn triple_proves_empty(
+    planes: &[HalfPlane; 3],
+    ns: &mut NullSpace,
+    w: &DMatrix<f64>,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+) -> bool {
+    match multipliers(planes) {
+        Some(mu) if ns.keep_qr(w, w_ext).is_ok() => {
+            direction_proves_empty(planes, &mu, ns, w, w_ext, bounds).is_some()
+        }
         _ => false,
     }
 }
 
-/// [`triple_proves_empty`] after the plane test, for M = m rows.
+/// The test of the module docs: whether y separates the zonotope of W (M × N, column-major)
+/// over the bounds, shifted by w_ext, from the origin by more than the certificate's residual
+/// tolerance and rounding.
 #[inline(always)]
-fn proves<const M: usize>(
-    planes: &[HalfPlane; 3],
-    mu: &[f64; 3],
+fn separates<const M: usize, const N: usize>(
     ws: &[f64],
-    n: usize,
-    we: &[f64],
-    bounds: &TensionBounds,
-) -> bool {
-    // W c with c = Σ_j μ_j s_j e_{i_j}.
-    let mut wc = [0.0; M];
-    for (plane, &mj) in planes.iter().zip(mu) {
-        let column = &ws[plane.cable * M..(plane.cable + 1) * M];
-        for (d, &v) in wc.iter_mut().zip(column) {
-            *d += mj * plane.sign * v;
-        }
-    }
-    let Some(y) = solve_normal_equations::<M>(ws, n, wc) else {
-        return false;
-    };
-    separates::<M>(ws, n, we, bounds, &y)
-}
-
-/// y with (W Wᵀ) y = b (Cholesky of the M × M Gram matrix, `ws` column-major M × n), or `None`
-/// when a pivot is not above 10⁻¹² of its diagonal entry (y may be any vector: it only has to
-/// be a good direction, see [`separates`]).
-// Triangular index loops read as the textbook Cholesky.
-#[allow(clippy::needless_range_loop)]
-#[inline(always)]
-fn solve_normal_equations<const M: usize>(ws: &[f64], n: usize, b: [f64; M]) -> Option<[f64; M]> {
-    let mut g = [[0.0; M]; M];
-    for column in ws.chunks_exact(M).take(n) {
-        for r in 0..M {
-            for c in 0..=r {
-                g[r][c] += column[r] * column[c];
-            }
-        }
-    }
-    // G = L Lᵀ in the lower triangle.
-    for j in 0..M {
-        let mut d = g[j][j];
-        for k in 0..j {
-            d -= g[j][k] * g[j][k];
-        }
-        // A pivot lost to cancellation: W has (nearly) dependent rows.
-        if d.is_nan() || d <= 1e-12 * g[j][j] {
-            return None;
-        }
-        let d = d.sqrt();
-        g[j][j] = d;
-        for r in j + 1..M {
-            let mut s = g[r][j];
-            for k in 0..j {
-                s -= g[r][k] * g[j][k];
-            }
-            g[r][j] = s / d;
-        }
-    }
-    let mut y = b;
-    for r in 0..M {
-        for k in 0..r {
-            y[r] -= g[r][k] * y[k];
-        }
-        y[r] /= g[r][r];
-    }
-    for r in (0..M).rev() {
-        for k in r + 1..M {
-            y[r] -= g[k][r] * y[k];
-        }
-        y[r] /= g[r][r];
-    }
-    Some(y)
-}
-
-/// The test of the module docs: whether y separates the zonotope of W over the bounds, shifted
-/// by w_ext, from the origin by more than the certificate's residual tolerance and rounding.
-#[inline(always)]
-fn separates<const M: usize>(
-    ws: &[f64],
-    n: usize,
     we: &[f64],
     bounds: &TensionBounds,
     y: &[f64; M],
 ) -> bool {
-    let (lo, hi) = (bounds.min().as_slice(), bounds.max().as_slice());
+    let (ws, we) = (&ws[..M * N], &we[..M]);
+    let (lo, hi) = (&bounds.min().as_slice()[..N], &bounds.max().as_slice()[..N]);
     let mut value = 0.0;
     let mut error = 0.0;
     let mut y1 = 0.0;
     let mut we_max: f64 = 0.0;
-    for (&yk, &e) in y.iter().zip(we) {
-        value += yk * e;
-        error += yk.abs() * e.abs();
-        y1 += yk.abs();
-        we_max = we_max.max(e.abs());
+    let mut y_abs = [0.0; M];
+    for k in 0..M {
+        y_abs[k] = y[k].abs();
+        value += y[k] * we[k];
+        error += y_abs[k] * we[k].abs();
+        y1 += y_abs[k];
+        we_max = we_max.max(we[k].abs());
     }
     let mut rows = [0.0; M];
     let mut t_max: f64 = 0.0;
-    for (i, column) in ws.chunks_exact(M).take(n).enumerate() {
+    for i in 0..N {
         let (l, h) = (lo[i], hi[i]);
         if !(l.is_finite() && h.is_finite()) {
             return false;
         }
         let ti = l.abs().max(h.abs());
         t_max = t_max.max(ti);
+        let column = &ws[i * M..i * M + M];
         let mut c = 0.0;
         let mut size = 0.0;
-        for ((&v, &yk), row) in column.iter().zip(y).zip(&mut rows) {
-            c += v * yk;
-            size += v.abs() * yk.abs();
-            *row += v.abs();
+        for k in 0..M {
+            let v = column[k];
+            c += v * y[k];
+            size += v.abs() * y_abs[k];
+            rows[k] += v.abs();
         }
         value += (c * l).min(c * h);
         error += size * ti;
@@ -210,6 +194,113 @@ fn separates<const M: usize>(
     let scale = 1f64.max(we_max).max(w_norm * t_max);
     // NaN anywhere fails the comparison: not proved.
     value > 2e-9 * y1 * scale + 1e-12 * error
+}
+
+/// [`separates`] for four 6 × 8 problems at once (`columns[j][i][l]` = W(i, j) of problem l,
+/// one w_ext, one set of bounds) and one direction `y`, in SIMD lanes (AVX2 when the CPU has
+/// it): bit l when y proves problem l empty. The sums run in the order of the scalar test, so
+/// each lane's verdict is the scalar one (tested); a lane with a non-finite W entry is never
+/// proved. Grids try the direction of the last proof on the next four poses before any null
+/// space: the test is rigorous for any y (module docs), so it cannot change a verdict.
+pub(crate) fn four_6x8_separated(
+    columns: &[[[f64; LANES]; 6]; 8],
+    w_ext: &[f64],
+    bounds: &TensionBounds,
+    y: &[f64; 6],
+) -> u32 {
+    if w_ext.len() != 6 || bounds.len() != 8 {
+        return 0;
+    }
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v) = crate::lanes::Avx2::detect() {
+        // SAFETY: `detect` found AVX2.
+        return unsafe { four_6x8_separated_avx2(v, columns, w_ext, bounds, y) };
+    }
+    four_6x8_separated_lanes(Portable([0.0; LANES]), columns, w_ext, bounds, y)
+}
+
+/// [`four_6x8_separated`] compiled for AVX2.
+///
+/// # Safety
+/// The CPU must support AVX2 (an [`crate::lanes::Avx2`] value is the proof).
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn four_6x8_separated_avx2(
+    v: crate::lanes::Avx2,
+    columns: &[[[f64; LANES]; 6]; 8],
+    w_ext: &[f64],
+    bounds: &TensionBounds,
+    y: &[f64; 6],
+) -> u32 {
+    four_6x8_separated_lanes(v, columns, w_ext, bounds, y)
+}
+
+/// [`four_6x8_separated`] on the lanes of `v` (portable or AVX2: the same bits).
+#[inline(always)]
+fn four_6x8_separated_lanes<V: F64x4>(
+    v: V,
+    columns: &[[[f64; LANES]; 6]; 8],
+    w_ext: &[f64],
+    bounds: &TensionBounds,
+    y: &[f64; 6],
+) -> u32 {
+    let (lo, hi) = (&bounds.min().as_slice()[..8], &bounds.max().as_slice()[..8]);
+    let we = &w_ext[..6];
+    // The parts of `separates` that do not depend on W, in its order.
+    let mut value = 0.0;
+    let mut error = 0.0;
+    let mut y1 = 0.0;
+    let mut we_max: f64 = 0.0;
+    let mut y_abs = [0.0; 6];
+    for k in 0..6 {
+        y_abs[k] = y[k].abs();
+        value += y[k] * we[k];
+        error += y_abs[k] * we[k].abs();
+        y1 += y_abs[k];
+        we_max = we_max.max(we[k].abs());
+    }
+    let mut t_max: f64 = 0.0;
+    for i in 0..8 {
+        if !(lo[i].is_finite() && hi[i].is_finite()) {
+            return 0;
+        }
+        t_max = t_max.max(lo[i].abs().max(hi[i].abs()));
+    }
+    // No closures here (`array::map`): they would lose the caller's target features.
+    let mut ys = [v.splat(0.0); 6];
+    let mut ys_abs = [v.splat(0.0); 6];
+    for k in 0..6 {
+        ys[k] = v.splat(y[k]);
+        ys_abs[k] = v.splat(y_abs[k]);
+    }
+    let mut value = v.splat(value);
+    let mut error = v.splat(error);
+    let mut rows = [v.splat(0.0); 6];
+    for i in 0..8 {
+        let ti = v.splat(lo[i].abs().max(hi[i].abs()));
+        let mut c = v.splat(0.0);
+        let mut size = v.splat(0.0);
+        for k in 0..6 {
+            let w = v.load(columns[i][k]);
+            c = c.add(w.mul(ys[k]));
+            size = size.add(w.abs().mul(ys_abs[k]));
+            rows[k] = rows[k].add(w.abs());
+        }
+        value = value.add(c.mul(v.splat(lo[i])).min(c.mul(v.splat(hi[i]))));
+        error = error.add(size.mul(ti));
+    }
+    // ‖W‖∞ = max_k rows_k; a row that is not finite (an infinite or NaN entry) fails
+    // `finite` (`max` would drop a NaN).
+    let inf = v.splat(f64::INFINITY);
+    let mut finite = V::bits(rows[0].lt(inf));
+    let mut w_norm = v.splat(0.0);
+    for row in rows {
+        finite &= V::bits(row.lt(inf));
+        w_norm = row.max(w_norm);
+    }
+    let scale = w_norm.mul(v.splat(t_max)).max(v.splat(1f64.max(we_max)));
+    let needed = v.splat(2e-9 * y1).mul(scale).add(v.splat(1e-12).mul(error));
+    finite & V::bits(value.gt(needed))
 }
 
 #[cfg(test)]
@@ -224,32 +315,80 @@ mod tests {
         let w = DMatrix::from_row_slice(1, 2, &[1.0, 1.0]);
         let we = [-5.0];
         let b = TensionBounds::uniform(2, 0.0, 2.0).unwrap();
-        assert!(separates::<1>(w.as_slice(), 2, &we, &b, &[-1.0]));
+        assert!(separates::<1, 2>(w.as_slice(), &we, &b, &[-1.0]));
         // The other direction does not separate.
-        assert!(!separates::<1>(w.as_slice(), 2, &we, &b, &[1.0]));
+        assert!(!separates::<1, 2>(w.as_slice(), &we, &b, &[1.0]));
         // t ∈ [0, 2.5]: the sum reaches 5 exactly (a feasible problem), no direction proves
         // anything, not even by rounding.
         let b = TensionBounds::uniform(2, 0.0, 2.5).unwrap();
-        assert!(!separates::<1>(w.as_slice(), 2, &we, &b, &[-1.0]));
+        assert!(!separates::<1, 2>(w.as_slice(), &we, &b, &[-1.0]));
         // A gap within the certificate's tolerance (10⁻⁹ · 5) is not enough either.
         let b = TensionBounds::uniform(2, 0.0, 2.5 - 1e-9).unwrap();
-        assert!(!separates::<1>(w.as_slice(), 2, &we, &b, &[-1.0]));
+        assert!(!separates::<1, 2>(w.as_slice(), &we, &b, &[-1.0]));
         let b = TensionBounds::uniform(2, 0.0, 2.5 - 1e-7).unwrap();
-        assert!(separates::<1>(w.as_slice(), 2, &we, &b, &[-1.0]));
+        assert!(separates::<1, 2>(w.as_slice(), &we, &b, &[-1.0]));
     }
 
+    /// The lanes test of a direction is the scalar test lane by lane (AVX2 where the CPU has
+    /// it and the portable build), on directions that prove random problems and on perturbed,
+    /// non-finite and unrelated W; it proves some lanes and refuses others (not vacuous).
     #[test]
-    fn normal_equations_are_solved() {
-        // W = [[1, 0, 1], [0, 2, 0]]: W Wᵀ = diag(2, 4).
-        let w = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 1.0, 0.0, 2.0, 0.0]);
-        let y = solve_normal_equations::<2>(w.as_slice(), 3, [4.0, 8.0]).unwrap();
+    fn four_problems_in_lanes_are_separated_as_one_at_a_time() {
+        let mut next = crate::certificate::tests::uniform(0x1405_7b7e_f767_814f);
+        let (mut proved, mut refused) = (0, 0);
+        for case in 0..3000 {
+            let w = DMatrix::from_fn(6, 8, |_, _| 2.0 * next() - 1.0);
+            let we = DVector::from_fn(6, |_, _| 3.0 * (2.0 * next() - 1.0));
+            let b = TensionBounds::uniform(8, 0.1 + next(), 2.0 + 3.0 * next()).unwrap();
+            let mut ns = NullSpace::default();
+            if ns.compute(&w, &we).is_err() {
+                continue;
+            }
+            let Err(Some(triple)) = crate::planar_active_set::l2_search(&ns, &b) else {
+                continue;
+            };
+            let planes = triple.planes(&ns, &b);
+            let Some(mu) = multipliers(&planes) else {
+                continue;
+            };
+            ns.keep_qr(&w, &we).unwrap();
+            let Some(y) = direction_proves_empty(&planes, &mu, &ns, &w, &we, &b) else {
+                continue;
+            };
+            // Lane 0: the problem; 1, 2: W perturbed by 10⁻³ and 0.3; 3: a non-finite entry
+            // or an unrelated W.
+            let mut lanes = [w.clone(), w.clone(), w.clone(), w.clone()];
+            lanes[1] = w.map(|x| x + 1e-3 * (2.0 * next() - 1.0));
+            lanes[2] = w.map(|x| x + 0.3 * (2.0 * next() - 1.0));
+            lanes[3] = if case % 3 == 0 {
+                let mut bad = w.clone();
+                bad[(case % 6, case % 8)] = [f64::NAN, f64::INFINITY][case % 2];
+                bad
+            } else {
+                DMatrix::from_fn(6, 8, |_, _| 2.0 * next() - 1.0)
+            };
+            let columns: [[[f64; LANES]; 6]; 8] = std::array::from_fn(|j| {
+                std::array::from_fn(|i| [0, 1, 2, 3].map(|l| lanes[l][(i, j)]))
+            });
+            let scalar: u32 = (0..LANES)
+                .map(|l| {
+                    let finite = lanes[l].iter().all(|x| x.is_finite());
+                    let s = separates::<6, 8>(lanes[l].as_slice(), we.as_slice(), &b, &y);
+                    u32::from(finite && s) << l
+                })
+                .sum();
+            assert_eq!(scalar & 1, 1, "the direction proves its own problem");
+            let portable =
+                four_6x8_separated_lanes(Portable([0.0; LANES]), &columns, we.as_slice(), &b, &y);
+            assert_eq!(portable, scalar, "{w} {y:?}");
+            assert_eq!(four_6x8_separated(&columns, we.as_slice(), &b, &y), scalar);
+            proved += scalar.count_ones();
+            refused += LANES as u32 - scalar.count_ones();
+        }
         assert!(
-            (y[0] - 2.0).abs() < 1e-15 && (y[1] - 2.0).abs() < 1e-15,
-            "{y:?}"
+            proved > 500 && refused > 200,
+            "{proved} proved, {refused} refused"
         );
-        // A rank-deficient W has no Cholesky factor.
-        let w = DMatrix::from_row_slice(2, 3, &[1.0, 0.0, 1.0, 2.0, 0.0, 2.0]);
-        assert!(solve_normal_equations::<2>(w.as_slice(), 3, [4.0, 8.0]).is_none());
     }
 
     /// The proof never contradicts the solver: on random 6 × 8 problems, whenever a triple of
@@ -274,7 +413,7 @@ mod tests {
                 .is_feasible();
             infeasible += !feasible as usize;
             if let Err(Some(triple)) = crate::planar_active_set::l2_search(&ns, &b)
-                && triple_proves_empty(&triple.planes(&ns, &b), &w, &we, &b)
+                && triple_proves_empty(&triple.planes(&ns, &b), &mut ns, &w, &we, &b)
             {
                 assert!(!feasible, "{w} {we} {b:?}");
                 proved += 1;

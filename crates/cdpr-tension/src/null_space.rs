@@ -57,6 +57,10 @@ pub(crate) struct NullSpace {
     rows: Vec<f64>,
     /// Hadamard ratio ρ of the last factorisation.
     pub ratio: f64,
+    /// Whether `a`, `beta`, `rdiag` and `perm` hold the QR of the last factorisation (the
+    /// dynamic path and [`FourNullSpaces::write_lane`]; the fixed-size path keeps it on the
+    /// stack, see [`Self::keep_qr`]).
+    qr: bool,
 }
 
 impl NullSpace {
@@ -109,6 +113,7 @@ impl NullSpace {
         let r = N - M;
         self.m = M;
         self.n = N;
+        self.qr = false;
         self.t0.resize(N, 0.0);
         self.basis.resize(N * r, 0.0);
         self.g.resize(r, 0.0);
@@ -213,6 +218,7 @@ impl NullSpace {
         let (m, n) = w.shape();
         self.m = m;
         self.n = n;
+        self.qr = false;
         let r = n - m;
         self.a.resize(n * m, 0.0);
         self.beta.resize(m, 0.0);
@@ -285,6 +291,7 @@ impl NullSpace {
         if self.ratio.is_nan() || self.ratio < SINGULARITY_RATIO {
             return Err(1.0 / self.ratio);
         }
+        self.qr = true;
         // Rᵀ y = −(Pᵀ w_ext): forward substitution; y goes into x[0..m].
         for j in 0..m {
             let mut s = -w_ext[self.perm[j]];
@@ -306,6 +313,71 @@ impl NullSpace {
             self.g[c] = self.x.iter().zip(&self.t0).map(|(a, b)| a * b).sum();
         }
         Ok(())
+    }
+
+    /// Whether the QR of the last factorisation is stored ([`Self::row_space_solve`] applies).
+    pub(crate) fn has_qr(&self) -> bool {
+        self.qr
+    }
+
+    /// Makes the QR of `w` available to [`Self::row_space_solve`]: after the fixed-size path,
+    /// factors `w` again by the dynamic path, which computes t0, N and g bit for bit as the
+    /// fixed-size path did (tested), so nothing else changes. `w` and `w_ext` must be those of
+    /// the last [`Self::compute`] (or `write_lane`) and that call must have succeeded.
+    pub(crate) fn keep_qr(&mut self, w: &DMatrix<f64>, w_ext: &DVector<f64>) -> Result<(), f64> {
+        if self.qr {
+            return Ok(());
+        }
+        self.compute_dyn(w, w_ext)
+    }
+
+    /// y = (W Wᵀ)⁻¹ W c, the least-squares solution of Wᵀ y = c (exact for c in the row space
+    /// of W, i.e. c ⟂ N), for W of M × N: with Wᵀ P = Q R, W Wᵀ = P Rᵀ R Pᵀ and
+    /// W c = P Rᵀ Q₁ᵀ c, so y = P R⁻¹ (Qᵀ c)₁..ₘ: M Householder reflections and one back
+    /// substitution, no Gram matrix. `None` without a stored QR of that shape
+    /// ([`Self::keep_qr`]).
+    // Triangular index loops read as the textbook back substitution.
+    #[allow(clippy::needless_range_loop)]
+    #[inline(always)]
+    pub(crate) fn row_space_solve<const M: usize, const N: usize>(
+        &self,
+        c: &[f64; N],
+    ) -> Option<[f64; M]> {
+        if !self.qr || self.m != M || self.n != N {
+            return None;
+        }
+        let (a, beta, rdiag, perm) = (
+            &self.a[..M * N],
+            &self.beta[..M],
+            &self.rdiag[..M],
+            &self.perm[..M],
+        );
+        // q = Qᵀ c = H_{M−1} ⋯ H₀ c.
+        let mut q = *c;
+        for k in 0..M {
+            let mut s = 0.0;
+            for i in k..N {
+                s += a[k * N + i] * q[i];
+            }
+            let s = s * beta[k];
+            for i in k..N {
+                q[i] -= s * a[k * N + i];
+            }
+        }
+        // R z = q₁..ₘ (R(i, j) = a[j N + i] above the diagonal), then y = P z.
+        let mut z = [0.0; M];
+        for j in (0..M).rev() {
+            let mut s = q[j];
+            for i in j + 1..M {
+                s -= a[i * N + j] * z[i];
+            }
+            z[j] = s / rdiag[j];
+        }
+        let mut y = [0.0; M];
+        for j in 0..M {
+            y[perm[j]] = z[j];
+        }
+        Some(y)
     }
 
     /// x ← Q x = H₀ H₁ ⋯ H_{m−1} x.
@@ -353,12 +425,49 @@ pub(crate) struct FourNullSpaces {
     pub(crate) zero: Mask,
 }
 
+/// The QR of Wᵀ that [`four_6x8`] computed, lane by lane, as `NullSpace` stores it:
+/// Householder vectors and R (`a[k][i]`), β, the diagonal of R and the pivot column chosen at
+/// each step. Kept apart from [`FourNullSpaces`] because only a proof of infeasibility reads it
+/// ([`FourQr::write_lane`]).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct FourQr {
+    a: [[Lanes; 8]; 6],
+    beta: [Lanes; 6],
+    rdiag: [Lanes; 6],
+    pivots: [Lanes; 6],
+}
+
+impl FourQr {
+    /// Writes the QR of lane `l` into `ns`, whose t0, N and g are that lane's
+    /// ([`FourNullSpaces::write_lane`] succeeded): then [`NullSpace::row_space_solve`] applies.
+    pub(crate) fn write_lane(&self, l: usize, ns: &mut NullSpace) {
+        ns.a.resize(48, 0.0);
+        ns.beta.resize(6, 0.0);
+        ns.rdiag.resize(6, 0.0);
+        ns.perm.resize(6, 0);
+        for (k, row) in self.a.iter().enumerate() {
+            for (d, x) in ns.a[k * 8..k * 8 + 8].iter_mut().zip(row) {
+                *d = x[l];
+            }
+            ns.beta[k] = self.beta[k][l];
+            ns.rdiag[k] = self.rdiag[k][l];
+            ns.perm[k] = k;
+        }
+        // The exchanges of the pivoting, in order (as `compute_fixed` applies them).
+        for k in 0..6 {
+            ns.perm.swap(k, self.pivots[k][l] as usize);
+        }
+        ns.qr = true;
+    }
+}
+
 impl FourNullSpaces {
     /// Writes lane `l` into `ns`, as [`NullSpace::compute`] would have: `Err(condition)` for a
     /// singular W.
     pub(crate) fn write_lane(&self, l: usize, ns: &mut NullSpace) -> Result<(), f64> {
         ns.m = 6;
         ns.n = 8;
+        ns.qr = false;
         ns.t0.resize(8, 0.0);
         ns.basis.resize(16, 0.0);
         ns.g.resize(2, 0.0);
@@ -399,13 +508,17 @@ fn avx2() -> bool {
 /// are correctly rounded). Each lane keeps its own column pivots: exchanges are bitwise blends.
 /// The AVX2 build is chosen at run time; [`four_6x8_portable`] is the same code for baseline
 /// x86-64.
-pub(crate) fn four_6x8(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+pub(crate) fn four_6x8(
+    columns: &[[Lanes; 6]; 8],
+    w_ext: &[f64],
+    qr: &mut FourQr,
+) -> FourNullSpaces {
     #[cfg(target_arch = "x86_64")]
     if avx2() {
         // SAFETY: the CPU supports AVX2 (run-time detection).
-        return unsafe { four_6x8_avx2(columns, w_ext) };
+        return unsafe { four_6x8_avx2(columns, w_ext, qr) };
     }
-    four_6x8_portable(columns, w_ext)
+    four_6x8_portable(columns, w_ext, qr)
 }
 
 /// [`four_6x8`] compiled for AVX2.
@@ -414,20 +527,33 @@ pub(crate) fn four_6x8(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpac
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn four_6x8_avx2(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+unsafe fn four_6x8_avx2(
+    columns: &[[Lanes; 6]; 8],
+    w_ext: &[f64],
+    qr: &mut FourQr,
+) -> FourNullSpaces {
     // SAFETY: the CPU supports AVX2 (this function's contract).
-    four_6x8_body(unsafe { Avx2::new_unchecked() }, columns, w_ext)
+    four_6x8_body(unsafe { Avx2::new_unchecked() }, columns, w_ext, qr)
 }
 
 /// [`four_6x8`] for baseline x86-64 (and the reference of the AVX2 build in tests).
-pub(crate) fn four_6x8_portable(columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
-    four_6x8_body(Portable([0.0; LANES]), columns, w_ext)
+pub(crate) fn four_6x8_portable(
+    columns: &[[Lanes; 6]; 8],
+    w_ext: &[f64],
+    qr: &mut FourQr,
+) -> FourNullSpaces {
+    four_6x8_body(Portable([0.0; LANES]), columns, w_ext, qr)
 }
 
 /// The body of [`four_6x8`] on the lanes of `V` (`v` witnesses that its instructions are
 /// available): one lane operation per scalar operation, no closures.
 #[inline(always)]
-fn four_6x8_body<V: F64x4>(v: V, columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> FourNullSpaces {
+fn four_6x8_body<V: F64x4>(
+    v: V,
+    columns: &[[Lanes; 6]; 8],
+    w_ext: &[f64],
+    qr: &mut FourQr,
+) -> FourNullSpaces {
     const M: usize = 6;
     const N: usize = 8;
     // a[k] = row k of W; wp[k] = w_ext at the row now in place k (pivot exchanges).
@@ -449,22 +575,22 @@ fn four_6x8_body<V: F64x4>(v: V, columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> Fo
     let mut beta = [v.splat(0.0); M];
     let mut rdiag = [v.splat(0.0); M];
     let mut ratio = v.splat(1.0);
-    householder_step::<0, V>(
+    let p0 = householder_step::<0, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<1, V>(
+    let p1 = householder_step::<1, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<2, V>(
+    let p2 = householder_step::<2, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<3, V>(
+    let p3 = householder_step::<3, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<4, V>(
+    let p4 = householder_step::<4, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
-    householder_step::<5, V>(
+    let p5 = householder_step::<5, V>(
         &mut a, &mut wp, &rows, &mut beta, &mut rdiag, &mut ratio, &mut zero,
     );
     // `f64::min(ratio, 1.0)`, NaN included (see `F64x4::min`).
@@ -497,6 +623,16 @@ fn four_6x8_body<V: F64x4>(v: V, columns: &[[Lanes; 6]; 8], w_ext: &[f64]) -> Fo
         ratio: ratio.to_array(),
         zero: [0; LANES],
     };
+    // Loops, not `array::map`: a closure would lose this kernel's target features.
+    let pivots = [p0, p1, p2, p3, p4, p5];
+    for k in 0..M {
+        for (dst, x) in qr.a[k].iter_mut().zip(&a[k]) {
+            *dst = x.to_array();
+        }
+        qr.beta[k] = beta[k].to_array();
+        qr.rdiag[k] = rdiag[k].to_array();
+        qr.pivots[k] = pivots[k].to_array();
+    }
     for i in 0..N {
         out.t0[i] = t0[i].to_array();
         out.basis[0][i] = basis[0][i].to_array();
@@ -524,7 +660,8 @@ fn apply_q<V: F64x4>(v: V, a: &[[V; 8]; 6], beta: &[V; 6], x: &mut [V; 8]) {
 }
 
 /// Step `K` of the Householder QR with column pivoting of [`NullSpace::compute_fixed`] (6 × 8),
-/// lane by lane (any lane value, here `rows[0]`, witnesses `V`'s instructions).
+/// lane by lane (any lane value, here `rows[0]`, witnesses `V`'s instructions); returns the
+/// pivot column exchanged with column `K`.
 #[inline(always)]
 fn householder_step<const K: usize, V: F64x4>(
     a: &mut [[V; 8]; 6],
@@ -534,7 +671,7 @@ fn householder_step<const K: usize, V: F64x4>(
     rdiag: &mut [V; 6],
     ratio: &mut V,
     zero: &mut V::Mask,
-) {
+) -> V {
     let w = rows[0];
     // Pivot: the first remaining column with the largest norm below row K (`>`, as the scan).
     let mut best = w.splat(K as f64);
@@ -585,6 +722,7 @@ fn householder_step<const K: usize, V: F64x4>(
             col[i] = col[i].sub(s.mul(v[i]));
         }
     }
+    best
 }
 
 #[cfg(test)]
@@ -721,7 +859,7 @@ mod tests {
     }
 
     /// Every output of a lane build, as bits.
-    fn lane_bits(f: &FourNullSpaces) -> Vec<u64> {
+    fn lane_bits((f, q): (&FourNullSpaces, &FourQr)) -> Vec<u64> {
         let mut out = Vec::new();
         for l in 0..LANES {
             out.extend(f.t0.iter().map(|v| b(v[l])));
@@ -729,6 +867,10 @@ mod tests {
             out.extend(f.g.iter().map(|v| b(v[l])));
             out.push(b(f.ratio[l]));
             out.push(f.zero[l]);
+            out.extend(q.a.iter().flatten().map(|v| b(v[l])));
+            for x in [&q.beta, &q.rdiag, &q.pivots] {
+                out.extend(x.iter().map(|v| b(v[l])));
+            }
         }
         out
     }
@@ -742,15 +884,19 @@ mod tests {
         #[test]
         #[allow(clippy::needless_range_loop)]
         fn four_at_a_time_equals_one_at_a_time((columns, we) in four_problems()) {
-            let dispatched = four_6x8(&columns, &we);
-            let portable = four_6x8_portable(&columns, &we);
-            prop_assert_eq!(lane_bits(&dispatched), lane_bits(&portable));
+            let (mut dispatched_qr, mut portable_qr) = (FourQr::default(), FourQr::default());
+            let dispatched = four_6x8(&columns, &we, &mut dispatched_qr);
+            let portable = four_6x8_portable(&columns, &we, &mut portable_qr);
+            prop_assert_eq!(
+                lane_bits((&dispatched, &dispatched_qr)),
+                lane_bits((&portable, &portable_qr))
+            );
             let we = DVector::from_vec(we);
             for l in 0..LANES {
                 let w = DMatrix::from_fn(6, 8, |i, j| columns[j][i][l]);
                 let mut one = NullSpace::default();
                 let expected = one.compute(&w, &we);
-                for four in [&dispatched, &portable] {
+                for (four, qr) in [(&dispatched, &dispatched_qr), (&portable, &portable_qr)] {
                     let mut ns = NullSpace::default();
                     let got = four.write_lane(l, &mut ns);
                     prop_assert_eq!(got.map_err(b), expected.map_err(b));
@@ -759,6 +905,61 @@ mod tests {
                         prop_assert_eq!(bits(&ns.t0), bits(&one.t0));
                         prop_assert_eq!(bits(&ns.basis), bits(&one.basis));
                         prop_assert_eq!(bits(&ns.g), bits(&one.g));
+                        // The QR the lanes hand over is the one `keep_qr` computes.
+                        let mut kept = one.clone();
+                        kept.keep_qr(&w, &we).unwrap();
+                        prop_assert!(!ns.qr);
+                        qr.write_lane(l, &mut ns);
+                        prop_assert!(ns.qr && kept.qr);
+                        prop_assert_eq!(bits(&ns.a), bits(&kept.a));
+                        prop_assert_eq!(bits(&ns.beta), bits(&kept.beta));
+                        prop_assert_eq!(bits(&ns.rdiag), bits(&kept.rdiag));
+                        prop_assert_eq!(&ns.perm, &kept.perm);
+                    }
+                }
+            }
+        }
+    }
+
+    /// `keep_qr` after the fixed-size path changes no bit of t0, N and g, and
+    /// `row_space_solve` returns y = (W Wᵀ)⁻¹ W c, checked against the normal equations
+    /// solved by nalgebra's LU (an independent route), for c in the row space (Wᵀ y = c) and
+    /// for a c off it.
+    #[test]
+    fn row_space_solve_is_the_least_squares_solution() {
+        let mut next = crate::certificate::tests::uniform(0x2545_f491_4f6c_dd1d);
+        for shape in [(6, 8), (3, 5), (2, 4)] {
+            for _ in 0..200 {
+                let w = DMatrix::from_fn(shape.0, shape.1, |_, _| 2.0 * next() - 1.0);
+                let we = DVector::from_fn(shape.0, |_, _| 2.0 * next() - 1.0);
+                let mut ns = NullSpace::default();
+                if ns.compute(&w, &we).is_err() {
+                    continue;
+                }
+                let (t0, basis, g) = (bits(&ns.t0), bits(&ns.basis), bits(&ns.g));
+                let solve = |ns: &NullSpace, c: &[f64]| match shape {
+                    (6, 8) => ns
+                        .row_space_solve::<6, 8>(c.try_into().unwrap())
+                        .map(|y| y.to_vec()),
+                    (3, 5) => ns
+                        .row_space_solve::<3, 5>(c.try_into().unwrap())
+                        .map(|y| y.to_vec()),
+                    _ => ns
+                        .row_space_solve::<2, 4>(c.try_into().unwrap())
+                        .map(|y| y.to_vec()),
+                };
+                let kept = solve(&ns, &vec![1.0; shape.1]).is_some();
+                assert_eq!(kept, shape == (2, 4), "only the dynamic path keeps its QR");
+                ns.keep_qr(&w, &we).unwrap();
+                assert_eq!((bits(&ns.t0), bits(&ns.basis), bits(&ns.g)), (t0, basis, g));
+                let y_true = DVector::from_fn(shape.0, |_, _| 2.0 * next() - 1.0);
+                let off = DVector::from_fn(shape.1, |_, _| 2.0 * next() - 1.0);
+                for c in [w.transpose() * &y_true, off] {
+                    let y = solve(&ns, c.as_slice()).unwrap();
+                    let reference = (&w * w.transpose()).lu().solve(&(&w * &c)).unwrap();
+                    assert_eq!(y.len(), shape.0);
+                    for k in 0..shape.0 {
+                        assert!((y[k] - reference[k]).abs() < 1e-9, "{y:?} {reference}");
                     }
                 }
             }

@@ -222,6 +222,11 @@ pub(crate) fn l2_search(ns: &NullSpace, bounds: &TensionBounds) -> Result<P2, Op
 pub(crate) struct Triple([Constraint; 3]);
 
 impl Triple {
+    /// Whether every constraint of the triple is one of a problem with `n` cables.
+    pub(crate) fn fits(&self, n: usize) -> bool {
+        self.0.iter().all(|j| j.0 / 2 < n)
+    }
+
     /// The half-planes of the three constraints.
     pub(crate) fn planes(&self, ns: &NullSpace, bounds: &TensionBounds) -> [HalfPlane; 3] {
         self.0.map(|j| {

@@ -40,9 +40,9 @@ use crate::infeasibility;
 use crate::interior_point::{Objective, interior_point};
 use crate::linear_program::{self, Linear, write_tensions};
 use crate::minimum_norm::{exact_small, minimum_norm};
-use crate::null_space::{self, NullSpace};
+use crate::null_space::{self, FourQr, NullSpace};
 use crate::outcome::validate;
-use crate::planar_active_set;
+use crate::planar_active_set::{self, Triple};
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
 use crate::{
@@ -129,6 +129,19 @@ pub struct TensionSolver {
     /// The central point of the current problem is known to fail its margin (tested four at a
     /// time by [`TensionSolver::is_feasible_four_6x8`]): `central` is not tried again.
     off_centre: bool,
+    /// The last triple of bound constraints that proved a problem infeasible (l2, r = 2,
+    /// `is_feasible`): grid neighbours are often infeasible for the same three cables, so it is
+    /// tried before the active set. Any triple is safe to try: the proof is rigorous whatever
+    /// its direction (module `infeasibility`), so this memory never changes a verdict.
+    separating: Option<Triple>,
+    /// The wrench-space direction of the last proof of infeasibility of a 6 × 8 problem, tried
+    /// on the next four problems of [`TensionSolver::is_feasible_four_6x8`] before their null
+    /// spaces (dropped after four feasible ones): as safe as `separating`.
+    separating_y: Option<[f64; 6]>,
+    /// The QR of the four wrench matrices of [`TensionSolver::is_feasible_four_6x8`], and the
+    /// lane of the current problem: read only by a proof of infeasibility.
+    four_qr: FourQr,
+    lane: Option<usize>,
 }
 
 impl TensionSolver {
@@ -148,6 +161,10 @@ impl TensionSolver {
             t: Vec::new(),
             prepared: None,
             off_centre: false,
+            separating: None,
+            separating_y: None,
+            four_qr: FourQr::default(),
+            lane: None,
         }
     }
 
@@ -229,13 +246,26 @@ impl TensionSolver {
         w: &mut DMatrix<f64>,
     ) -> [Result<bool, TensionError>; null_space::LANES] {
         let we = external_wrench.as_slice();
+        let wanted_bits: u32 = (0..null_space::LANES)
+            .map(|l| u32::from(wanted[l]) << l)
+            .sum();
+        // The direction of the last proof of infeasibility, on all four problems at once.
+        let proved = match self.separating_y {
+            Some(y) if self.method == Method::L2 && wanted_bits != 0 => {
+                infeasibility::four_6x8_separated(columns, we, bounds, &y) & wanted_bits
+            }
+            _ => 0,
+        };
+        if proved != 0 && proved == wanted_bits {
+            return [const { Ok(false) }; null_space::LANES];
+        }
         let lanes = (matches!(
             self.method,
             Method::L1 | Method::L1Max | Method::L2 | Method::L2Max | Method::Barycenter
         ) && we.len() == 6
             && bounds.len() == 8
             && wanted.iter().any(|&x| x))
-        .then(|| null_space::four_6x8(columns, we));
+        .then(|| null_space::four_6x8(columns, we, &mut self.four_qr));
         // Bits of the lanes: certified at the central point (l2 only), central point outside
         // its margin, W finite (with w_ext finite: validated).
         let (certified, outside, valid) = match &lanes {
@@ -250,8 +280,8 @@ impl TensionSolver {
         if w.shape() != (6, 8) {
             *w = DMatrix::zeros(6, 8);
         }
-        std::array::from_fn(|l| {
-            if !wanted[l] {
+        let verdicts = std::array::from_fn(|l| {
+            if !wanted[l] || proved >> l & 1 == 1 {
                 return Ok(false);
             }
             if certified >> l & 1 == 1 {
@@ -264,6 +294,7 @@ impl TensionSolver {
             }
             let problem = TensionProblem::new(w, external_wrench, bounds);
             self.prepared = lanes.as_ref().map(|ns| ns.write_lane(l, &mut self.ns));
+            self.lane = lanes.as_ref().map(|_| l);
             self.off_centre = outside >> l & 1 == 1;
             let verdict = if valid >> l & 1 == 1 {
                 // `run` without `validate`, done in lanes (6 × 8, 8 bounds, W and w_ext
@@ -273,9 +304,15 @@ impl TensionSolver {
                 self.run(&problem, true)
             };
             self.prepared = None;
+            self.lane = None;
             self.off_centre = false;
             verdict.map(|out| out.is_ok())
-        })
+        });
+        // Far from an infeasible region, trying the last direction only costs time.
+        if proved == 0 && verdicts.iter().all(|v| matches!(v, Ok(true))) {
+            self.separating_y = None;
+        }
+        verdicts
     }
 
     /// Like [`TensionSolver::solve`] but writes the tensions into `tensions` (resized to n) and
@@ -416,6 +453,46 @@ impl TensionSolver {
         match self.prepared.take() {
             Some(prepared) => prepared,
             None => self.ns.compute(p.wrench_matrix, p.external_wrench),
+        }
+    }
+
+    /// Whether the three constraints of `triple` prove that no tension of `p` passes the
+    /// certificate ([`infeasibility::triple_proves_empty`]; `false`: not proved). A triple kept
+    /// from a problem with more cables is not proved.
+    fn proves_empty(&mut self, triple: Triple, p: &TensionProblem) -> bool {
+        if !triple.fits(self.ns.n) {
+            return false;
+        }
+        let planes = triple.planes(&self.ns, p.bounds);
+        let Some(mu) = infeasibility::multipliers(&planes) else {
+            return false;
+        };
+        if !self.ns.has_qr() {
+            match self.lane {
+                // The lane's QR, computed with its null space in `is_feasible_four_6x8`.
+                Some(l) => self.four_qr.write_lane(l, &mut self.ns),
+                None => {
+                    if self.ns.keep_qr(p.wrench_matrix, p.external_wrench).is_err() {
+                        return false;
+                    }
+                }
+            }
+        }
+        match infeasibility::direction_proves_empty(
+            &planes,
+            &mu,
+            &self.ns,
+            p.wrench_matrix,
+            p.external_wrench,
+            p.bounds,
+        ) {
+            Some(y) => {
+                if p.wrench_matrix.shape() == (6, 8) {
+                    self.separating_y = Some(y);
+                }
+                true
+            }
+            None => false,
         }
     }
 
@@ -564,6 +641,11 @@ impl TensionSolver {
                     return Ok(Ok(Some(residual)));
                 }
                 if verdict_only && method == Method::L2 && r == 2 {
+                    if let Some(triple) = self.separating
+                        && self.proves_empty(triple, p)
+                    {
+                        return Ok(Err(Infeasibility::NoFeasibleTension));
+                    }
                     match planar_active_set::l2_search(&self.ns, p.bounds) {
                         Ok(l) => {
                             write_tensions(&self.ns, l, &mut self.t);
@@ -577,14 +659,8 @@ impl TensionSolver {
                             }
                         }
                         // No tension passes the certificate: the verdict of every solve.
-                        Err(Some(triple))
-                            if infeasibility::triple_proves_empty(
-                                &triple.planes(&self.ns, p.bounds),
-                                p.wrench_matrix,
-                                p.external_wrench,
-                                p.bounds,
-                            ) =>
-                        {
+                        Err(Some(triple)) if self.proves_empty(triple, p) => {
+                            self.separating = Some(triple);
                             return Ok(Err(Infeasibility::NoFeasibleTension));
                         }
                         Err(_) => {}

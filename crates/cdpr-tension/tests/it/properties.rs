@@ -562,3 +562,108 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// One l2 solver reused along lines of poses, four at a time, as a workspace grid uses it:
+    /// its memory of the last separating triple and wrench-space direction (tried on the next
+    /// poses before their null spaces) never changes a verdict. Each verdict equals a fresh
+    /// solver's `is_feasible` and `solve`; the lines cross feasible and infeasible regions.
+    #[test]
+    #[allow(clippy::needless_range_loop)]
+    fn a_reused_solver_along_grid_lines_keeps_every_verdict(
+        start in (-1.2f64..1.2, -1.2f64..1.2, -0.2f64..2.2),
+        step in (-0.1f64..0.1, -0.1f64..0.1, -0.1f64..0.1),
+        tilt in (-0.3f64..0.3, -0.3f64..0.3, -0.3f64..0.3),
+        mass in 1.0f64..40.0,
+        lo in 0.5f64..50.0,
+        span in 200.0f64..1500.0,
+    ) {
+        let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
+        let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * mass, 0.0, 0.0, 0.0]);
+        let b = TensionBounds::uniform(8, lo, lo + span).unwrap();
+        let mut four = TensionSolver::new(Method::L2);
+        let mut scratch = DMatrix::zeros(1, 1);
+        for group in 0..24 {
+            let mut columns = [[[0.0; 4]; 6]; 8];
+            let mut matrices = Vec::new();
+            for l in 0..4 {
+                let k = (4 * group + l) as f64;
+                let centre = nalgebra::Vector3::new(
+                    start.0 + k * step.0,
+                    start.1 + k * step.1,
+                    start.2 + k * step.2,
+                );
+                let pose = Pose::spatial(centre, tilt.0, tilt.1, tilt.2);
+                let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+                for j in 0..8 {
+                    for i in 0..6 {
+                        columns[j][i][l] = w[(i, j)];
+                    }
+                }
+                matrices.push(w);
+            }
+            let got = four.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
+            for l in 0..4 {
+                let p = TensionProblem::new(&matrices[l], &we, &b);
+                let expected = TensionSolver::new(Method::L2).is_feasible(&p).unwrap();
+                prop_assert_eq!(*got[l].as_ref().unwrap(), expected, "group {} lane {}", group, l);
+                prop_assert_eq!(expected, solve(Method::L2, &p).is_feasible());
+            }
+        }
+    }
+}
+
+/// The workspace grid of the issue-17 bench (25³ poses over the frame of the 8-cable robot,
+/// 10 kg, bounds [1, 1000] N), in grid order, four poses at a time through one l2 solver:
+/// every verdict is a fresh solver's `is_feasible`, and the grid has both verdicts in numbers
+/// (11 004 feasible poses, as the bench reports), so the solver's memory of separating
+/// triples and directions is exercised.
+#[test]
+fn the_bench_grid_through_one_solver_keeps_every_verdict() {
+    let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
+    let (lo, hi) = robot.frame_bounding_box();
+    let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
+    let b = TensionBounds::uniform(8, 1.0, 1000.0).unwrap();
+    let mut four = TensionSolver::new(Method::L2);
+    let mut scratch = DMatrix::zeros(1, 1);
+    // `Grid::coordinate` (x fastest, as the grid visits its points).
+    let at = |i: usize, a: f64, b: f64| {
+        if i == 24 {
+            b
+        } else {
+            a + (i as f64 / 24.0) * (b - a)
+        }
+    };
+    let points: Vec<nalgebra::Vector3<f64>> = (0..25usize.pow(3))
+        .map(|f| {
+            let (i, j, k) = (f % 25, f / 25 % 25, f / 625);
+            nalgebra::Vector3::new(at(i, lo.x, hi.x), at(j, lo.y, hi.y), at(k, lo.z, hi.z))
+        })
+        .collect();
+    let mut feasible = 0;
+    for group in points.chunks(4) {
+        let mut columns = [[[0.0; 4]; 6]; 8];
+        let mut matrices = Vec::new();
+        for (l, p) in group.iter().enumerate() {
+            let pose = Pose::spatial(*p, 0.0, 0.0, 0.0);
+            let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+            for j in 0..8 {
+                for i in 0..6 {
+                    columns[j][i][l] = w[(i, j)];
+                }
+            }
+            matrices.push(w);
+        }
+        let wanted: [bool; 4] = std::array::from_fn(|l| l < group.len());
+        let got = four.is_feasible_four_6x8(&columns, wanted, &we, &b, &mut scratch);
+        for (l, w) in matrices.iter().enumerate() {
+            let p = TensionProblem::new(w, &we, &b);
+            let expected = TensionSolver::new(Method::L2).is_feasible(&p).unwrap();
+            assert_eq!(*got[l].as_ref().unwrap(), expected, "pose {:?}", group[l]);
+            feasible += usize::from(expected);
+        }
+    }
+    assert_eq!(feasible, 11_004);
+}
