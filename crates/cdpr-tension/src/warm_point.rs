@@ -269,7 +269,11 @@ mod tests {
                     }
                     ws.push(w);
                 }
-                let four = null_spaces(&columns, we.as_slice());
+                let four = null_spaces(
+                    &columns,
+                    we.as_slice(),
+                    &mut crate::null_space::FourQr::default(),
+                );
                 let c = central_points(&four, &columns, we.as_slice(), &b);
                 let todo = c.finite & !c.certified;
                 if let Some(tw) = warm {
