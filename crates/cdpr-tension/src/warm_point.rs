@@ -166,19 +166,28 @@ pub(crate) fn warm_6x8_lanes<V: F64x4>(
     let lw = nearest(v, four, &target);
     let u = [lw[0].sub(lc[0]), lw[1].sub(lc[1])];
     let (mut x, hit) = chord_middle(v, four, bounds, lc, u);
-    if V::bits(hit) & todo != todo {
+    let mut found = V::bits(hit);
+    if found & todo != todo {
         // Across the line, through λ_w, where it missed.
-        let (y, _) = chord_middle(v, four, bounds, lw, [u[1].neg(), u[0]]);
+        let (y, across) = chord_middle(v, four, bounds, lw, [u[1].neg(), u[0]]);
         x = [V::select(hit, x[0], y[0]), V::select(hit, x[1], y[1])];
+        found |= V::bits(across);
+    }
+    // Lanes without a chord, or outside the margin, are not certified: the rest is skipped
+    // when no lane is left (the same branches in both builds).
+    let todo = todo & found & regular(v, four);
+    if todo == 0 || !we.iter().all(|e| e.is_finite()) {
+        return 0;
     }
     let tx = tensions(v, four, x);
     for (d, ti) in t.iter_mut().zip(&tx) {
         *d = ti.to_array();
     }
-    if !we.iter().all(|e| e.is_finite()) {
+    let todo = todo & inside_margin(v, &tx, bounds);
+    if todo == 0 {
         return 0;
     }
-    todo & regular(v, four) & inside_margin(v, &tx, bounds) & balanced(v, columns, we, &tx)
+    todo & balanced(v, columns, we, &tx)
 }
 
 /// The middle of the chord {a + s u : every t_i inside its bounds by the margin} of each lane,
