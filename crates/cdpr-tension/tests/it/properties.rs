@@ -586,24 +586,7 @@ proptest! {
         let mut four = TensionSolver::new(Method::L2);
         let mut scratch = DMatrix::zeros(1, 1);
         for group in 0..24 {
-            let mut columns = [[[0.0; 4]; 6]; 8];
-            let mut matrices = Vec::new();
-            for l in 0..4 {
-                let k = (4 * group + l) as f64;
-                let centre = nalgebra::Vector3::new(
-                    start.0 + k * step.0,
-                    start.1 + k * step.1,
-                    start.2 + k * step.2,
-                );
-                let pose = Pose::spatial(centre, tilt.0, tilt.1, tilt.2);
-                let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
-                for j in 0..8 {
-                    for i in 0..6 {
-                        columns[j][i][l] = w[(i, j)];
-                    }
-                }
-                matrices.push(w);
-            }
+            let (columns, matrices) = four_along_a_line(&robot, start, step, tilt, group);
             let got = four.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
             for l in 0..4 {
                 let p = TensionProblem::new(&matrices[l], &we, &b);
@@ -687,26 +670,8 @@ proptest! {
         let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
         let we = DVector::from_vec(vec![0.0, 0.0, -9.81 * mass, 0.0, 0.0, 0.0]);
         let b = TensionBounds::uniform(8, lo, lo + span).unwrap();
-        let lanes = |origin: (f64, f64, f64), group: usize| {
-            let mut columns = [[[0.0; 4]; 6]; 8];
-            let mut matrices = Vec::new();
-            for l in 0..4 {
-                let k = (4 * group + l) as f64;
-                let p = nalgebra::Vector3::new(
-                    origin.0 + k * step.0,
-                    origin.1 + k * step.1,
-                    origin.2 + k * step.2,
-                );
-                let w = robot.inverse_kinematics(&Pose::spatial(p, 0.0, 0.0, 0.0)).unwrap().wrench_matrix();
-                for j in 0..8 {
-                    for i in 0..6 {
-                        columns[j][i][l] = w[(i, j)];
-                    }
-                }
-                matrices.push(w);
-            }
-            (columns, matrices)
-        };
+        let flat = (0.0, 0.0, 0.0);
+        let lanes = |origin, group| four_along_a_line(&robot, origin, step, flat, group);
         let mut scratch = DMatrix::zeros(1, 1);
         let mut path = TensionSolver::new(Method::L2);
         let mut warmed = TensionSolver::new(Method::L2);
@@ -729,4 +694,36 @@ proptest! {
             }
         }
     }
+}
+
+/// The wrench matrices of the poses start + k·step, k = 4·group … 4·group + 3, at the
+/// orientation `tilt` (XYZ angles, rad) of `robot` (6 × 8), in lanes (`columns[j][i][l]`) and
+/// one by one: four neighbours of a grid line.
+#[allow(clippy::needless_range_loop)]
+fn four_along_a_line(
+    robot: &cdpr_kinematics::Robot,
+    start: (f64, f64, f64),
+    step: (f64, f64, f64),
+    tilt: (f64, f64, f64),
+    group: usize,
+) -> ([[[f64; 4]; 6]; 8], Vec<DMatrix<f64>>) {
+    let mut columns = [[[0.0; 4]; 6]; 8];
+    let mut matrices = Vec::new();
+    for l in 0..4 {
+        let k = (4 * group + l) as f64;
+        let centre = nalgebra::Vector3::new(
+            start.0 + k * step.0,
+            start.1 + k * step.1,
+            start.2 + k * step.2,
+        );
+        let pose = Pose::spatial(centre, tilt.0, tilt.1, tilt.2);
+        let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+        for j in 0..8 {
+            for i in 0..6 {
+                columns[j][i][l] = w[(i, j)];
+            }
+        }
+        matrices.push(w);
+    }
+    (columns, matrices)
 }
