@@ -143,8 +143,9 @@ pub struct TensionSolver {
     /// lane of the current problem: read only by a proof of infeasibility.
     four_qr: FourQr,
     lane: Option<usize>,
-    /// The last certified tensions of a verdict of [`TensionSolver::is_feasible_four_6x8`]
-    /// (l2, r = 2): the warm candidate of the next problem (module `warm_point`).
+    /// The last certified tensions of a verdict of [`TensionSolver::is_feasible_four_6x8`] that
+    /// needed more than the central point (l2, r = 2): they propose the second candidate of the
+    /// next problems (module `warm_point`; it never changes a verdict).
     warm: WarmPoint,
 }
 
@@ -278,7 +279,7 @@ impl TensionSolver {
                 let c = central_point::four_6x8(ns, columns, we, bounds);
                 let we_finite = we.iter().all(|e| e.is_finite());
                 let valid = if we_finite { c.finite } else { 0 };
-                // The warm candidate where the central point failed (module `warm_point`).
+                // A second candidate where the central point failed (module `warm_point`).
                 let todo = wanted_bits & !proved & valid & !c.certified;
                 let warm = self.warm.four_6x8(ns, columns, we, bounds, todo);
                 (c.certified | warm, !c.inside, valid)
