@@ -638,9 +638,6 @@ impl TensionSolver {
                 )
             }
             _ => {
-                // A null space prepared in lanes: a grid, whose consecutive problems are
-                // neighbours (the warm candidate of l2).
-                let in_grid = self.prepared.is_some();
                 if let Err(condition) = self.null_space(p) {
                     return Ok(Err(Infeasibility::SingularPose { condition }));
                 }
@@ -667,7 +664,9 @@ impl TensionSolver {
                                 p.bounds,
                                 &mut self.t,
                             ) {
-                                if in_grid {
+                                if self.lane.is_some() {
+                                    // A grid's problem (`is_feasible_four_6x8`): its
+                                    // neighbours' second candidate (module `warm_point`).
                                     self.warm.remember(&self.t);
                                 }
                                 return Ok(Ok(Some(residual)));
