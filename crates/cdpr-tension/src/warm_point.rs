@@ -35,10 +35,12 @@
 //! rounding of t0 + N λ) show that the feasible polygon has interior around that λ, where the
 //! l2 active set, the clipped polygon and so every method's `solve` find a feasible point too
 //! (the argument of the central point: `planar_active_set::central_point`, and
-//! `docs/algorithms.md`, "Feasibility verdicts at r = 2"). A lane whose candidate fails goes on
-//! exactly as without it, so every "infeasible" is still the method's own verdict. Hence a
-//! grid verdict depends neither on which thread evaluates which pose nor on their order: the
-//! warm tensions change only how fast "feasible" is found.
+//! `docs/algorithms.md`, "Feasibility verdicts at r = 2"); nor can a Farkas proof of
+//! infeasibility (module `infeasibility`) succeed there, since it shows that no tension passes
+//! the certificate. A lane whose candidate fails goes on exactly as without it, so every
+//! "infeasible" is still the method's own verdict. Hence a grid verdict depends neither on
+//! which thread evaluates which pose nor on their order: the remembered tensions change only
+//! how fast "feasible" is found.
 //!
 //! Each lane performs the same operations in the same order in the AVX2 build (chosen at run
 //! time) and the portable one, without fused multiply–adds: the same bits.
