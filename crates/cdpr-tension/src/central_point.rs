@@ -26,6 +26,9 @@
 //! whether the scalar central point would fail its margin (then it need not be tried again), and
 //! [`FourCentralPoints::finite`] whether W needs no validation.
 //!
+//! Its steps ([`nearest`], [`tensions`], [`inside_margin`], [`balanced`]) also test the second
+//! candidate of the lanes whose central point fails (module `warm_point`).
+//!
 //! ## References
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6).
 //! - Thesis eqs. (6.11), (6.21) (the certificate).
@@ -163,8 +166,8 @@ pub(crate) fn tensions<V: F64x4>(v: V, four: &FourNullSpaces, l: [V; 2]) -> [V; 
     t
 }
 
-/// Lanes whose every t_i is inside its bounds by `central_margin` (as
-/// `planar_active_set::inside_margin`; NaN and an infinite t_max fail).
+/// Lanes whose every t_i is inside its bounds by `central_margin`, as the test of
+/// `planar_active_set::central_point` (NaN and an infinite t_max fail).
 #[inline(always)]
 pub(crate) fn inside_margin<V: F64x4>(v: V, t: &[V; 8], bounds: &TensionBounds) -> u32 {
     let (lo, hi) = (&bounds.min().as_slice()[..8], &bounds.max().as_slice()[..8]);

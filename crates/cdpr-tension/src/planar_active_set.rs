@@ -182,34 +182,23 @@ pub(crate) fn central_point(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2
     debug_assert_eq!(ns.r(), 2);
     let n = ns.n;
     let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
-    let (n1, n2) = (&ns.basis[..n], &ns.basis[n..2 * n]);
+    let (n1, n2, t0) = (&ns.basis[..n], &ns.basis[n..2 * n], &ns.t0[..n]);
     let mut l = [-ns.g[0], -ns.g[1]];
     for i in 0..n {
         let mid = 0.5 * (lo[i] + hi[i]);
         l[0] += n1[i] * mid;
         l[1] += n2[i] * mid;
     }
-    inside_margin(ns, bounds, l).then_some(l)
-}
-
-/// Whether every tension t_i = t0_i + N_i λ is inside its bounds by [`central_margin`] (NaN
-/// and an infinite t_max fail): the test of [`central_point`], shared with the warm point of
-/// grids (`warm_point::WarmPoint`), whose verdicts rest on it in the same way.
-#[inline(always)]
-pub(crate) fn inside_margin(ns: &NullSpace, bounds: &TensionBounds, l: P2) -> bool {
-    let n = ns.n;
-    let (lo, hi) = (&bounds.min().as_slice()[..n], &bounds.max().as_slice()[..n]);
-    let (n1, n2, t0) = (&ns.basis[..n], &ns.basis[n..2 * n], &ns.t0[..n]);
     for i in 0..n {
         let margin = central_margin(lo[i], hi[i]);
         // As `NullSpace::tension2`.
         let t = t0[i] + n1[i] * l[0] + n2[i] * l[1];
         // NaN and an infinite t_max fail here.
         if !(t - lo[i] > margin && hi[i] - t > margin) {
-            return false;
+            return None;
         }
     }
-    true
+    Some(l)
 }
 
 /// The l2 optimum λ (the projection of −g onto the feasible polygon) by the active set of the
