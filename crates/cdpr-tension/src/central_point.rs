@@ -26,6 +26,9 @@
 //! whether the scalar central point would fail its margin (then it need not be tried again), and
 //! [`FourCentralPoints::finite`] whether W needs no validation.
 //!
+//! Its steps ([`nearest`], [`tensions`], [`inside_margin`], [`balanced`]) also test the second
+//! candidate of the lanes whose central point fails (module `warm_point`).
+//!
 //! ## References
 //! - Picard, Caro, Plestan & Claveau 2020, eqs. (5)–(6).
 //! - Thesis eqs. (6.11), (6.21) (the certificate).
@@ -103,47 +106,18 @@ pub(crate) fn four_6x8_lanes<V: F64x4>(
         }
     }
     let finite = V::bits(nan.eq(zero));
-    // `FourNullSpaces::write_lane`: singular for a zero row or pivot, a NaN ratio or one
-    // below the threshold.
-    let not_zero: u32 = (0..LANES).map(|l| u32::from(four.zero[l] == 0) << l).sum();
-    let regular = not_zero & V::bits(v.load(four.ratio).ge(v.splat(SINGULARITY_RATIO)));
+    let regular = regular(v, four);
     // λ_c = −g + Σ_i N_i mid_i (`central_point`, the same order).
-    let (n1, n2) = (&four.basis[0], &four.basis[1]);
-    let mut l0 = v.load(four.g[0]).neg();
-    let mut l1 = v.load(four.g[1]).neg();
+    let mut mid = [zero; 8];
     for i in 0..8 {
-        let mid = v.splat(0.5 * (lo[i] + hi[i]));
-        l0 = l0.add(v.load(n1[i]).mul(mid));
-        l1 = l1.add(v.load(n2[i]).mul(mid));
+        mid[i] = v.splat(0.5 * (lo[i] + hi[i]));
     }
-    // t_i = t0_i + N_i1 λ1 + N_i2 λ2 (`NullSpace::tension2`) and the margin test (NaN and an
-    // infinite t_max fail it).
-    let mut inside = (1u32 << LANES) - 1;
-    let mut t = [zero; 8];
-    for i in 0..8 {
-        let margin = v.splat(central_margin(lo[i], hi[i]));
-        let ti = v
-            .load(four.t0[i])
-            .add(v.load(n1[i]).mul(l0))
-            .add(v.load(n2[i]).mul(l1));
-        let (lo_i, hi_i) = (v.splat(lo[i]), v.splat(hi[i]));
-        inside &= V::bits(ti.sub(lo_i).gt(margin)) & V::bits(hi_i.sub(ti).gt(margin));
-        t[i] = ti;
-    }
-    // The residual test of `snap_and_certify` against max(1, ‖w_ext‖∞) (`equilibrium_test`):
-    // its residual max_k |r_k| is finite and ≤ tol exactly when every |r_k| ≤ tol (tol is
-    // finite for a finite w_ext; a NaN r_k fails both).
+    let l = nearest(v, four, &mid);
+    // t_i = t0_i + N_i1 λ1 + N_i2 λ2 (`NullSpace::tension2`) and the margin test.
+    let t = tensions(v, four, l);
+    let inside = inside_margin(v, &t, bounds);
+    let balanced = balanced(v, columns, we, &t);
     let we_finite = we.iter().all(|e| e.is_finite());
-    let we_max = we.iter().fold(0.0f64, |m, e| m.max(e.abs()));
-    let tol = v.splat(EQUILIBRIUM_TOLERANCE * 1f64.max(we_max));
-    let mut balanced = (1u32 << LANES) - 1;
-    for (k, &we_k) in we.iter().enumerate() {
-        let mut r = v.splat(we_k);
-        for (column, &ti) in columns.iter().zip(&t) {
-            r = r.add(v.load(column[k]).mul(ti));
-        }
-        balanced &= V::bits(r.abs().le(tol));
-    }
     let certified = if we_finite {
         finite & regular & inside & balanced
     } else {
@@ -154,6 +128,80 @@ pub(crate) fn four_6x8_lanes<V: F64x4>(
         inside,
         certified,
     }
+}
+
+/// Lanes whose null space is regular, as `FourNullSpaces::write_lane` decides: singular for a
+/// zero row or pivot, a NaN ratio or one below the threshold.
+#[inline(always)]
+pub(crate) fn regular<V: F64x4>(v: V, four: &FourNullSpaces) -> u32 {
+    let not_zero: u32 = (0..LANES).map(|l| u32::from(four.zero[l] == 0) << l).sum();
+    not_zero & V::bits(v.load(four.ratio).ge(v.splat(SINGULARITY_RATIO)))
+}
+
+/// λ = Nᵀ target − g = −g + Σ_i N_i target_i of each lane (`central_point`'s order), the point
+/// of the affine set t = t0 + N λ nearest `target` (N orthonormal).
+#[inline(always)]
+pub(crate) fn nearest<V: F64x4>(v: V, four: &FourNullSpaces, target: &[V; 8]) -> [V; 2] {
+    let (n1, n2) = (&four.basis[0], &four.basis[1]);
+    let mut l0 = v.load(four.g[0]).neg();
+    let mut l1 = v.load(four.g[1]).neg();
+    for i in 0..8 {
+        l0 = l0.add(v.load(n1[i]).mul(target[i]));
+        l1 = l1.add(v.load(n2[i]).mul(target[i]));
+    }
+    [l0, l1]
+}
+
+/// t_i = t0_i + N_i1 λ1 + N_i2 λ2 of each lane, as `NullSpace::tension2`.
+#[inline(always)]
+pub(crate) fn tensions<V: F64x4>(v: V, four: &FourNullSpaces, l: [V; 2]) -> [V; 8] {
+    let (n1, n2) = (&four.basis[0], &four.basis[1]);
+    let mut t = [l[0]; 8];
+    for i in 0..8 {
+        t[i] = v
+            .load(four.t0[i])
+            .add(v.load(n1[i]).mul(l[0]))
+            .add(v.load(n2[i]).mul(l[1]));
+    }
+    t
+}
+
+/// Lanes whose every t_i is inside its bounds by `central_margin`, as the test of
+/// `planar_active_set::central_point` (NaN and an infinite t_max fail).
+#[inline(always)]
+pub(crate) fn inside_margin<V: F64x4>(v: V, t: &[V; 8], bounds: &TensionBounds) -> u32 {
+    let (lo, hi) = (&bounds.min().as_slice()[..8], &bounds.max().as_slice()[..8]);
+    let mut inside = (1u32 << LANES) - 1;
+    for i in 0..8 {
+        let margin = v.splat(central_margin(lo[i], hi[i]));
+        let (lo_i, hi_i) = (v.splat(lo[i]), v.splat(hi[i]));
+        inside &= V::bits(t[i].sub(lo_i).gt(margin)) & V::bits(hi_i.sub(t[i]).gt(margin));
+    }
+    inside
+}
+
+/// Lanes whose residual passes the first test of `snap_and_certify` against
+/// max(1, ‖w_ext‖∞) (`equilibrium_test`): max_k |r_k| is finite and ≤ tol exactly when every
+/// |r_k| ≤ tol (tol is finite for a finite w_ext; a NaN r_k fails both). The caller checks
+/// that w_ext is finite.
+#[inline(always)]
+pub(crate) fn balanced<V: F64x4>(
+    v: V,
+    columns: &[[[f64; LANES]; 6]; 8],
+    we: &[f64; 6],
+    t: &[V; 8],
+) -> u32 {
+    let we_max = we.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    let tol = v.splat(EQUILIBRIUM_TOLERANCE * 1f64.max(we_max));
+    let mut balanced = (1u32 << LANES) - 1;
+    for (k, &we_k) in we.iter().enumerate() {
+        let mut r = v.splat(we_k);
+        for (column, &ti) in columns.iter().zip(t) {
+            r = r.add(v.load(column[k]).mul(ti));
+        }
+        balanced &= V::bits(r.abs().le(tol));
+    }
+    balanced
 }
 
 #[cfg(test)]

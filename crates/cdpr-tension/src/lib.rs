@@ -84,6 +84,7 @@ pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
 mod vertex_enumeration;
+mod warm_point;
 
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};

@@ -45,6 +45,7 @@ use crate::outcome::validate;
 use crate::planar_active_set::{self, Triple};
 use crate::sotda::{Sotda, SotdaSettings};
 use crate::vertex_enumeration::VertexSearch;
+use crate::warm_point::WarmPoint;
 use crate::{
     Infeasibility, Method, TensionBounds, TensionError, TensionOutcome, TensionProblem,
     TensionSolution, barycenter, quadratic_program,
@@ -142,6 +143,10 @@ pub struct TensionSolver {
     /// lane of the current problem: read only by a proof of infeasibility.
     four_qr: FourQr,
     lane: Option<usize>,
+    /// The last certified tensions of a verdict of [`TensionSolver::is_feasible_four_6x8`] that
+    /// needed more than the central point (l2, r = 2): they propose the second candidate of the
+    /// next problems (module `warm_point`; it never changes a verdict).
+    warm: WarmPoint,
 }
 
 impl TensionSolver {
@@ -165,6 +170,7 @@ impl TensionSolver {
             separating_y: None,
             four_qr: FourQr::default(),
             lane: None,
+            warm: WarmPoint::default(),
         }
     }
 
@@ -273,7 +279,10 @@ impl TensionSolver {
                 let c = central_point::four_6x8(ns, columns, we, bounds);
                 let we_finite = we.iter().all(|e| e.is_finite());
                 let valid = if we_finite { c.finite } else { 0 };
-                (c.certified, !c.inside, valid)
+                // A second candidate where the central point failed (module `warm_point`).
+                let todo = wanted_bits & !proved & valid & !c.certified;
+                let warm = self.warm.four_6x8(ns, columns, we, bounds, todo);
+                (c.certified | warm, !c.inside, valid)
             }
             _ => (0, 0, 0),
         };
@@ -655,6 +664,11 @@ impl TensionSolver {
                                 p.bounds,
                                 &mut self.t,
                             ) {
+                                if self.lane.is_some() {
+                                    // A grid's problem (`is_feasible_four_6x8`): its
+                                    // neighbours' second candidate (module `warm_point`).
+                                    self.warm.remember(&self.t);
+                                }
                                 return Ok(Ok(Some(residual)));
                             }
                         }

@@ -586,24 +586,7 @@ proptest! {
         let mut four = TensionSolver::new(Method::L2);
         let mut scratch = DMatrix::zeros(1, 1);
         for group in 0..24 {
-            let mut columns = [[[0.0; 4]; 6]; 8];
-            let mut matrices = Vec::new();
-            for l in 0..4 {
-                let k = (4 * group + l) as f64;
-                let centre = nalgebra::Vector3::new(
-                    start.0 + k * step.0,
-                    start.1 + k * step.1,
-                    start.2 + k * step.2,
-                );
-                let pose = Pose::spatial(centre, tilt.0, tilt.1, tilt.2);
-                let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
-                for j in 0..8 {
-                    for i in 0..6 {
-                        columns[j][i][l] = w[(i, j)];
-                    }
-                }
-                matrices.push(w);
-            }
+            let (columns, matrices) = four_along_a_line(&robot, start, step, tilt, group);
             let got = four.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
             for l in 0..4 {
                 let p = TensionProblem::new(&matrices[l], &we, &b);
@@ -666,4 +649,81 @@ fn the_bench_grid_through_one_solver_keeps_every_verdict() {
         }
     }
     assert_eq!(feasible, 11_004);
+}
+
+proptest! {
+    /// Along a straight path of an 8-cable spatial robot, four poses at a time through ONE
+    /// solver (l2: the warm candidate of the previous verdicts is tried where the central point
+    /// fails), every verdict is `solve`'s, and it does not depend on the solver's history: a
+    /// fresh solver, and one warmed on an unrelated path, give the same verdicts group by
+    /// group.
+    #[test]
+    #[allow(clippy::needless_range_loop)]
+    fn warm_verdicts_equal_solve_along_a_path(
+        start in (-1.0f64..1.0, -1.0f64..1.0, 0.0f64..2.0),
+        step in (-0.08f64..0.08, -0.08f64..0.08, -0.08f64..0.08),
+        other in (-1.0f64..1.0, -1.0f64..1.0, 0.0f64..2.0),
+        mass in 1.0f64..40.0,
+        lo in 0.5f64..20.0,
+        span in 200.0f64..2000.0,
+    ) {
+        let robot = cdpr_kinematics::reference_robots::ipanema_like_8();
+        let we = DVector::from_vec(vec![0.0, 0.0, -9.81 * mass, 0.0, 0.0, 0.0]);
+        let b = TensionBounds::uniform(8, lo, lo + span).unwrap();
+        let flat = (0.0, 0.0, 0.0);
+        let lanes = |origin, group| four_along_a_line(&robot, origin, step, flat, group);
+        let mut scratch = DMatrix::zeros(1, 1);
+        let mut path = TensionSolver::new(Method::L2);
+        let mut warmed = TensionSolver::new(Method::L2);
+        for group in 0..8 {
+            let (columns, _) = lanes(other, group);
+            let _ = warmed.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
+        }
+        let mut one = TensionSolver::new(Method::L2);
+        for group in 0..8 {
+            let (columns, matrices) = lanes(start, group);
+            let got = path.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
+            let fresh = TensionSolver::new(Method::L2)
+                .is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
+            let after = warmed.is_feasible_four_6x8(&columns, [true; 4], &we, &b, &mut scratch);
+            for l in 0..4 {
+                let expected = one.solve(&TensionProblem::new(&matrices[l], &we, &b)).unwrap().is_feasible();
+                prop_assert_eq!(got[l].as_ref().ok(), Some(&expected), "group {} lane {}", group, l);
+                prop_assert_eq!(fresh[l].as_ref().ok(), Some(&expected), "group {} lane {}", group, l);
+                prop_assert_eq!(after[l].as_ref().ok(), Some(&expected), "group {} lane {}", group, l);
+            }
+        }
+    }
+}
+
+/// The wrench matrices of the poses start + k·step, k = 4·group … 4·group + 3, at the
+/// orientation `tilt` (XYZ angles, rad) of `robot` (6 × 8), in lanes (`columns[j][i][l]`) and
+/// one by one: four neighbours of a grid line.
+#[allow(clippy::needless_range_loop)]
+fn four_along_a_line(
+    robot: &cdpr_kinematics::Robot,
+    start: (f64, f64, f64),
+    step: (f64, f64, f64),
+    tilt: (f64, f64, f64),
+    group: usize,
+) -> ([[[f64; 4]; 6]; 8], Vec<DMatrix<f64>>) {
+    let mut columns = [[[0.0; 4]; 6]; 8];
+    let mut matrices = Vec::new();
+    for l in 0..4 {
+        let k = (4 * group + l) as f64;
+        let centre = nalgebra::Vector3::new(
+            start.0 + k * step.0,
+            start.1 + k * step.1,
+            start.2 + k * step.2,
+        );
+        let pose = Pose::spatial(centre, tilt.0, tilt.1, tilt.2);
+        let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+        for j in 0..8 {
+            for i in 0..6 {
+                columns[j][i][l] = w[(i, j)];
+            }
+        }
+        matrices.push(w);
+    }
+    (columns, matrices)
 }
