@@ -209,7 +209,8 @@ pub(crate) fn l2_projection(ns: &NullSpace, bounds: &TensionBounds) -> Option<P2
 
 /// [`l2_projection`], or when it fails, the three constraints it ended with if it failed
 /// because no pair of them (nor one) could be kept: the candidates of a proof of emptiness
-/// ([`crate::infeasibility::triple_proves_empty`], through [`Triple::planes`]).
+/// ([`crate::infeasibility::multipliers`], [`crate::infeasibility::direction_proves_empty`],
+/// through [`Triple::planes`]).
 pub(crate) fn l2_search(ns: &NullSpace, bounds: &TensionBounds) -> Result<P2, Option<Triple>> {
     match l2_active_set(ns, bounds) {
         Ok((l, _)) => Ok(l),

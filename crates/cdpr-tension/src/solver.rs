@@ -466,8 +466,9 @@ impl TensionSolver {
     }
 
     /// Whether the three constraints of `triple` prove that no tension of `p` passes the
-    /// certificate ([`infeasibility::triple_proves_empty`]; `false`: not proved). A triple kept
-    /// from a problem with more cables is not proved.
+    /// certificate ([`infeasibility::multipliers`], then
+    /// [`infeasibility::direction_proves_empty`]; `false`: not proved). A triple kept from a
+    /// problem with more cables is not proved.
     fn proves_empty(&mut self, triple: Triple, p: &TensionProblem) -> bool {
         if !triple.fits(self.ns.n) {
             return false;
