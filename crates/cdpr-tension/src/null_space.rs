@@ -118,17 +118,14 @@ impl NullSpace {
         self.basis.resize(N * r, 0.0);
         self.g.resize(r, 0.0);
         let ws = w.as_slice();
-        // a[k] = row k of W (column k of Wᵀ).
-        let mut a = [[0.0f64; N]; M];
+        // qr.0[k] = row k of W (column k of Wᵀ), reduced in place; qr.1 the row permutation.
+        let mut qr: FixedQr<M, N> = ([[0.0f64; N]; M], [0usize; M], [0.0; M], [0.0; M]);
         let mut rows = [0.0f64; M];
-        let mut perm = [0usize; M];
-        let mut beta = [0.0f64; M];
-        let mut rdiag = [0.0f64; M];
         for k in 0..M {
             let mut s = 0.0;
             for i in 0..N {
                 let v = ws[i * M + k];
-                a[k][i] = v;
+                qr.0[k][i] = v;
                 s += v * v;
             }
             if s == 0.0 {
@@ -136,47 +133,22 @@ impl NullSpace {
                 return Err(f64::INFINITY);
             }
             rows[k] = s.sqrt();
-            perm[k] = k;
+            qr.1[k] = k;
         }
         let mut ratio = 1.0;
-        for k in 0..M {
-            let mut best = k;
-            let mut best_norm = -1.0;
-            for (j, col) in a.iter().enumerate().skip(k) {
-                let s: f64 = col[k..].iter().map(|v| v * v).sum();
-                if s > best_norm {
-                    best_norm = s;
-                    best = j;
-                }
-            }
-            if best != k {
-                a.swap(k, best);
-                perm.swap(k, best);
-            }
-            let norm = best_norm.sqrt();
-            if norm == 0.0 {
-                self.ratio = 0.0;
-                return Err(f64::INFINITY);
-            }
-            let x0 = a[k][k];
-            let alpha = if x0 >= 0.0 { -norm } else { norm };
-            a[k][k] = x0 - alpha;
-            let vtv: f64 = a[k][k..].iter().map(|v| v * v).sum();
-            let bk = 2.0 / vtv;
-            beta[k] = bk;
-            rdiag[k] = alpha;
-            ratio *= norm / rows[k];
-            let v = a[k];
-            for col in a.iter_mut().skip(k + 1) {
-                let mut s = 0.0;
-                for i in k..N {
-                    s += v[i] * col[i];
-                }
-                s *= bk;
-                for i in k..N {
-                    col[i] -= s * v[i];
-                }
-            }
+        // The M steps, each with its K known at compile time (loops of fixed length, fully
+        // unrolled); steps K ≥ M do nothing.
+        const { assert!(M <= 6) };
+        let regular = fixed_step::<0, M, N>(&mut qr, &rows, &mut ratio)
+            && fixed_step::<1, M, N>(&mut qr, &rows, &mut ratio)
+            && fixed_step::<2, M, N>(&mut qr, &rows, &mut ratio)
+            && fixed_step::<3, M, N>(&mut qr, &rows, &mut ratio)
+            && fixed_step::<4, M, N>(&mut qr, &rows, &mut ratio)
+            && fixed_step::<5, M, N>(&mut qr, &rows, &mut ratio);
+        let (a, perm, beta, rdiag) = (&qr.0, &qr.1, &qr.2, &qr.3);
+        if !regular {
+            self.ratio = 0.0;
+            return Err(f64::INFINITY);
         }
         self.ratio = ratio.min(1.0);
         if self.ratio.is_nan() || self.ratio < SINGULARITY_RATIO {
@@ -392,6 +364,63 @@ impl NullSpace {
             }
         }
     }
+}
+
+/// The QR under way in [`NullSpace::compute_fixed`]: rows of W being reduced (`a[k]` = column k
+/// of Wᵀ), row permutation, β and the diagonal of R.
+type FixedQr<const M: usize, const N: usize> = ([[f64; N]; M], [usize; M], [f64; M], [f64; M]);
+
+/// Step `K` of the Householder QR with column pivoting of [`NullSpace::compute_fixed`] (nothing
+/// for K ≥ M): the pivot, the reflection and its application to the remaining columns, the
+/// operations of the textbook loop in its order (the sums of `Iterator::sum` start at −0).
+/// `false` for a zero pivot.
+#[inline(always)]
+fn fixed_step<const K: usize, const M: usize, const N: usize>(
+    (a, perm, beta, rdiag): &mut FixedQr<M, N>,
+    rows: &[f64; M],
+    ratio: &mut f64,
+) -> bool {
+    if K >= M {
+        return true;
+    }
+    // Pivot: the first remaining column with the largest norm below row K.
+    let mut best = K;
+    let mut best_norm = -1.0;
+    for (j, col) in a.iter().enumerate().skip(K) {
+        let s: f64 = col[K..].iter().map(|v| v * v).sum();
+        if s > best_norm {
+            best_norm = s;
+            best = j;
+        }
+    }
+    if best != K {
+        a.swap(K, best);
+        perm.swap(K, best);
+    }
+    let norm = best_norm.sqrt();
+    if norm == 0.0 {
+        return false;
+    }
+    let x0 = a[K][K];
+    let alpha = if x0 >= 0.0 { -norm } else { norm };
+    a[K][K] = x0 - alpha;
+    let vtv: f64 = a[K][K..].iter().map(|v| v * v).sum();
+    let bk = 2.0 / vtv;
+    beta[K] = bk;
+    rdiag[K] = alpha;
+    *ratio *= norm / rows[K];
+    let v = a[K];
+    for col in a.iter_mut().skip(K + 1) {
+        let mut s = 0.0;
+        for i in K..N {
+            s += v[i] * col[i];
+        }
+        s *= bk;
+        for i in K..N {
+            col[i] -= s * v[i];
+        }
+    }
+    true
 }
 
 /// Poses per group of `four_6x8` and `TensionSolver::is_feasible_four_6x8` (four f64 lanes: one
