@@ -1,8 +1,7 @@
 //! The conventions the thesis leaves open, each settled by re-evaluating the 48 published designs
 //! of Tables 6.5–6.10 under every candidate and counting exact agreements (to the grid point).
 
-use super::published::{TABLES, angles};
-use super::tables::{cell_area, points_off};
+use super::published::{TABLES, angles, cell_area, points_off};
 use cdpr_tension::Method;
 use cdpr_workspace::synthesis::objective::THESIS_LOADS;
 use cdpr_workspace::synthesis::{DextrousArea, robot_from_design};

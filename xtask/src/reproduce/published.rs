@@ -292,6 +292,26 @@ pub fn rounding(printed: &[&str]) -> Vec<f64> {
         .collect()
 }
 
+/// Area of one grid cell of an m × m grid over [−1, 1]².
+pub fn cell_area(cables: usize) -> f64 {
+    let m = if cables == 3 { 100.0 } else { 50.0 };
+    (2.0 / m) * (2.0 / m)
+}
+
+/// Distance in grid points from `computed` to the interval of areas that print as `printed`
+/// (e.g. "1.019" stands for [1.0185, 1.0195]); 0 inside it.
+pub fn points_off(computed: f64, printed: &str, cables: usize) -> i64 {
+    let (a, half) = area(printed);
+    let excess = if computed > a + half {
+        computed - (a + half)
+    } else if computed < a - half {
+        computed - (a - half)
+    } else {
+        0.0
+    };
+    (excess / cell_area(cables)).round() as i64
+}
+
 /// A printed area and the half-width of its printed precision.
 pub fn area(printed: &str) -> (f64, f64) {
     let a = printed.parse().expect("published areas are numbers");

@@ -1,7 +1,8 @@
 //! docs/reproduction.md and target/reproduce/tables.json.
 
 use super::conventions::Conventions;
-use super::tables::{Reoptimised, Row, cell_area, evaluations_json};
+use super::published::cell_area;
+use super::tables::{Reoptimised, Row, evaluations_json};
 use serde_json::json;
 use std::fmt::Write;
 
