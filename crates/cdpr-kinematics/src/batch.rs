@@ -15,7 +15,7 @@
 //! ## References
 //! - Thesis eqs. (6.2)–(6.4), (6.11). Picard, Caro, Plestan & Claveau 2020, eqs. (1)–(2).
 
-use crate::inverse_kinematics::DEGENERATE_LENGTH;
+use crate::cable_state::DEGENERATE_LENGTH;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::Avx2;
 use crate::lanes::{F64x4, Portable};

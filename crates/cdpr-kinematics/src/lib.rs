@@ -38,6 +38,7 @@
 //! and poses) that every crate of the stack tests with.
 
 mod batch;
+mod cable_state;
 mod error;
 mod forward_kinematics;
 pub mod interference;
@@ -53,13 +54,14 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
+pub use cable_state::{CableState, PulleyState};
 pub use error::KinematicsError;
 pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
 pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
     closest_cables, min_cable_distance, platform_interference, segment_distance,
 };
-pub use inverse_kinematics::{CableState, PoseKinematics, PulleyState};
+pub use inverse_kinematics::PoseKinematics;
 pub use motion::MotionPattern;
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_kinematics::nalgebra::Vector3`) so that your types are the crate's types whatever

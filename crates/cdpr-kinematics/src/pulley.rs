@@ -45,7 +45,7 @@
 //!   kinematics; the `.wcrfx` model of WireLib's `doInverseKinematicsPulleyEx`).
 //! - CASPR (Lau et al.), `BaseRotatingPulleyAttachment`.
 
-use crate::inverse_kinematics::{CableState, PulleyState, straight_cable};
+use crate::cable_state::{CableState, PulleyState, straight_cable};
 use crate::{Cable, KinematicsError, Pulley};
 use nalgebra::{Matrix3, Vector3};
 
@@ -921,7 +921,7 @@ mod tests {
                 )),
             );
             let kin = robot.inverse_kinematics(&pose).unwrap();
-            let threshold = crate::inverse_kinematics::DEGENERATE_LENGTH
+            let threshold = crate::cable_state::DEGENERATE_LENGTH
                 * robot.length_scale().max(pose.position.norm());
             let (mut states, mut pulleys) = (vec![CableState::default(); n], vec![None; n]);
             update_cables_portable::<false>(
