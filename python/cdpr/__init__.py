@@ -22,6 +22,7 @@ from ._cdpr import (
     TensionResult,
     TrajectoryResult,
     WorkspaceResult,
+    __version__,
     thread_count,
 )
 
@@ -36,6 +37,7 @@ __all__ = [
     "TensionResult",
     "TrajectoryResult",
     "WorkspaceResult",
+    "__version__",
     "sweep",
     "thread_count",
 ]

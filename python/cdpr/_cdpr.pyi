@@ -13,6 +13,7 @@ IntArray = npt.NDArray[np.int64]
 Motion = Literal["point2", "planar", "point3", "spatial"]
 
 METHODS: List[str]
+__version__: str
 
 def thread_count() -> int: ...
 

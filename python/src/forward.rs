@@ -7,7 +7,7 @@
 //! status, and the smallest singular value of the Jacobian (the `cdpr forward` command).
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::{map_poses, run_batch, value_error};
 use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, Pose};
 use numpy::PyArrayDyn;

@@ -5,7 +5,7 @@
 //! `cdpr kinematics` command at one pose).
 
 use crate::arrays::{Rows, batch_shape, out_array, to_numpy, writable, zeros};
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::{Pose, PoseKinematics};
 use nalgebra::DMatrix;

@@ -1,6 +1,6 @@
 //! # cdpr (Python)
 //!
-//! The native module `cdpr._cdpr` behind the Python package `cdpr`: a [`robot::Robot`] class
+//! The native module `cdpr._cdpr` behind the Python package `cdpr`: a [`model::Robot`] class
 //! wrapping a robot file's [`cdpr_io::RobotDescription`], whose methods take numpy arrays of
 //! poses, run the crates' algorithms over the batch in parallel (rayon) with the GIL released,
 //! and return result objects holding numpy arrays.
@@ -12,6 +12,7 @@
 mod arrays;
 mod forward;
 mod kinematics;
+mod model;
 mod polytope;
 mod robot;
 mod tension;
@@ -28,6 +29,14 @@ use std::sync::{Arc, Mutex};
 /// A `ValueError` carrying the Rust error's message.
 pub(crate) fn value_error(e: impl Display) -> PyErr {
     PyValueError::new_err(e.to_string())
+}
+
+/// A count given from Python (`resolution`, `samples`, `max_iterations`): an `int` ≥ 0, a
+/// negative one is a `ValueError` naming the argument (not the `OverflowError` of a `usize`
+/// conversion).
+pub(crate) fn count(value: i64, name: &str) -> PyResult<usize> {
+    usize::try_from(value)
+        .map_err(|_| value_error(format!("{name} = {value}: expected an integer ≥ 0")))
 }
 
 /// Runs `f` and turns a panic into a `RuntimeError` (the last line of defence: library code
@@ -174,7 +183,7 @@ fn thread_count() -> usize {
 
 #[pymodule]
 fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add_class::<robot::Robot>()?;
+    m.add_class::<model::Robot>()?;
     m.add_class::<kinematics::KinematicsResult>()?;
     m.add_class::<forward::ForwardResult>()?;
     m.add_class::<tension::TensionResult>()?;
@@ -188,5 +197,6 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(kinematics::_ik_reference_buffers, m)?)?;
     m.add_class::<kinematics::IkBuffers>()?;
     m.add("METHODS", tension::method_names())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())
 }

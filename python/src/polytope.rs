@@ -8,7 +8,7 @@
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
 use crate::kinematics::pose_at;
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::PoseKinematics;

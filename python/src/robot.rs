@@ -2,10 +2,12 @@
 //!
 //! The Python `cdpr.Robot`: everything a robot file describes (geometry, tension bounds,
 //! limits, platform mass, axial stiffness), loaded from a file through `cdpr-io` or built from
-//! anchor arrays. Its analysis methods live in the modules named after them.
+//! anchor arrays: its Python methods. The struct itself is in module `model` (what the analysis
+//! modules read); each analysis method here calls the module named after it.
 
 use crate::arrays::{FloatArray, shape_string, to_numpy};
-use crate::value_error;
+use crate::model::Robot;
+use crate::{count, value_error};
 use cdpr_io::{Limits, RobotDescription};
 use cdpr_kinematics::{Cable, MotionPattern, Robot as Geometry};
 use cdpr_tension::TensionBounds;
@@ -15,38 +17,6 @@ use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use std::sync::Arc;
-
-/// A cable-driven parallel robot: geometry, tension bounds, workspace limits and platform mass.
-///
-/// Build one with :meth:`Robot.load` (a robot file) or :meth:`Robot.from_anchors` (arrays).
-/// Poses are rows of motion-pattern coordinates: ``(x, y)`` for ``point2``, ``(x, y, φ)`` for
-/// ``planar``, ``(x, y, z)`` for ``point3``, ``(x, y, z, rx, ry, rz)`` (XYZ Euler angles, rad)
-/// for ``spatial``. Every analysis method takes one pose, shape ``(DOF,)``, or a batch,
-/// shape ``(N, DOF)``; batches run in parallel with the GIL released.
-#[pyclass(module = "cdpr", frozen)]
-pub struct Robot {
-    pub desc: Arc<RobotDescription>,
-}
-
-impl Robot {
-    pub fn geometry(&self) -> &Geometry {
-        &self.desc.robot
-    }
-
-    pub fn motion_pattern(&self) -> MotionPattern {
-        self.desc.robot.motion()
-    }
-
-    /// Pose-coordinate hint for error messages.
-    pub fn pose_hint(&self) -> &'static str {
-        match self.motion_pattern() {
-            MotionPattern::Point2 => "poses (x, y) of a point2 robot",
-            MotionPattern::Planar => "poses (x, y, φ) of a planar robot",
-            MotionPattern::Point3 => "poses (x, y, z) of a point3 robot",
-            MotionPattern::Spatial => "poses (x, y, z, rx, ry, rz) of a spatial robot",
-        }
-    }
-}
 
 /// A per-cable value: a scalar or an array of length n.
 fn per_cable(obj: &Bound<'_, PyAny>, n: usize, what: &str) -> PyResult<Vec<f64>> {
@@ -182,11 +152,14 @@ impl Robot {
             .collect::<Result<Vec<_>, _>>()
             .map_err(value_error)?;
         let robot = Geometry::new(motion, cables).map_err(value_error)?;
-        let bounds = TensionBounds::new(
-            t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?,
-            t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?,
-        )
-        .map_err(value_error)?;
+        let t_min = t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?;
+        if let Some((i, v)) = t_min.iter().enumerate().find(|(_, v)| **v < 0.0) {
+            return Err(value_error(format!(
+                "t_min[{i}] = {v} N is negative: a cable can only pull (t_min ≥ 0)"
+            )));
+        }
+        let t_max = t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?;
+        let bounds = TensionBounds::new(t_min, t_max).map_err(value_error)?;
         if !(mass.is_finite() && mass >= 0.0) {
             return Err(value_error(format!(
                 "mass: {mass} must be a finite number ≥ 0"
@@ -444,8 +417,9 @@ impl Robot {
         lengths: &Bound<'_, PyAny>,
         guess: Option<&Bound<'_, PyAny>>,
         tolerance: f64,
-        max_iterations: usize,
+        max_iterations: i64,
     ) -> PyResult<crate::forward::ForwardResult> {
+        let max_iterations = count(max_iterations, "max_iterations")?;
         crate::forward::forward_kinematics(self, py, lengths, guess, tolerance, max_iterations)
     }
 
@@ -515,7 +489,7 @@ impl Robot {
     fn workspace(
         &self,
         py: Python<'_>,
-        resolution: Option<usize>,
+        resolution: Option<i64>,
         r#box: Option<Vec<f64>>,
         orientation: Option<&Bound<'_, PyAny>>,
         criteria: Option<&Bound<'_, PyAny>>,
@@ -526,6 +500,7 @@ impl Robot {
         chord: f64,
         volume_convention: &str,
     ) -> PyResult<crate::workspace::WorkspaceResult> {
+        let resolution = resolution.map(|m| count(m, "resolution")).transpose()?;
         let orientation = orientation
             .map(|o| match o.extract::<f64>() {
                 Ok(phi) => Ok(vec![phi]),
@@ -567,7 +542,7 @@ impl Robot {
         &self,
         py: Python<'_>,
         waypoints: &Bound<'_, PyAny>,
-        samples: Option<usize>,
+        samples: Option<i64>,
         step: Option<f64>,
         wrenches: Option<&Bound<'_, PyAny>>,
         method: &str,
@@ -576,6 +551,7 @@ impl Robot {
         sotda_search: &str,
         jump_ratio: f64,
     ) -> PyResult<crate::trajectory::TrajectoryResult> {
+        let samples = samples.map(|k| count(k, "samples")).transpose()?;
         crate::trajectory::trajectory(
             self,
             py,

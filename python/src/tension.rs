@@ -7,7 +7,7 @@
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writable, zeros};
 use crate::kinematics::pose_at;
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{

@@ -7,7 +7,7 @@
 //! per cable, flagged discontinuities).
 
 use crate::arrays::{FloatArray, Rows, shape_string, to_numpy};
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::tension::{parse_method, solver, sotda_settings};
 use crate::value_error;
 use cdpr_kinematics::{Path, PathSample, Pose, Sampling};

@@ -8,7 +8,7 @@
 //! platform's gravity at that orientation.
 
 use crate::arrays::to_numpy;
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::tension::parse_method;
 use crate::value_error;
 use cdpr_kinematics::{MotionPattern, Pose};
