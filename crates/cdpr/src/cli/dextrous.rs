@@ -1,8 +1,9 @@
 //! `cdpr dextrous`: the dextrous workspace over a range of orientations (thesis eq. 6.28).
 
-use super::workspace::{
-    CriteriaArgs, CriteriaSetup, box_json, box_numbers, default_method, dextrous, draw_pose,
-    load_text, measure_json, progress, region, resolution, rotation, save_grid_plot,
+use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
+use super::region::{
+    box_json, box_numbers, dextrous, draw_pose, load_text, measure_json, progress, region,
+    resolution, rotation, save_grid_plot,
 };
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::kinematics::MotionPattern;

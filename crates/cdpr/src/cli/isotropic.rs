@@ -11,7 +11,7 @@ use cdpr::polytope::{
     largest_inscribed_ellipse,
 };
 use indicatif::ProgressBar;
-use nalgebra::Vector3;
+use nalgebra::{DVector, Vector3};
 use rayon::prelude::*;
 use serde_json::{Value, json};
 use std::io::IsTerminal;
@@ -263,186 +263,275 @@ fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliEr
     if !(1..=2000).contains(&m) {
         return Err("--grid M must lie in [1, 2000]".into());
     }
-    let motion = robot.robot.motion();
-    let (lo, hi) = robot.robot.frame_bounding_box();
-    let (x0, x1, y0, y1) = match &args.area {
-        Some(b) if b.len() == 4 => (b[0], b[1], b[2], b[3]),
-        Some(b) => return Err(format!("--box needs 4 numbers, got {}", b.len()).into()),
-        None => (lo.x, hi.x, lo.y, hi.y),
-    };
-    if !(x0 < x1 && y0 < y1 && [x0, x1, y0, y1].iter().all(|v| v.is_finite())) {
-        return Err(
-            format!("the grid box [{x0}, {x1}] × [{y0}, {y1}] is empty or not finite").into(),
-        );
-    }
-    let z = args.z.unwrap_or(0.5 * (lo.z + hi.z));
-    if !z.is_finite() || !args.orientation.is_finite() {
-        return Err("--z and --orientation must be finite".into());
-    }
-    let k = m + 1;
-    let xs: Vec<f64> = (0..k)
-        .map(|i| x0 + (x1 - x0) * i as f64 / m as f64)
-        .collect();
-    let ys: Vec<f64> = (0..k)
-        .map(|j| y0 + (y1 - y0) * j as f64 / m as f64)
-        .collect();
-    let slice_pose = grid_pose(motion, x0, y0, z, args.orientation);
-    let w_ext = external_wrench(robot, &slice_pose, args.wrench.as_deref())?;
-    let template = IsotropicForce::new(&robot.robot, &robot.bounds)?.with_load(w_ext.as_slice())?;
-    let bar = if std::io::stderr().is_terminal() {
-        ProgressBar::new(k as u64)
-    } else {
-        ProgressBar::hidden()
-    };
-    // One evaluator per worker; a pose where the index is undefined (a cable of zero length,
-    // a singular W) is NaN: null in JSON, white in the plot.
-    let rows: Vec<Vec<f64>> = ys
-        .par_iter()
-        .map_init(
-            || template.clone(),
-            |index, &y| {
-                let row = xs
-                    .iter()
-                    .map(|&x| {
-                        index
-                            .force_at_pose(&grid_pose(motion, x, y, z, args.orientation))
-                            .unwrap_or(f64::NAN)
-                    })
-                    .collect();
-                bar.inc(1);
-                row
-            },
-        )
-        .collect();
-    bar.finish_and_clear();
-    let values: Vec<f64> = rows.concat();
-
-    let defined: Vec<(usize, f64)> = values
-        .iter()
-        .copied()
-        .enumerate()
-        .filter(|(_, v)| !v.is_nan())
-        .collect();
-    let (amax, vmax) = defined
-        .iter()
-        .copied()
-        .fold((usize::MAX, f64::NEG_INFINITY), |a, b| {
-            if b.1 > a.1 { b } else { a }
-        });
-    let vmin = defined.iter().map(|p| p.1).fold(f64::INFINITY, f64::min);
-    let positive = defined.iter().filter(|p| p.1 > 0.0).count();
-    let undefined = values.len() - defined.len();
-    let argmax = (amax != usize::MAX).then(|| [xs[amax % k], ys[amax / k]]);
-    let centre_pose = grid_pose(
-        motion,
-        0.5 * (x0 + x1),
-        0.5 * (y0 + y1),
-        z,
-        args.orientation,
-    );
-    let centre = template.clone().force_at_pose(&centre_pose).ok();
-    let finite = |v: f64| v.is_finite().then_some(v);
-
+    let map = IsotropicMap::compute(args, robot, m)?;
+    let stats = MapStats::of(&map);
     if let Some(path) = &args.plot {
-        let fig = HeatMap {
-            title: format!(
-                "{}: maximum isotropic force{}",
-                robot.name,
-                if motion.has_orientation() {
-                    " at zero moment"
-                } else {
-                    ""
-                }
-            ),
-            labels: (
-                super::workspace::length_axis("x"),
-                super::workspace::length_axis("y"),
-            ),
-            value_label: "isotropic force (N)".into(),
-            x_range: (x0, x1),
-            y_range: (y0, y1),
-            shape: (k, k),
-            values: values.clone(),
-            blank_below: 0.0,
-            markers: robot
-                .robot
-                .cables()
-                .iter()
-                .map(|c| (c.frame.x, c.frame.y))
-                .collect(),
-            outlines: Vec::new(),
-            highlight: match argmax {
-                Some([x, y]) if vmax > 0.0 => vec![((x, y), format!("max {vmax:.1} N"))],
-                _ => Vec::new(),
-            },
-        };
-        cdpr::plot::save(&fig, path)?;
+        save_heat_map(robot, &map, &stats, path)?;
     }
     if args.json {
-        let grid_rows: Vec<Vec<Option<f64>>> = values
-            .chunks(k)
-            .map(|r| r.iter().map(|&v| finite(v)).collect())
-            .collect();
-        let mut slice = json!({ "orientation": args.orientation });
-        if motion.space_dim() == 3 {
-            slice["z"] = json!(z);
-        }
-        return print_json(&json!({
-            "robot": robot.name,
-            "definition": definition(motion),
-            "external_wrench": w_ext.as_slice(),
-            "slice": slice,
-            "grid": {
-                "x": xs,
-                "y": ys,
-                "shape": [k, k],
-                "values": grid_rows,
-            },
-            "stats": {
-                "min": finite(vmin),
-                "max": finite(vmax),
-                "argmax": argmax,
-                "positive_fraction": positive as f64 / values.len() as f64,
-                "undefined": undefined,
-                "centre": centre.and_then(finite),
-            },
-        }));
+        return print_json(&map_json(robot, &map, &stats));
     }
+    print_map(args, robot, &map, &stats);
+    if let Some(p) = &args.plot {
+        println!("heat map written to {}", p.display());
+    }
+    Ok(())
+}
+
+/// The index over a grid of the box `[x0, x1] × [y0, y1]` at height `z` (3-D robots).
+struct IsotropicMap {
+    motion: MotionPattern,
+    x: (f64, f64),
+    y: (f64, f64),
+    z: f64,
+    orientation: f64,
+    /// Points per axis (M + 1).
+    k: usize,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+    /// Row-major (y then x); NaN where the index is undefined.
+    values: Vec<f64>,
+    w_ext: DVector<f64>,
+    template: IsotropicForce,
+}
+
+impl IsotropicMap {
+    /// Reads the box, height and load, then maps the index in parallel (one evaluator per
+    /// worker; a pose where the index is undefined, a cable of zero length or a singular W, is
+    /// NaN: null in JSON, white in the plot).
+    fn compute(args: &Args, robot: &RobotDescription, m: usize) -> Result<Self, CliError> {
+        let motion = robot.robot.motion();
+        let (lo, hi) = robot.robot.frame_bounding_box();
+        let (x0, x1, y0, y1) = match &args.area {
+            Some(b) if b.len() == 4 => (b[0], b[1], b[2], b[3]),
+            Some(b) => return Err(format!("--box needs 4 numbers, got {}", b.len()).into()),
+            None => (lo.x, hi.x, lo.y, hi.y),
+        };
+        if !(x0 < x1 && y0 < y1 && [x0, x1, y0, y1].iter().all(|v| v.is_finite())) {
+            return Err(
+                format!("the grid box [{x0}, {x1}] × [{y0}, {y1}] is empty or not finite").into(),
+            );
+        }
+        let z = args.z.unwrap_or(0.5 * (lo.z + hi.z));
+        if !z.is_finite() || !args.orientation.is_finite() {
+            return Err("--z and --orientation must be finite".into());
+        }
+        let k = m + 1;
+        let axis = |a: f64, b: f64| -> Vec<f64> {
+            (0..k).map(|i| a + (b - a) * i as f64 / m as f64).collect()
+        };
+        let (xs, ys) = (axis(x0, x1), axis(y0, y1));
+        let slice_pose = grid_pose(motion, x0, y0, z, args.orientation);
+        let w_ext = external_wrench(robot, &slice_pose, args.wrench.as_deref())?;
+        let template =
+            IsotropicForce::new(&robot.robot, &robot.bounds)?.with_load(w_ext.as_slice())?;
+        let bar = if std::io::stderr().is_terminal() {
+            ProgressBar::new(k as u64)
+        } else {
+            ProgressBar::hidden()
+        };
+        let rows: Vec<Vec<f64>> = ys
+            .par_iter()
+            .map_init(
+                || template.clone(),
+                |index, &y| {
+                    let row = xs
+                        .iter()
+                        .map(|&x| {
+                            index
+                                .force_at_pose(&grid_pose(motion, x, y, z, args.orientation))
+                                .unwrap_or(f64::NAN)
+                        })
+                        .collect();
+                    bar.inc(1);
+                    row
+                },
+            )
+            .collect();
+        bar.finish_and_clear();
+        Ok(Self {
+            motion,
+            x: (x0, x1),
+            y: (y0, y1),
+            z,
+            orientation: args.orientation,
+            k,
+            xs,
+            ys,
+            values: rows.concat(),
+            w_ext,
+            template,
+        })
+    }
+}
+
+/// What the text, JSON and plot report of a map.
+struct MapStats {
+    vmin: f64,
+    vmax: f64,
+    argmax: Option<[f64; 2]>,
+    positive: usize,
+    undefined: usize,
+    /// The index at the centre of the box.
+    centre: Option<f64>,
+}
+
+impl MapStats {
+    fn of(map: &IsotropicMap) -> Self {
+        let defined: Vec<(usize, f64)> = map
+            .values
+            .iter()
+            .copied()
+            .enumerate()
+            .filter(|(_, v)| !v.is_nan())
+            .collect();
+        let (amax, vmax) = defined
+            .iter()
+            .copied()
+            .fold((usize::MAX, f64::NEG_INFINITY), |a, b| {
+                if b.1 > a.1 { b } else { a }
+            });
+        let k = map.k;
+        let centre_pose = grid_pose(
+            map.motion,
+            0.5 * (map.x.0 + map.x.1),
+            0.5 * (map.y.0 + map.y.1),
+            map.z,
+            map.orientation,
+        );
+        Self {
+            vmin: defined.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
+            vmax,
+            argmax: (amax != usize::MAX).then(|| [map.xs[amax % k], map.ys[amax / k]]),
+            positive: defined.iter().filter(|p| p.1 > 0.0).count(),
+            undefined: map.values.len() - defined.len(),
+            centre: map.template.clone().force_at_pose(&centre_pose).ok(),
+        }
+    }
+}
+
+/// The heat map of `--grid --plot`.
+fn save_heat_map(
+    robot: &RobotDescription,
+    map: &IsotropicMap,
+    stats: &MapStats,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let fig = HeatMap {
+        title: format!(
+            "{}: maximum isotropic force{}",
+            robot.name,
+            if map.motion.has_orientation() {
+                " at zero moment"
+            } else {
+                ""
+            }
+        ),
+        labels: (
+            super::region::length_axis("x"),
+            super::region::length_axis("y"),
+        ),
+        value_label: "isotropic force (N)".into(),
+        x_range: map.x,
+        y_range: map.y,
+        shape: (map.k, map.k),
+        values: map.values.clone(),
+        blank_below: 0.0,
+        markers: robot
+            .robot
+            .cables()
+            .iter()
+            .map(|c| (c.frame.x, c.frame.y))
+            .collect(),
+        outlines: Vec::new(),
+        highlight: match stats.argmax {
+            Some([x, y]) if stats.vmax > 0.0 => {
+                vec![((x, y), format!("max {:.1} N", stats.vmax))]
+            }
+            _ => Vec::new(),
+        },
+    };
+    cdpr::plot::save(&fig, path)?;
+    Ok(())
+}
+
+/// The `--grid --json` answer.
+fn map_json(robot: &RobotDescription, map: &IsotropicMap, stats: &MapStats) -> serde_json::Value {
+    let finite = |v: f64| v.is_finite().then_some(v);
+    let grid_rows: Vec<Vec<Option<f64>>> = map
+        .values
+        .chunks(map.k)
+        .map(|r| r.iter().map(|&v| finite(v)).collect())
+        .collect();
+    let mut slice = json!({ "orientation": map.orientation });
+    if map.motion.space_dim() == 3 {
+        slice["z"] = json!(map.z);
+    }
+    json!({
+        "robot": robot.name,
+        "definition": definition(map.motion),
+        "external_wrench": map.w_ext.as_slice(),
+        "slice": slice,
+        "grid": {
+            "x": map.xs,
+            "y": map.ys,
+            "shape": [map.k, map.k],
+            "values": grid_rows,
+        },
+        "stats": {
+            "min": finite(stats.vmin),
+            "max": finite(stats.vmax),
+            "argmax": stats.argmax,
+            "positive_fraction": stats.positive as f64 / map.values.len() as f64,
+            "undefined": stats.undefined,
+            "centre": stats.centre.and_then(finite),
+        },
+    })
+}
+
+/// The text answer of `--grid`.
+fn print_map(args: &Args, robot: &RobotDescription, map: &IsotropicMap, stats: &MapStats) {
+    let k = map.k;
+    // A 3-D robot is mapped in the horizontal plane at one height: say which.
+    let height = if map.motion.space_dim() == 3 {
+        format!(" at z = {} m", num(map.z))
+    } else {
+        String::new()
+    };
     println!(
-        "robot {}: maximum isotropic force over [{}, {}] m × [{}, {}] m, {k} × {k} points",
+        "robot {}: maximum isotropic force over [{}, {}] m × [{}, {}] m{height}, {k} × {k} points",
         robot.name,
-        num(x0),
-        num(x1),
-        num(y0),
-        num(y1)
+        num(map.x.0),
+        num(map.x.1),
+        num(map.y.0),
+        num(map.y.1)
     );
     println!(
         "on top of w_ext {} (the platform's weight{} included)",
-        wrench_text(w_ext.as_slice(), motion.translation_dof()),
+        wrench_text(map.w_ext.as_slice(), map.motion.translation_dof()),
         if args.wrench.is_some() {
             " and --wrench"
         } else {
             ""
         }
     );
-    println!("  ({})", definition(motion));
-    match argmax {
+    println!("  ({})", definition(map.motion));
+    match stats.argmax {
         Some([x, y]) => println!(
-            "max {vmax:.6} N at ({} m, {} m); min {vmin:.6} N",
+            "max {:.6} N at ({} m, {} m); min {:.6} N",
+            stats.vmax,
             num(x),
-            num(y)
+            num(y),
+            stats.vmin
         ),
         None => println!("no defined value"),
     }
-    if let Some(c) = centre {
+    if let Some(c) = stats.centre {
         println!("centre of the box: {c:.6} N");
     }
     println!(
-        "positive (pose holds every force up to the index): {:.1} % of the grid; undefined: {undefined}",
-        100.0 * positive as f64 / values.len() as f64
+        "positive (pose holds every force up to the index): {:.1} % of the grid; undefined: {}",
+        100.0 * stats.positive as f64 / map.values.len() as f64,
+        stats.undefined
     );
-    if let Some(p) = &args.plot {
-        println!("heat map written to {}", p.display());
-    }
-    Ok(())
 }

@@ -2,11 +2,13 @@
 
 pub mod capacity;
 pub mod convert;
+pub mod criteria;
 pub mod dextrous;
 pub mod forward;
 pub mod isotropic;
 pub mod kinematics;
 pub mod orientations;
+pub mod region;
 pub mod stiffness;
 pub mod stiffness_map;
 pub mod synthesize;

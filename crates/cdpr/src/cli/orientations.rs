@@ -2,7 +2,7 @@
 //! sampled set, as a tilt/torsion map and JSON); and the total-orientation and maximal
 //! workspaces behind `cdpr workspace --orientations … --kind total|maximal`.
 
-use super::workspace::{CriteriaArgs, CriteriaSetup, default_method};
+use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::MotionPattern;
@@ -320,8 +320,8 @@ pub fn run_workspace_mesh(
     );
     if let Some(path) = plot {
         let pose =
-            super::workspace::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::workspace::save_mesh_scene_plot(
+            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
+        super::region::save_mesh_scene_plot(
             desc,
             &pose,
             mesh,
@@ -340,7 +340,7 @@ pub fn run_workspace_mesh(
             "angle_names": set.angle_names(),
             "criteria": setup.labels(),
             "tension_method": setup.method.name(),
-            "box": super::workspace::box_json(region, 3),
+            "box": super::region::box_json(region, 3),
             "resolution": m,
             "dimension": 3,
             "volume": mesh.volume,
@@ -429,15 +429,8 @@ pub fn run_workspace(
     );
     if let Some(path) = plot {
         let pose =
-            super::workspace::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::workspace::save_scene_plot(
-            desc,
-            &pose,
-            w,
-            title.clone(),
-            vec![summary.clone()],
-            path,
-        )?;
+            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
+        super::region::save_scene_plot(desc, &pose, w, title.clone(), vec![summary.clone()], path)?;
     }
     if json_out {
         let mut v = json!({
@@ -449,7 +442,7 @@ pub fn run_workspace(
             "angle_names": names,
             "criteria": setup.labels(),
             "tension_method": setup.method.name(),
-            "box": super::workspace::box_json(region, 3),
+            "box": super::region::box_json(region, 3),
             "resolution": m,
             "dimension": 3,
             "feasible_points": w.feasible_points,
@@ -464,7 +457,7 @@ pub fn run_workspace(
                 "boundary_points": n,
             })).collect::<Vec<_>>(),
         });
-        super::workspace::measure_json(&mut v, w, convention);
+        super::region::measure_json(&mut v, w, convention);
         return print_json(&v);
     }
     println!("{title}");
@@ -475,7 +468,7 @@ pub fn run_workspace(
     );
     println!(
         "grid m = {m} over {}: {} of {} points in the {} workspace, cell volume {:.6e} m³",
-        super::workspace::box_json(region, 3),
+        super::region::box_json(region, 3),
         w.feasible_points,
         w.total_points,
         kind.name(),

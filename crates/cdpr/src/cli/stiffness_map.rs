@@ -4,9 +4,10 @@ use super::tension::{SotdaSearch, sotda_settings};
 use super::{
     CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json, wrench,
 };
+use cdpr::RobotDescription;
 use cdpr::plot::HeatMap;
 use cdpr::tension::{
-    FeasiblePolygon, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    FeasiblePolygon, SotdaSettings, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
     sotda_displacement,
 };
 use nalgebra::{DVector, Vector2};
@@ -68,27 +69,7 @@ pub struct Args {
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
-    robot.require_no_passive_springs(
-        "the stiffness map (cables only; the springs' K would add to it)",
-    )?;
-    check_method(&robot, cdpr::tension::Method::Sotda)?;
-    if !(2..=2000).contains(&args.grid) {
-        return Err("--grid must lie in [2, 2000]".into());
-    }
-    if !(2..=10_000).contains(&args.nu_samples) {
-        return Err("--nu-samples must lie in [2, 10000]".into());
-    }
-    let es = robot
-        .axial_stiffness
-        .clone()
-        .ok_or("stiffness-map needs `axial_stiffness` (E·S, N) on every cable of the robot file")?;
-    let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
-    if r != 2 {
-        return Err(format!(
-            "stiffness-map needs redundancy n − DOF = 2 (the feasible polygon), this robot has {r}"
-        )
-        .into());
-    }
+    let es = check(&args, &robot)?;
     let pose = pose(&robot, &args.pose)?;
     let w_e = wrench(&robot, args.wrench.as_deref())?;
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
@@ -111,7 +92,6 @@ pub fn run(args: Args) -> Result<(), CliError> {
         kinematics: &kin,
         axial_stiffness: &es,
     });
-    let unit = "mm (1e-3 of the robot's length unit)";
     let polygon = match FeasiblePolygon::compute(&problem)? {
         Ok(p) => p,
         Err(reason) => {
@@ -128,113 +108,227 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let disp = |t: &DVector<f64>| -> Result<f64, CliError> {
         Ok(sotda_displacement(&stiff, &settings, &w_ext, t.as_slice())?.unwrap_or(f64::NAN) * 1e3)
     };
-    let t_bary = polygon.barycenter();
-    let l_bary = polygon.barycenter_lambda();
-    let l_opt = {
-        let v = polygon.null_space.transpose() * (&optimum - &polygon.particular);
-        Vector2::new(v[0], v[1])
-    };
-    let d_bary = disp(&t_bary)?;
-    let d_opt = disp(&optimum)?;
-    let reduction = 100.0 * (d_bary - d_opt) / d_bary;
-    let nu_curve = (0..args.nu_samples)
-        .map(|k| {
-            let nu = k as f64 / (args.nu_samples - 1) as f64;
-            let t = &t_bary + (&optimum - &t_bary) * nu;
-            Ok([nu, disp(&t)?])
-        })
-        .collect::<Result<Vec<_>, CliError>>()?;
-    let grid = stiffness_grid(&polygon, &robot.bounds, args.grid, |t| disp(t))?;
-    let (gmin, gmax) = grid
-        .values
-        .iter()
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-            (a.min(v), b.max(v))
-        });
+    let map = StiffnessMap::compute(&args, &robot.bounds, polygon, optimum, disp)?;
     if let Some(path) = &args.plot {
-        let fig = HeatMap {
-            title: format!(
-                "{}: |d·δp| over the feasible polygon (reduction {reduction:.1} %)",
-                robot.name
-            ),
-            labels: ("λ1 (N)".into(), "λ2 (N)".into()),
-            value_label: "|d·δp| (mm)".into(),
-            x_range: grid.x_range,
-            y_range: grid.y_range,
-            shape: (args.grid, args.grid),
-            values: grid.values.clone(),
-            blank_below: f64::NEG_INFINITY,
-            markers: Vec::new(),
-            outlines: vec![polygon.vertices.iter().map(|v| (v.x, v.y)).collect()],
-            highlight: vec![
-                ((l_bary.x, l_bary.y), format!("barycentre {d_bary:.3} mm")),
-                ((l_opt.x, l_opt.y), format!("SOTDA optimum {d_opt:.3} mm")),
-            ],
-        };
-        cdpr::plot::save(&fig, path)?;
+        save_map_plot(&args, &robot.name, &map, path)?;
     }
-    let n = args.grid;
     if args.json {
-        let row = |j: usize| -> Vec<Option<f64>> {
-            grid.values[j * n..(j + 1) * n]
-                .iter()
-                .map(|v| v.is_finite().then_some(*v))
-                .collect()
-        };
-        print_json(&json!({
-            "robot": robot.name,
-            "pose": args.pose.0,
-            "feasible": true,
-            "direction": settings.direction.as_slice(),
-            "external_wrench": w_ext.as_slice(),
-            "load": settings.perturbation.as_ref().map(|p| p.as_slice().to_vec()),
-            "method": if args.corners { "sotda (corners)" } else { "sotda (full search)" },
-            "unit": unit,
-            "displacement_barycenter": d_bary,
-            "displacement_optimum": d_opt,
-            "reduction_percent": reduction,
-            "spread": gmax - gmin,
-            "grid_min": gmin,
-            "grid_max": gmax,
-            "polygon": polygon.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
-            "barycenter_lambda": [l_bary.x, l_bary.y],
-            "optimum_lambda": [l_opt.x, l_opt.y],
-            "tensions_barycenter": t_bary.as_slice(),
-            "tensions_optimum": optimum.as_slice(),
-            "nu_curve": nu_curve,
-            "grid": {
-                "lambda1": grid.axis(0, n),
-                "lambda2": grid.axis(1, n),
-                "values": (0..n).map(row).collect::<Vec<_>>(),
-            },
-        }))
+        print_json(&map_json(&args, &robot.name, &map, &settings, &w_ext))
     } else {
-        println!(
-            "robot {}, pose {}, w_ext {} (tensions), load {} (displacement), direction {}",
-            robot.name,
-            super::pose_text(&args.pose.0, robot.robot.motion().space_dim()),
-            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
-            settings.perturbation.as_ref().map_or_else(
-                || "none".to_string(),
-                |p| super::wrench_text(p.as_slice(), robot.robot.motion().translation_dof())
-            ),
-            super::nums(settings.direction.as_slice())
-        );
-        println!("feasible polygon: {} vertices", polygon.vertices.len());
-        println!("displacement |d·δp| in {unit}:");
-        println!("  barycentre      {d_bary:.6}");
-        println!("  SOTDA optimum   {d_opt:.6}");
-        println!("  reduction       {reduction:.3} %");
-        println!(
-            "  grid min / max  {gmin:.6} / {gmax:.6} (spread {:.6})",
-            gmax - gmin
-        );
-        println!("{:>6} {:>12}", "nu", "|d·δp|");
-        for [nu, d] in &nu_curve {
-            println!("{nu:>6.3} {d:>12.6}");
-        }
+        print_map(&args, &robot, &map, &settings, &w_ext);
         Ok(())
+    }
+}
+
+/// Checks the robot and the options; the cables' axial stiffness E·S (N).
+fn check(args: &Args, robot: &RobotDescription) -> Result<Vec<f64>, CliError> {
+    robot.require_no_passive_springs(
+        "the stiffness map (cables only; the springs' K would add to it)",
+    )?;
+    check_method(robot, cdpr::tension::Method::Sotda)?;
+    if !(2..=2000).contains(&args.grid) {
+        return Err("--grid must lie in [2, 2000]".into());
+    }
+    if !(2..=10_000).contains(&args.nu_samples) {
+        return Err("--nu-samples must lie in [2, 10000]".into());
+    }
+    let es = robot
+        .axial_stiffness
+        .clone()
+        .ok_or("stiffness-map needs `axial_stiffness` (E·S, N) on every cable of the robot file")?;
+    let r = robot.robot.cable_count() as isize - robot.robot.dof() as isize;
+    if r != 2 {
+        return Err(format!(
+            "stiffness-map needs redundancy n − DOF = 2 (the feasible polygon), this robot has {r}"
+        )
+        .into());
+    }
+    Ok(es)
+}
+
+/// The unit of the displacements printed.
+const UNIT: &str = "mm (1e-3 of the robot's length unit)";
+
+/// What the command finds: the displacement at the barycentre, at the SOTDA optimum, along
+/// t(ν) and over the polygon.
+struct StiffnessMap {
+    polygon: FeasiblePolygon,
+    optimum: DVector<f64>,
+    t_bary: DVector<f64>,
+    l_bary: Vector2<f64>,
+    l_opt: Vector2<f64>,
+    d_bary: f64,
+    d_opt: f64,
+    /// 100 (δ_bary − δ_opt) / δ_bary (%).
+    reduction: f64,
+    nu_curve: Vec<[f64; 2]>,
+    grid: Grid,
+    gmin: f64,
+    gmax: f64,
+}
+
+impl StiffnessMap {
+    fn compute(
+        args: &Args,
+        bounds: &cdpr::tension::TensionBounds,
+        polygon: FeasiblePolygon,
+        optimum: DVector<f64>,
+        disp: impl Fn(&DVector<f64>) -> Result<f64, CliError>,
+    ) -> Result<Self, CliError> {
+        let t_bary = polygon.barycenter();
+        let l_bary = polygon.barycenter_lambda();
+        let l_opt = {
+            let v = polygon.null_space.transpose() * (&optimum - &polygon.particular);
+            Vector2::new(v[0], v[1])
+        };
+        let d_bary = disp(&t_bary)?;
+        let d_opt = disp(&optimum)?;
+        let nu_curve = (0..args.nu_samples)
+            .map(|k| {
+                let nu = k as f64 / (args.nu_samples - 1) as f64;
+                let t = &t_bary + (&optimum - &t_bary) * nu;
+                Ok([nu, disp(&t)?])
+            })
+            .collect::<Result<Vec<_>, CliError>>()?;
+        let grid = stiffness_grid(&polygon, bounds, args.grid, &disp)?;
+        let (gmin, gmax) = grid
+            .values
+            .iter()
+            .filter(|v| v.is_finite())
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        Ok(Self {
+            polygon,
+            optimum,
+            t_bary,
+            l_bary,
+            l_opt,
+            d_bary,
+            d_opt,
+            reduction: 100.0 * (d_bary - d_opt) / d_bary,
+            nu_curve,
+            grid,
+            gmin,
+            gmax,
+        })
+    }
+}
+
+/// The heat map of `--plot` (Picard, Caro, Plestan & Claveau 2020, Fig. 4 left).
+fn save_map_plot(
+    args: &Args,
+    name: &str,
+    map: &StiffnessMap,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let fig = HeatMap {
+        title: format!(
+            "{name}: |d·δp| over the feasible polygon (reduction {:.1} %)",
+            map.reduction
+        ),
+        labels: ("λ1 (N)".into(), "λ2 (N)".into()),
+        value_label: "|d·δp| (mm)".into(),
+        x_range: map.grid.x_range,
+        y_range: map.grid.y_range,
+        shape: (args.grid, args.grid),
+        values: map.grid.values.clone(),
+        blank_below: f64::NEG_INFINITY,
+        markers: Vec::new(),
+        outlines: vec![map.polygon.vertices.iter().map(|v| (v.x, v.y)).collect()],
+        highlight: vec![
+            (
+                (map.l_bary.x, map.l_bary.y),
+                format!("barycentre {:.3} mm", map.d_bary),
+            ),
+            (
+                (map.l_opt.x, map.l_opt.y),
+                format!("SOTDA optimum {:.3} mm", map.d_opt),
+            ),
+        ],
+    };
+    cdpr::plot::save(&fig, path)?;
+    Ok(())
+}
+
+/// The `--json` answer.
+fn map_json(
+    args: &Args,
+    name: &str,
+    map: &StiffnessMap,
+    settings: &SotdaSettings,
+    w_ext: &DVector<f64>,
+) -> serde_json::Value {
+    let n = args.grid;
+    let row = |j: usize| -> Vec<Option<f64>> {
+        map.grid.values[j * n..(j + 1) * n]
+            .iter()
+            .map(|v| v.is_finite().then_some(*v))
+            .collect()
+    };
+    json!({
+        "robot": name,
+        "pose": args.pose.0,
+        "feasible": true,
+        "direction": settings.direction.as_slice(),
+        "external_wrench": w_ext.as_slice(),
+        "load": settings.perturbation.as_ref().map(|p| p.as_slice().to_vec()),
+        "method": if args.corners { "sotda (corners)" } else { "sotda (full search)" },
+        "unit": UNIT,
+        "displacement_barycenter": map.d_bary,
+        "displacement_optimum": map.d_opt,
+        "reduction_percent": map.reduction,
+        "spread": map.gmax - map.gmin,
+        "grid_min": map.gmin,
+        "grid_max": map.gmax,
+        "polygon": map.polygon.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
+        "barycenter_lambda": [map.l_bary.x, map.l_bary.y],
+        "optimum_lambda": [map.l_opt.x, map.l_opt.y],
+        "tensions_barycenter": map.t_bary.as_slice(),
+        "tensions_optimum": map.optimum.as_slice(),
+        "nu_curve": map.nu_curve,
+        "grid": {
+            "lambda1": map.grid.axis(0, n),
+            "lambda2": map.grid.axis(1, n),
+            "values": (0..n).map(row).collect::<Vec<_>>(),
+        },
+    })
+}
+
+/// The text answer.
+fn print_map(
+    args: &Args,
+    robot: &RobotDescription,
+    map: &StiffnessMap,
+    settings: &SotdaSettings,
+    w_ext: &DVector<f64>,
+) {
+    let forces = robot.robot.motion().translation_dof();
+    println!(
+        "robot {}, pose {}, w_ext {} (tensions), load {} (displacement), direction {}",
+        robot.name,
+        super::pose_text(&args.pose.0, robot.robot.motion().space_dim()),
+        super::wrench_text(w_ext.as_slice(), forces),
+        settings.perturbation.as_ref().map_or_else(
+            || "none".to_string(),
+            |p| super::wrench_text(p.as_slice(), forces)
+        ),
+        super::nums(settings.direction.as_slice())
+    );
+    println!("feasible polygon: {} vertices", map.polygon.vertices.len());
+    println!("displacement |d·δp| in {UNIT}:");
+    println!("  barycentre      {:.6}", map.d_bary);
+    println!("  SOTDA optimum   {:.6}", map.d_opt);
+    println!("  reduction       {:.3} %", map.reduction);
+    println!(
+        "  grid min / max  {:.6} / {:.6} (spread {:.6})",
+        map.gmin,
+        map.gmax,
+        map.gmax - map.gmin
+    );
+    println!("{:>6} {:>12}", "nu", "|d·δp|");
+    for [nu, d] in &map.nu_curve {
+        println!("{nu:>6.3} {d:>12.6}");
     }
 }
 

@@ -1,10 +1,9 @@
 //! `cdpr synthesize`: dimensional synthesis of a planar robot for maximal dextrous workspace
 //! (thesis §6.6, eq. 6.29).
 
+use super::criteria::{CriteriaArgs, CriteriaSetup};
 use super::dextrous::Range;
-use super::workspace::{
-    CriteriaArgs, CriteriaSetup, Dextrous, box_json, dextrous, region, save_plot, workspace_plot,
-};
+use super::region::{Dextrous, box_json, dextrous, region, save_plot, workspace_plot};
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};

@@ -1,7 +1,8 @@
 //! `cdpr workspace --boundary mesh` and `--section AXIS=VALUE`: the boundary of a 3-D workspace as
 //! a closed triangle mesh (its volume, files), and exact plane sections by the chord method.
 
-use super::workspace::{CriteriaSetup, box_json, draw_pose, measure_json, save_plot};
+use super::criteria::CriteriaSetup;
+use super::region::{box_json, draw_pose, measure_json, save_plot};
 use super::{CliError, print_json};
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose};
@@ -179,99 +180,122 @@ pub fn run_mesh(
     mesh_file: Option<&Path>,
     points: Option<&Path>,
 ) -> Result<(), CliError> {
-    let desc = r.desc;
-    let robot = &desc.robot;
     let grid = Grid::new(r.m, *r.region);
     let start = Instant::now();
     let mesh = boundary_mesh(r.eval, r.rotation, &grid, &MeshSettings::default())?;
     let seconds = start.elapsed().as_secs_f64();
-    let defects = mesh.edge_defects();
     if let Some(path) = mesh_file {
         write_mesh(&mesh, path)?;
     }
     if let Some(path) = points {
         write_points(&mesh.grid, path)?;
     }
+    if let Some(path) = r.plot {
+        save_mesh_plot(r, &mesh, path)?;
+    }
+    if r.json {
+        return print_json(&mesh_json(r, &mesh, seconds));
+    }
+    print_mesh(r, &mesh, seconds);
+    if let Some(p) = mesh_file {
+        println!("mesh written to {}", p.display());
+    }
+    if let Some(p) = points {
+        println!("grid verdicts written to {}", p.display());
+    }
+    if let Some(p) = r.plot {
+        println!("plot written to {}", p.display());
+    }
+    Ok(())
+}
+
+/// The certified surface itself: an isometric view with three sections (.svg/.png) or the
+/// interactive page (.html), not the grid cells.
+fn save_mesh_plot(r: &Context<'_>, mesh: &BoundaryMesh, path: &Path) -> Result<(), CliError> {
+    let desc = r.desc;
+    let pose = draw_pose(&desc.robot, r.draw_pose, r.region, r.rotation)?;
+    super::region::save_mesh_scene_plot(
+        desc,
+        &pose,
+        mesh,
+        if r.orientation.is_empty() {
+            format!("{}: constant-orientation workspace", desc.name)
+        } else {
+            format!(
+                "{}: constant-orientation workspace, orientation {}",
+                desc.name,
+                super::pose_text(r.orientation, 0)
+            )
+        },
+        vec![format!(
+            "volume {} m³ (boundary mesh, m = {}); grid count {} m³ ({}); {}",
+            super::num(mesh.volume),
+            r.m,
+            super::num(mesh.grid.measure(r.volume_convention)),
+            r.volume_convention,
+            r.setup.labels().join(", ")
+        )],
+        path,
+    )
+}
+
+/// The `--json` answer of `--boundary mesh`.
+fn mesh_json(r: &Context<'_>, mesh: &BoundaryMesh, seconds: f64) -> Value {
     let ws = &mesh.grid;
-    let grid_volume = ws.measure(r.volume_convention);
+    let mut faces = serde_json::Map::new();
+    for f in BoxFace::ALL {
+        faces.insert(
+            f.name().into(),
+            Value::Bool(mesh.box_faces_reached[f as usize]),
+        );
+    }
+    let mut v = json!({
+        "robot": r.desc.name,
+        "method": "mesh",
+        "orientation": r.orientation,
+        "external_wrench": r.w_ext,
+        "criteria": r.setup.labels(),
+        "tension_method": r.setup.method.name(),
+        "box": box_json(r.region, 3),
+        "resolution": r.m,
+        "dimension": 3,
+        "feasible_points": ws.feasible_points,
+        "total_points": ws.total_points,
+        "cell_area": ws.cell_area,
+        "grid_volume": ws.measure(r.volume_convention),
+        "surface_area": mesh.surface_area,
+        "cap_area": mesh.cap_area,
+        "components": mesh.components,
+        "regions": mesh.regions(),
+        "cavities": mesh.cavities(),
+        "shells": mesh.shells.iter().map(|s| json!({
+            "volume": s.volume, "area": s.area, "genus": s.genus,
+            "triangles": s.triangles, "vertices": s.vertices,
+        })).collect::<Vec<_>>(),
+        "box_faces_reached": faces,
+        "tolerance": mesh.tolerance,
+        "watertight": mesh.edge_defects() == 0,
+        "evaluations": mesh.evaluations,
+        "seconds": seconds,
+        "vertices": mesh.vertices,
+        "triangles": mesh.triangles,
+    });
+    // The grid's fields as in grid mode (`area` in the chosen convention, both
+    // conventions); then `volume` is the mesh's.
+    measure_json(&mut v, ws, r.volume_convention);
+    v["volume"] = json!(mesh.volume);
+    v
+}
+
+/// The text answer of `--boundary mesh` (before the list of files written).
+fn print_mesh(r: &Context<'_>, mesh: &BoundaryMesh, seconds: f64) {
+    let ws = &mesh.grid;
+    let defects = mesh.edge_defects();
     let reached: Vec<&str> = BoxFace::ALL
         .iter()
         .filter(|f| mesh.box_faces_reached[**f as usize])
         .map(|f| f.name())
         .collect();
-    if let Some(path) = r.plot {
-        // The certified surface itself: an isometric view with three sections (.svg/.png) or
-        // the interactive page (.html), not the grid cells.
-        let pose = draw_pose(robot, r.draw_pose, r.region, r.rotation)?;
-        super::workspace::save_mesh_scene_plot(
-            desc,
-            &pose,
-            &mesh,
-            if r.orientation.is_empty() {
-                format!("{}: constant-orientation workspace", desc.name)
-            } else {
-                format!(
-                    "{}: constant-orientation workspace, orientation {}",
-                    desc.name,
-                    super::pose_text(r.orientation, 0)
-                )
-            },
-            vec![format!(
-                "volume {} m³ (boundary mesh, m = {}); grid count {} m³ ({}); {}",
-                super::num(mesh.volume),
-                r.m,
-                super::num(grid_volume),
-                r.volume_convention,
-                r.setup.labels().join(", ")
-            )],
-            path,
-        )?;
-    }
-    if r.json {
-        let mut faces = serde_json::Map::new();
-        for f in BoxFace::ALL {
-            faces.insert(
-                f.name().into(),
-                Value::Bool(mesh.box_faces_reached[f as usize]),
-            );
-        }
-        let mut v = json!({
-            "robot": desc.name,
-            "method": "mesh",
-            "orientation": r.orientation,
-            "external_wrench": r.w_ext,
-            "criteria": r.setup.labels(),
-            "tension_method": r.setup.method.name(),
-            "box": box_json(r.region, 3),
-            "resolution": r.m,
-            "dimension": 3,
-            "feasible_points": ws.feasible_points,
-            "total_points": ws.total_points,
-            "cell_area": ws.cell_area,
-            "grid_volume": grid_volume,
-            "surface_area": mesh.surface_area,
-            "cap_area": mesh.cap_area,
-            "components": mesh.components,
-            "regions": mesh.regions(),
-            "cavities": mesh.cavities(),
-            "shells": mesh.shells.iter().map(|s| json!({
-                "volume": s.volume, "area": s.area, "genus": s.genus,
-                "triangles": s.triangles, "vertices": s.vertices,
-            })).collect::<Vec<_>>(),
-            "box_faces_reached": faces,
-            "tolerance": mesh.tolerance,
-            "watertight": defects == 0,
-            "evaluations": mesh.evaluations,
-            "seconds": seconds,
-            "vertices": mesh.vertices,
-            "triangles": mesh.triangles,
-        });
-        // The grid's fields as in grid mode (`area` in the chosen convention, both
-        // conventions); then `volume` is the mesh's.
-        measure_json(&mut v, ws, r.volume_convention);
-        v["volume"] = json!(mesh.volume);
-        return print_json(&v);
-    }
     header(r, "boundary mesh of the constant-orientation workspace");
     println!(
         "grid m = {} over {} (m): {} of {} points feasible; grid count {:.6} m³ ({} convention)",
@@ -279,7 +303,7 @@ pub fn run_mesh(
         box_json(r.region, 3),
         ws.feasible_points,
         ws.total_points,
-        grid_volume,
+        ws.measure(r.volume_convention),
         r.volume_convention
     );
     println!(
@@ -327,23 +351,14 @@ pub fn run_mesh(
         mesh.evaluations,
         seconds
     );
-    if let Some(p) = mesh_file {
-        println!("mesh written to {}", p.display());
-    }
-    if let Some(p) = points {
-        println!("grid verdicts written to {}", p.display());
-    }
-    if let Some(p) = r.plot {
-        println!("plot written to {}", p.display());
-    }
-    Ok(())
 }
 
-/// The two first lines of a text report: robot, what, orientation, load; criteria.
 fn header(r: &Context<'_>, what: &str) {
     println!(
-        "robot {}: {what} at orientation {:?}, w_ext {:?} (N, N·m)",
-        r.desc.name, r.orientation, r.w_ext
+        "robot {}: {what}{}, w_ext {}",
+        r.desc.name,
+        super::region::at_orientation(r.orientation),
+        super::wrench_text(r.w_ext, r.desc.robot.motion().translation_dof())
     );
     println!(
         "criteria: {} (tensions: {})",
@@ -433,9 +448,12 @@ pub fn run_section(r: &Context<'_>, section: Section, chord: f64) -> Result<(), 
                     ws.area, chord
                 ),
                 format!(
-                    "orientation {:?}; {}; thin rectangle: the search box; robot projected at \
-                     its draw pose",
-                    r.orientation,
+                    "{}{}; thin rectangle: the search box; robot projected at its draw pose",
+                    if r.orientation.is_empty() {
+                        String::new()
+                    } else {
+                        format!("orientation {}; ", super::pose_text(r.orientation, 0))
+                    },
                     r.setup.labels().join(", ")
                 ),
             ],

@@ -247,3 +247,38 @@ fn bad_arguments_are_errors() {
         "1,1",
     ]);
 }
+
+/// `isotropic --grid` on a 3-D robot maps one horizontal slice: the text says at which height
+/// (the frame's mid-height by default, `--z` otherwise), as the JSON's `slice.z` does; planar
+/// robots print no height (issue 25).
+#[test]
+fn grid_text_of_a_3d_robot_names_its_height() {
+    let text = |args: &[&str]| {
+        let out = cdpr().args(args).output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let r8 = robot("ipanema-like-8.toml");
+    let z = f(&json(&["isotropic", &r8, "--grid", "2", "--json"])["slice"]["z"]);
+    let first = text(&["isotropic", &r8, "--grid", "2"]);
+    let first = first.lines().next().unwrap();
+    let printed: f64 = first
+        .split(" at z = ")
+        .nth(1)
+        .and_then(|rest| rest.split(" m, 3 × 3 points").next())
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no height in `{first}`"));
+    // nine significant digits, as every number the CLI prints
+    assert!(
+        (printed - z).abs() <= 1e-8 * z.abs().max(1.0),
+        "{first} (z = {z})"
+    );
+    let out = text(&["isotropic", &r8, "--grid", "2", "--z", "0.25"]);
+    assert!(out.contains(" at z = 0.25 m, 3 × 3 points"), "{out}");
+    let planar = text(&["isotropic", &robot("krut-4.toml"), "--grid", "2"]);
+    assert!(!planar.contains("at z ="), "{planar}");
+}

@@ -276,3 +276,43 @@ fn mesh_plots_draw_the_boundary_mesh() {
         );
     }
 }
+
+/// The text header of a point robot's mesh prints no empty orientation and its w_ext as every
+/// command prints numbers (`num`: round-off trimmed) with units (issue 25: `orientation []`, `w_ext [0.0, 0.0,
+/// -49.033249999999995]`).
+#[test]
+fn mesh_text_header_prints_numbers_as_the_other_commands() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = tetra_file(dir.path());
+    let out = cdpr()
+        .args([
+            "workspace",
+            &file,
+            "--boundary",
+            "mesh",
+            "--criteria",
+            "wrench-closure",
+            "--box",
+            "0.5,1.5,0.5,1.5,0.5,1.5",
+            "--grid",
+            "4",
+            "--wrench",
+            "0,0,-49.033249999999995",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(
+        header.ends_with(
+            "boundary mesh of the constant-orientation workspace, w_ext [0 N, 0 N, -49.03325 N]"
+        ),
+        "{header}"
+    );
+    assert!(!text.contains("[]") && !text.contains("999999"), "{text}");
+}

@@ -1,0 +1,634 @@
+//! The pieces the region commands share (`workspace`, `orientations`, `dextrous`, `synthesize`,
+//! `isotropic`): orientation and box from the command line, grids mapped in parallel with a
+//! progress bar, the dextrous verdicts of a grid, plots and their titles, box and measure JSON.
+
+use super::CliError;
+use super::criteria::CriteriaSetup;
+use cdpr::RobotDescription;
+use cdpr::kinematics::{MotionPattern, Pose, Robot};
+use cdpr::plot::{Figure, Panels, WorkspacePlot};
+use cdpr::tension::Method;
+use cdpr::workspace::{
+    CentralCheck, Grid, GridWorkspace, LeanScratch, OrientationRange, PlanarSlice, PoseEvaluator,
+    Region, VolumeConvention, dextrous_verdicts_lean,
+};
+use indicatif::ProgressBar;
+use nalgebra::{Rotation3, Unit, Vector3};
+use rayon::prelude::*;
+use serde_json::{Value, json};
+use std::io::IsTerminal;
+use std::path::Path;
+
+/// The platform orientation from command-line numbers: φ (planar), rx,ry,rz (spatial), none
+/// (point robots; zeros are accepted).
+pub fn rotation(motion: MotionPattern, q: Option<&[f64]>) -> Result<Rotation3<f64>, CliError> {
+    let q = q.unwrap_or(&[]);
+    if let Some(v) = q.iter().find(|v| !v.is_finite()) {
+        return Err(format!("--orientation: {v} is not a finite number").into());
+    }
+    match motion {
+        MotionPattern::Point2 | MotionPattern::Point3 => {
+            if q.iter().any(|&v| v != 0.0) {
+                return Err(format!(
+                    "a `{}` robot has no orientation: omit --orientation",
+                    motion.name()
+                )
+                .into());
+            }
+            Ok(Rotation3::identity())
+        }
+        MotionPattern::Planar => match q {
+            [] => Ok(Rotation3::identity()),
+            [phi] => Ok(Rotation3::from_axis_angle(&Vector3::z_axis(), *phi)),
+            _ => Err(format!(
+                "--orientation needs 1 number (φ) for a planar robot, got {}",
+                q.len()
+            )
+            .into()),
+        },
+        MotionPattern::Spatial => match q {
+            [] => Ok(Rotation3::identity()),
+            [rx, ry, rz] => Ok(Pose::spatial(Vector3::zeros(), *rx, *ry, *rz).rotation),
+            _ => Err(format!(
+                "--orientation needs 3 numbers (rx,ry,rz) for a spatial robot, got {}",
+                q.len()
+            )
+            .into()),
+        },
+    }
+}
+
+/// The search box: 4 numbers in the plane, 6 in space; default the frame anchors' bounding box.
+pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, CliError> {
+    let dim = robot.motion().space_dim();
+    let r = match q {
+        None => Region::frame_bounding_box(robot),
+        Some(b) if dim == 2 && b.len() == 4 => Region::planar(b[0], b[1], b[2], b[3]),
+        Some(b) if dim == 3 && b.len() == 6 => Region::cuboid(
+            Vector3::new(b[0], b[2], b[4]),
+            Vector3::new(b[1], b[3], b[5]),
+        ),
+        Some(b) => {
+            return Err(format!(
+                "{option} needs {} numbers ({}) for a `{}` robot, got {}",
+                2 * dim,
+                if dim == 2 {
+                    "XMIN,XMAX,YMIN,YMAX"
+                } else {
+                    "XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX"
+                },
+                robot.motion().name(),
+                b.len()
+            )
+            .into());
+        }
+    };
+    if q.is_some() {
+        for (k, axis) in ["x", "y", "z"].iter().enumerate().take(dim) {
+            let (lo, hi) = (r.min[k], r.max[k]);
+            let (a, b) = (axis.to_uppercase(), axis.to_uppercase());
+            if !(lo.is_finite() && hi.is_finite()) {
+                return Err(format!(
+                    "{option}: the {axis} bounds {a}MIN = {lo}, {b}MAX = {hi} must be finite numbers (m)"
+                )
+                .into());
+            }
+            if lo >= hi {
+                return Err(format!(
+                    "{option}: along {axis}, {a}MIN = {lo} m must be less than {b}MAX = {hi} m"
+                )
+                .into());
+            }
+        }
+    }
+    r.validate(dim)?;
+    Ok(r)
+}
+
+/// Grid resolution: default 50 in the plane (the thesis), 20 in space; bounded to keep the
+/// point count reasonable.
+pub fn resolution(m: Option<usize>, dim: usize, default_2d: usize) -> Result<usize, CliError> {
+    let max = if dim == 2 { 4000 } else { 300 };
+    let m = m.unwrap_or(if dim == 2 { default_2d } else { 20 });
+    if !(1..=max).contains(&m) {
+        return Err(format!("--grid M must lie in [1, {max}] for a {dim}-D grid").into());
+    }
+    Ok(m)
+}
+
+/// A progress bar on stderr counting `len` chunks, hidden unless stderr is a terminal.
+pub fn progress(len: usize) -> ProgressBar {
+    if std::io::stderr().is_terminal() {
+        ProgressBar::new(len as u64)
+    } else {
+        ProgressBar::hidden()
+    }
+}
+
+/// Evaluates `f` at every point of `grid` in parallel (grid order: x fastest), one clone of
+/// `state` per rayon task; `bar` counts rows of the grid (chunks of M + 1 points).
+pub fn map_rows<S, T, F>(state: &S, grid: &Grid, dim: usize, bar: &ProgressBar, f: F) -> Vec<T>
+where
+    S: Clone + Send + Sync,
+    T: Send,
+    F: Fn(&mut S, Vector3<f64>) -> T + Sync,
+{
+    let row = grid.points_per_axis();
+    let total = grid.point_count(dim);
+    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
+        .into_par_iter()
+        .map_init(
+            || state.clone(),
+            |s, r| {
+                let out = (r * row..((r + 1) * row).min(total))
+                    .map(|idx| f(s, grid.point(dim, idx)))
+                    .collect();
+                bar.inc(1);
+                out
+            },
+        )
+        .collect();
+    rows.into_iter().flatten().collect()
+}
+
+/// [`map_rows`] a row at a time: `f(state, points, verdicts)` fills the verdicts of one row's
+/// points (`T::default()` on entry).
+pub fn map_row_blocks<S, T, F>(
+    state: &S,
+    grid: &Grid,
+    dim: usize,
+    bar: &ProgressBar,
+    f: F,
+) -> Vec<T>
+where
+    S: Clone + Send + Sync,
+    T: Send + Copy + Default,
+    F: Fn(&mut S, &[Vector3<f64>], &mut [T]) + Sync,
+{
+    let row = grid.points_per_axis();
+    let total = grid.point_count(dim);
+    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
+        .into_par_iter()
+        .map_init(
+            || (state.clone(), Vec::new()),
+            |(s, points), r| {
+                points.clear();
+                points
+                    .extend((r * row..((r + 1) * row).min(total)).map(|idx| grid.point(dim, idx)));
+                let mut out = vec![T::default(); points.len()];
+                f(s, points, &mut out);
+                bar.inc(1);
+                out
+            },
+        )
+        .collect();
+    rows.into_iter().flatten().collect()
+}
+
+/// Algorithm 6.2 at a fixed orientation, with a progress bar (same verdicts as
+/// `cdpr::workspace::constant_orientation_workspace`).
+pub fn grid_workspace(
+    eval: &PoseEvaluator,
+    rotation: &Rotation3<f64>,
+    grid: &Grid,
+    bar: &ProgressBar,
+) -> Result<GridWorkspace, CliError> {
+    let dim = eval.robot().motion().space_dim();
+    grid.validate(dim)?;
+    eval.validate()?;
+    let r = *rotation;
+    let feasible = map_rows(eval, grid, dim, bar, |ev, u| {
+        ev.is_feasible(&Pose::new(u, r))
+    });
+    bar.finish_and_clear();
+    Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
+}
+
+/// A dextrous workspace on a grid (eq. 6.28) with the §6.5 check.
+pub struct Dextrous {
+    /// Points feasible at every sampled orientation.
+    pub workspace: GridWorkspace,
+    /// The check of the two-extremes shortcut.
+    pub central_check: CentralCheck,
+    /// Sampled angles.
+    pub angles: Vec<f64>,
+}
+
+/// One evaluator per sampled orientation (each with the gravity moment of that orientation).
+#[derive(Clone)]
+struct Slices {
+    evals: Vec<PoseEvaluator>,
+    rotations: Vec<Rotation3<f64>>,
+    /// Index of the central orientation among the slices, or its own evaluator.
+    central: Result<usize, (Box<PoseEvaluator>, Rotation3<f64>)>,
+}
+
+/// Eq. (6.28) for rotations `base · R(axis, φ)`, φ over `range`, on `grid`: the points feasible at
+/// every sampled orientation, tested as `cdpr::workspace::dextrous_workspace_about_axis` does
+/// (extremes first, then the central orientation, then the others), but with one evaluator per
+/// orientation so that the gravity moment of an offset centre of mass follows the platform.
+#[allow(clippy::too_many_arguments)]
+pub fn dextrous(
+    setup: &CriteriaSetup,
+    desc: &RobotDescription,
+    robot: &Robot,
+    base: &Rotation3<f64>,
+    axis: &Unit<Vector3<f64>>,
+    range: &OrientationRange,
+    grid: &Grid,
+    bar: &ProgressBar,
+) -> Result<Dextrous, CliError> {
+    range.validate()?;
+    let motion = robot.motion();
+    let dim = motion.space_dim();
+    grid.validate(dim)?;
+    let rot = |phi: f64| -> Rotation3<f64> {
+        match motion {
+            MotionPattern::Point2 | MotionPattern::Point3 => Rotation3::identity(),
+            _ => base * Rotation3::from_axis_angle(axis, phi),
+        }
+    };
+    let angles = range.angles();
+    let rotations: Vec<Rotation3<f64>> = angles.iter().map(|&a| rot(a)).collect();
+    let evals = rotations
+        .iter()
+        .map(|r| setup.evaluator(desc, robot.clone(), r))
+        .collect::<Result<Vec<_>, _>>()?;
+    let c = range.central();
+    let central = match angles.iter().position(|&a| a == c) {
+        Some(k) => Ok(k),
+        None => {
+            let r = rot(c);
+            Err((Box::new(setup.evaluator(desc, robot.clone(), &r)?), r))
+        }
+    };
+    // The lean planar r = 1 path of every orientation, if all have it (the same verdicts).
+    let lean = evals
+        .iter()
+        .zip(&rotations)
+        .map(|(e, r)| PlanarSlice::new(e, r))
+        .collect::<Option<Vec<_>>>()
+        .and_then(|l| match &central {
+            Ok(_) => Some((l, None)),
+            Err((e, r)) => PlanarSlice::new(e, r).map(|c| (l, Some(c))),
+        });
+    let slices = Slices {
+        evals,
+        rotations,
+        central,
+    };
+    let n = angles.len();
+    let verdicts = if let Some((lean, central_lean)) = &lean {
+        // Row by row, four points at a time, orientation by orientation.
+        let central = match &slices.central {
+            Ok(k) => Ok(*k),
+            Err(_) => Err(central_lean
+                .as_ref()
+                .expect("built with the central evaluator")),
+        };
+        let state = (slices, LeanScratch::default());
+        map_row_blocks(&state, grid, dim, bar, |(s, scratch), points, out| {
+            dextrous_verdicts_lean(lean, central, points, out, scratch, |k, u| match k {
+                Some(k) => s.evals[k].is_feasible(&Pose::new(*u, s.rotations[k])),
+                None => match &mut s.central {
+                    Err((ev, r)) => ev.is_feasible(&Pose::new(*u, *r)),
+                    Ok(k) => s.evals[*k].is_feasible(&Pose::new(*u, s.rotations[*k])),
+                },
+            })
+        })
+    } else {
+        map_rows(&slices, grid, dim, bar, |s, u| {
+            let ok =
+                |s: &mut Slices, k: usize| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k]));
+            if !ok(s, 0) || (n > 1 && !ok(s, n - 1)) {
+                return (false, false, false);
+            }
+            let (central_ok, central_index) = match &mut s.central {
+                Ok(k) => {
+                    let k = *k;
+                    (ok(s, k), Some(k))
+                }
+                Err((ev, r)) => (ev.is_feasible(&Pose::new(u, *r)), None),
+            };
+            let others_ok = (1..n.saturating_sub(1))
+                .filter(|&k| Some(k) != central_index)
+                .all(|k| ok(s, k));
+            let dextrous = (central_ok || central_index.is_none()) && others_ok;
+            (dextrous, true, !central_ok)
+        })
+    };
+    bar.finish_and_clear();
+    let violations = verdicts.iter().filter(|v| v.2).count();
+    Ok(Dextrous {
+        workspace: GridWorkspace::from_verdicts(*grid, dim, verdicts.iter().map(|v| v.0).collect()),
+        central_check: CentralCheck {
+            holds: violations == 0,
+            violations,
+            extremes_points: verdicts.iter().filter(|v| v.1).count(),
+        },
+        angles,
+    })
+}
+
+/// The pose at which the robot is drawn: `--draw-pose` or the box centre at `rotation`.
+pub fn draw_pose(
+    robot: &Robot,
+    q: Option<&[f64]>,
+    region: &Region,
+    rotation: &Rotation3<f64>,
+) -> Result<Pose, CliError> {
+    match q {
+        Some(q) => Ok(Pose::from_coordinates(robot.motion(), q)?),
+        None => {
+            let mut c = (region.min + region.max) * 0.5;
+            if robot.motion().space_dim() == 2 {
+                c.z = 0.0;
+            }
+            Ok(Pose::new(c, *rotation))
+        }
+    }
+}
+
+/// A figure's title (robot and what is drawn) and the line under it: orientation (rad), load
+/// (N, N·m) and tension method, e.g. "orientation φ = 0.1 rad; load w_ext = [0, -10, 0] (N, N, N·m);
+/// tensions l2".
+pub fn plot_title(
+    robot: &str,
+    what: &str,
+    motion: MotionPattern,
+    orientation: &[f64],
+    w_ext: &[f64],
+    method: Method,
+) -> (String, String) {
+    let orientation = match motion {
+        MotionPattern::Planar => format!(
+            "orientation φ = {} rad; ",
+            cdpr::plot::tick(orientation.first().copied().unwrap_or(0.0))
+        ),
+        MotionPattern::Spatial => format!("orientation [{}] rad; ", tick_list(orientation)),
+        _ => String::new(),
+    };
+    (
+        format!("{robot}: {what}"),
+        format!("{orientation}{}", load_text(motion, w_ext, method)),
+    )
+}
+
+/// "load w_ext = [0, -10, 0] (N, N, N·m); tensions l2".
+pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String {
+    let units = match motion {
+        MotionPattern::Planar => "N, N, N·m",
+        MotionPattern::Spatial => "forces N, moments N·m",
+        _ => "N",
+    };
+    format!(
+        "load w_ext = [{}] ({units}); tensions {}",
+        tick_list(w_ext),
+        method.name()
+    )
+}
+
+fn tick_list(v: &[f64]) -> String {
+    v.iter()
+        .map(|x| cdpr::plot::tick(*x))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Axis label of a length coordinate (robot files are in SI units, docs/robot-file.md).
+pub fn length_axis(axis: &str) -> String {
+    format!("{axis} (m)")
+}
+
+/// What an empty grid or chord result draws in the middle of the chart.
+pub const EMPTY_WORKSPACE: &str = "no feasible pose in the box";
+
+/// The planar workspace figure: anchors, cables at `pose`, feasible cells, outlined (and
+/// filled) boundaries; a note in the middle when nothing is feasible.
+pub fn workspace_plot(
+    robot: &Robot,
+    pose: &Pose,
+    ws: Option<&GridWorkspace>,
+    boundaries: Vec<Vec<(f64, f64)>>,
+    title: String,
+    notes: Vec<String>,
+) -> WorkspacePlot {
+    let mut feasible_points = Vec::new();
+    let mut cell = (0.0, 0.0);
+    if let Some(ws) = ws {
+        cell = grid_cell(ws);
+        feasible_points = layer_points(ws, 0);
+    }
+    let fill = ws.is_none() && !boundaries.is_empty();
+    let empty = feasible_points.is_empty() && boundaries.is_empty();
+    WorkspacePlot {
+        title,
+        feasible_points,
+        cell,
+        boundaries,
+        fill_boundaries: fill,
+        notes,
+        axis_names: Some((length_axis("x"), length_axis("y"))),
+        empty_message: empty.then(|| EMPTY_WORKSPACE.to_string()),
+        ..WorkspacePlot::default()
+    }
+    .with_robot(robot, pose)
+}
+
+/// The 3-D figure (`.html` viewer, or isometric view and sections) of a spatial or point3
+/// workspace on a grid: the surface of the grid cells, the robot at `pose`.
+pub fn save_scene_plot(
+    desc: &RobotDescription,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    legend: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let (vertices, triangles) = cdpr::plot::grid_surface(ws);
+    let r = &ws.grid.region;
+    let scene = cdpr::plot::Scene {
+        title,
+        vertices,
+        triangles,
+        region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
+        legend,
+        mesh_label: format!(
+            "grid cells of the feasible points (m = {})",
+            ws.grid.resolution
+        ),
+        ..cdpr::plot::Scene::default()
+    }
+    .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
+/// The 3-D figure of a boundary mesh (`--boundary mesh`): the certified surface in place of the
+/// grid cells.
+pub fn save_mesh_scene_plot(
+    desc: &RobotDescription,
+    pose: &Pose,
+    mesh: &cdpr::workspace::BoundaryMesh,
+    title: String,
+    legend: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let r = &mesh.grid.grid.region;
+    let scene = cdpr::plot::Scene {
+        title,
+        vertices: mesh.vertices.clone(),
+        triangles: mesh.triangles.clone(),
+        region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
+        legend,
+        mesh_label: format!(
+            "boundary mesh (vertices on the boundary to {:.1e} m)",
+            mesh.tolerance
+        ),
+        ..cdpr::plot::Scene::default()
+    }
+    .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
+/// Whether `path` names an HTML page (only 3-D workspaces have one).
+pub fn is_html(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("html"))
+}
+
+/// The (Δx, Δy) spacing of a grid.
+fn grid_cell(ws: &GridWorkspace) -> (f64, f64) {
+    let m = ws.grid.resolution as f64;
+    let ext = ws.grid.region.extent();
+    (ext.x / m, ext.y / m)
+}
+
+/// The feasible (x, y) points of z-layer `k` of a grid (the only layer of a planar grid).
+fn layer_points(ws: &GridWorkspace, k: usize) -> Vec<(f64, f64)> {
+    let p = ws.grid.points_per_axis();
+    let first = if ws.dim == 3 { k * p * p } else { 0 };
+    (first..first + p * p)
+        .filter(|&idx| ws.feasible[idx])
+        .map(|idx| {
+            let u = ws.point(idx);
+            (u.x, u.y)
+        })
+        .collect()
+}
+
+/// Number of z-slices drawn for a 3-D workspace.
+pub const SLICES: usize = 4;
+
+/// The z-layers drawn for a 3-D grid of resolution m: the layers nearest the centres of
+/// [`SLICES`] equal bands of the box height, without repeats.
+pub fn slice_layers(m: usize) -> Vec<usize> {
+    let mut layers: Vec<usize> = (0..SLICES)
+        .map(|j| (((j as f64 + 0.5) / SLICES as f64) * m as f64).round() as usize)
+        .collect();
+    layers.dedup();
+    layers
+}
+
+/// A 3-D grid workspace as [`SLICES`] z-slices side by side (2 × 2), each with the frame anchors
+/// seen from above (coinciding anchors share a label) and the cables at `pose` moved to the
+/// slice height; the title and notes above all slices.
+pub fn workspace_slices(
+    robot: &Robot,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    notes: Vec<String>,
+) -> Panels<WorkspacePlot> {
+    let p = ws.grid.points_per_axis();
+    let panels = slice_layers(ws.grid.resolution)
+        .into_iter()
+        .map(|k| {
+            let z = ws.point(k * p * p).z;
+            let points = layer_points(ws, k);
+            let count = points.len();
+            let mut at = *pose;
+            at.position.z = z;
+            WorkspacePlot {
+                title: format!("slice z = {}", cdpr::plot::tick(z)),
+                notes: vec![format!("{count} of {} points feasible", p * p)],
+                empty_message: (count == 0).then(|| EMPTY_WORKSPACE.to_string()),
+                feasible_points: points,
+                cell: grid_cell(ws),
+                axis_names: Some((length_axis("x"), length_axis("y"))),
+                ..WorkspacePlot::default()
+            }
+            .with_robot(robot, &at)
+        })
+        .collect();
+    Panels {
+        title,
+        notes,
+        columns: 2,
+        panel_size: (640, 680),
+        panels,
+    }
+}
+
+/// Writes a plot (SVG or PNG by extension).
+pub fn save_plot(fig: &impl Figure, path: &Path) -> Result<(), CliError> {
+    cdpr::plot::save(fig, path)?;
+    Ok(())
+}
+
+/// The grid's area (volume) fields: `area` in `convention`, both conventions, and its name.
+pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvention) {
+    let a = ws.measure(convention);
+    v["area"] = json!(a);
+    v["area_cells"] = json!(ws.clipped_area);
+    v["area_points"] = json!(ws.area);
+    v["volume_convention"] = json!(convention.name());
+    if ws.dim == 3 {
+        v["volume"] = json!(a);
+    }
+}
+
+/// The grid workspace figure: one chart for planar robots, z-slices for 3-D ones.
+pub fn save_grid_plot(
+    robot: &Robot,
+    pose: &Pose,
+    ws: &GridWorkspace,
+    title: String,
+    notes: Vec<String>,
+    path: &Path,
+) -> Result<(), CliError> {
+    if ws.dim == 3 {
+        save_plot(&workspace_slices(robot, pose, ws, title, notes), path)
+    } else {
+        save_plot(
+            &workspace_plot(robot, pose, Some(ws), Vec::new(), title, notes),
+            path,
+        )
+    }
+}
+
+/// The box's bounds XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
+pub fn box_numbers(r: &Region, dim: usize) -> Vec<f64> {
+    let mut b = vec![r.min.x, r.max.x, r.min.y, r.max.y];
+    if dim == 3 {
+        b.extend([r.min.z, r.max.z]);
+    }
+    b
+}
+
+/// ` at orientation (φ rad, …)` for a robot with an orientation, nothing for a point robot
+/// (titles and headers used to print `orientation []`).
+pub fn at_orientation(orientation: &[f64]) -> String {
+    if orientation.is_empty() {
+        String::new()
+    } else {
+        format!(" at orientation {}", super::pose_text(orientation, 0))
+    }
+}
+
+/// Box as JSON numbers.
+pub fn box_json(r: &Region, dim: usize) -> Value {
+    json!(box_numbers(r, dim))
+}
