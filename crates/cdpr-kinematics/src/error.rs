@@ -30,6 +30,14 @@ pub enum KinematicsError {
         /// Components found.
         found: usize,
     },
+    /// A path sampled with fewer samples than its two ends.
+    #[error("a path needs at least {needed} samples (its two ends), got {found}")]
+    TooFewSamples {
+        /// Samples asked for.
+        found: usize,
+        /// The least number of samples (2).
+        needed: usize,
+    },
     /// At this pose a cable has (numerically) zero length: its direction, and so W, is undefined.
     /// Cables are numbered from 1 in the message; a length that is not a finite number (a
     /// coordinate so large that the length overflows) is said to be so, not "zero".

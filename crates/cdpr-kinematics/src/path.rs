@@ -128,11 +128,9 @@ impl Path {
         let s_values: Vec<f64> = match sampling {
             Sampling::Count(n) => {
                 if n < 2 {
-                    return Err(KinematicsError::WrongDimension {
-                        what: "path samples".into(),
-                        motion: self.motion.name(),
-                        expected: 2,
+                    return Err(KinematicsError::TooFewSamples {
                         found: n,
+                        needed: 2,
                     });
                 }
                 (0..n).map(|i| i as f64 / (n - 1) as f64).collect()
@@ -169,6 +167,32 @@ impl Path {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    /// One sample is too few, and the message says so in the path's terms, not the motion
+    /// pattern's (issue 25: "path samples has 1 components, the motion pattern point3 needs 2").
+    #[test]
+    fn one_sample_is_refused_by_name() {
+        let p = Path::from_coordinates(
+            MotionPattern::Point3,
+            &[vec![0.0, 0.0, 0.0], vec![1.0, 0.0, 0.0]],
+        )
+        .unwrap();
+        for n in [0, 1] {
+            let e = p.sample(Sampling::Count(n)).unwrap_err();
+            assert_eq!(
+                e,
+                KinematicsError::TooFewSamples {
+                    found: n,
+                    needed: 2
+                }
+            );
+            assert_eq!(
+                e.to_string(),
+                format!("a path needs at least 2 samples (its two ends), got {n}")
+            );
+        }
+        assert_eq!(p.sample(Sampling::Count(2)).unwrap().len(), 2);
+    }
 
     #[test]
     fn polyline_passes_through_waypoints_with_proportional_s() {

@@ -434,3 +434,28 @@ fn a_closed_pipe_ends_the_output_without_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_ne!(out.status.code(), Some(101), "{stderr}");
 }
+
+/// `--samples 1` is refused in the path's terms (issue 25: it blamed the motion pattern).
+#[test]
+fn one_sample_is_refused_by_name() {
+    let out = cdpr()
+        .args([
+            "trajectory",
+            &robot("rowc-like-8.toml"),
+            "--from",
+            "1,0.35,0.6,0,0,0",
+            "--to",
+            "2,0.35,0.6,0,0,0",
+            "--samples",
+            "1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("a path needs at least 2 samples (its two ends), got 1")
+            && !err.contains("motion pattern"),
+        "{err}"
+    );
+}
