@@ -599,6 +599,13 @@ impl RobotDescription {
         let dim = motion.space_dim();
         let t_min = ctx.finite(&raw.tension.get_ref().min, "tension.min")?;
         let t_max = ctx.upper_bound(&raw.tension.get_ref().max, "tension.max")?;
+        if t_min < 0.0 {
+            return Err(ctx.invalid(
+                raw.tension.get_ref().min.span(),
+                "tension.min",
+                negative_t_min(t_min),
+            ));
+        }
         if t_min > t_max {
             return Err(ctx.invalid(
                 raw.tension.get_ref().min.span(),
@@ -637,6 +644,9 @@ impl RobotDescription {
                 .map(|v| ctx.upper_bound(v, &key("max")))
                 .transpose()?
                 .unwrap_or(t_max);
+            if let (true, Some(min)) = (lo < 0.0, &c.min) {
+                return Err(ctx.invalid(min.span(), key("min"), negative_t_min(lo)));
+            }
             if lo > hi {
                 let span = c
                     .min
@@ -663,12 +673,6 @@ impl RobotDescription {
                 }
                 stiff.push(v);
             }
-        }
-        if mins.iter().any(|&t| t < 0.0) {
-            warnings.push(
-                "negative t_min: cables cannot push; this describes a general redundant mechanism"
-                    .into(),
-            );
         }
         let axial_stiffness = match stiff.len() {
             0 => None,
@@ -879,4 +883,8 @@ fn platform_shape(
         }
     }
     Ok(hull)
+}
+/// The error of a negative lower tension bound: a cable only pulls.
+fn negative_t_min(t_min: f64) -> String {
+    format!("t_min = {t_min} N is negative: a cable can only pull (t_min ≥ 0)")
 }

@@ -14,7 +14,8 @@
 //!
 //! WireLib's gravity is 9.81 m/s² along −z; the file has no gravity entry, so a converted robot
 //! states it. Orientation matrices are used as written (some files store 0.707107; they are not
-//! re-orthonormalised, so results equal WireLib's). A `3R3T` file whose anchors all lie in
+//! re-orthonormalised: lengths equal WireLib's, cable directions differ by the frame's deviation
+//! from orthonormality, see docs/robot-file.md, "Pulley frames that are not orthonormal"). A `3R3T` file whose anchors all lie in
 //! z = 0 (2DIPAnema2) is spatial, as declared. WireLib applies its pulley model to 3R3T robots
 //! only: pulleys of planar files are not read (a warning says so).
 //!
@@ -250,6 +251,13 @@ impl RobotDescription {
                 }
             }
         };
+        if t_min < 0.0 {
+            return Err(x.error(
+                application.unwrap_or(robot),
+                Some("min_cable_load"),
+                format!("{t_min} N is negative: a cable can only pull (t_min ≥ 0)"),
+            ));
+        }
         if t_min > t_max {
             let node = application.unwrap_or(robot);
             return Err(x.error(

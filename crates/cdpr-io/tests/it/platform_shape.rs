@@ -100,3 +100,27 @@ fn bad_shapes_name_line_and_key() {
     };
     assert!(invalid(&text).2.contains("spatial"));
 }
+
+/// A negative t_min is an error naming its key and line (a cable can only pull; issue 25: it
+/// used to be a warning, and negative tensions then counted as feasible), in `[tension]` and
+/// per cable.
+#[test]
+fn negative_tension_bounds_are_errors_with_key_and_line() {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/robots/tdpm-3.toml"
+    );
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(RobotDescription::parse(&text, "robot.toml").is_ok());
+    let (line, key, message) =
+        invalid(&text.replace("min = 5.0\nmax = 100.0", "min = -5.0\nmax = -1.0"));
+    assert_eq!((line, key.as_str()), (6, "tension.min"), "{message}");
+    assert!(
+        message.contains("negative") && message.contains("-5"),
+        "{message}"
+    );
+    let per_cable = text.replace("frame = [-1.0, 1.0]\n", "frame = [-1.0, 1.0]\nmin = -0.5\n");
+    let (line, key, message) = invalid(&per_cable);
+    assert_eq!((line, key.as_str()), (19, "cables[2].min"), "{message}");
+    assert!(message.contains("can only pull"), "{message}");
+}
