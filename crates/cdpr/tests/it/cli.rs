@@ -598,3 +598,59 @@ fn pinv_json_keeps_its_tensions() {
         assert!((s + e).abs() < 1e-9 * 1000.0, "{s} + {e}");
     }
 }
+
+/// `stiffness` refuses negative tensions (a cable only pulls; issue 25: they gave a matrix
+/// without a word) and, without --tensions, takes them from --method as `tension` does (l2 by
+/// default): the same tensions as `cdpr tension` at the pose, and the same matrix as passing
+/// them with --tensions.
+#[test]
+fn stiffness_refuses_negative_tensions_and_solves_with_method() {
+    let r8 = robot("ipanema-like-8.toml");
+    let pose = "0,0,1,0,0,0";
+    let out = cdpr()
+        .args([
+            "stiffness",
+            &r8,
+            "--pose",
+            pose,
+            "--tensions",
+            "100,100,100,-5,100,100,100,100",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("t_4 = -5 N") && err.contains("can only pull"),
+        "{err}"
+    );
+    for method in [None, Some("l1")] {
+        let mut args = vec!["stiffness", r8.as_str(), "--pose", pose, "--json"];
+        let mut tension = vec!["tension", r8.as_str(), "--pose", pose, "--json"];
+        if let Some(m) = method {
+            args.extend(["--method", m]);
+            tension.extend(["--method", m]);
+        }
+        let v = json(&args);
+        assert_eq!(v["tension_method"], method.unwrap_or("l2"));
+        let t = json(&tension);
+        assert_eq!(v["tensions"], t["tensions"], "{method:?}");
+        let given: Vec<String> = v["tensions"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|x| format!("{}", x.as_f64().unwrap()))
+            .collect();
+        let again = json(&[
+            "stiffness",
+            &r8,
+            "--pose",
+            pose,
+            "--tensions",
+            &given.join(","),
+            "--json",
+        ]);
+        assert_eq!(again["stiffness"], v["stiffness"]);
+        assert!(again["tension_method"].is_null());
+    }
+}
