@@ -128,9 +128,15 @@ fn check_bounds_slow(bounds: &TensionBounds, t: &[f64]) -> Result<(), Infeasibil
         }
     }
     if worst.1 > crate::certificate::BOUND_TOLERANCE {
+        let (i, ti) = (worst.0, t[worst.0]);
         return Err(Infeasibility::BoundsViolated {
-            cable: worst.0,
-            tension: t[worst.0],
+            cable: i,
+            tension: ti,
+            bound: if ti < bounds.min()[i] {
+                bounds.min()[i]
+            } else {
+                bounds.max()[i]
+            },
             tensions: DVector::from_vec(Vec::new()),
         });
     }

@@ -73,6 +73,8 @@ pub enum Infeasibility {
         cable: usize,
         /// Its tension.
         tension: f64,
+        /// The bound it breaks: its t_min when `tension` is below it, else its t_max.
+        bound: f64,
         /// The whole solution t = −W⁺ w_ext (W t + w_ext = 0, bounds not met); filled by
         /// [`crate::TensionSolver::solve`] (empty from the non-allocating calls).
         tensions: DVector<f64>,
@@ -109,16 +111,30 @@ pub enum Infeasibility {
     },
 }
 
+/// A value rounded to 6 significant digits for a message (`157.000001` → `157`).
+fn significant(v: f64) -> f64 {
+    format!("{v:.5e}").parse().unwrap_or(v)
+}
+
 impl fmt::Display for Infeasibility {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NoFeasibleTension => f.write_str(
                 "no tensions within the bounds balance the external wrench (empty feasible set)",
             ),
-            Self::BoundsViolated { cable, tension, .. } => write!(
+            Self::BoundsViolated {
+                cable,
+                tension,
+                bound,
+                ..
+            } => write!(
                 f,
-                "the solution needs tension {tension} in cable {}, outside its bounds",
-                cable + 1
+                "the solution needs cable {} at {} N, {} its {} of {} N",
+                cable + 1,
+                significant(*tension),
+                if tension < bound { "below" } else { "above" },
+                if tension < bound { "t_min" } else { "t_max" },
+                significant(*bound)
             ),
             Self::SingularPose { condition } => write!(
                 f,

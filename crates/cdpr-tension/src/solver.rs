@@ -207,11 +207,17 @@ impl TensionSolver {
                 tensions: DVector::from_column_slice(&self.t),
                 residual,
             }),
-            Err(Infeasibility::BoundsViolated { cable, tension, .. }) => {
+            Err(Infeasibility::BoundsViolated {
+                cable,
+                tension,
+                bound,
+                ..
+            }) => {
                 // exact / pinv left t = −W⁺ w_ext in the buffer: hand it out.
                 TensionOutcome::Infeasible(Infeasibility::BoundsViolated {
                     cable,
                     tension,
+                    bound,
                     tensions: DVector::from_column_slice(&self.t),
                 })
             }

@@ -175,17 +175,31 @@ fn pinv_hands_out_its_solution_when_a_bound_breaks() {
     );
     assert!((&w * t + &we).amax() < 1e-15);
     match out.infeasibility().unwrap() {
-        Infeasibility::BoundsViolated { cable, tension, .. } => {
+        Infeasibility::BoundsViolated {
+            cable,
+            tension,
+            bound,
+            ..
+        } => {
             assert_eq!(*cable, 1);
             assert!((tension + 1.5).abs() < 1e-15);
+            assert_eq!(*bound, 0.0);
         }
         other => panic!("{other:?}"),
     }
-    assert!(out.infeasibility().unwrap().to_string().contains("cable 2"));
+    // The message names the cable, its tension and the bound it breaks (issue 25).
+    assert_eq!(
+        out.infeasibility().unwrap().to_string(),
+        "the solution needs cable 2 at -1.5 N, below its t_min of 0 N"
+    );
     // Exact (n = DOF) likewise: t = −W⁻¹ w_ext = (3, 4) breaks t_max = 3.5 of cable 2.
     let w2 = DMatrix::from_row_slice(2, 2, &[1.0, 0.0, 0.0, 1.0]);
     let we2 = DVector::from_vec(vec![-3.0, -4.0]);
     let b2 = TensionBounds::uniform(2, 0.0, 3.5).unwrap();
     let out = solve(Method::Exact, &TensionProblem::new(&w2, &we2, &b2));
     assert_eq!(out.balancing_tensions().unwrap().as_slice(), &[3.0, 4.0]);
+    assert_eq!(
+        out.infeasibility().unwrap().to_string(),
+        "the solution needs cable 2 at 4 N, above its t_max of 3.5 N"
+    );
 }
