@@ -13,7 +13,7 @@ use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_polytope::hyperplane_shifting::available_wrench_set;
-use cdpr_polytope::{RequiredWrenchSet, isotropic_force_under_load, limiting_facet};
+use cdpr_polytope::{IsotropicForce, RequiredWrenchSet, limiting_facet};
 use nalgebra::{DMatrix, DVector};
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
@@ -182,7 +182,7 @@ pub fn isotropic(
     cdpr_wrench::require_enough_cables(robot.geometry(), "the isotropic force (wrench closure)")
         .map_err(value_error)?;
     let geo = robot.geometry();
-    let (dof, motion) = (geo.dof(), geo.motion());
+    let dof = geo.dof();
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
@@ -191,6 +191,9 @@ pub fn isotropic(
         .transpose()?;
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
     let desc = &robot.desc;
+    // One allocation-free evaluator per worker (hyperplane shifting on the fly, no facet list:
+    // what `cdpr isotropic --grid` runs), its load set pose by pose.
+    let template = IsotropicForce::new(geo, &desc.bounds).map_err(value_error)?;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
@@ -199,25 +202,21 @@ pub fn isotropic(
             count,
             &widths,
             slices,
-            || PoseKinematics::for_robot(geo),
-            |kin, k, j, blocks| {
+            || template.clone(),
+            |index, k, j, blocks| {
                 let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                geo.update_kinematics(&pose, kin).map_err(at(k))?;
-                let w = kin.wrench_matrix();
-                let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
+                let load = desc
+                    .load_wrench(&pose)
+                    .map_err(|e| format!("poses[{k}]: {e}"))?;
+                let mut w_ext = [0.0; 6];
+                for (i, (a, b)) in wr.at(k).iter().zip(load.iter()).enumerate() {
+                    w_ext[i] = a + b;
+                }
+                index.set_load(&w_ext[..dof]).map_err(at(k))?;
                 let [f, r] = blocks else {
                     unreachable!("two outputs")
                 };
-                let w_ext = DVector::from_column_slice(wr.at(k))
-                    + desc
-                        .load_wrench(&pose)
-                        .map_err(|e| format!("poses[{k}]: {e}"))?;
-                f[j] = isotropic_force_under_load(&aws, motion, &w_ext).map_err(at(k))?;
-                r[j] = aws
-                    .supporting_halfspaces()
-                    .iter()
-                    .map(|h| h.offset + h.normal.dot(&w_ext))
-                    .fold(f64::INFINITY, f64::min);
+                (f[j], r[j]) = index.indices_at_pose(&pose).map_err(at(k))?;
                 Ok::<(), String>(())
             },
         )

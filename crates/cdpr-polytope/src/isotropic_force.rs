@@ -249,10 +249,17 @@ impl IsotropicForce {
     /// The same index on top of a constant external wrench `w_ext` (N, N·m; e.g. the platform's
     /// weight): see [`isotropic_force_under_load`]. Both indices shift their facets by it.
     pub fn with_load(mut self, w_ext: &[f64]) -> Result<Self, PolytopeError> {
+        self.set_load(w_ext)?;
+        Ok(self)
+    }
+
+    /// Changes the external wrench in place (a load that varies from pose to pose, e.g. the
+    /// weight's moment at each orientation), without reallocating anything.
+    pub fn set_load(&mut self, w_ext: &[f64]) -> Result<(), PolytopeError> {
         check_vector("external wrench", w_ext, self.robot.dof())?;
         self.load = [0.0; MAX_DOF];
         self.load[..w_ext.len()].copy_from_slice(w_ext);
-        Ok(self)
+        Ok(())
     }
 
     /// n · w_ext for a normal of length DOF.
