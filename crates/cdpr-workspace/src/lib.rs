@@ -84,6 +84,7 @@ mod error;
 mod evaluator;
 mod mesh_files;
 pub mod orientation_workspace;
+mod parallel;
 mod region;
 pub mod synthesis;
 pub mod wrench_closure;
@@ -116,3 +117,8 @@ pub use orientation_workspace::{
     orientation_boundary_mesh, orientation_workspace, tilt_torsion_rotation,
 };
 pub use region::Region;
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
