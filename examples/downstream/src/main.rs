@@ -55,15 +55,15 @@ fn main() -> ExitCode {
 fn run() -> Result<(), Box<dyn std::error::Error>> {
     let robot = robot();
     let n = robot.cable_count();
-    // A pick-and-place move: up, across with a 0.2 rad turn about z and a small tilt, and down
-    // (x, y, z in m; rx, ry, rz in rad).
+    // A pick-and-place move at constant orientation: up, across and down (x, y, z in m; rx, ry,
+    // rz in rad).
     let path = Path::from_coordinates(
         MotionPattern::Spatial,
         &[
-            vec![-0.8, -0.5, 0.8, 0.0, 0.0, 0.0],
-            vec![-0.8, -0.5, 1.2, 0.0, 0.0, 0.0],
-            vec![0.8, 0.5, 1.2, 0.05, -0.05, 0.2],
-            vec![0.8, 0.5, 0.8, 0.0, 0.0, 0.2],
+            vec![-0.6, -0.4, 0.8, 0.0, 0.0, 0.0],
+            vec![-0.6, -0.4, 1.0, 0.0, 0.0, 0.0],
+            vec![0.6, 0.4, 1.0, 0.0, 0.0, 0.0],
+            vec![0.6, 0.4, 0.8, 0.0, 0.0, 0.0],
         ],
     )?;
     let samples = path.sample(Sampling::Count((RATE_HZ * DURATION_S) as usize + 1))?;
