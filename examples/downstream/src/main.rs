@@ -91,7 +91,9 @@ fn run() -> Result<(), Box<dyn std::error::Error>> {
             return Err(format!("pose {k}: equilibrium residual {residual:e} N").into());
         }
         if let Some(i) = (0..n).find(|&i| !(T_MIN - 1e-9..=T_MAX + 1e-9).contains(&t[i])) {
-            return Err(format!("pose {k}: cable {} tension {} N out of bounds", i + 1, t[i]).into());
+            return Err(
+                format!("pose {k}: cable {} tension {} N out of bounds", i + 1, t[i]).into(),
+            );
         }
         worst_residual = worst_residual.max(residual);
         lowest = lowest.min(t.min());
