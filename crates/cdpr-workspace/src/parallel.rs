@@ -11,18 +11,26 @@ use rayon::prelude::*;
 /// Number of threads the evaluations are spread over (rayon's pool; 1 without `parallel`).
 pub(crate) fn current_num_threads() -> usize {
     #[cfg(feature = "parallel")]
-    return rayon::current_num_threads().max(1);
+    {
+        rayon::current_num_threads().max(1)
+    }
     #[cfg(not(feature = "parallel"))]
-    return 1;
+    {
+        1
+    }
 }
 
 /// Index of the pool thread running the caller (`None` outside the pool; always `Some(0)`
 /// without `parallel`).
 pub(crate) fn current_thread_index() -> Option<usize> {
     #[cfg(feature = "parallel")]
-    return rayon::current_thread_index();
+    {
+        rayon::current_thread_index()
+    }
     #[cfg(not(feature = "parallel"))]
-    return Some(0);
+    {
+        Some(0)
+    }
 }
 
 /// Calls `f(task, chunk)` for each `len`-long chunk of `out` (the last may be shorter), chunk
@@ -51,7 +59,9 @@ where
     F: Fn(&mut S, usize) -> R + Sync + Send,
 {
     #[cfg(feature = "parallel")]
-    return (0..n).into_par_iter().map_init(init, f).collect();
+    {
+        (0..n).into_par_iter().map_init(init, f).collect()
+    }
     #[cfg(not(feature = "parallel"))]
     {
         let mut state = init();
