@@ -162,3 +162,8 @@ impl RobotDescription {
         Ok(losses)
     }
 }
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -211,7 +211,7 @@ impl<'a> ForwardKinematics<'a> {
         guess: &Pose,
     ) -> Result<Vec<ForwardSolution>, KinematicsError> {
         let n = self.robot.cable_count();
-        if lengths.len() % n != 0 {
+        if !lengths.len().is_multiple_of(n) {
             return Err(KinematicsError::WrongDimension {
                 what: "concatenated cable lengths (a multiple of the cable count)".into(),
                 motion: self.robot.motion().name(),

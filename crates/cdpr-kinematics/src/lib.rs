@@ -71,3 +71,8 @@ pub use path::{Path, PathSample, Sampling};
 pub use pose::Pose;
 pub use pulley::PulleyDegeneracy;
 pub use robot::{Cable, Pulley, Robot};
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

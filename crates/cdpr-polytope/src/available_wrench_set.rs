@@ -266,16 +266,14 @@ impl AvailableWrenchSet {
             let b = DVector::from_fn(d, |r, _| self.facets[idx[r]].offset);
             let lu = a.lu();
             let det = lu.determinant();
-            if det.abs() > 1e-10 {
-                if let Some(x) = lu.solve(&b) {
-                    if self.violation(&x) <= tol
-                        && !out
-                            .iter()
-                            .any(|v| (v - &x).amax() <= MERGE_TOL * self.scale)
-                    {
-                        out.push(x);
-                    }
-                }
+            if det.abs() > 1e-10
+                && let Some(x) = lu.solve(&b)
+                && self.violation(&x) <= tol
+                && !out
+                    .iter()
+                    .any(|v| (v - &x).amax() <= MERGE_TOL * self.scale)
+            {
+                out.push(x);
             }
             if !next_combination(&mut idx, m) {
                 break;

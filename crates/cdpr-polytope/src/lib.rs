@@ -79,3 +79,8 @@ pub use isotropic_force::{
 /// re-export (`cdpr_polytope::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -1314,7 +1314,7 @@ mod tests {
             })
             .collect();
         let mut we: Vector3<f64> = -(w * nalgebra::Vector4::from_row_slice(&t));
-        if case % 7 == 0 {
+        if case.is_multiple_of(7) {
             we = Vector3::from_fn(|_, _| 200.0 * rnd());
         }
         we.iter().all(|v| v.is_finite()).then_some((w, we, b))

@@ -271,7 +271,7 @@ fn iterate<const M: usize, const N: usize>(
 /// time (each dot product summed over k in order, as in the scalar loop: the same bits).
 #[inline(always)]
 fn subtract_at_y<const N: usize>(ws: &[f64], m: usize, y: &[f64], active: &[bool], t: &mut [f64]) {
-    if N > 0 && N % 2 == 0 {
+    if N > 0 && N.is_multiple_of(2) {
         for i in (0..N).step_by(2) {
             let (a, b) = (&ws[i * m..i * m + m], &ws[(i + 1) * m..(i + 1) * m + m]);
             let mut s = [0.0; 2];

@@ -66,20 +66,21 @@ pub fn interior_point(
     // orders of magnitude above the data (e.g. a pure moment on small moment arms with
     // t_max = ∞: ~10⁵). Then the LP decides, and the objective is re-solved in units of the LP
     // answer's largest tension.
-    if objective != Objective::L1 && matches!(first, Err(Infeasibility::NoFeasibleTension)) {
-        if let Ok(t1) = solve_scaled(problem, Objective::L1, 1.0)? {
-            let sigma = t1.amax();
-            if sigma > 1.0 {
-                return Ok(match solve_scaled(problem, objective, sigma)? {
-                    Err(Infeasibility::NoFeasibleTension) => Err(Infeasibility::SolverFailure {
-                        detail: format!(
-                            "clarabel: {} infeasible, l1 feasible (max tension {sigma:.3e})",
-                            objective_name(objective)
-                        ),
-                    }),
-                    other => other,
-                });
-            }
+    if objective != Objective::L1
+        && matches!(first, Err(Infeasibility::NoFeasibleTension))
+        && let Ok(t1) = solve_scaled(problem, Objective::L1, 1.0)?
+    {
+        let sigma = t1.amax();
+        if sigma > 1.0 {
+            return Ok(match solve_scaled(problem, objective, sigma)? {
+                Err(Infeasibility::NoFeasibleTension) => Err(Infeasibility::SolverFailure {
+                    detail: format!(
+                        "clarabel: {} infeasible, l1 feasible (max tension {sigma:.3e})",
+                        objective_name(objective)
+                    ),
+                }),
+                other => other,
+            });
         }
     }
     Ok(first)

@@ -100,3 +100,8 @@ pub use nalgebra;
 pub use outcome::{Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution};
 pub use solver::TensionSolver;
 pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -62,7 +62,7 @@ impl Constraint {
     fn line(self, ns: &NullSpace, bounds: &TensionBounds) -> (P2, f64) {
         let i = self.0 / 2;
         let a = ns.row2(i);
-        if self.0 % 2 == 0 {
+        if self.0.is_multiple_of(2) {
             (a, bounds.min()[i] - ns.t0[i])
         } else {
             ([-a[0], -a[1]], ns.t0[i] - bounds.max()[i])
@@ -149,7 +149,7 @@ fn multipliers(np: P2, nq: P2, det: f64, d: P2) -> (f64, f64) {
 fn satisfies(ns: &NullSpace, bounds: &TensionBounds, j: Constraint, l: P2) -> bool {
     let i = j.0 / 2;
     let t = ns.tension2(i, l);
-    if j.0 % 2 == 0 {
+    if j.0.is_multiple_of(2) {
         let lo = bounds.min()[i];
         lo - t <= VIOLATION * lo.abs().max(1.0)
     } else {

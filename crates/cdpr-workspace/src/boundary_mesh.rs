@@ -51,7 +51,6 @@ use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
 use cdpr_kinematics::Pose;
 use nalgebra::{Rotation3, Vector3};
-use rayon::prelude::*;
 
 /// Settings of [`boundary_mesh`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -422,46 +421,47 @@ where
             }
         }
     }
-    let bisected: Vec<([f64; 3], MeshVertex, usize)> = crossings
-        .par_chunks(64)
-        .map_init(
-            || state.clone(),
-            |ev, chunk| {
-                chunk
-                    .iter()
-                    .map(|&(idx, axis)| {
-                        let (a, b) = if feasible[idx] {
-                            (idx, idx + stride[axis])
+    const CHUNK: usize = 64;
+    let bisected: Vec<([f64; 3], MeshVertex, usize)> = crate::parallel::map_init(
+        crossings.len().div_ceil(CHUNK),
+        || state.clone(),
+        |ev, c| {
+            crossings[c * CHUNK..crossings.len().min((c + 1) * CHUNK)]
+                .iter()
+                .map(|&(idx, axis)| {
+                    let (a, b) = if feasible[idx] {
+                        (idx, idx + stride[axis])
+                    } else {
+                        (idx + stride[axis], idx)
+                    };
+                    let (pa, pb) = (at(a), at(b));
+                    let mut u = pa;
+                    let (mut lo, mut hi) = (pa[axis], pb[axis]);
+                    let mut evaluations = 0;
+                    while (hi - lo).abs() > tolerance {
+                        let mid = 0.5 * (lo + hi);
+                        u[axis] = mid;
+                        evaluations += 1;
+                        if feasible_at(ev, u) {
+                            lo = mid;
                         } else {
-                            (idx + stride[axis], idx)
-                        };
-                        let (pa, pb) = (at(a), at(b));
-                        let mut u = pa;
-                        let (mut lo, mut hi) = (pa[axis], pb[axis]);
-                        let mut evaluations = 0;
-                        while (hi - lo).abs() > tolerance {
-                            let mid = 0.5 * (lo + hi);
-                            u[axis] = mid;
-                            evaluations += 1;
-                            if feasible_at(ev, u) {
-                                lo = mid;
-                            } else {
-                                hi = mid;
-                            }
+                            hi = mid;
                         }
-                        u[axis] = 0.5 * (lo + hi);
-                        let origin = MeshVertex::Crossing {
-                            axis,
-                            feasible_end: pa.into(),
-                            infeasible_end: pb.into(),
-                        };
-                        (u.into(), origin, evaluations)
-                    })
-                    .collect::<Vec<_>>()
-            },
-        )
-        .flatten_iter()
-        .collect();
+                    }
+                    u[axis] = 0.5 * (lo + hi);
+                    let origin = MeshVertex::Crossing {
+                        axis,
+                        feasible_end: pa.into(),
+                        infeasible_end: pb.into(),
+                    };
+                    (u.into(), origin, evaluations)
+                })
+                .collect::<Vec<_>>()
+        },
+    )
+    .into_iter()
+    .flatten()
+    .collect();
     let evaluations = ws.total_points + bisected.iter().map(|b| b.2).sum::<usize>();
     let mut vertices: Vec<[f64; 3]> = bisected.iter().map(|b| b.0).collect();
     let mut origins: Vec<MeshVertex> = bisected.iter().map(|b| b.1).collect();

@@ -137,13 +137,13 @@ impl ChordSettings {
         if self.max_points < 3 {
             return bad("max points", self.max_points as f64, "≥ 3");
         }
-        if let InteriorPoint::Given(p) = self.interior {
-            if let Some(&v) = p.iter().find(|v| !v.is_finite()) {
-                return Err(WorkspaceError::NotFinite {
-                    what: "interior point",
-                    value: v,
-                });
-            }
+        if let InteriorPoint::Given(p) = self.interior
+            && let Some(&v) = p.iter().find(|v| !v.is_finite())
+        {
+            return Err(WorkspaceError::NotFinite {
+                what: "interior point",
+                value: v,
+            });
         }
         Ok(())
     }

@@ -234,7 +234,7 @@ impl PlanarSlice {
     /// [`PlanarSlice::is_feasible`] at four positions (x, y, 0), one per lane of `x` and `y`:
     /// `(verdicts, deferred)`, bit l for lane l; a deferred lane is one where
     /// [`PlanarSlice::is_feasible`] gives `None` (its verdict bit is meaningless). Each lane
-    /// performs the scalar operations in the same order ([`PlanarSlice::wrench_columns`], then
+    /// performs the scalar operations in the same order (`PlanarSlice::wrench_columns`, then
     /// [`PlanarClosedForm::is_feasible_lanes`]): the same verdicts bit for bit (tests
     /// `planar_slice_agrees_with_the_evaluator`, `wrench_columns_lanes_are_the_scalar_bits`).
     #[inline(always)]

@@ -30,7 +30,6 @@ use crate::evaluator::BATCH;
 use crate::{PoseEvaluator, Region, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
 use nalgebra::{Rotation3, Vector3};
-use rayon::prelude::*;
 use std::sync::Mutex;
 
 /// Smallest number of grid points a rayon task handles (amortises rayon's per-task cost).
@@ -409,22 +408,20 @@ where
 {
     let axes = Axes::new(grid, dim);
     let mut out = vec![T::default(); grid.point_count(dim)];
-    let threads = rayon::current_num_threads().max(1);
+    let threads = crate::parallel::current_num_threads();
     let len = task_len(out.len(), threads);
     // One slot per thread of the pool running the tasks; a thread only ever locks its own slot,
     // so the lock is uncontended. `try_lock` fails only if a criterion re-enters rayon and this
     // thread picks up another task meanwhile: that task then uses a clone of its own.
     let evaluators: Vec<Mutex<Option<S>>> = (0..threads).map(|_| Mutex::new(None)).collect();
-    out.par_chunks_mut(len)
-        .enumerate()
-        .for_each(|(task, slots)| {
-            let mut run = |ev: &mut S| task_fn(ev, &axes, task * len, slots);
-            let own = rayon::current_thread_index().unwrap_or(0) % threads;
-            match evaluators[own].try_lock() {
-                Ok(mut slot) => run(slot.get_or_insert_with(|| eval.clone())),
-                Err(_) => run(&mut eval.clone()),
-            }
-        });
+    crate::parallel::for_each_chunk_mut(&mut out, len, |task, slots| {
+        let mut run = |ev: &mut S| task_fn(ev, &axes, task * len, slots);
+        let own = crate::parallel::current_thread_index().unwrap_or(0) % threads;
+        match evaluators[own].try_lock() {
+            Ok(mut slot) => run(slot.get_or_insert_with(|| eval.clone())),
+            Err(_) => run(&mut eval.clone()),
+        }
+    });
     out
 }
 
@@ -578,7 +575,7 @@ mod tests {
                     seed ^= seed << 13;
                     seed ^= seed >> 7;
                     seed ^= seed << 17;
-                    seed % 3 != 0
+                    !seed.is_multiple_of(3)
                 })
                 .collect();
             let weight = |idx: usize| {

@@ -17,14 +17,15 @@
 //!   ([`constant_orientation_workspace`], [`planar_workspace`]), parallel and deterministic.
 //! - [`chord`]: the chord method of §6.4.3 and Algorithm 6.3: boundary polygons of every region
 //!   and hole, bifurcation points, shoelace areas ([`chord_workspace`]).
-//! - [`boundary_mesh`]: the boundary of a 3-D workspace as a closed triangle mesh (marching
-//!   cubes over the grid verdicts, vertices bisected onto the boundary), its volume by the
-//!   divergence theorem ([`boundary_mesh()`]).
+//! - [`boundary_mesh`](mod@boundary_mesh): the boundary of a 3-D workspace as a closed triangle
+//!   mesh (marching cubes over the grid verdicts, vertices bisected onto the boundary), its
+//!   volume by the divergence theorem ([`boundary_mesh()`]).
 //! - [`dextrous`]: eq. (6.28), the intersection over m_sl orientations, with the §6.5 check of
 //!   the two-extremes shortcut ([`dextrous_workspace`]).
 //! - [`wrench_closure`]: positive spanning of W (null-space tests, LP fallback).
-//! - [`orientation_workspace`]: total-orientation, maximal and at-a-position orientation
-//!   workspaces of spatial robots over an [`OrientationSet`] (Euler box or tilt cone).
+//! - [`orientation_workspace`](mod@orientation_workspace): total-orientation, maximal and
+//!   at-a-position orientation workspaces of spatial robots over an [`OrientationSet`] (Euler
+//!   box or tilt cone).
 //! - [`synthesis`]: dimensional synthesis for maximal dextrous workspace (§6.6).
 //!
 //! ```
@@ -84,6 +85,7 @@ mod error;
 mod evaluator;
 mod mesh_files;
 pub mod orientation_workspace;
+mod parallel;
 mod region;
 pub mod synthesis;
 pub mod wrench_closure;
@@ -116,3 +118,8 @@ pub use orientation_workspace::{
     orientation_boundary_mesh, orientation_workspace, tilt_torsion_rotation,
 };
 pub use region::Region;
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

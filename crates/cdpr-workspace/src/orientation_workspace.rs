@@ -57,7 +57,6 @@ use crate::discretisation::{checked_orientation, map_grid};
 use crate::{Grid, GridWorkspace, PoseEvaluator, WorkspaceError};
 use cdpr_kinematics::{MotionPattern, Pose};
 use nalgebra::{Rotation3, Vector3};
-use rayon::prelude::*;
 use std::fmt;
 use std::str::FromStr;
 
@@ -691,38 +690,36 @@ pub fn orientation_boundary_mesh(
         OrientationWorkspaceKind::Maximal => vec![None; mesh.vertices.len()],
         OrientationWorkspaceKind::Total => {
             let eps = mesh.tolerance;
-            mesh.vertices
-                .par_iter()
-                .zip(&mesh.origins)
-                .map_init(
-                    || test.clone(),
-                    |t, (v, origin)| {
-                        let MeshVertex::Crossing {
-                            feasible_end,
-                            infeasible_end,
-                            ..
-                        } = origin
-                        else {
-                            return None;
-                        };
-                        let (a, b) = (Vector3::from(*feasible_end), Vector3::from(*infeasible_end));
-                        let dir = (b - a).normalize();
-                        let outside = Vector3::from(*v) + dir * eps;
-                        let failing: Vec<usize> = (0..t.len())
-                            .filter(|&k| !t.is_feasible_at(k, outside))
-                            .collect();
-                        match failing.as_slice() {
-                            [] => None,
-                            [k] => Some(*k),
-                            _ => failing
-                                .iter()
-                                .map(|&k| (t.crossing(k, a, outside), k))
-                                .min_by(|x, y| x.0.total_cmp(&y.0))
-                                .map(|(_, k)| k),
-                        }
-                    },
-                )
-                .collect()
+            crate::parallel::map_init(
+                mesh.vertices.len(),
+                || test.clone(),
+                |t, i| {
+                    let (v, origin) = (&mesh.vertices[i], &mesh.origins[i]);
+                    let MeshVertex::Crossing {
+                        feasible_end,
+                        infeasible_end,
+                        ..
+                    } = origin
+                    else {
+                        return None;
+                    };
+                    let (a, b) = (Vector3::from(*feasible_end), Vector3::from(*infeasible_end));
+                    let dir = (b - a).normalize();
+                    let outside = Vector3::from(*v) + dir * eps;
+                    let failing: Vec<usize> = (0..t.len())
+                        .filter(|&k| !t.is_feasible_at(k, outside))
+                        .collect();
+                    match failing.as_slice() {
+                        [] => None,
+                        [k] => Some(*k),
+                        _ => failing
+                            .iter()
+                            .map(|&k| (t.crossing(k, a, outside), k))
+                            .min_by(|x, y| x.0.total_cmp(&y.0))
+                            .map(|(_, k)| k),
+                    }
+                },
+            )
         }
     };
     Ok(OrientationMesh { mesh, limiting })
@@ -746,29 +743,28 @@ fn limiting_orientations(test: &OrientationTest, ws: &GridWorkspace) -> Vec<Limi
         .filter(|&i| ws.feasible[i])
         .filter_map(|i| neighbours(i, p).find(|&j| !ws.feasible[j]).map(|j| (i, j)))
         .collect();
-    boundary
-        .par_iter()
-        .map_init(
-            || test.clone(),
-            |t, &(i, j)| {
-                let (inside, outside) = (ws.point(i), ws.point(j));
-                let mut best = (f64::INFINITY, 0);
-                for k in 0..t.len() {
-                    if !t.is_feasible_at(k, outside) {
-                        let s = t.crossing(k, inside, outside);
-                        if s < best.0 {
-                            best = (s, k);
-                        }
+    crate::parallel::map_init(
+        boundary.len(),
+        || test.clone(),
+        |t, b| {
+            let (i, j) = boundary[b];
+            let (inside, outside) = (ws.point(i), ws.point(j));
+            let mut best = (f64::INFINITY, 0);
+            for k in 0..t.len() {
+                if !t.is_feasible_at(k, outside) {
+                    let s = t.crossing(k, inside, outside);
+                    if s < best.0 {
+                        best = (s, k);
                     }
                 }
-                LimitingOrientation {
-                    point: i,
-                    orientation: best.1,
-                    boundary_point: inside + (outside - inside) * best.0.min(1.0),
-                }
-            },
-        )
-        .collect()
+            }
+            LimitingOrientation {
+                point: i,
+                orientation: best.1,
+                boundary_point: inside + (outside - inside) * best.0.min(1.0),
+            }
+        },
+    )
 }
 
 #[cfg(test)]

@@ -39,3 +39,8 @@ pub use stiffness::{
     active_stiffness, passive_stiffness, stiffness_matrix, wrench_components,
     write_stiffness_matrix,
 };
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -33,3 +33,8 @@ pub use cdpr_workspace as workspace;
 pub use cdpr_wrench as wrench;
 /// The nalgebra of the whole stack (`cdpr::nalgebra::Vector3`): no need to pin its version.
 pub use nalgebra;
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

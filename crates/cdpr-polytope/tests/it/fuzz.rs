@@ -132,11 +132,10 @@ proptest! {
                 let _ = largest_inscribed_ellipse(aws);
             }
         }
-        if w.ncols() <= 4 && dof <= 3 {
-            if let Ok(k) = krut_vertex_projection::available_wrench_set(&w, &b) {
+        if w.ncols() <= 4 && dof <= 3
+            && let Ok(k) = krut_vertex_projection::available_wrench_set(&w, &b) {
                 prop_assert!(k.facets().iter().all(|f| f.offset.is_finite()));
             }
-        }
         if let Ok(r) = &required {
             if let Ok(aws) = &aws {
                 if let Ok(m) = capacity_margin(aws, r) { not_nan("capacity_margin", m)?; }
@@ -145,9 +144,8 @@ proptest! {
             if let Ok(m) = CapacityMargin::new(dof, w.ncols()).margin(&w, &b, r) {
                 not_nan("CapacityMargin", m)?;
             }
-            if let Ok(ev) = CapacityMarginEvaluator::new(&b, r) {
-                if let Ok(m) = ev.margin(&w) { not_nan("CapacityMarginEvaluator", m)?; }
-            }
+            if let Ok(ev) = CapacityMarginEvaluator::new(&b, r)
+                && let Ok(m) = ev.margin(&w) { not_nan("CapacityMarginEvaluator", m)?; }
         }
         // Whenever W has a non-finite entry, every entry point says so.
         if w.iter().any(|x| !x.is_finite()) && b.len() == w.ncols() && dof <= 6 {

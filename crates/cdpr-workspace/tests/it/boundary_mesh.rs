@@ -89,7 +89,7 @@ fn clipped_box_volume(lo: Vector3<f64>, hi: Vector3<f64>, n: Vector3<f64>, d: f6
     let mut s = 0.0;
     for e in 0..8 {
         let eps = Vector3::new((e & 1) as f64, (e >> 1 & 1) as f64, (e >> 2) as f64);
-        let sign = if (e as u32).count_ones() % 2 == 0 {
+        let sign = if (e as u32).count_ones().is_multiple_of(2) {
             1.0
         } else {
             -1.0

@@ -214,15 +214,16 @@ pub fn run(args: Args) -> Result<(), CliError> {
         (None, MotionPattern::Spatial) => vec![0.0; 3],
         (None, _) => vec![],
     };
-    if let Some(p) = &args.plot {
-        if is_html(p) && (dim != 3 || args.boundary == "chord") {
-            return Err(format!(
-                "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
+    if let Some(p) = &args.plot
+        && is_html(p)
+        && (dim != 3 || args.boundary == "chord")
+    {
+        return Err(format!(
+            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
                  use .svg or .png",
-                p.display()
-            )
-            .into());
-        }
+            p.display()
+        )
+        .into());
     }
     let context = super::workspace_mesh::Context {
         desc: &desc,

@@ -76,7 +76,7 @@ static FONT: Once = Once::new();
 /// Registers the bundled font as `sans-serif` (idempotent).
 pub fn register_font() {
     FONT.call_once(|| {
-        let bytes: &'static [u8] = include_bytes!("../../../../assets/DejaVuSans.ttf");
+        let bytes: &'static [u8] = include_bytes!("../../assets/DejaVuSans.ttf");
         for style in [
             FontStyle::Normal,
             FontStyle::Bold,
