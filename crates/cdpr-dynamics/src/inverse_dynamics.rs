@@ -59,10 +59,11 @@ impl DynamicsProfile {
 
 /// The inverse dynamics of `samples`: tensions by `solver` within `bounds` balancing
 /// `load(k, sample)` (w_ext + w_g and any springs, N and N·m, DOF numbers) minus the inertial
-/// wrench. `axial_stiffness` is needed by SOTDA only.
+/// wrench of `body` (with `None` the inertial wrench is zero: the quasi-static tensions along
+/// the timed path). `axial_stiffness` is needed by SOTDA only.
 pub fn inverse_dynamics(
     robot: &Robot,
-    body: &RigidBody,
+    body: Option<&RigidBody>,
     samples: &[TimedSample],
     bounds: &TensionBounds,
     solver: &mut TensionSolver,
@@ -92,7 +93,9 @@ pub fn inverse_dynamics(
         let inertial = &mut out.inertial_wrench[k * dof..(k + 1) * dof];
         let vel = pattern_slice(motion, &sample.twist);
         let acc = pattern_slice(motion, &sample.twist_rate);
-        body.inertial_wrench(motion, &sample.pose, &vel[..dof], &acc[..dof], inertial);
+        if let Some(body) = body {
+            body.inertial_wrench(motion, &sample.pose, &vel[..dof], &acc[..dof], inertial);
+        }
         if let Err(e) = robot.update_kinematics(&sample.pose, &mut kin) {
             out.tensions.push(None);
             out.reasons.push(Some(e.to_string()));

@@ -32,7 +32,7 @@
 //! let bounds = TensionBounds::uniform(3, 1.0, 100.0).unwrap();
 //! let mut solver = TensionSolver::new(Method::L2);
 //! let gravity = nalgebra::DVector::from_vec(vec![0.0, -9.81]);
-//! let profile = inverse_dynamics(&robot, &body, &samples, &bounds, &mut solver, None,
+//! let profile = inverse_dynamics(&robot, Some(&body), &samples, &bounds, &mut solver, None,
 //!     |_, _| gravity.clone()).unwrap();
 //! assert_eq!(profile.feasible_count(), samples.len());
 //! ```

@@ -617,6 +617,19 @@ impl Trajectory {
         (self.start, self.end)
     }
 
+    /// The time of each waypoint (s); the parabolic blend passes near, not through, the
+    /// interior ones.
+    pub fn waypoint_times(&self) -> Vec<f64> {
+        match &self.kind {
+            Kind::Segments(segs) => {
+                let mut t: Vec<f64> = segs.iter().map(|s| s.start).collect();
+                t.push(self.end);
+                t
+            }
+            Kind::Blend(b) => b.times.clone(),
+        }
+    }
+
     /// The sample at time t (clamped to the time span).
     pub fn at(&self, t: f64) -> TimedSample {
         let t = t.clamp(self.start, self.end);

@@ -49,10 +49,18 @@ fn newton_euler_identity_at_every_sample() {
         let bounds = TensionBounds::uniform(8, 10.0, 1000.0).unwrap();
         for method in [Method::L2, Method::Barycenter] {
             let mut solver = TensionSolver::new(method);
-            let p = inverse_dynamics(&robot, &b, &samples, &bounds, &mut solver, None, |_, s| {
-                let g = b.gravity_wrench6(s.pose.rotation.matrix());
-                DVector::from_column_slice(g.as_slice())
-            })
+            let p = inverse_dynamics(
+                &robot,
+                Some(&b),
+                &samples,
+                &bounds,
+                &mut solver,
+                None,
+                |_, s| {
+                    let g = b.gravity_wrench6(s.pose.rotation.matrix());
+                    DVector::from_column_slice(g.as_slice())
+                },
+            )
             .unwrap();
             assert_eq!(p.feasible_count(), samples.len(), "{law} {method:?}");
             for (k, s) in samples.iter().enumerate() {
@@ -103,9 +111,15 @@ fn check_rates(robot: &Robot, law: TimeLaw) {
     }
     let bounds = TensionBounds::uniform(8, 10.0, 1000.0).unwrap();
     let mut solver = TensionSolver::new(Method::L2);
-    let p = inverse_dynamics(robot, &b, &samples, &bounds, &mut solver, None, |_, _| {
-        DVector::zeros(6)
-    })
+    let p = inverse_dynamics(
+        robot,
+        Some(&b),
+        &samples,
+        &bounds,
+        &mut solver,
+        None,
+        |_, _| DVector::zeros(6),
+    )
     .unwrap();
     let n = 8;
     for k in 0..ts.len() {
