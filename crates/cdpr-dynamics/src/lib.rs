@@ -39,11 +39,13 @@
 
 mod error;
 
+pub mod dynamic_feasibility;
 pub mod forward_dynamics;
 pub mod inverse_dynamics;
 pub mod rigid_body;
 pub mod time_law;
 
+pub use dynamic_feasibility::DynamicFeasibility;
 pub use error::DynamicsError;
 pub use forward_dynamics::{Drive, Integrator, Simulation, Simulator, State};
 pub use inverse_dynamics::{DynamicsProfile, inverse_dynamics};
