@@ -3,6 +3,7 @@
 pub mod capacity;
 pub mod convert;
 pub mod dextrous;
+pub mod dynamic_workspace;
 pub mod forward;
 pub mod isotropic;
 pub mod kinematics;
