@@ -25,7 +25,7 @@ use crate::error::bad;
 use crate::rigid_body::pattern_components;
 use crate::{DynamicsError, RigidBody};
 use cdpr_kinematics::{MotionPattern, Pose, PoseKinematics, Robot};
-use nalgebra::{Matrix6, Quaternion, UnitQuaternion, Vector3, Vector6};
+use nalgebra::{Matrix3, Quaternion, UnitQuaternion, Vector3, Vector6};
 
 /// What pulls on the platform.
 #[derive(Debug, Clone, PartialEq)]
@@ -126,6 +126,8 @@ pub struct Simulator<'a> {
     kin: PoseKinematics,
     tensions: Vec<f64>,
     mask: [bool; 6],
+    /// I_G⁻¹ (platform axes; zero unless spatial).
+    inertia_inverse: Matrix3<f64>,
 }
 
 impl<'a> Simulator<'a> {
@@ -222,6 +224,13 @@ impl<'a> Simulator<'a> {
             kin: PoseKinematics::for_robot(robot),
             tensions: vec![0.0; n],
             mask,
+            inertia_inverse: if motion == MotionPattern::Spatial {
+                body.inertia
+                    .try_inverse()
+                    .ok_or_else(|| bad("inertia", body.inertia.determinant(), "is singular"))?
+            } else {
+                Matrix3::zeros()
+            },
         })
     }
 
@@ -237,7 +246,10 @@ impl<'a> Simulator<'a> {
 
     /// ẍ at time t and state x (writes the tensions used into [`Simulator::tensions`]).
     pub fn acceleration(&mut self, t: f64, x: &State) -> Result<Vector6<f64>, DynamicsError> {
-        let pose = x.pose();
+        let rotation = x.orientation.to_rotation_matrix();
+        let r = *rotation.matrix();
+        let c = r * self.body.centre_of_mass;
+        let pose = Pose::new(x.position, rotation);
         self.robot
             .update_kinematics(&pose, &mut self.kin)
             .map_err(|e| DynamicsError::Diverged {
@@ -282,30 +294,35 @@ impl<'a> Simulator<'a> {
                 }
             }
         }
-        let mut wrench = self.external
-            + self
-                .body
-                .gravity_wrench6(x.orientation.to_rotation_matrix().matrix());
-        for (c, &ti) in self.kin.cables().iter().zip(&self.tensions) {
-            let f = ti * c.unit;
-            let m = c.attachment.cross(&f);
-            wrench += Vector6::new(f.x, f.y, f.z, m.x, m.y, m.z);
-        }
-        let r = x.orientation.to_rotation_matrix();
-        let (mut m6, b6) = self.body.pattern_terms(self.motion(), r.matrix(), &x.twist);
-        let mut rhs = wrench - b6;
-        for i in 0..6 {
-            if !self.mask[i] {
-                rhs[i] = 0.0;
-                m6.fill_row(i, 0.0);
-                m6.fill_column(i, 0.0);
-                m6[(i, i)] = 1.0;
+        // ẍ = M⁻¹ (W t + w_ext + w_g − b) by the block structure of M: with [f; τ] the right-hand
+        // side, α = I_G'⁻¹ (τ − c × f) (I_G' = R I_G Rᵀ, the Schur complement of m 1) and
+        // a = f / m + c × α; I_G⁻¹ is inverted once.
+        let body = &self.body;
+        let (f, tau) = self.applied_wrench(&r, &c, &w);
+        let m = body.mass;
+        let acc = match self.motion() {
+            MotionPattern::Point2 | MotionPattern::Point3 => {
+                let a = f / m;
+                Vector6::new(a.x, a.y, a.z, 0.0, 0.0, 0.0)
             }
-        }
-        let acc = solve_spd(&m6, &rhs).ok_or_else(|| DynamicsError::Diverged {
-            time: t,
-            why: "the mass matrix is not positive definite".into(),
-        })?;
+            MotionPattern::Planar => {
+                let izz = (r.row(2) * body.inertia * r.row(2).transpose())[0];
+                let alpha = (tau.z - c.cross(&f).z) / izz;
+                Vector6::new(
+                    f.x / m + alpha * c.y,
+                    f.y / m - alpha * c.x,
+                    0.0,
+                    0.0,
+                    0.0,
+                    alpha,
+                )
+            }
+            MotionPattern::Spatial => {
+                let alpha = r * (self.inertia_inverse * (r.transpose() * (tau - c.cross(&f))));
+                let a = f / m + c.cross(&alpha);
+                Vector6::new(a.x, a.y, a.z, alpha.x, alpha.y, alpha.z)
+            }
+        };
         if acc.iter().any(|a| !a.is_finite()) {
             return Err(DynamicsError::Diverged {
                 time: t,
@@ -324,6 +341,40 @@ impl<'a> Simulator<'a> {
             orientation: omega * x.orientation.into_inner() * 0.5,
             twist: acc,
         })
+    }
+
+    /// [f; τ] = W t + w_ext + w_g − b at orientation r (c = R c̄) and angular velocity ω, with
+    /// the tensions of the last evaluation; components the pattern lacks are zero.
+    fn applied_wrench(
+        &self,
+        r: &Matrix3<f64>,
+        c: &Vector3<f64>,
+        w: &Vector3<f64>,
+    ) -> (Vector3<f64>, Vector3<f64>) {
+        let body = &self.body;
+        let weight = body.mass * body.gravity;
+        let mut f = self.external.fixed_rows::<3>(0) + weight;
+        let mut tau = self.external.fixed_rows::<3>(3) + c.cross(&weight);
+        for (cable, &ti) in self.kin.cables().iter().zip(&self.tensions) {
+            let pull = ti * cable.unit;
+            f += pull;
+            tau += cable.attachment.cross(&pull);
+        }
+        if self.motion().has_orientation() {
+            // b = [m ω × (ω × c); ω × (I_P ω)], I_P ω = R I_G Rᵀ ω − m c × (c × ω).
+            let ip_w = r * (body.inertia * (r.transpose() * w)) - body.mass * c.cross(&c.cross(w));
+            f -= body.mass * w.cross(&w.cross(c));
+            tau -= w.cross(&ip_w);
+        }
+        for i in 0..3 {
+            if !self.mask[i] {
+                f[i] = 0.0;
+            }
+            if !self.mask[i + 3] {
+                tau[i] = 0.0;
+            }
+        }
+        (f, tau)
     }
 
     /// One classical RK4 step of length h from (t, x).
@@ -543,11 +594,6 @@ fn finite(what: &str, v: &[f64]) -> Result<(), DynamicsError> {
         Some((i, &x)) => Err(bad(format!("{what}[{i}]"), x, "must be finite")),
         None => Ok(()),
     }
-}
-
-/// M⁻¹ r by Cholesky (M symmetric positive definite), no allocation.
-fn solve_spd(m: &Matrix6<f64>, r: &Vector6<f64>) -> Option<Vector6<f64>> {
-    m.cholesky().map(|c| c.solve(r))
 }
 
 #[cfg(test)]
@@ -786,6 +832,57 @@ mod tests {
                 got.as_slice(),
                 want.as_slice()
             );
+        }
+    }
+
+    /// The block (Schur complement) solve of the simulator equals M⁻¹ (W t + w − b) with M and
+    /// b of `RigidBody::pattern_terms` solved by Cholesky, spatial and planar, offset centre of
+    /// mass, spinning platform.
+    #[test]
+    fn block_solve_matches_the_mass_matrix() {
+        let b = body(
+            Vector3::new(0.03, -0.02, 0.04),
+            cdpr_wrench::STANDARD_GRAVITY,
+        );
+        let spatial = robot8();
+        let planar = cdpr_kinematics::reference_robots::thesis_four_cable();
+        for robot in [&spatial, &planar] {
+            let motion = robot.motion();
+            let keep = pattern_components(motion);
+            let tensions: Vec<f64> = (0..robot.cable_count())
+                .map(|i| 20.0 + 7.0 * i as f64)
+                .collect();
+            let mut sim = Simulator::new(
+                robot,
+                b,
+                Drive::Tensions(tensions.clone()),
+                &vec![0.5; motion.dof()],
+            )
+            .unwrap();
+            let pose = match motion {
+                MotionPattern::Spatial => {
+                    Pose::spatial(Vector3::new(0.1, -0.2, 1.0), 0.2, -0.3, 0.5)
+                }
+                _ => Pose::planar(0.05, -0.02, 0.3),
+            };
+            let twist =
+                crate::rigid_body::embed(motion, &[0.3, -0.2, 0.5, 1.1, -0.7, 2.0][..motion.dof()]);
+            let x = State::new(&pose, twist);
+            let acc = sim.acceleration(0.0, &x).unwrap();
+            let kin = robot.inverse_kinematics(&pose).unwrap();
+            let wt = kin.wrench_matrix() * nalgebra::DVector::from_vec(tensions);
+            let g = b.gravity_wrench6(pose.rotation.matrix());
+            let (m6, b6) = b.pattern_terms(motion, pose.rotation.matrix(), &twist);
+            let d = keep.len();
+            let m = nalgebra::DMatrix::from_fn(d, d, |i, j| m6[(keep[i], keep[j])]);
+            let rhs = nalgebra::DVector::from_fn(d, |i, _| wt[i] + 0.5 + g[keep[i]] - b6[keep[i]]);
+            let want = m.cholesky().unwrap().solve(&rhs);
+            for i in 0..d {
+                assert_relative_eq!(acc[keep[i]], want[i], epsilon = 1e-10);
+            }
+            for i in (0..6).filter(|i| !keep.contains(i)) {
+                assert_eq!(acc[i], 0.0);
+            }
         }
     }
 
