@@ -263,6 +263,11 @@ pub fn workspace(
                     min_distance: *d,
                     platform: desc.platform_shape.clone().map(std::sync::Arc::new),
                 },
+                Spec::Dynamic => {
+                    return Err(value_error(
+                        "criteria dynamic is not in the Python package yet: use `cdpr workspace --criteria dynamic --acceleration-box …`",
+                    ));
+                }
             })
         })
         .collect::<PyResult<Vec<_>>>()?;

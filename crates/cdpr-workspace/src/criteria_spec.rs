@@ -3,7 +3,7 @@
 //! The text form of the workspace criteria shared by `cdpr workspace --criteria` and the Python
 //! package's `criteria=`: comma-separated tokens `tension`, `length[:L]`, `det[:D]`,
 //! `wrench-closure`, `capacity[:M]`, `isotropic:F`, `stiffness:K`, `stiffness:KT,KR`,
-//! `interference[:D]` (the thesis' eqs. (6.21), (6.22), (6.24); Picard, Caro, Plestan &
+//! `interference[:D]`, `dynamic` (the thesis' eqs. (6.21), (6.22), (6.24); Picard, Caro, Plestan &
 //! Claveau 2020 for the stiffness floors). A [`CriterionSpec`] carries the numbers only; the
 //! external wrench is bound when an evaluator is built.
 //!
@@ -35,6 +35,9 @@ pub enum CriterionSpec {
     StiffnessFloor(f64, f64),
     /// Cables at least the value apart (m), none through the platform shape.
     Interference(f64),
+    /// Dynamic feasibility: every acceleration of a box (given separately) balanced within the
+    /// bounds (Gagliardini, Gouttefarde & Caro 2016; `cdpr_dynamics::DynamicFeasibility`).
+    Dynamic,
 }
 
 impl CriterionSpec {
@@ -50,6 +53,7 @@ impl CriterionSpec {
             Self::Stiffness(k) => format!("stiffness:{k}"),
             Self::StiffnessFloor(kt, kr) => format!("stiffness:{kt},{kr}"),
             Self::Interference(d) => format!("interference:{d}"),
+            Self::Dynamic => "dynamic".into(),
         }
     }
 }
@@ -204,6 +208,7 @@ pub fn parse_criteria<'a>(
                 })?)
             }
             ("wrench-closure", None) => CriterionSpec::WrenchClosure,
+            ("dynamic", None) => CriterionSpec::Dynamic,
             ("capacity", v) => {
                 CriterionSpec::Capacity(v.map(|v| number(token, v)).transpose()?.unwrap_or(0.0))
             }

@@ -81,6 +81,7 @@ mod criteria;
 mod criteria_spec;
 pub mod dextrous;
 pub mod discretisation;
+mod dynamic;
 mod error;
 mod evaluator;
 mod mesh_files;
@@ -106,6 +107,7 @@ pub use dextrous::{
 pub use discretisation::{
     Grid, GridWorkspace, VolumeConvention, constant_orientation_workspace, planar_workspace,
 };
+pub use dynamic::dynamic_criterion;
 pub use error::WorkspaceError;
 pub use evaluator::PoseEvaluator;
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this

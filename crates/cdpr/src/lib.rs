@@ -10,6 +10,7 @@
 //! | [`wrench`] | `cdpr-wrench` | external wrenches, stiffness K = Kp + Ka |
 //! | [`tension`] | `cdpr-tension` | tension distribution (closed form, ℓ1, ℓ2, barycentre, SOTDA, …) |
 //! | [`polytope`] | `cdpr-polytope` | available wrench set, isotropic force, capacity margin |
+//! | [`dynamics`] | `cdpr-dynamics` | mass matrix, time laws, inverse and forward dynamics |
 //! | [`workspace`] | `cdpr-workspace` | grid and chord workspaces, dextrous workspace, synthesis |
 //!
 //! ```
@@ -24,6 +25,7 @@
 
 pub mod plot;
 
+pub use cdpr_dynamics as dynamics;
 pub use cdpr_io as io;
 pub use cdpr_io::{Limits, RobotDescription, RobotFileError};
 pub use cdpr_kinematics as kinematics;

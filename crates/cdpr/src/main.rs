@@ -59,6 +59,8 @@ enum Command {
     StiffnessMap(cli::stiffness_map::Args),
     /// Writes a robot file in another format: `cdpr convert IN -o OUT.toml|OUT.wcrfx`.
     Convert(cli::convert::Args),
+    /// Forward dynamics: the platform's motion under given tensions or elastic cables.
+    Simulate(cli::simulate::Args),
 }
 
 fn main() -> ExitCode {
@@ -88,6 +90,7 @@ fn main() -> ExitCode {
         Command::Trajectory(a) => cli::trajectory::run(a),
         Command::StiffnessMap(a) => cli::stiffness_map::run(a),
         Command::Convert(a) => cli::convert::run(a),
+        Command::Simulate(a) => cli::simulate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -34,6 +34,14 @@ pub struct CriteriaArgs {
     /// centred on the external wrench.
     #[arg(long, allow_hyphen_values = true)]
     pub wrench_box: Option<Numbers>,
+    /// Half-widths A_i of the acceleration box of the `dynamic` criterion (DOF numbers ≥ 0,
+    /// m/s² and rad/s², centred on 0): every acceleration in it must be balanced within the
+    /// bounds (needs the platform's mass, and `inertia` for planar/spatial platforms).
+    #[arg(long, allow_hyphen_values = true)]
+    pub acceleration_box: Option<Numbers>,
+    /// The twist ẋ of the `dynamic` criterion (DOF numbers, m/s and rad/s; default 0).
+    #[arg(long, allow_hyphen_values = true, requires = "acceleration_box")]
+    pub velocity: Option<Numbers>,
 }
 
 /// One criterion as read from the command line (the wrench is bound per orientation later).
@@ -50,6 +58,9 @@ pub struct CriteriaSetup {
     pub wrench: Option<Vec<f64>>,
     /// Half-widths of the capacity box.
     pub wrench_box: Option<Vec<f64>>,
+    /// The `dynamic` criterion's test (bounds, body, acceleration box, twist; w_e bound per
+    /// evaluator).
+    pub dynamic: Option<super::dynamic_workspace::DynamicSetup>,
 }
 
 /// Default tension method of the workspace commands: exact when n = DOF, else constrained ℓ2.
@@ -113,11 +124,13 @@ impl CriteriaSetup {
                     .into(),
             );
         }
+        let dynamic = super::dynamic_workspace::setup(args, desc, &specs)?;
         Ok(Self {
             specs,
             method,
             wrench: args.wrench.as_ref().map(|w| w.0.clone()),
             wrench_box,
+            dynamic,
         })
     }
 
@@ -182,6 +195,11 @@ impl CriteriaSetup {
                         min_distance: *d,
                         platform: desc.platform_shape.clone().map(std::sync::Arc::new),
                     },
+                    Spec::Dynamic => super::dynamic_workspace::criterion(
+                        self.dynamic.as_ref(),
+                        desc,
+                        self.wrench.as_deref(),
+                    )?,
                 })
             })
             .collect::<Result<Vec<_>, CliError>>()?;

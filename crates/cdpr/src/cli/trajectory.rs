@@ -104,6 +104,9 @@ pub struct Args {
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
+    /// Timed trajectories and inverse dynamics (issue 28; see `cli/time_law.rs`).
+    #[command(flatten)]
+    timing: super::time_law::TimingArgs,
 }
 
 #[derive(Deserialize)]
@@ -117,6 +120,8 @@ struct WaypointFile {
 struct Waypoint {
     pose: Vec<f64>,
     wrench: Option<Vec<f64>>,
+    /// The waypoint's time (s) for --time-law.
+    time: Option<f64>,
 }
 
 /// Runs the command.
@@ -125,6 +130,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     check_method(&robot, args.method)?;
     let motion = robot.robot.motion();
     let default_wrench = wrench(&robot, args.wrench.as_deref())?;
+    let mut times: Option<Vec<f64>> = None;
     let (poses, wrenches): (Vec<Pose>, Vec<DVector<f64>>) = match (&args.waypoints, &args.from) {
         (Some(file), _) => {
             let text = std::fs::read_to_string(file)
@@ -136,6 +142,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             }
             let mut poses = Vec::new();
             let mut wrenches = Vec::new();
+            times = super::time_law::waypoint_times(file, &parsed.waypoints, |w| w.time)?;
             for (k, w) in parsed.waypoints.iter().enumerate() {
                 poses.push(
                     pose(&robot, &w.pose)
@@ -175,7 +182,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
     let path = Path::new(motion, poses.clone())?;
     let samples = path.sample(sampling)?;
-    let way = WaypointWrenches::new(motion, &poses, wrenches)?;
+    let way = WaypointWrenches::new(motion, &poses, wrenches.clone())?;
     let es = robot.axial_stiffness.clone();
     let mut solver = if args.method == Method::Sotda {
         if es.is_none() {
@@ -191,6 +198,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
     } else {
         TensionSolver::new(args.method)
     };
+    if args.timing.time_law.is_some() {
+        return super::time_law::run(
+            &args.timing,
+            super::time_law::TimedRequest {
+                robot: &robot,
+                poses,
+                wrenches,
+                times,
+                solver: &mut solver,
+                method: args.method.name(),
+                axial_stiffness: es.as_deref(),
+                json: args.json,
+                plot: args.plot.as_deref(),
+            },
+        );
+    }
     // Weight and passive springs at each sample (checked here: a spring of zero length is an
     // error naming the sample, not a panic in the profile).
     for sample in &samples {

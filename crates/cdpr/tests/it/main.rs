@@ -4,6 +4,7 @@
 mod cli;
 mod common;
 mod convert_cli;
+mod dynamics_cli;
 mod interference_cli;
 mod orientations_cli;
 mod plots;
