@@ -57,6 +57,7 @@ pub fn forward_kinematics(
     let settings = ForwardSettings {
         tolerance,
         max_iterations,
+        ..ForwardSettings::default()
     };
     // Validates the settings and n ≥ DOF once, with the library's message.
     ForwardKinematics::new(geo, settings).map_err(value_error)?;

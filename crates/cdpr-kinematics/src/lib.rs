@@ -54,7 +54,9 @@ pub mod strategies;
 mod structure_matrix;
 
 pub use error::KinematicsError;
-pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
+pub use forward_kinematics::{
+    ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus, chi_square_quantile_999,
+};
 pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
     closest_cables, min_cable_distance, platform_interference, segment_distance,

@@ -286,6 +286,32 @@ impl Robot {
         (lo, hi)
     }
 
+    /// The default search region of the analyses (workspace, gallery, forward-kinematics
+    /// starts): the frame anchors' bounding box, except that a robot in space whose anchors
+    /// span less than a quarter of the frame's width in height (all anchors near one level: a
+    /// suspended robot such as a spidercam, CAROCA, CoGiRo, the NIST RoboCrane) gets a box
+    /// reaching half the width below its highest anchor, where the platform hangs. The width
+    /// is the larger of the box's x and y extents. `(min, max)` corners.
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+    /// use nalgebra::Vector3;
+    /// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 30.0), platform: Vector3::zeros(), pulley: None };
+    /// let robot = Robot::new(MotionPattern::Point3, vec![c(50.0, 35.0), c(-50.0, 35.0), c(-50.0, -35.0), c(50.0, -35.0)]).unwrap();
+    /// let (lo, hi) = robot.default_region();
+    /// assert_eq!((lo.z, hi.z), (30.0 - 50.0, 30.0));
+    /// ```
+    pub fn default_region(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let (mut lo, hi) = self.frame_bounding_box();
+        if self.motion().space_dim() == 3 {
+            let width = (hi.x - lo.x).max(hi.y - lo.y);
+            if hi.z - lo.z < 0.25 * width {
+                lo.z = lo.z.min(hi.z - 0.5 * width);
+            }
+        }
+        (lo, hi)
+    }
+
     /// Whether any cable runs over a pulley (the pulley model then differs from the standard one).
     pub fn has_pulleys(&self) -> bool {
         self.has_pulleys
