@@ -36,10 +36,11 @@
 //!
 //! When every anchor lies at one height (a spidercam, the NIST RoboCrane), the lengths are
 //! symmetric in the anchors' plane: every hanging pose has a mirror pose above the anchors,
-//! and on the plane the Jacobian is singular. In space (point3, spatial) a pose at which no
-//! cable rises from the platform (every unit vector towards the anchors has u_z ≤ 0, the
-//! platform on or above all its anchors, where no cable can carry its weight) has status
-//! `above the anchors`, never `solved`.
+//! and on the plane the Jacobian is singular. For such a suspended robot
+//! ([`Robot::is_suspended`]: in space, anchors spanning less than a quarter of the frame's
+//! width in height) a pose at which no cable rises from the platform (every unit vector
+//! towards the anchors has u_z ≤ 0: the platform on or above all its anchors, where no cable
+//! can carry its weight) has status `above the anchors`, never `solved`.
 //!
 //! Without a guess, [`ForwardKinematics::solve_multistart`] starts from the centre of the frame
 //! anchors' bounding box in several orientations, from points halfway to its corners and, when
@@ -204,6 +205,8 @@ pub struct ForwardKinematics<'a> {
     settings: ForwardSettings,
     /// σ² × the 99.9 % quantile of χ²(n − DOF): the largest ‖r‖² of a `fitted` pose.
     fit_threshold: f64,
+    /// A robot in space whose anchors span little height ([`Robot::is_suspended`]).
+    suspended: bool,
     kin: PoseKinematics,
     trial: PoseKinematics,
 }
@@ -223,6 +226,7 @@ impl<'a> ForwardKinematics<'a> {
             robot,
             settings,
             fit_threshold: settings.length_sigma.powi(2) * chi_square_quantile_999(redundancy),
+            suspended: robot.is_suspended(),
             kin: PoseKinematics::for_robot(robot),
             trial: PoseKinematics::for_robot(robot),
         })
@@ -476,7 +480,7 @@ impl<'a> ForwardKinematics<'a> {
         let squared = 2.0 * half_squared_residual(&self.kin, lengths);
         let within = residual <= self.settings.tolerance;
         let redundant = lengths.len() > d;
-        let status = if (converged || within) && above_anchors(&self.kin) {
+        let status = if (converged || within) && self.suspended && above_anchors(&self.kin) {
             ForwardStatus::AboveAnchors
         } else if within {
             ForwardStatus::Solved
@@ -532,10 +536,10 @@ pub fn chi_square_quantile_999(k: usize) -> f64 {
     k * (1.0 - c + 3.090_232 * c.sqrt()).powi(3)
 }
 
-/// Whether no cable rises from the platform (u_z ≤ 0 for every cable, in space): the platform
-/// on or above the plane of all its anchors.
+/// Whether no cable rises from the platform (u_z ≤ 0 for every cable): the platform on or
+/// above the plane of all its anchors.
 fn above_anchors(kin: &PoseKinematics) -> bool {
-    kin.motion().space_dim() == 3 && kin.cables().iter().all(|c| c.unit.z <= 1e-9)
+    kin.cables().iter().all(|c| c.unit.z <= 1e-9)
 }
 
 /// diag(A⁻¹) of a symmetric positive definite A, from its Cholesky factor:
@@ -838,8 +842,7 @@ fn multistart_poses(robot: &Robot) -> Vec<Pose> {
         }
         starts.push(Pose::new(p, Rotation3::identity()));
     }
-    let (region_lo, _) = robot.default_region();
-    if dims == 3 && region_lo.z < lo.z {
+    if robot.is_suspended() {
         // Suspended: the hanging side, below the highest anchor.
         let width = (hi.x - lo.x).max(hi.y - lo.y);
         for (k, depth) in [0.125, 0.25, 0.5].into_iter().enumerate() {

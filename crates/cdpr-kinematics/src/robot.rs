@@ -303,13 +303,20 @@ impl Robot {
     /// ```
     pub fn default_region(&self) -> (Vector3<f64>, Vector3<f64>) {
         let (mut lo, hi) = self.frame_bounding_box();
-        if self.motion().space_dim() == 3 {
+        if self.is_suspended() {
             let width = (hi.x - lo.x).max(hi.y - lo.y);
-            if hi.z - lo.z < 0.25 * width {
-                lo.z = lo.z.min(hi.z - 0.5 * width);
-            }
+            lo.z = lo.z.min(hi.z - 0.5 * width);
         }
         (lo, hi)
+    }
+
+    /// Whether the robot is suspended by the rule of [`Self::default_region`]: it moves in
+    /// space and its anchors span less than a quarter of the frame's width (the larger of the
+    /// anchors' x and y extents) in height.
+    pub fn is_suspended(&self) -> bool {
+        let (lo, hi) = self.frame_bounding_box();
+        let width = (hi.x - lo.x).max(hi.y - lo.y);
+        self.motion().space_dim() == 3 && hi.z - lo.z < 0.25 * width
     }
 
     /// Whether any cable runs over a pulley (the pulley model then differs from the standard one).
