@@ -52,6 +52,9 @@ pub enum CalibrationError {
         /// Coincident, collinear, …
         reason: &'static str,
     },
+    /// A combination this crate does not handle.
+    #[error("not supported: {0}")]
+    Unsupported(&'static str),
     /// The kinematics failed (degenerate pose, bad robot).
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),

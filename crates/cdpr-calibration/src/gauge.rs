@@ -12,6 +12,11 @@
 //! The calibrated frame is expressed in that datum: anchor a is the nominal one. Quantities
 //! free of the gauge (distances between anchors, offsets, gains) do not depend on the choice.
 //!
+//! Readings relative to a known reference pose x_ref without unknown offsets (the Hangprinter
+//! workflow) see translations of the frame (l(x_ref) changes); only rotations about the
+//! reference point remain, g = 3 in space (anchor a moves only along the line from x_ref,
+//! anchor b only in the plane of x_ref, a, b) and 1 in the plane (anchor a along its line).
+//!
 //! ## References
 //! - Borgstrom, Jordan, Borgstrom, Stealey, Sukhatme, Batalin & Kaiser 2009, *NIMS-PL: A
 //!   cable-driven robot with self-calibration capabilities*, IEEE T-RO 25(5).
@@ -65,6 +70,17 @@ impl Parameter {
     }
 }
 
+/// Which motions of the frame the lengths cannot see.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Gauge {
+    /// None: known poses fix the base frame.
+    None,
+    /// Rigid motions (6 in space, 3 in the plane).
+    Rigid,
+    /// Rotations about this point (3 in space, 1 in the plane): relative readings.
+    RotationsAbout(Vector3<f64>),
+}
+
 /// The free parameters, in order: per cable frame, platform, offset, gain; and the
 /// coordinates held by the gauge (described in words).
 #[derive(Debug, Clone, PartialEq)]
@@ -78,12 +94,14 @@ pub struct ParameterSpace {
 }
 
 impl ParameterSpace {
-    /// The parameters of `unknowns`; with `gauge`, the datum of the module documentation.
+    /// The parameters of `unknowns` with the datum of the module documentation for `gauge`
+    /// (the attachments of an oriented platform always get a rigid datum when `gauge` is not
+    /// [`Gauge::None`]).
     pub fn new(
         motion: MotionPattern,
         nominal: &Parameters,
         unknowns: Unknowns,
-        gauge: bool,
+        gauge: Gauge,
     ) -> Result<Self, CalibrationError> {
         let n = nominal.frame.len();
         let dim = motion.space_dim();
@@ -92,10 +110,16 @@ impl ParameterSpace {
         let mut platform_dirs: Vec<Vec<Vector3<f64>>> = vec![axes.clone(); n];
         let mut fixed = Vec::new();
         let mut held = 0;
-        if gauge && unknowns.frame {
-            held += datum(&nominal.frame, dim, "anchors", "anchor", &mut frame_dirs, &mut fixed)?;
+        match gauge {
+            Gauge::Rigid if unknowns.frame => {
+                held += datum(&nominal.frame, dim, "anchors", "anchor", &mut frame_dirs, &mut fixed)?;
+            }
+            Gauge::RotationsAbout(o) if unknowns.frame => {
+                held += rotation_datum(&nominal.frame, o, dim, &mut frame_dirs, &mut fixed)?;
+            }
+            _ => {}
         }
-        if gauge && unknowns.platform {
+        if gauge != Gauge::None && unknowns.platform {
             held += datum(
                 &nominal.platform,
                 dim,
@@ -150,6 +174,50 @@ impl ParameterSpace {
         }
         out
     }
+}
+
+/// Rotations about `o`: anchor a along the line from o, anchor b in the plane (o, a, b).
+fn rotation_datum(
+    points: &[Vector3<f64>],
+    o: Vector3<f64>,
+    dim: usize,
+    dirs: &mut [Vec<Vector3<f64>>],
+    fixed: &mut Vec<String>,
+) -> Result<usize, CalibrationError> {
+    let scale = points.iter().map(|p| p.norm()).fold(o.norm().max(1.0), f64::max);
+    let eps = 1e-9 * scale;
+    let Some(a) = (0..points.len()).find(|&j| (points[j] - o).norm() > eps) else {
+        return Err(CalibrationError::DegenerateGauge {
+            what: "anchors",
+            reason: "all at the reference point",
+        });
+    };
+    let e1 = (points[a] - o).normalize();
+    dirs[a] = vec![e1];
+    fixed.push(format!(
+        "anchor {} across the line from the reference point (moves only along it)",
+        a + 1
+    ));
+    if dim == 2 {
+        return Ok(1);
+    }
+    let Some(b) = (0..points.len()).find(|&j| j != a && e1.cross(&(points[j] - o)).norm() > eps)
+    else {
+        return Err(CalibrationError::DegenerateGauge {
+            what: "anchors",
+            reason: "collinear with the reference point",
+        });
+    };
+    let e3 = e1.cross(&(points[b] - o)).normalize();
+    dirs[b] = vec![e1, e3.cross(&e1)];
+    fixed.push(format!(
+        "anchor {} normal to the plane of the reference point and anchors {} and {} (moves only in it)",
+        b + 1,
+        a + 1,
+        b + 1
+    ));
+    // Anchor a's line has 2 directions held in space.
+    Ok(3)
 }
 
 /// Chooses anchors a, b, c (the first three in general position) and restricts their

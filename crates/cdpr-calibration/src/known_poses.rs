@@ -17,7 +17,7 @@
 //!   measurement system).
 
 use crate::adjustment::Problem;
-use crate::gauge::ParameterSpace;
+use crate::gauge::{Gauge, ParameterSpace};
 use crate::identifiability::counting_rule;
 use crate::{Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns};
 use cdpr_kinematics::Robot;
@@ -39,7 +39,7 @@ pub fn calibrate_known_poses(
         });
     };
     let nominal = Parameters::nominal(robot);
-    let space = ParameterSpace::new(motion, &nominal, unknowns, false)?;
+    let space = ParameterSpace::new(motion, &nominal, unknowns, Gauge::None)?;
     let p = space.parameters.len();
     let counting = counting_rule(k, n, motion.dof(), p, 0, true);
     if !counting.holds {

@@ -21,7 +21,7 @@
 //!   parallel robots*, ICRA.
 
 use crate::adjustment::Problem;
-use crate::gauge::ParameterSpace;
+use crate::gauge::{Gauge, ParameterSpace};
 use crate::identifiability::counting_rule;
 use crate::model::cable;
 use crate::{Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns};
@@ -39,7 +39,21 @@ pub fn self_calibrate(
     let d = motion.dof();
     let k = crate::check_inputs(robot, samples, unknowns)?;
     let nominal = Parameters::nominal(robot);
-    let space = ParameterSpace::new(motion, &nominal, unknowns, true)?;
+    // Relative readings without unknown offsets see translations: only rotations about the
+    // reference point remain (module `gauge`).
+    let gauge = match readings {
+        Readings::Relative { reference } if !unknowns.offsets => {
+            if unknowns.platform {
+                return Err(CalibrationError::Unsupported(
+                    "self-calibration of platform attachments from relative readings without \
+                     unknown offsets",
+                ));
+            }
+            Gauge::RotationsAbout(reference.position)
+        }
+        _ => Gauge::Rigid,
+    };
+    let space = ParameterSpace::new(motion, &nominal, unknowns, gauge)?;
     let p = space.parameters.len() + space.gauge;
     let counting = counting_rule(k, n, d, p, space.gauge, false);
     if !counting.holds {
