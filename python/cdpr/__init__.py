@@ -22,6 +22,7 @@ from ._cdpr import (
     TensionResult,
     TrajectoryResult,
     WorkspaceResult,
+    calibrate,
     thread_count,
 )
 
@@ -36,6 +37,7 @@ __all__ = [
     "TensionResult",
     "TrajectoryResult",
     "WorkspaceResult",
+    "calibrate",
     "sweep",
     "thread_count",
 ]

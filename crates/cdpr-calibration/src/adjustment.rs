@@ -213,7 +213,7 @@ impl Problem<'_> {
         let mut nu = 2.0;
         let mut iterations = 0;
         let mut converged = false;
-        let step_tolerance = 1e-12 * length_scale;
+        let step_tolerance = 1e-14 * length_scale;
         while iterations < 200 {
             iterations += 1;
             let nm = self.normal(&params, &poses, &ranges);
@@ -222,7 +222,7 @@ impl Problem<'_> {
                 .iter()
                 .chain(nm.gx.iter().flatten())
                 .fold(0.0f64, |m, v| m.max(v.abs()));
-            if gradient <= 1e-15 * length_scale * length_scale || cost == 0.0 {
+            if gradient == 0.0 || cost == 0.0 {
                 converged = true;
                 break;
             }

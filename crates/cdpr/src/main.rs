@@ -59,6 +59,8 @@ enum Command {
     StiffnessMap(cli::stiffness_map::Args),
     /// Writes a robot file in another format: `cdpr convert IN -o OUT.toml|OUT.wcrfx`.
     Convert(cli::convert::Args),
+    /// Calibration from cable-length readings: anchors, attachments, offsets, gains (known poses or self-calibration).
+    Calibrate(cli::calibrate::Args),
 }
 
 fn main() -> ExitCode {
@@ -88,6 +90,7 @@ fn main() -> ExitCode {
         Command::Trajectory(a) => cli::trajectory::run(a),
         Command::StiffnessMap(a) => cli::stiffness_map::run(a),
         Command::Convert(a) => cli::convert::run(a),
+        Command::Calibrate(a) => cli::calibrate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
