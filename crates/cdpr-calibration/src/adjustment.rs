@@ -29,6 +29,10 @@ use cdpr_kinematics::nalgebra::{DMatrix, DVector};
 use cdpr_kinematics::{MotionPattern, Pose};
 use std::ops::Range;
 
+/// Largest number of Levenberg–Marquardt iterations (accepted or rejected steps). Long curved
+/// valleys of ill-conditioned problems (a flat frame seen from low poses) take hundreds.
+const MAX_ITERATIONS: usize = 2000;
+
 /// The problem: readings ρ (k × n), what is free, how readings relate to lengths.
 pub(crate) struct Problem<'a> {
     pub motion: MotionPattern,
@@ -214,7 +218,7 @@ impl Problem<'_> {
         let mut iterations = 0;
         let mut converged = false;
         let step_tolerance = 1e-14 * length_scale;
-        while iterations < 200 {
+        while iterations < MAX_ITERATIONS {
             iterations += 1;
             let nm = self.normal(&params, &poses, &ranges);
             let gradient = nm
@@ -256,7 +260,7 @@ impl Problem<'_> {
                 cost = trial_cost;
                 mu /= 3.0;
                 nu = 2.0;
-                if size <= step_tolerance || relative <= 1e-15 {
+                if size <= step_tolerance || relative <= 1e-12 {
                     converged = true;
                     break;
                 }
