@@ -31,10 +31,19 @@ fn problem() -> (Robot, Samples) {
     let mut readings = Vec::new();
     for k in 0..40 {
         let pose = Pose::new(
-            Vector3::new(0.9 * wave(k, 0.7), 0.7 * wave(k, 1.1), 1.0 + 0.35 * wave(k, 0.5)),
+            Vector3::new(
+                0.9 * wave(k, 0.7),
+                0.7 * wave(k, 1.1),
+                1.0 + 0.35 * wave(k, 0.5),
+            ),
             Rotation3::new(0.2 * Vector3::new(wave(k, 0.3), wave(k, 1.7), wave(k, 2.3))),
         );
-        for (i, l) in truth.inverse_kinematics(&pose).unwrap().lengths().enumerate() {
+        for (i, l) in truth
+            .inverse_kinematics(&pose)
+            .unwrap()
+            .lengths()
+            .enumerate()
+        {
             readings.push(l - offsets[i] + 1e-4 * wave(8 * k + i, 3.7));
         }
     }

@@ -112,7 +112,14 @@ impl ParameterSpace {
         let mut held = 0;
         match gauge {
             Gauge::Rigid if unknowns.frame => {
-                held += datum(&nominal.frame, dim, "anchors", "anchor", &mut frame_dirs, &mut fixed)?;
+                held += datum(
+                    &nominal.frame,
+                    dim,
+                    "anchors",
+                    "anchor",
+                    &mut frame_dirs,
+                    &mut fixed,
+                )?;
             }
             Gauge::RotationsAbout(o) if unknowns.frame => {
                 held += rotation_datum(&nominal.frame, o, dim, &mut frame_dirs, &mut fixed)?;
@@ -184,7 +191,10 @@ fn rotation_datum(
     dirs: &mut [Vec<Vector3<f64>>],
     fixed: &mut Vec<String>,
 ) -> Result<usize, CalibrationError> {
-    let scale = points.iter().map(|p| p.norm()).fold(o.norm().max(1.0), f64::max);
+    let scale = points
+        .iter()
+        .map(|p| p.norm())
+        .fold(o.norm().max(1.0), f64::max);
     let eps = 1e-9 * scale;
     let Some(a) = (0..points.len()).find(|&j| (points[j] - o).norm() > eps) else {
         return Err(CalibrationError::DegenerateGauge {
@@ -256,9 +266,9 @@ fn datum(
         b + 1,
         a + 1
     ));
-    let Some(c) = (1..points.len()).find(|&j| {
-        j != b && e1.cross(&(points[j] - points[a])).norm() > eps
-    }) else {
+    let Some(c) =
+        (1..points.len()).find(|&j| j != b && e1.cross(&(points[j] - points[a])).norm() > eps)
+    else {
         return Err(CalibrationError::DegenerateGauge {
             what,
             reason: "collinear",

@@ -53,11 +53,11 @@ pub mod model;
 mod report;
 pub mod self_calibration;
 
+/// The nalgebra of this crate's API (re-exported from `cdpr-kinematics`).
+pub use cdpr_kinematics::nalgebra;
 pub use error::CalibrationError;
 pub use known_poses::calibrate_known_poses;
 pub use model::{Parameters, Readings, Samples, Unknowns};
-/// The nalgebra of this crate's API (re-exported from `cdpr-kinematics`).
-pub use cdpr_kinematics::nalgebra;
 pub use report::{CONDITION_WARNING, Calibration, ParameterSigma};
 pub use self_calibration::self_calibrate;
 

@@ -107,8 +107,8 @@ impl Calibration {
         let readings = k * n;
         let poses_estimated = pose_dof > 0;
         let unknowns_total = space.parameters.len() + k * pose_dof;
-        let length_sigma =
-            (readings > unknowns_total).then(|| (fit.squared / (readings - unknowns_total) as f64).sqrt());
+        let length_sigma = (readings > unknowns_total)
+            .then(|| (fit.squared / (readings - unknowns_total) as f64).sqrt());
         let rank_deficiency = fit.analysis.rank_deficiency + fit.singular_poses;
         let identifiable = counting.holds && rank_deficiency == 0;
         let mut warnings = Vec::new();
@@ -186,21 +186,26 @@ fn sigma_of(
                 .iter()
                 .enumerate()
                 .filter_map(|(j, p)| match *p {
-                    Parameter::Frame { cable: c, direction } if is_frame && c == cable => {
-                        Some((j, direction))
-                    }
-                    Parameter::Platform { cable: c, direction } if !is_frame && c == cable => {
-                        Some((j, direction))
-                    }
+                    Parameter::Frame {
+                        cable: c,
+                        direction,
+                    } if is_frame && c == cable => Some((j, direction)),
+                    Parameter::Platform {
+                        cable: c,
+                        direction,
+                    } if !is_frame && c == cable => Some((j, direction)),
                     _ => None,
                 })
                 .collect();
             for axis in 0..3 {
                 let var: f64 = dirs
                     .iter()
-                    .flat_map(|(j, ej)| dirs.iter().map(move |(l, el)| ej[axis] * el[axis] * inv[(*j, *l)]))
+                    .flat_map(|(j, ej)| {
+                        dirs.iter()
+                            .map(move |(l, el)| ej[axis] * el[axis] * inv[(*j, *l)])
+                    })
                     .sum();
-                slot[axis] = s * var.max(0.0).sqrt();
+                slot[axis] = if var > 0.0 { s * var.sqrt() } else { 0.0 };
             }
         }
     }

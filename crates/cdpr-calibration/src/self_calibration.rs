@@ -104,7 +104,10 @@ fn starting_poses(
             lengths[i] = (nominal.gains[i] * rho + nominal.offsets[i] + reference[i]).max(0.0);
         }
         let from_previous = match poses.last() {
-            Some(prev) => fk.solve(&lengths, prev).ok().filter(|s| s.status.is_solution()),
+            Some(prev) => fk
+                .solve(&lengths, prev)
+                .ok()
+                .filter(|s| s.status.is_solution()),
             None => None,
         };
         let sol = match from_previous {

@@ -62,7 +62,11 @@ fn spatial_poses(k: usize, rng: &mut Rng) -> Vec<Pose> {
     (0..k)
         .map(|_| {
             Pose::new(
-                Vector3::new(0.9 * rng.uniform(), 0.7 * rng.uniform(), 1.0 + 0.35 * rng.uniform()),
+                Vector3::new(
+                    0.9 * rng.uniform(),
+                    0.7 * rng.uniform(),
+                    1.0 + 0.35 * rng.uniform(),
+                ),
                 Rotation3::new(0.2 * Vector3::new(rng.uniform(), rng.uniform(), rng.uniform())),
             )
         })
@@ -70,7 +74,14 @@ fn spatial_poses(k: usize, rng: &mut Rng) -> Vec<Pose> {
 }
 
 /// Readings ρ = (l − o) / g of the true robot, plus noise of σ (m) on each length.
-fn readings(truth: &Robot, offsets: &[f64], gains: &[f64], poses: &[Pose], sigma: f64, rng: &mut Rng) -> Vec<f64> {
+fn readings(
+    truth: &Robot,
+    offsets: &[f64],
+    gains: &[f64],
+    poses: &[Pose],
+    sigma: f64,
+    rng: &mut Rng,
+) -> Vec<f64> {
     poses
         .iter()
         .flat_map(|p| {
@@ -136,9 +147,18 @@ fn known_poses_recover_anchors_attachments_and_offsets_exactly() {
     assert!(cal.identifiable && cal.converged, "{cal:?}");
     assert_eq!(cal.rank_deficiency, 0);
     for (i, c) in truth.cables().iter().enumerate() {
-        assert!((cal.parameters.frame[i] - c.frame).norm() < 1e-9, "anchor {i}");
-        assert!((cal.parameters.platform[i] - c.platform).norm() < 1e-9, "attachment {i}");
-        assert!((cal.parameters.offsets[i] - offsets[i]).abs() < 1e-9, "offset {i}");
+        assert!(
+            (cal.parameters.frame[i] - c.frame).norm() < 1e-9,
+            "anchor {i}"
+        );
+        assert!(
+            (cal.parameters.platform[i] - c.platform).norm() < 1e-9,
+            "attachment {i}"
+        );
+        assert!(
+            (cal.parameters.offsets[i] - offsets[i]).abs() < 1e-9,
+            "offset {i}"
+        );
     }
     assert!(cal.residual_rms < 1e-12);
     assert!(cal.gauge.is_empty());
@@ -220,7 +240,10 @@ fn reported_sigma_matches_the_spread_over_draws() {
                 .map(|c| c.sigma.as_ref().unwrap().frame.as_ref().unwrap()[i][axis])
                 .sum::<f64>()
                 / draws as f64;
-            assert!(r / s < 2.0 && s / r < 2.0, "anchor {i} axis {axis}: reported {r}, spread {s}");
+            assert!(
+                r / s < 2.0 && s / r < 2.0,
+                "anchor {i} axis {axis}: reported {r}, spread {s}"
+            );
         }
         let s = spread(&|p: &Parameters| p.offsets[i]);
         let r = reported
@@ -228,7 +251,10 @@ fn reported_sigma_matches_the_spread_over_draws() {
             .map(|c| c.sigma.as_ref().unwrap().offsets.as_ref().unwrap()[i])
             .sum::<f64>()
             / draws as f64;
-        assert!(r / s < 2.0 && s / r < 2.0, "offset {i}: reported {r}, spread {s}");
+        assert!(
+            r / s < 2.0 && s / r < 2.0,
+            "offset {i}: reported {r}, spread {s}"
+        );
     }
 }
 
@@ -243,11 +269,22 @@ fn a_six_cable_spatial_robot_is_not_identifiable() {
         readings: readings(&six, &[0.0; 6], &[1.0; 6], &poses, 0.0, &mut rng),
         poses: None,
     };
-    let cal = calibrate(&six, &samples, Unknowns::parse("frame").unwrap(), &Readings::Absolute)
-        .unwrap();
+    let cal = calibrate(
+        &six,
+        &samples,
+        Unknowns::parse("frame").unwrap(),
+        &Readings::Absolute,
+    )
+    .unwrap();
     assert!(!cal.identifiable);
     assert_eq!(cal.counting.samples_needed, None);
-    assert!(cal.counting.reason.as_ref().unwrap().contains("as many cables"));
+    assert!(
+        cal.counting
+            .reason
+            .as_ref()
+            .unwrap()
+            .contains("as many cables")
+    );
 }
 
 /// Too few samples: not identifiable, with the count needed: 8 cables, frame and offsets
@@ -294,7 +331,13 @@ fn relative_readings_self_calibrate_a_hangprinter() {
     let truth = as_built(&nominal, &mut rng);
     let home = Pose::point(0.0, 0.0, 0.0);
     let poses: Vec<Pose> = (0..30)
-        .map(|_| Pose::point(0.5 * rng.uniform(), 0.5 * rng.uniform(), 0.6 + 0.5 * rng.uniform()))
+        .map(|_| {
+            Pose::point(
+                0.5 * rng.uniform(),
+                0.5 * rng.uniform(),
+                0.6 + 0.5 * rng.uniform(),
+            )
+        })
         .collect();
     let home_lengths: Vec<f64> = truth.inverse_kinematics(&home).unwrap().lengths().collect();
     let rho: Vec<f64> = poses
@@ -326,7 +369,10 @@ fn relative_readings_self_calibrate_a_hangprinter() {
         assert!((cal.parameters.frame[i].norm() - c.frame.norm()).abs() < 1e-9);
     }
     let true_frame: Vec<Vector3<f64>> = truth.cables().iter().map(|c| c.frame).collect();
-    for (a, b) in distances(&cal.parameters.frame).iter().zip(distances(&true_frame)) {
+    for (a, b) in distances(&cal.parameters.frame)
+        .iter()
+        .zip(distances(&true_frame))
+    {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
 }

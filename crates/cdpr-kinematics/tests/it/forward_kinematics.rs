@@ -355,13 +355,17 @@ fn a_step_below_the_tolerance_leaves_a_solving_pose_unmoved() {
     }
 }
 
-
 /// The spidercam-like stadium robot of `examples/robots/spidercam-like-4.toml`.
 fn spidercam() -> Robot {
     let c = |x: f64, y: f64| Cable::point3(Vector3::new(x, y, 30.0));
     Robot::new(
         MotionPattern::Point3,
-        vec![c(50.0, 35.0), c(-50.0, 35.0), c(-50.0, -35.0), c(50.0, -35.0)],
+        vec![
+            c(50.0, 35.0),
+            c(-50.0, 35.0),
+            c(-50.0, -35.0),
+            c(50.0, -35.0),
+        ],
     )
     .unwrap()
 }
@@ -399,11 +403,18 @@ fn robocrane() -> Robot {
 fn a_suspended_robot_is_found_hanging_without_a_guess() {
     let robot = spidercam();
     let truth = Pose::point(0.0, 0.0, 10.0);
-    let lengths: Vec<f64> = robot.inverse_kinematics(&truth).unwrap().lengths().collect();
+    let lengths: Vec<f64> = robot
+        .inverse_kinematics(&truth)
+        .unwrap()
+        .lengths()
+        .collect();
     let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
     let sols = fk.solve_multistart(&lengths).unwrap();
     assert_eq!(sols[0].status, ForwardStatus::Solved, "{sols:?}");
-    assert!((sols[0].pose.position - truth.position).norm() < 1e-9, "{sols:?}");
+    assert!(
+        (sols[0].pose.position - truth.position).norm() < 1e-9,
+        "{sols:?}"
+    );
     assert!(sols.iter().all(|s| s.pose.position.z < 30.0), "{sols:?}");
     // The mirror image (0, 0, 50) solves the lengths too, but hangs above the anchors.
     let mirror = fk.solve(&lengths, &Pose::point(0.0, 0.0, 45.0)).unwrap();
@@ -438,7 +449,11 @@ fn the_robocrane_home_pose_is_found_without_a_guess() {
 fn rounded_lengths_are_fitted_with_the_right_pose() {
     let robot = spidercam();
     let truth = Pose::point(3.0, -7.0, 10.0);
-    let exact: Vec<f64> = robot.inverse_kinematics(&truth).unwrap().lengths().collect();
+    let exact: Vec<f64> = robot
+        .inverse_kinematics(&truth)
+        .unwrap()
+        .lengths()
+        .collect();
     let rounded: Vec<f64> = exact.iter().map(|l| (l * 1e4).round() / 1e4).collect();
     let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
     let sols = fk.solve_multistart(&rounded).unwrap();
@@ -452,7 +467,11 @@ fn rounded_lengths_are_fitted_with_the_right_pose() {
         .sum::<f64>()
         / 4.0)
         .sqrt();
-    assert!((s.residual_rms - rms).abs() < 1e-15, "{} vs {rms}", s.residual_rms);
+    assert!(
+        (s.residual_rms - rms).abs() < 1e-15,
+        "{} vs {rms}",
+        s.residual_rms
+    );
     let w = robot.inverse_kinematics(&s.pose).unwrap().wrench_matrix();
     let cov = (&w * w.transpose()).try_inverse().unwrap() * 1e-8;
     for k in 0..3 {
@@ -508,7 +527,13 @@ fn wrong_count_and_negative_lengths_are_named() {
 /// Table 26.8, 0.999 column): at most 3.1 % above.
 #[test]
 fn chi_square_quantiles_are_close_to_the_table() {
-    for (k, exact) in [(1, 10.828), (2, 13.816), (5, 20.515), (10, 29.588), (30, 59.703)] {
+    for (k, exact) in [
+        (1, 10.828),
+        (2, 13.816),
+        (5, 20.515),
+        (10, 29.588),
+        (30, 59.703),
+    ] {
         let q = cdpr_kinematics::chi_square_quantile_999(k);
         assert!(q >= exact && q <= 1.031 * exact, "{k}: {q} vs {exact}");
     }

@@ -2,10 +2,10 @@
 //! `cdpr-calibration`).
 
 use super::{CliError, load_robot, print_json};
+use cdpr::RobotDescription;
 use cdpr::calibration::{Calibration, Readings, Samples, Unknowns, calibrate};
 use cdpr::kinematics::nalgebra::Vector3;
 use cdpr::kinematics::{MotionPattern, Pose};
-use cdpr::RobotDescription;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -137,7 +137,10 @@ fn read_samples(
                     "{file}:{header_line}: missing column `{w}` (the header needs {}{})",
                     wanted.join(","),
                     if known_poses {
-                        format!(": the pose of a {} robot and one reading per cable", motion.name())
+                        format!(
+                            ": the pose of a {} robot and one reading per cable",
+                            motion.name()
+                        )
                     } else {
                         ": one reading per cable".to_string()
                     }
@@ -146,11 +149,7 @@ fn read_samples(
             }
         }
     }
-    if let Some((c, extra)) = names
-        .iter()
-        .enumerate()
-        .find(|(_, c)| !wanted.contains(c))
-    {
+    if let Some((c, extra)) = names.iter().enumerate().find(|(_, c)| !wanted.contains(c)) {
         return Err(format!(
             "{file}:{header_line}, column {}: unexpected column `{extra}` (expected {}{})",
             c + 1,

@@ -209,8 +209,14 @@ fn calibrate_csv_errors_name_line_and_column() {
     for (text, expected) in [
         ("l1,l2,l3\n1,2,3\n", "missing column `l4`"),
         ("l1,l2,l3,l4\n1,2,3\n", ":2: 3 fields, the header has 4"),
-        ("# comment\nl1,l2,l3,l4\n1,2,x,4\n", ":3, column 3 (`l3`): `x` is not a number"),
-        ("x,y,z,l1,l2,l3,l4\n1,2,3,4,5,6,7\n", "pose columns need --known-poses"),
+        (
+            "# comment\nl1,l2,l3,l4\n1,2,x,4\n",
+            ":3, column 3 (`l3`): `x` is not a number",
+        ),
+        (
+            "x,y,z,l1,l2,l3,l4\n1,2,3,4,5,6,7\n",
+            "pose columns need --known-poses",
+        ),
     ] {
         std::fs::write(&path, text).unwrap();
         let e = failure(&["calibrate", &r, "--samples", &path]);
@@ -241,7 +247,15 @@ fn forward_finds_suspended_robots_hanging() {
     let v = json(&["forward", &r, "--lengths", &l, "--json"]);
     assert_eq!(v["status"], "solved", "{v}");
     assert!((v["pose"][2].as_f64().unwrap() - 10.0).abs() < 1e-9);
-    let v = json(&["forward", &r, "--lengths", &l, "--guess", "0,0,45", "--json"]);
+    let v = json(&[
+        "forward",
+        &r,
+        "--lengths",
+        &l,
+        "--guess",
+        "0,0,45",
+        "--json",
+    ]);
     assert_eq!(v["status"], "above the anchors", "{v}");
     // 0.1 mm rounding: fitted, with residual_rms and pose_std.
     let rounded: Vec<String> = spider
@@ -295,9 +309,23 @@ fn forward_messages() {
     assert!(!e.contains("motion pattern"), "{e}");
     let e = failure(&["forward", &r, "--lengths", "30,-1,30,30"]);
     assert!(e.contains("cable 2 is negative"), "{e}");
-    let e = failure(&["forward", &r, "--lengths", "30,30,30,30", "--tolerance", "-1"]);
+    let e = failure(&[
+        "forward",
+        &r,
+        "--lengths",
+        "30,30,30,30",
+        "--tolerance",
+        "-1",
+    ]);
     assert!(e.contains("tolerance (must be finite and > 0)"), "{e}");
-    let e = failure(&["forward", &r, "--lengths", "30,30,30,30", "--length-sigma", "-1"]);
+    let e = failure(&[
+        "forward",
+        &r,
+        "--lengths",
+        "30,30,30,30",
+        "--length-sigma",
+        "-1",
+    ]);
     assert!(e.contains("σ"), "{e}");
     let out = cdpr().args(["forward", "--help"]).output().unwrap();
     let help = String::from_utf8_lossy(&out.stdout);
