@@ -188,8 +188,8 @@ fn self_calibration_recovers_inter_anchor_distances_and_offsets_exactly() {
     {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
-    for i in 0..8 {
-        assert!((cal.parameters.offsets[i] - offsets[i]).abs() < 1e-9);
+    for (got, expected) in cal.parameters.offsets.iter().zip(&offsets) {
+        assert!((got - expected).abs() < 1e-9);
     }
     assert_eq!(cal.poses.len(), 40);
     assert!(cal.poses_estimated);
