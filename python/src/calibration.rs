@@ -96,8 +96,11 @@ fn report<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let motion = robot.geometry().motion();
     let dim = motion.space_dim();
-    let points =
-        |v: &[Vector3<f64>]| -> Vec<Vec<f64>> { v.iter().map(|p| p.iter().take(dim).copied().collect()).collect() };
+    let points = |v: &[Vector3<f64>]| -> Vec<Vec<f64>> {
+        v.iter()
+            .map(|p| p.iter().take(dim).copied().collect())
+            .collect()
+    };
     let p = &cal.parameters;
     let d = PyDict::new(py);
     d.set_item("samples", k)?;
@@ -110,8 +113,12 @@ fn report<'py>(
     d.set_item("gains", p.gains.clone())?;
     d.set_item(
         "poses",
-        cal.poses_estimated
-            .then(|| cal.poses.iter().map(|x| x.coordinates(motion)).collect::<Vec<_>>()),
+        cal.poses_estimated.then(|| {
+            cal.poses
+                .iter()
+                .map(|x| x.coordinates(motion))
+                .collect::<Vec<_>>()
+        }),
     )?;
     d.set_item("residual_rms", finite(cal.residual_rms))?;
     d.set_item("residual_max", finite(cal.residual_max))?;
