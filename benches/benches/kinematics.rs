@@ -74,6 +74,24 @@ fn forward_kinematics(c: &mut Criterion) {
             })
         });
     }
+    // Issue 27: measured lengths (noise of about 0.1 mm, deterministic): the least-squares pose
+    // with its `fitted` test, residual_rms and pose standard deviations (budget 5 µs).
+    let robot = ipanema_like_8();
+    let mut problems = forward_problems(&robot, &poses);
+    for (j, (l, _)) in problems.iter_mut().enumerate() {
+        for (i, v) in l.iter_mut().enumerate() {
+            *v += 1e-4 * (((7 * j + 3 * i) % 11) as f64 / 5.0 - 1.0);
+        }
+    }
+    let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
+    let mut k = 0;
+    g.bench_function("fk_8_spatial_noisy", |b| {
+        b.iter(|| {
+            k = (k + 1) % problems.len();
+            let (l, guess) = &problems[k];
+            black_box(fk.solve(black_box(l), guess).unwrap().residual_rms)
+        })
+    });
     g.finish();
 }
 

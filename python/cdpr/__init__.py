@@ -23,6 +23,7 @@ from ._cdpr import (
     TrajectoryResult,
     WorkspaceResult,
     __version__,
+    calibrate,
     thread_count,
 )
 
@@ -38,6 +39,7 @@ __all__ = [
     "TrajectoryResult",
     "WorkspaceResult",
     "__version__",
+    "calibrate",
     "sweep",
     "thread_count",
 ]

@@ -1,7 +1,7 @@
 """Type stubs of the native module cdpr._cdpr (see the docstrings for units and meanings)."""
 
 from os import PathLike
-from typing import List, Literal, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, List, Literal, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -16,6 +16,15 @@ METHODS: List[str]
 __version__: str
 
 def thread_count() -> int: ...
+def calibrate(
+    robot: "Robot",
+    samples: ArrayLike,
+    known_poses: Optional[ArrayLike] = None,
+    *,
+    unknowns: str = "frame,offsets",
+    relative: bool = False,
+    reference: Optional[List[float]] = None,
+) -> Dict[str, Any]: ...
 
 class KinematicsResult:
     lengths: FloatArray
@@ -31,6 +40,8 @@ class ForwardResult:
     status: Union[List[str], str]
     min_singular_value: Union[FloatArray, float]
     solutions: Optional[FloatArray]
+    residual_rms: Union[FloatArray, float]
+    pose_std: FloatArray
 
 class TensionResult:
     tensions: FloatArray
@@ -152,6 +163,7 @@ class Robot:
         *,
         tolerance: float = 1e-9,
         max_iterations: int = 100,
+        length_sigma: float = 1e-4,
     ) -> ForwardResult: ...
     def tensions(
         self,

@@ -17,7 +17,10 @@ use pyo3::prelude::*;
 ///
 /// ``pose`` (N, DOF): the best pose found (motion-pattern coordinates, m and rad);
 /// ``residual`` (N,): max |l_i(pose) − L_i| (m); ``iterations`` (N,); ``converged`` (N,) bool;
-/// ``status``: list of ``"solved"``, ``"no pose within tolerance"`` or ``"did not converge"``;
+/// ``status``: list of ``"solved"``, ``"fitted"``, ``"inconsistent"``, ``"no pose within
+/// tolerance"``, ``"above the anchors"`` or ``"did not converge"`` (as ``cdpr forward``);
+/// ``residual_rms`` (N,): ‖l(pose) − L‖/√n (m); ``pose_std`` (N, DOF): standard deviations
+/// √diag(σ²(JᵀJ)⁻¹) of the pose with σ = ``length_sigma`` (m; rad for rotations);
 /// ``min_singular_value`` (N,): σ_min of the Jacobian at the pose (pose error ≲ length error /
 /// σ_min); ``solutions``: for one set of lengths without a guess, every distinct pose found
 /// (S, DOF), best first (else None). One set of lengths in gives scalars and ``pose`` (DOF,).
@@ -30,6 +33,8 @@ pub struct ForwardResult {
     pub status: Py<PyAny>,
     pub min_singular_value: Py<PyAny>,
     pub solutions: Option<Py<PyArrayDyn<f64>>>,
+    pub residual_rms: Py<PyAny>,
+    pub pose_std: Py<PyArrayDyn<f64>>,
 }
 
 #[pymethods]
@@ -50,6 +55,7 @@ pub fn forward_kinematics(
     guess: Option<&Bound<'_, PyAny>>,
     tolerance: f64,
     max_iterations: usize,
+    length_sigma: f64,
 ) -> PyResult<ForwardResult> {
     let geo = robot.geometry();
     let motion = geo.motion();
@@ -57,6 +63,7 @@ pub fn forward_kinematics(
     let settings = ForwardSettings {
         tolerance,
         max_iterations,
+        length_sigma,
     };
     // Validates the settings and n ≥ DOF once, with the library's message.
     ForwardKinematics::new(geo, settings).map_err(value_error)?;
@@ -128,6 +135,13 @@ pub fn forward_kinematics(
     Ok(ForwardResult {
         pose: to_numpy(py, &batch_shape(rows.single, count, &[dof]), poses).unbind(),
         residual: scalar(best.iter().map(|s| s.residual).collect())?,
+        residual_rms: scalar(best.iter().map(|s| s.residual_rms).collect())?,
+        pose_std: to_numpy(
+            py,
+            &batch_shape(rows.single, count, &[dof]),
+            best.iter().flat_map(|s| s.pose_std(dof).to_vec()).collect(),
+        )
+        .unbind(),
         min_singular_value: scalar(best.iter().map(|s| s.min_singular_value).collect())?,
         iterations: if rows.single {
             iterations[0].into_pyobject(py)?.into_any().unbind()

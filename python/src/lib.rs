@@ -10,6 +10,7 @@
 //! `RuntimeError` so that no panic unwinds into the interpreter.
 
 mod arrays;
+mod calibration;
 mod forward;
 mod kinematics;
 mod model;
@@ -193,6 +194,7 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<workspace::WorkspaceResult>()?;
     m.add_class::<trajectory::TrajectoryResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
+    m.add_function(wrap_pyfunction!(calibration::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(kinematics::_ik_reference_loop, m)?)?;
     m.add_function(wrap_pyfunction!(kinematics::_ik_reference_buffers, m)?)?;
     m.add_class::<kinematics::IkBuffers>()?;

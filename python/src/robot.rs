@@ -409,8 +409,9 @@ impl Robot {
     /// ``(N, n)``), by Levenberg–Marquardt (Pott 2018) from ``guess`` (``(DOF,)`` for every row
     /// or ``(N, DOF)``) or, without one, from a fixed set of starts (every distinct solution in
     /// ``solutions``). A pose solves the lengths when max |l_i − L_i| ≤ ``tolerance`` (m).
-    /// Unsolved lengths are answers (``status``), not errors.
-    #[pyo3(signature = (lengths, guess=None, *, tolerance=1e-9, max_iterations=100))]
+    /// Unsolved lengths are answers (``status``), not errors. With more cables than DOF,
+    /// ``length_sigma`` (m) is the length noise that makes a least-squares pose ``"fitted"``.
+    #[pyo3(signature = (lengths, guess=None, *, tolerance=1e-9, max_iterations=100, length_sigma=1e-4))]
     fn forward_kinematics(
         &self,
         py: Python<'_>,
@@ -418,9 +419,18 @@ impl Robot {
         guess: Option<&Bound<'_, PyAny>>,
         tolerance: f64,
         max_iterations: i64,
+        length_sigma: f64,
     ) -> PyResult<crate::forward::ForwardResult> {
         let max_iterations = count(max_iterations, "max_iterations")?;
-        crate::forward::forward_kinematics(self, py, lengths, guess, tolerance, max_iterations)
+        crate::forward::forward_kinematics(
+            self,
+            py,
+            lengths,
+            guess,
+            tolerance,
+            max_iterations,
+            length_sigma,
+        )
     }
 
     /// Capacity margin (Guay et al. 2014) of a required wrench set at one pose or a batch.

@@ -126,11 +126,12 @@ fn rotation(motion: MotionPattern, q: &[f64]) -> PyResult<Rotation3<f64>> {
     }
 }
 
-/// The search box: (xmin, xmax, ymin, ymax[, zmin, zmax]), default the frame anchors' box.
+/// The search box: (xmin, xmax, ymin, ymax[, zmin, zmax]), default [`Region::default_for`]
+/// (the frame anchors' box, extended below anchors that span little height).
 fn region(robot: &Robot, b: Option<Vec<f64>>) -> PyResult<Region> {
     let dim = robot.motion_pattern().space_dim();
     let r = match b {
-        None => Region::frame_bounding_box(robot.geometry()),
+        None => Region::default_for(robot.geometry()),
         Some(b) if dim == 2 && b.len() == 4 => Region::planar(b[0], b[1], b[2], b[3]),
         Some(b) if dim == 3 && b.len() == 6 => Region::cuboid(
             Vector3::new(b[0], b[2], b[4]),

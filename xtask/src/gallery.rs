@@ -94,19 +94,13 @@ fn translational_extremes(k: &Value, dim: usize) -> Option<(f64, f64)> {
     lo.is_finite().then_some((lo, hi))
 }
 
-/// The region "over its frame": the bounding box of the frame anchors, except that a spatial
-/// frame whose anchors span less than a quarter of its width in height (all anchors near one
-/// level: CAROCA, CoGiRo, FAST, ACROBOT, HRPCables) is given a height of half its width below
-/// its highest anchor, where the platform hangs.
+/// The region "over its frame": the default region of every front end
+/// ([`cdpr::kinematics::Robot::default_region`]): the bounding box of the frame anchors, except
+/// that a spatial frame whose anchors span less than a quarter of its width in height (all
+/// anchors near one level: CAROCA, CoGiRo, FAST, ACROBOT, HRPCables) is given a height of half
+/// its width below its highest anchor, where the platform hangs.
 fn frame_box(desc: &RobotDescription) -> (Vector3<f64>, Vector3<f64>) {
-    let (mut lo, hi) = desc.robot.frame_bounding_box();
-    if desc.robot.motion().space_dim() == 3 {
-        let width = (hi.x - lo.x).max(hi.y - lo.y);
-        if hi.z - lo.z < 0.25 * width {
-            lo.z = lo.z.min(hi.z - 0.5 * width);
-        }
-    }
-    (lo, hi)
+    desc.robot.default_region()
 }
 
 fn robot_row(bin: &Path, root: &Path, path: &Path) -> Result<Row, String> {

@@ -101,6 +101,24 @@ pub enum KinematicsError {
         /// Cables of the robot.
         cables: usize,
     },
+    /// One value per cable was expected (e.g. measured cable lengths).
+    #[error("{what}: {found} values given, the robot has {cables} cables (one value per cable)")]
+    WrongCableCount {
+        /// What was given.
+        what: String,
+        /// Cables of the robot.
+        cables: usize,
+        /// Values given.
+        found: usize,
+    },
+    /// A measured cable length below zero.
+    #[error("length of cable {} is negative ({value} m): a cable length is ≥ 0", .cable + 1)]
+    NegativeLength {
+        /// Cable index (0-based; the message counts from 1).
+        cable: usize,
+        /// The value given (m).
+        value: f64,
+    },
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]
     UnknownMotion(String),

@@ -21,15 +21,41 @@
 //! by the lengths: pose error ≲ length error / σ_min). "Did not converge" and "no pose within
 //! the tolerance" are [`ForwardStatus`] values, not errors.
 //!
+//! ## Measured lengths: solved, fitted or inconsistent
+//!
+//! Measured lengths carry noise. With n > DOF the least-squares pose x̂ leaves a residual
+//! r = l(x̂) − L; for independent length errors of standard deviation σ (`length_sigma`,
+//! default 0.1 mm) the sum ‖r‖² / σ² follows a χ² law with n − DOF degrees of freedom. The
+//! status is `solved` when max |r_i| ≤ tolerance, `fitted` when ‖r‖² / σ² is below the 99.9 %
+//! quantile of that law (Wilson & Hilferty 1931 approximation), `inconsistent` otherwise. Every
+//! answer reports `residual_rms` = ‖r‖ / √n and the pose's standard deviations
+//! √diag(σ² (JᵀJ)⁻¹) (first-order propagation of the length noise, J = Wᵀ; position in m,
+//! rotation as the base-frame rotation vector in rad).
+//!
+//! ## Suspended robots and the mirror pose
+//!
+//! When every anchor lies at one height (a spidercam, the NIST RoboCrane), the lengths are
+//! symmetric in the anchors' plane: every hanging pose has a mirror pose above the anchors,
+//! and on the plane the Jacobian is singular. For such a suspended robot
+//! ([`Robot::is_suspended`]: in space, anchors spanning less than a quarter of the frame's
+//! width in height) a pose at which no cable rises from the platform (every unit vector
+//! towards the anchors has u_z ≤ 0: the platform on or above all its anchors, where no cable
+//! can carry its weight) has status `above the anchors`, never `solved`.
+//!
 //! Without a guess, [`ForwardKinematics::solve_multistart`] starts from the centre of the frame
-//! anchors' bounding box in several orientations and from points halfway to its corners, and
-//! returns every distinct pose that solves the lengths.
+//! anchors' bounding box in several orientations, from points halfway to its corners and, when
+//! the anchors span little height ([`Robot::default_region`] extends the box below them), from
+//! three heights on the hanging side (1/8, 1/4 and 1/2 of the frame's width below the highest
+//! anchor). It returns every distinct pose found. A fixed set of starts can miss a pose: a
+//! pose reached from none of them is not reported; give `--guess` (or [`ForwardKinematics::solve`])
+//! near it.
 //!
 //! ## References
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018 (forward kinematics by nonlinear
 //!   least squares).
 //! - Levenberg 1944, Marquardt 1963; Nielsen 1999 (damping update); Madsen, Nielsen & Tingleff
 //!   2004, *Methods for non-linear least squares problems* (stopping rules).
+//! - Wilson & Hilferty 1931, *The distribution of chi-square*, PNAS 17 (χ² quantiles).
 
 use crate::{KinematicsError, MotionPattern, Pose, PoseKinematics, Robot};
 use nalgebra::{Rotation3, Vector3};
@@ -41,6 +67,9 @@ pub struct ForwardSettings {
     pub tolerance: f64,
     /// Largest number of iterations (accepted or rejected steps) per start.
     pub max_iterations: usize,
+    /// Standard deviation σ of the length measurements (m): lengths whose least-squares
+    /// residual is consistent with it are `fitted`; it scales the pose's standard deviations.
+    pub length_sigma: f64,
 }
 
 impl Default for ForwardSettings {
@@ -48,6 +77,7 @@ impl Default for ForwardSettings {
         Self {
             tolerance: 1e-9,
             max_iterations: 100,
+            length_sigma: 1e-4,
         }
     }
 }
@@ -59,6 +89,12 @@ impl ForwardSettings {
             return Err(KinematicsError::InvalidSetting {
                 what: "forward-kinematics tolerance (must be finite and > 0)",
                 value: self.tolerance,
+            });
+        }
+        if !(self.length_sigma.is_finite() && self.length_sigma > 0.0) {
+            return Err(KinematicsError::InvalidSetting {
+                what: "length standard deviation σ (m; must be finite and > 0)",
+                value: self.length_sigma,
             });
         }
         if self.max_iterations == 0 {
@@ -77,12 +113,21 @@ impl ForwardSettings {
 pub enum ForwardStatus {
     /// The iteration converged and max |l_i(x) − L_i| ≤ tolerance.
     Solved,
-    /// The iteration converged (the step vanished) to a pose whose residual exceeds the
-    /// tolerance: the least-squares pose of inconsistent lengths, or a local minimum. No pose
-    /// within the tolerance was found from this start.
+    /// n = DOF: the iteration converged (the step vanished) to a pose whose residual exceeds
+    /// the tolerance: unreachable lengths, or a local minimum. No pose within the tolerance was
+    /// found from this start.
     NoPoseWithinTolerance,
     /// The iteration limit was reached first; the pose is the best one found.
     NotConverged,
+    /// n > DOF: the least-squares pose, with a residual consistent with the length noise σ
+    /// (‖r‖²/σ² below the 99.9 % quantile of χ² with n − DOF degrees of freedom).
+    Fitted,
+    /// n > DOF: the iteration converged to a pose whose residual is too large for the length
+    /// noise σ: inconsistent lengths (or a local minimum).
+    Inconsistent,
+    /// The pose lies on or above the plane of the anchors (no cable rises from the platform):
+    /// the mirror image of a hanging pose, never a solution (space only).
+    AboveAnchors,
 }
 
 impl ForwardStatus {
@@ -92,7 +137,15 @@ impl ForwardStatus {
             Self::Solved => "solved",
             Self::NoPoseWithinTolerance => "no pose within tolerance",
             Self::NotConverged => "did not converge",
+            Self::Fitted => "fitted",
+            Self::Inconsistent => "inconsistent",
+            Self::AboveAnchors => "above the anchors",
         }
+    }
+
+    /// Whether the pose answers the lengths: `Solved` or `Fitted`.
+    pub fn is_solution(self) -> bool {
+        matches!(self, Self::Solved | Self::Fitted)
     }
 }
 
@@ -111,6 +164,19 @@ pub struct ForwardSolution {
     pub status: ForwardStatus,
     /// Smallest singular value of J = Wᵀ at `pose` (m per unit twist: m/m and m/rad).
     pub min_singular_value: f64,
+    /// ‖l(pose) − L‖ / √n (m).
+    pub residual_rms: f64,
+    /// Standard deviations of the pose, √diag(σ² (JᵀJ)⁻¹) with σ = `length_sigma`: the first
+    /// DOF entries, in twist order (position m; base-frame rotation vector rad), the rest 0;
+    /// infinite where JᵀJ is singular.
+    pub pose_std: [f64; MAX_DOF],
+}
+
+impl ForwardSolution {
+    /// The pose's standard deviations for a motion pattern with `dof` degrees of freedom.
+    pub fn pose_std(&self, dof: usize) -> &[f64] {
+        &self.pose_std[..dof.min(MAX_DOF)]
+    }
 }
 
 /// Largest DOF of any motion pattern.
@@ -137,6 +203,10 @@ type Square<const D: usize> = [[f64; D]; D];
 pub struct ForwardKinematics<'a> {
     robot: &'a Robot,
     settings: ForwardSettings,
+    /// σ² × the 99.9 % quantile of χ²(n − DOF): the largest ‖r‖² of a `fitted` pose.
+    fit_threshold: f64,
+    /// A robot in space whose anchors span little height ([`Robot::is_suspended`]).
+    suspended: bool,
     kin: PoseKinematics,
     trial: PoseKinematics,
 }
@@ -151,9 +221,12 @@ impl<'a> ForwardKinematics<'a> {
                 dof: robot.dof(),
             });
         }
+        let redundancy = robot.cable_count() - robot.dof();
         Ok(Self {
             robot,
             settings,
+            fit_threshold: settings.length_sigma.powi(2) * chi_square_quantile_999(redundancy),
+            suspended: robot.is_suspended(),
             kin: PoseKinematics::for_robot(robot),
             trial: PoseKinematics::for_robot(robot),
         })
@@ -166,10 +239,9 @@ impl<'a> ForwardKinematics<'a> {
 
     fn check_lengths(&self, lengths: &[f64]) -> Result<(), KinematicsError> {
         if lengths.len() != self.robot.cable_count() {
-            return Err(KinematicsError::WrongDimension {
-                what: "cable lengths".into(),
-                motion: self.robot.motion().name(),
-                expected: self.robot.cable_count(),
+            return Err(KinematicsError::WrongCableCount {
+                what: "measured cable lengths".into(),
+                cables: self.robot.cable_count(),
                 found: lengths.len(),
             });
         }
@@ -178,6 +250,9 @@ impl<'a> ForwardKinematics<'a> {
                 what: format!("length of cable {}", i + 1),
                 value: v,
             });
+        }
+        if let Some((cable, &value)) = lengths.iter().enumerate().find(|(_, v)| **v < 0.0) {
+            return Err(KinematicsError::NegativeLength { cable, value });
         }
         Ok(())
     }
@@ -235,14 +310,18 @@ impl<'a> ForwardKinematics<'a> {
         Ok(out)
     }
 
-    /// Every distinct pose found from a fixed set of starts, solutions (status `Solved`) first,
-    /// by residual; if none solves the lengths, the best converged (or best) answer alone.
+    /// Every distinct pose found from a fixed set of starts, solutions (status `Solved`, then
+    /// `Fitted`) by residual; if none answers the lengths, the best converged (or best) answer
+    /// alone. A fixed set of starts can miss a pose (see the module documentation).
     ///
     /// Starts: the centre of the frame anchors' bounding box, in the reference orientation and
     /// (for oriented platforms) rotated by ±π/2 about each rotation axis and by π about z, and
     /// the points halfway from the centre to each corner of the box in the reference
-    /// orientation. Two poses are the same when their positions differ by less than
-    /// 1e-6 × the robot's length scale and their orientations by less than 1e-6 rad.
+    /// orientation; for a robot whose anchors span little height (suspended: the default
+    /// region extends below them), also three points on the hanging side, 1/8, 1/4 and 1/2 of
+    /// the frame's width below the highest anchor (the middle one in every orientation above).
+    /// Two poses are the same when their positions differ by less than 1e-6 × the robot's
+    /// length scale and their orientations by less than 1e-6 rad.
     pub fn solve_multistart(
         &mut self,
         lengths: &[f64],
@@ -257,12 +336,14 @@ impl<'a> ForwardKinematics<'a> {
                 continue;
             }
             let sol = self.iterate(lengths, start);
-            let better =
-                |b: &ForwardSolution| (sol.converged, -sol.residual) > (b.converged, -b.residual);
+            let better = |b: &ForwardSolution| {
+                (sol.status.is_solution(), sol.converged, -sol.residual)
+                    > (b.status.is_solution(), b.converged, -b.residual)
+            };
             if best.as_ref().is_none_or(better) {
                 best = Some(sol);
             }
-            if sol.status == ForwardStatus::Solved
+            if sol.status.is_solution()
                 && !solutions
                     .iter()
                     .any(|s| same_pose(motion, &s.pose, &sol.pose, scale))
@@ -273,7 +354,12 @@ impl<'a> ForwardKinematics<'a> {
         if solutions.is_empty() {
             solutions.extend(best);
         }
-        solutions.sort_by(|a, b| a.residual.total_cmp(&b.residual));
+        let rank = |s: &ForwardSolution| (s.status != ForwardStatus::Solved) as u8;
+        solutions.sort_by(|a, b| {
+            rank(a)
+                .cmp(&rank(b))
+                .then(a.residual.total_cmp(&b.residual))
+        });
         Ok(solutions)
     }
 
@@ -391,18 +477,36 @@ impl<'a> ForwardKinematics<'a> {
         }
         // σ_min(J)² = λ_min(JᵀJ) = λ_min(W Wᵀ), once, at the returned pose.
         let min_singular_value = smallest_eigenvalue(&a).max(0.0).sqrt();
-        let status = match (converged, residual <= self.settings.tolerance) {
-            (_, true) => ForwardStatus::Solved,
-            (true, false) => ForwardStatus::NoPoseWithinTolerance,
-            (false, false) => ForwardStatus::NotConverged,
+        let squared = 2.0 * half_squared_residual(&self.kin, lengths);
+        let within = residual <= self.settings.tolerance;
+        let redundant = lengths.len() > d;
+        let status = if (converged || within) && self.suspended && above_anchors(&self.kin) {
+            ForwardStatus::AboveAnchors
+        } else if within {
+            ForwardStatus::Solved
+        } else if !converged {
+            ForwardStatus::NotConverged
+        } else if !redundant {
+            ForwardStatus::NoPoseWithinTolerance
+        } else if squared <= self.fit_threshold {
+            ForwardStatus::Fitted
+        } else {
+            ForwardStatus::Inconsistent
         };
+        let mut pose_std = [0.0; MAX_DOF];
+        let inverse_diagonal = inverse_diagonal(&a);
+        for k in 0..d {
+            pose_std[k] = self.settings.length_sigma * inverse_diagonal[k].sqrt();
+        }
         ForwardSolution {
             pose: x,
             residual,
             iterations,
-            converged: converged || status == ForwardStatus::Solved,
+            converged: converged || within,
             status,
             min_singular_value,
+            residual_rms: (squared / lengths.len() as f64).sqrt(),
+            pose_std,
         }
     }
 }
@@ -417,6 +521,53 @@ impl Robot {
     ) -> Result<ForwardSolution, KinematicsError> {
         ForwardKinematics::new(self, settings)?.solve(lengths, guess)
     }
+}
+
+/// The 99.9 % quantile of χ² with k degrees of freedom (Wilson & Hilferty 1931:
+/// k (1 − 2/(9k) + z √(2/(9k)))³, z = 3.0902 the standard normal 99.9 % quantile; at most
+/// 3.1 % above the exact quantile for k ≥ 1: 11.16 against 10.83 at k = 1, 29.76 against 29.59
+/// at k = 10). 0 for k = 0.
+pub fn chi_square_quantile_999(k: usize) -> f64 {
+    if k == 0 {
+        return 0.0;
+    }
+    let k = k as f64;
+    let c = 2.0 / (9.0 * k);
+    k * (1.0 - c + 3.090_232 * c.sqrt()).powi(3)
+}
+
+/// Whether no cable rises from the platform (u_z ≤ 0 for every cable): the platform on or
+/// above the plane of all its anchors.
+fn above_anchors(kin: &PoseKinematics) -> bool {
+    kin.cables().iter().all(|c| c.unit.z <= 1e-9)
+}
+
+/// diag(A⁻¹) of a symmetric positive definite A, from its Cholesky factor:
+/// (A⁻¹)_kk = Σ_i (L⁻¹)_ik². Infinite entries when A is not positive definite.
+// Index loops read as the textbook algorithm on these small fixed arrays.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn inverse_diagonal<const D: usize>(a: &Square<D>) -> [f64; D] {
+    let Some(l) = cholesky(a, 0.0) else {
+        return [f64::INFINITY; D];
+    };
+    let mut out = [0.0; D];
+    // Column j of X = L⁻¹ (lower triangular), by forward substitution.
+    for j in 0..D {
+        let mut x = [0.0; D];
+        x[j] = 1.0 / l[j][j];
+        out[j] += x[j] * x[j];
+        for i in j + 1..D {
+            let mut s = 0.0;
+            for k in j..i {
+                s -= l[i][k] * x[k];
+            }
+            x[i] = s / l[i][i];
+            out[j] += x[i] * x[i];
+        }
+    }
+    // out[j] = Σ_i X_ij² is the squared norm of column j of X: (XᵀX)_jj = (A⁻¹)_jj.
+    out
 }
 
 fn max_residual(kin: &PoseKinematics, lengths: &[f64]) -> f64 {
@@ -678,10 +829,7 @@ fn multistart_poses(robot: &Robot) -> Vec<Pose> {
         }
         MotionPattern::Point2 | MotionPattern::Point3 => {}
     }
-    let mut starts: Vec<Pose> = rotations
-        .into_iter()
-        .map(|r| Pose::new(centre, r))
-        .collect();
+    let mut starts: Vec<Pose> = rotations.iter().map(|r| Pose::new(centre, *r)).collect();
     let dims = motion.space_dim();
     for corner in 0..(1 << dims) {
         let mut p = centre;
@@ -693,6 +841,18 @@ fn multistart_poses(robot: &Robot) -> Vec<Pose> {
             };
         }
         starts.push(Pose::new(p, Rotation3::identity()));
+    }
+    if robot.is_suspended() {
+        // Suspended: the hanging side, below the highest anchor.
+        let width = (hi.x - lo.x).max(hi.y - lo.y);
+        for (k, depth) in [0.125, 0.25, 0.5].into_iter().enumerate() {
+            let p = Vector3::new(centre.x, centre.y, hi.z - depth * width);
+            if k == 1 {
+                starts.extend(rotations.iter().map(|r| Pose::new(p, *r)));
+            } else {
+                starts.push(Pose::new(p, Rotation3::identity()));
+            }
+        }
     }
     starts
 }

@@ -56,7 +56,9 @@ mod structure_matrix;
 
 pub use cable_state::{CableState, PulleyState};
 pub use error::KinematicsError;
-pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
+pub use forward_kinematics::{
+    ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus, chi_square_quantile_999,
+};
 pub use interference::{
     ClosestCables, ConvexPolyhedron, PlatformInterference, Segment, SegmentDistance, cable_segment,
     closest_cables, min_cable_distance, platform_interference, segment_distance,

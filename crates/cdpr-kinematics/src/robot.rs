@@ -286,6 +286,39 @@ impl Robot {
         (lo, hi)
     }
 
+    /// The default search region of the analyses (workspace, gallery, forward-kinematics
+    /// starts): the frame anchors' bounding box, except that a robot in space whose anchors
+    /// span less than a quarter of the frame's width in height (all anchors near one level: a
+    /// suspended robot such as a spidercam, CAROCA, CoGiRo, the NIST RoboCrane) gets a box
+    /// reaching half the width below its highest anchor, where the platform hangs. The width
+    /// is the larger of the box's x and y extents. `(min, max)` corners.
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+    /// use nalgebra::Vector3;
+    /// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 30.0), platform: Vector3::zeros(), pulley: None };
+    /// let robot = Robot::new(MotionPattern::Point3, vec![c(50.0, 35.0), c(-50.0, 35.0), c(-50.0, -35.0), c(50.0, -35.0)]).unwrap();
+    /// let (lo, hi) = robot.default_region();
+    /// assert_eq!((lo.z, hi.z), (30.0 - 50.0, 30.0));
+    /// ```
+    pub fn default_region(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let (mut lo, hi) = self.frame_bounding_box();
+        if self.is_suspended() {
+            let width = (hi.x - lo.x).max(hi.y - lo.y);
+            lo.z = lo.z.min(hi.z - 0.5 * width);
+        }
+        (lo, hi)
+    }
+
+    /// Whether the robot is suspended by the rule of [`Self::default_region`]: it moves in
+    /// space and its anchors span less than a quarter of the frame's width (the larger of the
+    /// anchors' x and y extents) in height.
+    pub fn is_suspended(&self) -> bool {
+        let (lo, hi) = self.frame_bounding_box();
+        let width = (hi.x - lo.x).max(hi.y - lo.y);
+        self.motion().space_dim() == 3 && hi.z - lo.z < 0.25 * width
+    }
+
     /// Whether any cable runs over a pulley (the pulley model then differs from the standard one).
     pub fn has_pulleys(&self) -> bool {
         self.has_pulleys

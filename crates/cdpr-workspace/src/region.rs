@@ -37,6 +37,25 @@ impl Region {
         Self { min, max }
     }
 
+    /// The default region of every front end (CLI, Python, gallery):
+    /// [`Robot::default_region`], the frame anchors' bounding box extended below anchors that
+    /// span little height (suspended robots).
+    ///
+    /// ```
+    /// use cdpr_kinematics::{Cable, MotionPattern, Robot};
+    /// use cdpr_workspace::Region;
+    /// use nalgebra::Vector3;
+    /// let c = |x: f64, y: f64| Cable { frame: Vector3::new(x, y, 3.0), platform: Vector3::zeros(), pulley: None };
+    /// let robot = Robot::new(MotionPattern::Point3, vec![c(1.0, 1.0), c(-1.0, 1.0), c(0.0, -1.0)]).unwrap();
+    /// let r = Region::default_for(&robot);
+    /// assert_eq!((r.min.z, r.max.z), (2.0, 3.0));
+    /// assert!(r.validate(3).is_ok());
+    /// ```
+    pub fn default_for(robot: &Robot) -> Self {
+        let (min, max) = robot.default_region();
+        Self { min, max }
+    }
+
     /// A planar box [x_min, x_max] × [y_min, y_max] (z = 0).
     pub fn planar(xmin: f64, xmax: f64, ymin: f64, ymax: f64) -> Self {
         Self {

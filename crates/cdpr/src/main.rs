@@ -61,6 +61,8 @@ enum Command {
     Convert(cli::convert::Args),
     /// Forward dynamics: the platform's motion under given tensions or elastic cables.
     Simulate(cli::simulate::Args),
+    /// Calibration from cable-length readings: anchors, attachments, offsets, gains (known poses or self-calibration).
+    Calibrate(cli::calibrate::Args),
 }
 
 fn main() -> ExitCode {
@@ -91,6 +93,7 @@ fn main() -> ExitCode {
         Command::StiffnessMap(a) => cli::stiffness_map::run(a),
         Command::Convert(a) => cli::convert::run(a),
         Command::Simulate(a) => cli::simulate::run(a),
+        Command::Calibrate(a) => cli::calibrate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

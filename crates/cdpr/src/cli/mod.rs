@@ -1,5 +1,6 @@
 //! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
 
+pub mod calibrate;
 pub mod capacity;
 pub mod convert;
 pub mod criteria;

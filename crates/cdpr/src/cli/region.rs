@@ -58,11 +58,12 @@ pub fn rotation(motion: MotionPattern, q: Option<&[f64]>) -> Result<Rotation3<f6
     }
 }
 
-/// The search box: 4 numbers in the plane, 6 in space; default the frame anchors' bounding box.
+/// The search box: 4 numbers in the plane, 6 in space; default [`Region::default_for`] (the
+/// frame anchors' bounding box, extended below anchors that span little height).
 pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, CliError> {
     let dim = robot.motion().space_dim();
     let r = match q {
-        None => Region::frame_bounding_box(robot),
+        None => Region::default_for(robot),
         Some(b) if dim == 2 && b.len() == 4 => Region::planar(b[0], b[1], b[2], b[3]),
         Some(b) if dim == 3 && b.len() == 6 => Region::cuboid(
             Vector3::new(b[0], b[2], b[4]),

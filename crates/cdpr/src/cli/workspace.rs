@@ -27,7 +27,9 @@ orientation (thesis eq. 6.23).
 
 Methods (--boundary):
   grid  (default) Algorithm 6.2: test the (M+1)² points of a regular grid (M intervals per
-        side) over --box (default: the bounding box of the frame anchors, Alg. 6.2 step 2).
+        side) over --box (default: the bounding box of the frame anchors, Alg. 6.2 step 2,
+        extended to half the frame's width below the highest anchor when the anchors span less
+        than a quarter of that width in height: suspended robots, docs/robots.md).
         The area counts each feasible point's cell clipped to the box (--volume-convention
         cells, the default: never more than the box) or feasible points × cell area
         (--volume-convention points, the thesis' convention). Robots moving in space (point3,
@@ -145,7 +147,7 @@ pub struct Args {
     #[arg(long, value_name = "M", value_parser = super::count)]
     grid: Option<usize>,
     /// Search box XMIN,XMAX,YMIN,YMAX (in space: XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX); default the
-    /// bounding box of the frame anchors.
+    /// bounding box of the frame anchors (extended below anchors that span little height).
     #[arg(
         long = "box",
         allow_hyphen_values = true,

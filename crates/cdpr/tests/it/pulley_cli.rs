@@ -100,7 +100,8 @@ fn forward_recovers_the_pose_from_pulley_lengths() {
         "standard",
     ]);
     assert_eq!(s["kinematics"], "standard");
-    assert_eq!(s["status"], "no pose within tolerance");
+    // 8 cables, 6 DOF: the least-squares residual is far beyond the 0.1 mm length noise.
+    assert_eq!(s["status"], "inconsistent");
     assert!(s["residual"].as_f64().unwrap() > 1e-3);
 }
 

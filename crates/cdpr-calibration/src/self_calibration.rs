@@ -1,0 +1,120 @@
+//! # Self-calibration (unknown poses)
+//!
+//! Without a tracker, the poses x_1 … x_k of the samples are unknowns too: the parameters and
+//! the poses are adjusted together (Borgstrom et al. 2009; Miermeister & Pott 2012),
+//!
+//! ```text
+//!   min over θ, x_1…x_k of Σ_k Σ_i ( l_i(x_k; θ) − g_i ρ_ki − o_i )²
+//! ```
+//!
+//! with the gauge fixed ([`crate::gauge`]). The starting poses are the forward kinematics of
+//! the nominal robot on the readings taken at face value (l = g ρ + o with the nominal gains
+//! and offsets): each sample from the previous sample's pose, or by the multi-start when that
+//! does not give a solution ([`cdpr_kinematics::ForwardKinematics`]). Levenberg–Marquardt then
+//! runs on poses and parameters at once ([`crate::adjustment`]). Identifiable only if
+//! k (n − d) ≥ p − g ([`crate::identifiability`]); a robot with n = d never is.
+//!
+//! ## References
+//! - Borgstrom, Jordan, Borgstrom, Stealey, Sukhatme, Batalin & Kaiser 2009, *NIMS-PL: A
+//!   cable-driven robot with self-calibration capabilities*, IEEE T-RO 25(5).
+//! - Miermeister & Pott 2012, *Auto-calibration method for overconstrained cable-driven
+//!   parallel robots*, ICRA.
+
+use crate::adjustment::Problem;
+use crate::gauge::{Gauge, ParameterSpace};
+use crate::identifiability::counting_rule;
+use crate::model::cable;
+use crate::{Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, Robot};
+
+/// Self-calibrates `unknowns` of `robot` from readings at unknown poses (`samples.poses` is
+/// ignored).
+pub fn self_calibrate(
+    robot: &Robot,
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
+    let (n, motion) = (robot.cable_count(), robot.motion());
+    let d = motion.dof();
+    let k = crate::check_inputs(robot, samples, unknowns)?;
+    let nominal = Parameters::nominal(robot);
+    // Relative readings without unknown offsets see translations: only rotations about the
+    // reference point remain (module `gauge`).
+    let gauge = match readings {
+        Readings::Relative { reference } if !unknowns.offsets => {
+            if unknowns.platform {
+                return Err(CalibrationError::Unsupported(
+                    "self-calibration of platform attachments from relative readings without \
+                     unknown offsets",
+                ));
+            }
+            Gauge::RotationsAbout(reference.position)
+        }
+        _ => Gauge::Rigid,
+    };
+    let space = ParameterSpace::new(motion, &nominal, unknowns, gauge)?;
+    let p = space.parameters.len() + space.gauge;
+    let counting = counting_rule(k, n, d, p, space.gauge, false);
+    if !counting.holds {
+        return Ok(Calibration::not_identifiable(
+            nominal,
+            Vec::new(),
+            true,
+            counting,
+            space.fixed.clone(),
+        ));
+    }
+    let poses = starting_poses(robot, &nominal, samples, readings, k)?;
+    let problem = Problem {
+        motion,
+        space: &space,
+        readings,
+        rho: &samples.readings,
+        n,
+        estimate_poses: true,
+    };
+    let fit = problem.solve(nominal, poses, robot.length_scale());
+    Ok(Calibration::from_fit(fit, &space, unknowns, counting, n, d))
+}
+
+/// The forward kinematics of the nominal robot on the readings taken at face value.
+fn starting_poses(
+    robot: &Robot,
+    nominal: &Parameters,
+    samples: &Samples,
+    readings: &Readings,
+    k: usize,
+) -> Result<Vec<Pose>, CalibrationError> {
+    let n = robot.cable_count();
+    let mut fk = ForwardKinematics::new(robot, ForwardSettings::default())?;
+    let reference: Vec<f64> = (0..n)
+        .map(|i| match readings {
+            Readings::Absolute => 0.0,
+            Readings::Relative { reference } => {
+                cable(&nominal.frame[i], &nominal.platform[i], reference).0
+            }
+        })
+        .collect();
+    let mut poses = Vec::with_capacity(k);
+    let mut lengths = vec![0.0; n];
+    for s in 0..k {
+        for i in 0..n {
+            let rho = samples.readings[s * n + i];
+            lengths[i] = (nominal.gains[i] * rho + nominal.offsets[i] + reference[i]).max(0.0);
+        }
+        let from_previous = match poses.last() {
+            Some(prev) => fk
+                .solve(&lengths, prev)
+                .ok()
+                .filter(|s| s.status.is_solution()),
+            None => None,
+        };
+        let sol = match from_previous {
+            Some(s) => s,
+            None => fk.solve_multistart(&lengths)?[0],
+        };
+        poses.push(sol.pose);
+    }
+    Ok(poses)
+}
