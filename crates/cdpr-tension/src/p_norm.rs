@@ -22,7 +22,7 @@
 //! p(p−1)|u_i|^{p−2} + μ[(c_i + u_i)⁻² + (c_i − u_i)⁻²] (positive definite: the barrier terms),
 //! with a backtracking line search that keeps every u_i strictly inside and decreases F_μ, for
 //! μ = 1, 10⁻¹, …, 10⁻⁹ (the central path; each stage ends when the Newton decrement² is below
-//! 10⁻¹⁴). At μ = 10⁻⁹ the barrier answer is within 2nμ of the constrained optimum's objective
+//! 10⁻¹⁴, when the line search finds no decrease above rounding, or after 50 steps). At μ = 10⁻⁹ the barrier answer is within 2nμ of the constrained optimum's objective
 //! (in units of h^p). The start is the optimally safe point (module `optimally_safe`, α = 1):
 //! its margin s* > 0 makes it strictly interior. A margin s* ≤ 10⁻⁹·h (no interior point) is
 //! the documented give-up [`crate::GiveUp::EmptyInterior`]; s* < 0 proves the set empty; the
@@ -47,6 +47,9 @@ const MU_START: f64 = 1.0;
 const MU_END: f64 = 1e-9;
 /// Newton decrement² that ends a stage.
 const DECREMENT: f64 = 1e-14;
+/// Newton steps after which a stage hands over to the next μ (its iterate is strictly inside
+/// whatever its accuracy; rounding can keep the decrement above [`DECREMENT`] near a bound).
+const STAGE_STEPS: usize = 50;
 
 /// Buffers (no allocation once sized).
 #[derive(Debug, Clone, Default)]
@@ -110,7 +113,12 @@ impl PNorm {
         let mut mu = MU_START;
         loop {
             // Newton on F_μ.
+            let mut steps = 0;
             loop {
+                steps += 1;
+                if steps > STAGE_STEPS {
+                    break;
+                }
                 if self.iterations >= max_iterations {
                     return Err(Infeasibility::GaveUp {
                         method: "p-norm",
