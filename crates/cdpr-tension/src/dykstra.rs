@@ -104,9 +104,8 @@ impl Dykstra {
             }
             self.iterations += 1;
             // y = P_B(x + p), p ← x + p − y, x ← P_A(y).
-            let mut moved = 0.0f64;
-            for i in 0..n {
-                let z = t[i] + self.p[i];
+            for (i, &x) in t.iter().enumerate() {
+                let z = x + self.p[i];
                 let y = z.max(self.lo[i]).min(self.hi[i]);
                 self.y[i] = y;
                 if !alternating {
@@ -114,13 +113,12 @@ impl Dykstra {
                 }
             }
             ns.coordinates(&self.y, &mut self.lambda);
-            for i in 0..n {
-                self.v[i] = t[i];
-            }
+            self.v.copy_from_slice(t);
             ns.tensions(&self.lambda, t);
-            for i in 0..n {
-                moved = moved.max((t[i] - self.v[i]).abs() / t[i].abs().max(1.0));
-            }
+            let moved = t
+                .iter()
+                .zip(&self.v)
+                .fold(0f64, |m, (a, b)| m.max((a - b).abs() / a.abs().max(1.0)));
             if converge && inside && inside_since && moved < 1e-12 {
                 return Ok(());
             }

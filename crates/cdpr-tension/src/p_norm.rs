@@ -85,7 +85,8 @@ impl PNorm {
         let h = (0..n).fold(0f64, |m, i| m.max(0.5 * (hi[i] - lo[i])));
         // Strictly interior start: the optimally safe point.
         let s = optimally_safe::solve(ns, bounds, 1.0, dense, t)?;
-        if !(s > 1e-9 * h.max(1.0)) || h <= 0.0 {
+        // (A NaN margin is no interior point either.)
+        if s.is_nan() || s <= 1e-9 * h.max(1.0) || h <= 0.0 {
             return Err(Infeasibility::GaveUp {
                 method: "p-norm",
                 reason: GiveUp::EmptyInterior,
@@ -184,8 +185,8 @@ impl PNorm {
     /// F_μ at t (∞ outside the bounds).
     fn value(&mut self, t: &[f64], h: f64, p: f64, mu: f64) -> f64 {
         let mut f = 0.0;
-        for i in 0..t.len() {
-            let u = (t[i] - self.t_m[i]) / h;
+        for (i, &ti) in t.iter().enumerate() {
+            let u = (ti - self.t_m[i]) / h;
             let (a, b) = (self.c[i] + u, self.c[i] - u);
             if !(a > 0.0 && b > 0.0) {
                 return f64::INFINITY;
@@ -198,8 +199,8 @@ impl PNorm {
     /// F_μ, and its gradient and diagonal Hessian in u (into `gu`, `hu`).
     fn derivatives(&mut self, t: &[f64], h: f64, p: f64, mu: f64) -> f64 {
         let mut f = 0.0;
-        for i in 0..t.len() {
-            let u = (t[i] - self.t_m[i]) / h;
+        for (i, &ti) in t.iter().enumerate() {
+            let u = (ti - self.t_m[i]) / h;
             let (a, b) = (self.c[i] + u, self.c[i] - u);
             let au = u.abs();
             f += au.powf(p) - mu * (a.ln() + b.ln());
@@ -218,7 +219,7 @@ fn cholesky_solve(hm: &mut [f64], g: &[f64], x: &mut [f64], r: usize) -> bool {
         for k in 0..j {
             d -= hm[j * r + k] * hm[j * r + k];
         }
-        if !(d > 0.0) {
+        if d.is_nan() || d <= 0.0 {
             return false;
         }
         let d = d.sqrt();

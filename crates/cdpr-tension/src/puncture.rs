@@ -62,7 +62,8 @@ pub(crate) fn solve(
     }
     let s = if moves { enter } else { 0.0 };
     // A cable's slab may be a point (t_min = t_max): allow the certificate's rounding.
-    if moves && !(s <= leave + 1e-12 * s.abs().max(1.0)) {
+    let slack = leave + 1e-12 * s.abs().max(1.0) - s;
+    if moves && (slack.is_nan() || slack < 0.0) {
         return Err(Infeasibility::Inconclusive { method: "puncture" });
     }
     for i in 0..t0.len() {
