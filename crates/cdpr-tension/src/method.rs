@@ -299,6 +299,23 @@ impl Method {
         }
     }
 
+    /// Whether the method needs a finite t_max for every cable (it starts from the middle of
+    /// the bounds t_m or enumerates the vertices of the feasible set):
+    /// [`TensionError::NeedsFiniteBounds`] otherwise.
+    pub fn needs_finite_bounds(self) -> bool {
+        matches!(
+            self,
+            Self::ImprovedClosedForm
+                | Self::PottClosedForm
+                | Self::PottClosedFormEe
+                | Self::Puncture
+                | Self::Dykstra
+                | Self::L2Mid
+                | Self::VertexCentroid
+                | Self::PNorm
+        )
+    }
+
     /// Whether `option` (`interior`, `alternating`, `p`, `alpha`) is one of this method's
     /// options (the CLI refuses the others).
     pub fn takes_option(self, option: &str) -> bool {

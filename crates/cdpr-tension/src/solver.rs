@@ -443,22 +443,13 @@ impl TensionSolver {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
         }
-        if matches!(
-            self.method,
-            Method::ImprovedClosedForm
-                | Method::PottClosedForm
-                | Method::PottClosedFormEe
-                | Method::Puncture
-                | Method::Dykstra
-                | Method::L2Mid
-                | Method::VertexCentroid
-                | Method::PNorm
-        ) && let Some(cable) = p
-            .bounds
-            .max()
-            .as_slice()
-            .iter()
-            .position(|v| !v.is_finite())
+        if self.method.needs_finite_bounds()
+            && let Some(cable) = p
+                .bounds
+                .max()
+                .as_slice()
+                .iter()
+                .position(|v| !v.is_finite())
         {
             return Err(TensionError::NeedsFiniteBounds {
                 method: self.method,
