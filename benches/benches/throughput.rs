@@ -1,17 +1,18 @@
-//! Issue 17's throughput table, refilled: the IPAnema 1 of `examples/robots/caspr-ipanema-1.toml`
-//! (Pott et al. 2013; 8 cables, 6 DOF), bounds t ∈ [1, 1000] N (not the file's [0, 720] N), the
-//! platform's 25 kg under the file's gravity (245.25 N along −z, centre of mass at the platform
-//! origin), 20 000 poses of `spatial_poses` (|x| ≤ 1 m, |y| ≤ 0.75 m, z ∈ [0.5, 1.5] m, angles
-//! within ±0.1 rad). Every tension answer is certified (as in every `TensionSolver` call).
+//! Issue 26's throughput table (issue 17's operations plus the peers' methods) on issue 26's
+//! fixture, WireLib's own robot: `CIPAnema1Design` (Pott et al. 2013; 8 cables, 6 DOF), bounds
+//! t ∈ [1, 1000] N, w = (0, 0, −245.25 N, 0, 0, 0), 20 000 poses with x, y ∈ [−1, 1] m,
+//! z ∈ [0.3, 1.7] m, XYZ angles in [−0.1, 0.1] rad (`cdpr_benches::issue_26`). Every tension
+//! answer is certified (as in every `TensionSolver` call).
 //!
 //! One iteration runs all 20 000 poses (criterion's throughput gives the rate; CPU time per call
-//! = time / 20 000). IDs: `throughput_ipanema_1/{ik_w, ik_w_batch, ik_w_batch_portable, improved_closed_form,
-//! barycenter, l2, l1, linf}`; run with
-//! `cargo bench -p cdpr-benches --bench throughput`.
+//! = time / 20 000). IDs: `throughput_ipanema_1/{ik_w, ik_w_batch, ik_w_batch_portable,
+//! improved_closed_form, barycenter, l2, l1, linf, pott_closed_form, pott_closed_form_ee,
+//! puncture, dykstra, dykstra_alternating, l2_mid, vertex_centroid, p_norm, optimally_safe}`;
+//! run with `cargo bench -p cdpr-benches --bench throughput`.
 
-use cdpr_benches::issue_17::{POSES, fixture};
+use cdpr_benches::issue_26::{POSES, fixture};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
-use cdpr_tension::{Method, TensionProblem, TensionSolver};
+use cdpr_tension::{Method, MethodOptions, TensionProblem, TensionSolver};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector};
 use std::hint::black_box;
@@ -66,14 +67,37 @@ fn tension(c: &mut Criterion) {
     let mut g = c.benchmark_group("throughput_ipanema_1");
     g.throughput(Throughput::Elements(POSES as u64));
     g.sample_size(20);
-    for (name, method) in [
-        ("improved_closed_form", Method::ImprovedClosedForm),
-        ("barycenter", Method::Barycenter),
-        ("l2", Method::L2),
-        ("l1", Method::L1),
-        ("linf", Method::Linf),
+    let alternating = MethodOptions {
+        alternating: true,
+        ..MethodOptions::default()
+    };
+    let only = std::env::var("THROUGHPUT_ONLY").ok();
+    for (name, method, options) in [
+        ("improved_closed_form", Method::ImprovedClosedForm, None),
+        ("barycenter", Method::Barycenter, None),
+        ("l2", Method::L2, None),
+        ("l1", Method::L1, None),
+        ("linf", Method::Linf, None),
+        ("pott_closed_form", Method::PottClosedForm, None),
+        ("pott_closed_form_ee", Method::PottClosedFormEe, None),
+        ("puncture", Method::Puncture, None),
+        ("dykstra", Method::Dykstra, None),
+        ("dykstra_alternating", Method::Dykstra, Some(alternating)),
+        ("l2_mid", Method::L2Mid, None),
+        ("vertex_centroid", Method::VertexCentroid, None),
+        ("p_norm", Method::PNorm, None),
+        ("optimally_safe", Method::OptimallySafe, None),
     ] {
-        let mut solver = TensionSolver::new(method);
+        // THROUGHPUT_ONLY=a,b: skip the other methods' feasibility pass too.
+        if only
+            .as_deref()
+            .is_some_and(|o| !o.split(',').any(|x| x == name))
+        {
+            continue;
+        }
+        let mut solver = TensionSolver::new(method)
+            .with_options(options.unwrap_or_default())
+            .unwrap();
         let mut t = DVector::zeros(8);
         let mut run = |solver: &mut TensionSolver| {
             let mut ok = 0usize;

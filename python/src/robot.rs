@@ -379,9 +379,12 @@ impl Robot {
     /// ``cdpr tension`` command does. ``method``: one of ``cdpr.METHODS`` (default ``"l2"``,
     /// the constrained minimum 2-norm, thesis eq. (6.17)). SOTDA options: ``direction``
     /// (2 or 3 numbers), ``nu`` ∈ [0, 1], ``sotda_search`` (``"corners"``, ``"vertices"``,
-    /// ``"full"``). Infeasible poses are answers (NaN tensions and a reason), not errors.
+    /// ``"full"``). Options of single methods: ``interior`` (puncture: ``"icf"`` default or
+    /// ``"cf"``), ``alternating`` (dykstra: plain alternating projections), ``p`` (p-norm,
+    /// default 4), ``alpha`` (optimally-safe, default 1); given with another method they are a
+    /// ``ValueError``. Infeasible poses are answers (NaN tensions and a reason), not errors.
     #[pyo3(signature = (poses, wrenches=None, method="l2", *, direction=None, nu=1.0,
-        sotda_search="corners"))]
+        sotda_search="corners", interior=None, alternating=false, p=None, alpha=None))]
     #[allow(clippy::too_many_arguments)]
     fn tensions(
         &self,
@@ -392,7 +395,17 @@ impl Robot {
         direction: Option<Vec<f64>>,
         nu: f64,
         sotda_search: &str,
+        interior: Option<String>,
+        alternating: bool,
+        p: Option<f64>,
+        alpha: Option<f64>,
     ) -> PyResult<crate::tension::TensionResult> {
+        let peer = crate::tension::PeerOptions {
+            interior,
+            alternating,
+            p,
+            alpha,
+        };
         crate::tension::tensions(
             self,
             py,
@@ -402,6 +415,7 @@ impl Robot {
             direction,
             nu,
             sotda_search,
+            peer,
         )
     }
 

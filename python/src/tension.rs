@@ -11,7 +11,8 @@ use crate::model::Robot;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{
-    Method, SotdaSettings, SotdaVariant, StiffnessData, TensionProblem, TensionSolver,
+    Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant, StiffnessData,
+    TensionProblem, TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Vector3};
 use pyo3::prelude::*;
@@ -132,6 +133,51 @@ pub fn solver(robot: &Robot, method: Method, sotda: SotdaSettings) -> PyResult<T
     }
 }
 
+/// The keyword options of the methods of issue 26 (``interior`` for puncture, ``alternating``
+/// for dykstra, ``p`` for p-norm, ``alpha`` for optimally-safe).
+#[derive(Debug, Default)]
+pub struct PeerOptions {
+    pub interior: Option<String>,
+    pub alternating: bool,
+    pub p: Option<f64>,
+    pub alpha: Option<f64>,
+}
+
+impl PeerOptions {
+    /// The options for `method`; an option of another method is a `ValueError`.
+    pub fn for_method(&self, method: Method) -> PyResult<MethodOptions> {
+        let given = [
+            ("interior", self.interior.is_some()),
+            ("alternating", self.alternating),
+            ("p", self.p.is_some()),
+            ("alpha", self.alpha.is_some()),
+        ];
+        for (name, set) in given {
+            if set && !method.takes_option(name) {
+                return Err(value_error(format!(
+                    "{name}: an option of another method, not of {method} (interior: puncture, \
+                     alternating: dykstra, p: p-norm, alpha: optimally-safe)"
+                )));
+            }
+        }
+        let mut o = MethodOptions {
+            alternating: self.alternating,
+            ..MethodOptions::default()
+        };
+        if let Some(i) = &self.interior {
+            o.interior = i.parse::<PunctureInterior>().map_err(value_error)?;
+        }
+        if let Some(p) = self.p {
+            o.p = p;
+        }
+        if let Some(a) = self.alpha {
+            o.alpha = a;
+        }
+        o.validate().map_err(value_error)?;
+        Ok(o)
+    }
+}
+
 /// Tension distributions of a batch.
 ///
 /// ``tensions`` (N, n) in N, NaN where infeasible; ``feasible`` (N,) bool; ``residual`` (N,):
@@ -179,11 +225,15 @@ pub fn tensions(
     direction: Option<Vec<f64>>,
     nu: f64,
     sotda_search: &str,
+    peer: PeerOptions,
 ) -> PyResult<TensionResult> {
     let geo = robot.geometry();
     let (dof, n) = (geo.dof(), geo.cable_count());
     let method = parse_method(method)?;
-    let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?;
+    let options = peer.for_method(method)?;
+    let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?
+        .with_options(options)
+        .map_err(value_error)?;
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();

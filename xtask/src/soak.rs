@@ -35,14 +35,18 @@
 //!   `solve` returned tensions; otherwise `verdict_mismatch`.
 //!
 //! Complete methods (an "infeasible" is a claim that the set is empty): exact, closed-form,
-//! l1, l1-max, l2, l2-max, linf, barycenter, sotda. Heuristic ones (pinv: the minimum-norm
-//! solution only; improved-closed-form: Pott 2014, may miss a feasible set) are counted but not
-//! judged on completeness. A method that does not apply (wrong redundancy; the improved closed
+//! l1, l1-max, l2, l2-max, linf, barycenter, sotda, dykstra, l2-mid, vertex-centroid, p-norm,
+//! optimally-safe. Heuristic ones (pinv: the minimum-norm solution only; improved-closed-form:
+//! Pott 2014; pott-closed-form, pott-closed-form-ee, puncture: one point or one line, may miss
+//! a feasible set) are counted but not judged on completeness. Documented give-ups of the
+//! iterative methods ([`Infeasibility::GaveUp`]: dykstra's iteration cap, p-norm without an
+//! interior point, vertex-centroid above its basis cap) are counted apart (`gave_up`), never
+//! as verdicts. A method that does not apply (wrong redundancy; the improved closed
 //! form with an infinite t_max) is a usage error and counts as `not_applicable`.
 //!
 //! `--json` prints one object `{"methods": {NAME: {"solves", "feasible", "infeasible",
 //! "unbounded", "not_applicable", "false_feasible", "false_infeasible", "false_unbounded",
-//! "borderline", "singular", "not_optimal", "verdict_mismatch", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
+//! "borderline", "singular", "not_optimal", "verdict_mismatch", "gave_up", "complete"}}, "problems", "seconds", "seed", "complete_methods"}`.
 //!
 //! ## References
 //! - T. Ogita, S. M. Rump, S. Oishi, *Accurate sum and dot product*, SIAM J. Sci. Comput. 26(6),
@@ -64,7 +68,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 /// Methods whose "infeasible" claims an empty feasible set.
-pub const COMPLETE: [Method; 9] = [
+pub const COMPLETE: [Method; 14] = [
     Method::Exact,
     Method::ClosedForm,
     Method::L1,
@@ -74,6 +78,11 @@ pub const COMPLETE: [Method; 9] = [
     Method::Linf,
     Method::Barycenter,
     Method::Sotda,
+    Method::Dykstra,
+    Method::L2Mid,
+    Method::VertexCentroid,
+    Method::PNorm,
+    Method::OptimallySafe,
 ];
 
 /// Depth above which the feasible set counts as clearly non-empty (relative to the bounds).
@@ -108,6 +117,9 @@ pub struct Counts {
     pub singular: u64,
     /// "infeasible" answers of a heuristic method on a clearly non-empty set (not errors).
     pub missed_by_heuristic: u64,
+    /// Documented give-ups ([`Infeasibility::GaveUp`]: iteration caps, no interior, too many
+    /// vertex bases): neither a feasible nor an infeasible verdict, not judged.
+    pub gave_up: u64,
     /// Other errors of the call (should be 0).
     pub errors: u64,
 }
@@ -127,6 +139,7 @@ impl Counts {
         self.verdict_mismatch += o.verdict_mismatch;
         self.singular += o.singular;
         self.missed_by_heuristic += o.missed_by_heuristic;
+        self.gave_up += o.gave_up;
         self.errors += o.errors;
     }
 }
@@ -574,6 +587,7 @@ pub fn soak_range(
                         );
                     }
                 }
+                TensionOutcome::Infeasible(Infeasibility::GaveUp { .. }) => c.gave_up += 1,
                 TensionOutcome::Infeasible(reason) => {
                     c.infeasible += 1;
                     if matches!(reason, Infeasibility::SingularPose { .. }) {
@@ -770,6 +784,7 @@ pub fn run(args: &[String]) -> ExitCode {
                         "verdict_mismatch": c.verdict_mismatch,
                         "singular": c.singular,
                         "missed_by_heuristic": c.missed_by_heuristic,
+                        "gave_up": c.gave_up,
                         "errors": c.errors,
                         "complete": COMPLETE.contains(m),
                     }),
@@ -798,7 +813,7 @@ pub fn run(args: &[String]) -> ExitCode {
                 .join(", ")
         );
         println!(
-            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+            "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8} {:>7}",
             "method",
             "solves",
             "feasible",
@@ -812,12 +827,13 @@ pub fn run(args: &[String]) -> ExitCode {
             "border",
             "not_appl",
             "singular",
-            "missed_h"
+            "missed_h",
+            "gave_up"
         );
         for m in Method::ALL {
             let c = report.methods.get(m.name()).cloned().unwrap_or_default();
             println!(
-                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8}",
+                "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8} {:>7}",
                 format!(
                     "{}{}",
                     m.name(),
@@ -839,7 +855,8 @@ pub fn run(args: &[String]) -> ExitCode {
                 c.borderline,
                 c.not_applicable,
                 c.singular,
-                c.missed_by_heuristic
+                c.missed_by_heuristic,
+                c.gave_up
             );
         }
     }

@@ -206,6 +206,88 @@ impl ActiveSet {
         DenseEnd::Solved
     }
 
+    /// min ½‖λ‖² + gᵀλ on the bound rows of `ns` for a given g (l2-mid: g = Nᵀ(t0 − t_m), so
+    /// that the objective is ½‖t − t_m‖² up to a constant), by the dual active set with the
+    /// phase-1 confirmation of infeasibility, writing the optimal tensions into `t`.
+    pub fn solve_l2_with(
+        &mut self,
+        ns: &NullSpace,
+        bounds: &TensionBounds,
+        g: &[f64],
+        t: &mut [f64],
+    ) -> DenseEnd {
+        if let Err(reason) = self.build_rows(ns, bounds) {
+            return DenseEnd::Infeasible(reason);
+        }
+        if let Err(end) = self.feasible_start(g) {
+            return end;
+        }
+        self.write_tensions(ns, bounds, t);
+        DenseEnd::Solved
+    }
+
+    /// The optimally safe LP (Borgstrom et al. 2009): max s over (λ, s) subject to
+    /// t_i − t_min,i ≥ s and t_max,i − t_i ≥ α s (finite t_max only), t = t0 + N λ, by the
+    /// primal active-set method from λ = 0 and the largest s there. Writes t and returns s*
+    /// with [`DenseEnd::Solved`] (s* < 0: the feasible set is empty; callers decide).
+    pub fn optimally_safe(
+        &mut self,
+        ns: &NullSpace,
+        bounds: &TensionBounds,
+        alpha: f64,
+        t: &mut [f64],
+    ) -> (DenseEnd, f64) {
+        let (n, r) = (ns.n, ns.r());
+        let (lo, hi) = (bounds.min(), bounds.max());
+        let d = r + 1;
+        let rows = n + hi.iter().filter(|h| h.is_finite()).count();
+        self.r = r;
+        self.work.clear();
+        self.u.clear();
+        self.size(rows, d);
+        let mut k = 0;
+        let (mut s0, mut top) = (f64::INFINITY, 0);
+        for i in 0..n {
+            let scale = 1f64.max(ns.t0[i].abs());
+            for (coef, sign, b, tol) in [
+                (1.0, 1.0, lo[i] - ns.t0[i], FEAS * scale.max(lo[i].abs())),
+                (alpha, -1.0, ns.t0[i] - hi[i], FEAS * scale.max(hi[i].abs())),
+            ] {
+                if !b.is_finite() {
+                    continue;
+                }
+                for j in 0..r {
+                    self.a[k * d + j] = sign * ns.basis[j * n + i];
+                }
+                self.a[k * d + r] = -coef;
+                self.b[k] = b;
+                self.tol[k] = tol;
+                self.tag[k] = Tag::Level;
+                // At λ = 0: s ≤ −b / coef.
+                if -b / coef < s0 {
+                    (s0, top) = (-b / coef, k);
+                }
+                k += 1;
+            }
+        }
+        self.x.fill(0.0);
+        self.x[r] = s0;
+        self.c.fill(0.0);
+        self.c[r] = -1.0;
+        self.work.push(top);
+        self.in_work[top] = true;
+        let end = match self.lp(None) {
+            LpEnd::Optimal => DenseEnd::Solved,
+            LpEnd::Unbounded => DenseEnd::Infeasible(Infeasibility::Unbounded {
+                method: "optimally-safe",
+            }),
+            LpEnd::Reached | LpEnd::Limit => DenseEnd::Failed("active-set LP: iteration limit"),
+            LpEnd::Dependent => DenseEnd::Failed("active-set LP: dependent working set"),
+        };
+        ns.tensions(&self.x[..r], t);
+        (end, self.x[r])
+    }
+
     /// The l2 optimum (dual active set): a feasible λ in `x[..r]` with an independent working
     /// set of active bound rows in `work`, the start of the LPs. An infeasibility verdict of the
     /// dual method is confirmed by phase 1.

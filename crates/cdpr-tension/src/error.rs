@@ -52,7 +52,7 @@ pub enum TensionError {
     },
     /// A method name that is not one of [`crate::Method::ALL`].
     #[error(
-        "unknown tension distribution method {0:?} (expected one of: exact, pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda)"
+        "unknown tension distribution method {0:?} (expected one of: exact, pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda, pott-closed-form, pott-closed-form-ee, puncture, dykstra, l2-mid, vertex-centroid, p-norm, optimally-safe)"
     )]
     UnknownMethod(String),
     /// The method is not defined at this redundancy r = n − DOF (a usage error, not an
@@ -94,6 +94,14 @@ pub enum TensionError {
     /// [`crate::Method::Sotda`] needs [`crate::StiffnessData`] in the problem.
     #[error("the sotda method needs stiffness data (pose kinematics and axial stiffness E·S)")]
     MissingStiffness,
+    /// An invalid option of a method (`p`, `alpha`, `interior`, `max_iterations`).
+    #[error("invalid option {option}: {detail}")]
+    InvalidOption {
+        /// The option's name.
+        option: &'static str,
+        /// The value and what was expected.
+        detail: String,
+    },
     /// Invalid SOTDA settings (ν outside [0, 1], zero or non-finite direction).
     #[error("invalid sotda settings: {0}")]
     InvalidSettings(&'static str),

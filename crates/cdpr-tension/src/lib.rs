@@ -21,6 +21,17 @@
 //! | `improved-closed-form` | Pott 2014 | [`improved_closed_form`] |
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
 //! | `sotda` | stiffness-oriented, r = 2 (Picard, Caro, Plestan & Claveau 2020) | [`sotda`] |
+//! | `pott-closed-form`, `pott-closed-form-ee` | t = t_m − W⁺(w_ext + W t_m) (Pott, Bruckmann & Mikelsons 2009), energy-efficient shift | [`pott_closed_form`] |
+//! | `puncture` | from t₀ towards an interior point into the bounds (Müller, Reichert & Bruckmann 2014) | [`puncture`] |
+//! | `dykstra` | Dykstra's / alternating projections (Hassan & Khajepour 2007) | [`dykstra`] |
+//! | `l2-mid` | min ‖t − t_m‖₂ (QP, exact) | [`l2_mid`] |
+//! | `vertex-centroid` | mean of the feasible polytope's vertices, any r (Mikelsons et al. 2008) | [`vertex_centroid`] |
+//! | `p-norm` | min Σ\|t_i − t_m,i\|^p, log barriers, Newton (Gosselin & Grenier 2011) | [`p_norm`] |
+//! | `optimally-safe` | max margin s (LP, Borgstrom et al. 2009) | [`optimally_safe`] |
+//!
+//! Options of these methods ([`MethodOptions`]: `interior`, `alternating`, `p`, `alpha`) are
+//! given with [`TensionSolver::with_options`]. Iterative methods stop by documented rules
+//! ([`Infeasibility::GaveUp`], never an "infeasible" verdict).
 //!
 //! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
 //! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible
@@ -65,11 +76,13 @@ mod bounds;
 mod central_point;
 pub mod certificate;
 pub mod closed_form;
+pub mod dykstra;
 mod error;
 pub mod feasible_polygon;
 pub mod improved_closed_form;
 mod infeasibility;
 pub mod interior_point;
+pub mod l2_mid;
 /// Four f64 lanes (SIMD): the module of `cdpr-kinematics`, re-exported where it was first
 /// defined.
 pub use cdpr_kinematics::lanes;
@@ -77,12 +90,17 @@ pub mod linear_program;
 mod method;
 pub mod minimum_norm;
 pub mod null_space;
+pub mod optimally_safe;
 mod outcome;
+pub mod p_norm;
 mod planar_active_set;
+pub mod pott_closed_form;
 pub mod profile;
+pub mod puncture;
 pub mod quadratic_program;
 pub mod solver;
 pub mod sotda;
+pub mod vertex_centroid;
 mod vertex_enumeration;
 mod warm_point;
 
@@ -92,12 +110,14 @@ pub use closed_form::{FeasibleInterval, feasible_interval};
 pub use error::TensionError;
 pub use feasible_polygon::FeasiblePolygon;
 pub use interior_point::{Objective, interior_point};
-pub use method::{Method, RequiredRedundancy};
+pub use method::{Method, MethodOptions, PunctureInterior, RequiredRedundancy};
 /// The nalgebra this crate's API uses (vectors, matrices, rotations): use it through this
 /// re-export (`cdpr_tension::nalgebra::Vector3`) so that your types are the crate's types whatever
 /// nalgebra version your own project pins.
 pub use nalgebra;
-pub use outcome::{Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution};
+pub use outcome::{
+    GiveUp, Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution,
+};
 pub use solver::TensionSolver;
 pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};
 

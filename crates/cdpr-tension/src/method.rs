@@ -34,11 +34,115 @@ pub enum Method {
     Barycenter,
     /// Stiffness-oriented tension distribution, redundancy 2 (Picard, Caro, Plestan & Claveau 2020, Algorithm 1).
     Sotda,
+    /// Pott, Bruckmann & Mikelsons (2009): t = t_m − W⁺(w_ext + W t_m), feasible iff in bounds.
+    PottClosedForm,
+    /// The closed form with t_ref lowered until a cable reaches t_min (WireLib
+    /// `ClosedFormEnergyEfficient`).
+    PottClosedFormEe,
+    /// The puncture method (Müller, Reichert & Bruckmann 2014).
+    Puncture,
+    /// Dykstra's alternating projections from t_m (Hassan & Khajepour 2007).
+    Dykstra,
+    /// min ‖t − t_m‖₂ in bounds, exactly (QP).
+    L2Mid,
+    /// Mean of the feasible polytope's vertices (Mikelsons et al. 2008), any r.
+    VertexCentroid,
+    /// min Σ|t_i − t_m,i|^p with log barriers (Gosselin & Grenier 2011).
+    PNorm,
+    /// max s with t − t_min ≥ s, t_max − t ≥ α s (Borgstrom et al. 2009), an LP.
+    OptimallySafe,
+}
+
+/// Where the puncture method aims from the minimum-norm t₀ (`--interior`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum PunctureInterior {
+    /// The improved closed form (Pott 2014), CASPR `id_cf_ipm` (`icf`, the default).
+    #[default]
+    ImprovedClosedForm,
+    /// The closed form of Pott, Bruckmann & Mikelsons (2009), CASPR `id_cf_pm` (`cf`).
+    ClosedForm,
+}
+
+impl PunctureInterior {
+    /// The command-line name (`icf`, `cf`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::ImprovedClosedForm => "icf",
+            Self::ClosedForm => "cf",
+        }
+    }
+}
+
+impl FromStr for PunctureInterior {
+    type Err = TensionError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s {
+            "icf" => Ok(Self::ImprovedClosedForm),
+            "cf" => Ok(Self::ClosedForm),
+            _ => Err(TensionError::InvalidOption {
+                option: "interior",
+                detail: format!("{s:?}: expected icf or cf"),
+            }),
+        }
+    }
+}
+
+/// Options of the methods that have some (`--interior`, `--alternating`, `--p`, `--alpha`);
+/// every other method ignores them. [`MethodOptions::validate`] checks the numbers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MethodOptions {
+    /// puncture: the interior point it aims at.
+    pub interior: PunctureInterior,
+    /// dykstra: plain (von Neumann) alternating projections instead of Dykstra's corrections.
+    pub alternating: bool,
+    /// p-norm: the exponent p ≥ 2 (default 4).
+    pub p: f64,
+    /// optimally-safe: the weight α > 0 of the upper margin (default 1).
+    pub alpha: f64,
+    /// dykstra and p-norm: the iteration cap (default 5 000, WireLib's).
+    pub max_iterations: usize,
+}
+
+impl Default for MethodOptions {
+    fn default() -> Self {
+        Self {
+            interior: PunctureInterior::default(),
+            alternating: false,
+            p: 4.0,
+            alpha: 1.0,
+            max_iterations: 5_000,
+        }
+    }
+}
+
+impl MethodOptions {
+    /// `Ok` when p is finite and ≥ 2, α finite and > 0 and the cap at least 1.
+    pub fn validate(&self) -> Result<(), TensionError> {
+        if !(self.p.is_finite() && self.p >= 2.0) {
+            return Err(TensionError::InvalidOption {
+                option: "p",
+                detail: format!("{}: expected a finite exponent p ≥ 2", self.p),
+            });
+        }
+        if !(self.alpha.is_finite() && self.alpha > 0.0) {
+            return Err(TensionError::InvalidOption {
+                option: "alpha",
+                detail: format!("{}: expected a finite weight α > 0", self.alpha),
+            });
+        }
+        if self.max_iterations == 0 {
+            return Err(TensionError::InvalidOption {
+                option: "max_iterations",
+                detail: "0: expected at least 1".to_string(),
+            });
+        }
+        Ok(())
+    }
 }
 
 impl Method {
     /// Every method, in the order of the table.
-    pub const ALL: [Method; 11] = [
+    pub const ALL: [Method; 19] = [
         Self::Exact,
         Self::Pinv,
         Self::ClosedForm,
@@ -50,6 +154,14 @@ impl Method {
         Self::ImprovedClosedForm,
         Self::Barycenter,
         Self::Sotda,
+        Self::PottClosedForm,
+        Self::PottClosedFormEe,
+        Self::Puncture,
+        Self::Dykstra,
+        Self::L2Mid,
+        Self::VertexCentroid,
+        Self::PNorm,
+        Self::OptimallySafe,
     ];
 
     /// The command-line name.
@@ -66,6 +178,14 @@ impl Method {
             Self::ImprovedClosedForm => "improved-closed-form",
             Self::Barycenter => "barycenter",
             Self::Sotda => "sotda",
+            Self::PottClosedForm => "pott-closed-form",
+            Self::PottClosedFormEe => "pott-closed-form-ee",
+            Self::Puncture => "puncture",
+            Self::Dykstra => "dykstra",
+            Self::L2Mid => "l2-mid",
+            Self::VertexCentroid => "vertex-centroid",
+            Self::PNorm => "p-norm",
+            Self::OptimallySafe => "optimally-safe",
         }
     }
 }
@@ -96,6 +216,34 @@ impl Method {
             Self::Sotda => {
                 "stiffness-oriented distribution on the feasible polygon, r = 2, needs \
                  axial_stiffness (Picard, Caro, Plestan & Claveau 2020, Algorithm 1)"
+            }
+            Self::PottClosedForm => {
+                "t = t_m − W⁺(w_ext + W t_m), feasible iff in bounds, any r (Pott, Bruckmann & \
+                 Mikelsons 2009)"
+            }
+            Self::PottClosedFormEe => {
+                "the closed form with t_ref lowered until a cable reaches t_min, any r (WireLib \
+                 ClosedFormEnergyEfficient)"
+            }
+            Self::Puncture => {
+                "from the minimum-norm t₀ towards an interior point (--interior icf|cf) into the \
+                 bounds, any r (Müller, Reichert & Bruckmann 2014)"
+            }
+            Self::Dykstra => {
+                "Dykstra's projections between equilibrium and bounds from t_m (--alternating: \
+                 von Neumann's), any r (Hassan & Khajepour 2007)"
+            }
+            Self::L2Mid => "minimum ‖t − t_m‖₂ in bounds, t_m = (t_min + t_max)/2, a QP, any r",
+            Self::VertexCentroid => {
+                "mean of the feasible polytope's vertices, any r (Mikelsons et al. 2008)"
+            }
+            Self::PNorm => {
+                "minimum Σ|t_i − t_m,i|^p (--p, default 4) with log barriers, Newton, any r \
+                 (Gosselin & Grenier 2011)"
+            }
+            Self::OptimallySafe => {
+                "maximum margin s: t − t_min ≥ s, t_max − t ≥ α s (--alpha), an LP, any r \
+                 (Borgstrom et al. 2009)"
             }
         }
     }
@@ -139,6 +287,9 @@ impl fmt::Display for RequiredRedundancy {
 impl Method {
     /// The redundancy r = n − DOF the method is defined for: exact 0, closed-form 1
     /// (Algorithm 6.1), barycenter and sotda 2, every other method any r ≥ 0.
+    ///
+    /// (The options of [`MethodOptions`] belong to one method each: see
+    /// [`Method::takes_option`].)
     pub fn required_redundancy(self) -> RequiredRedundancy {
         match self {
             Self::Exact => RequiredRedundancy::Exactly(0),
@@ -146,6 +297,35 @@ impl Method {
             Self::Barycenter | Self::Sotda => RequiredRedundancy::Exactly(2),
             _ => RequiredRedundancy::AtLeastZero,
         }
+    }
+
+    /// Whether the method needs a finite t_max for every cable (it starts from the middle of
+    /// the bounds t_m or enumerates the vertices of the feasible set):
+    /// [`TensionError::NeedsFiniteBounds`] otherwise.
+    pub fn needs_finite_bounds(self) -> bool {
+        matches!(
+            self,
+            Self::ImprovedClosedForm
+                | Self::PottClosedForm
+                | Self::PottClosedFormEe
+                | Self::Puncture
+                | Self::Dykstra
+                | Self::L2Mid
+                | Self::VertexCentroid
+                | Self::PNorm
+        )
+    }
+
+    /// Whether `option` (`interior`, `alternating`, `p`, `alpha`) is one of this method's
+    /// options (the CLI refuses the others).
+    pub fn takes_option(self, option: &str) -> bool {
+        matches!(
+            (self, option),
+            (Self::Puncture, "interior")
+                | (Self::Dykstra, "alternating")
+                | (Self::PNorm, "p")
+                | (Self::OptimallySafe, "alpha")
+        )
     }
 
     /// Whether the method applies at redundancy r = n − DOF.
@@ -222,6 +402,33 @@ mod tests {
             assert_eq!(format!("{m:?}"), format!("{m}"));
             assert!(!m.summary().is_empty());
         }
+        assert_eq!(
+            "cf".parse::<PunctureInterior>().unwrap(),
+            PunctureInterior::ClosedForm
+        );
+        assert!("x".parse::<PunctureInterior>().is_err());
+        assert!(MethodOptions::default().validate().is_ok());
+        for bad in [
+            MethodOptions {
+                p: 1.5,
+                ..Default::default()
+            },
+            MethodOptions {
+                alpha: 0.0,
+                ..Default::default()
+            },
+            MethodOptions {
+                max_iterations: 0,
+                ..Default::default()
+            },
+        ] {
+            assert!(matches!(
+                bad.validate(),
+                Err(TensionError::InvalidOption { .. })
+            ));
+        }
+        assert!(Method::Puncture.takes_option("interior"));
+        assert!(!Method::L2.takes_option("p"));
         assert!(matches!(
             "l3".parse::<Method>(),
             Err(TensionError::UnknownMethod(_))
@@ -233,7 +440,24 @@ mod tests {
         use Method::*;
         assert_eq!(
             Method::applicable(0),
-            vec![Exact, Pinv, L1, L1Max, L2, L2Max, Linf, ImprovedClosedForm]
+            vec![
+                Exact,
+                Pinv,
+                L1,
+                L1Max,
+                L2,
+                L2Max,
+                Linf,
+                ImprovedClosedForm,
+                PottClosedForm,
+                PottClosedFormEe,
+                Puncture,
+                Dykstra,
+                L2Mid,
+                VertexCentroid,
+                PNorm,
+                OptimallySafe
+            ]
         );
         assert_eq!(
             Method::applicable(1),
@@ -245,7 +469,15 @@ mod tests {
                 L2,
                 L2Max,
                 Linf,
-                ImprovedClosedForm
+                ImprovedClosedForm,
+                PottClosedForm,
+                PottClosedFormEe,
+                Puncture,
+                Dykstra,
+                L2Mid,
+                VertexCentroid,
+                PNorm,
+                OptimallySafe
             ]
         );
         assert_eq!(
@@ -259,14 +491,24 @@ mod tests {
                 Linf,
                 ImprovedClosedForm,
                 Barycenter,
-                Sotda
+                Sotda,
+                PottClosedForm,
+                PottClosedFormEe,
+                Puncture,
+                Dykstra,
+                L2Mid,
+                VertexCentroid,
+                PNorm,
+                OptimallySafe
             ]
         );
         assert!(Method::applicable(-1).is_empty());
         assert_eq!(
             ClosedForm.check_redundancy(2).unwrap_err().to_string(),
             "method closed-form needs redundancy 1; this robot has n − DOF = 2; methods that apply: \
-             pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda"
+             pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda, \
+             pott-closed-form, pott-closed-form-ee, puncture, dykstra, l2-mid, vertex-centroid, \
+             p-norm, optimally-safe"
         );
         assert_eq!(
             L1.check_redundancy(-1).unwrap_err().to_string(),

@@ -88,6 +88,29 @@ impl NullSpace {
         self.t0[i] + a[0] * l[0] + a[1] * l[1]
     }
 
+    /// t = t0 + N λ for any r (λ of length r).
+    #[inline]
+    pub fn tensions(&self, lambda: &[f64], t: &mut [f64]) {
+        let n = self.n;
+        t.copy_from_slice(&self.t0);
+        for (j, &l) in lambda.iter().enumerate() {
+            for (ti, nij) in t.iter_mut().zip(&self.basis[j * n..(j + 1) * n]) {
+                *ti += nij * l;
+            }
+        }
+    }
+
+    /// λ = Nᵀ (x − t0) = Nᵀ x − g: the coordinates of the projection of x onto the
+    /// equilibrium set t0 + range(N) (N orthonormal).
+    #[inline]
+    pub fn coordinates(&self, x: &[f64], lambda: &mut [f64]) {
+        let n = self.n;
+        for (j, l) in lambda.iter_mut().enumerate() {
+            let col = &self.basis[j * n..(j + 1) * n];
+            *l = col.iter().zip(x).map(|(a, b)| a * b).sum::<f64>() - self.g[j];
+        }
+    }
+
     /// Factor W and compute t0, N, g. Returns `Err(condition)` when W is singular
     /// (ρ < [`SINGULARITY_RATIO`]). Requires n ≥ m ≥ 1 and finite input.
     pub fn compute(&mut self, w: &DMatrix<f64>, w_ext: &DVector<f64>) -> Result<(), f64> {

@@ -109,6 +109,48 @@ pub enum Infeasibility {
         /// What happened.
         detail: String,
     },
+    /// An iterative or interior method stopped by its documented rule without a verdict
+    /// (iteration cap, a feasible set without interior, too many vertices): the feasible set
+    /// may or may not be empty. Counted apart from "infeasible" verdicts.
+    GaveUp {
+        /// Method name.
+        method: &'static str,
+        /// Which rule stopped it.
+        reason: GiveUp,
+    },
+}
+
+/// The documented rule by which a method of [`Infeasibility::GaveUp`] stopped.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum GiveUp {
+    /// The iteration cap was reached (dykstra, p-norm).
+    IterationLimit {
+        /// The cap.
+        iterations: usize,
+    },
+    /// The method needs a strictly interior point and the feasible set has none (p-norm; or
+    /// puncture from a degenerate interior point).
+    EmptyInterior,
+    /// More candidate vertex bases than the cap (vertex-centroid at a high redundancy).
+    TooManyBases {
+        /// Candidate bases C(n, r)·2^r.
+        bases: u128,
+    },
+}
+
+impl fmt::Display for GiveUp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::IterationLimit { iterations } => {
+                write!(f, "iteration cap of {iterations} reached")
+            }
+            Self::EmptyInterior => f.write_str("the feasible set has no interior point"),
+            Self::TooManyBases { bases } => {
+                write!(f, "{bases} candidate vertex bases exceed the cap")
+            }
+        }
+    }
 }
 
 /// A value rounded to 6 significant digits for a message (`157.000001` → `157`).
@@ -156,6 +198,10 @@ impl fmt::Display for Infeasibility {
                 "candidate tensions failed the certificate (residual {residual:.3e}, relative bound violation {bound_violation:.3e})"
             ),
             Self::SolverFailure { detail } => write!(f, "solver failure: {detail}"),
+            Self::GaveUp { method, reason } => write!(
+                f,
+                "method {method} gave up ({reason}); the feasible set may still be non-empty"
+            ),
         }
     }
 }

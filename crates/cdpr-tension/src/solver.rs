@@ -50,6 +50,9 @@ use crate::{
     Infeasibility, Method, TensionBounds, TensionError, TensionOutcome, TensionProblem,
     TensionSolution, barycenter, quadratic_program,
 };
+use crate::{MethodOptions, PunctureInterior};
+use crate::{dykstra::Dykstra, l2_mid::L2Mid, p_norm::PNorm, pott_closed_form::PottClosedForm};
+use crate::{optimally_safe, puncture, vertex_centroid::VertexCentroid};
 use nalgebra::{DMatrix, DVector};
 
 /// Algorithm 6.1 for DOF = M ≤ 3 and n = M + 1, then the certificate (fixed sizes throughout).
@@ -147,6 +150,15 @@ pub struct TensionSolver {
     /// needed more than the central point (l2, r = 2): they propose the second candidate of the
     /// next problems (module `warm_point`; it never changes a verdict).
     warm: WarmPoint,
+    /// Options of the methods of issue 26 (puncture, dykstra, p-norm, optimally-safe).
+    options: MethodOptions,
+    pott: PottClosedForm,
+    dykstra: Dykstra,
+    l2_mid: L2Mid,
+    centroid: VertexCentroid,
+    p_norm: PNorm,
+    /// The interior point of the puncture method.
+    interior: Vec<f64>,
 }
 
 impl TensionSolver {
@@ -171,6 +183,48 @@ impl TensionSolver {
             four_qr: FourQr::default(),
             lane: None,
             warm: WarmPoint::default(),
+            options: MethodOptions::default(),
+            pott: PottClosedForm::default(),
+            dykstra: Dykstra::default(),
+            l2_mid: L2Mid::default(),
+            centroid: VertexCentroid::default(),
+            p_norm: PNorm::default(),
+            interior: Vec::new(),
+        }
+    }
+
+    /// This solver with `options` (puncture's interior point, dykstra's variant and cap,
+    /// p-norm's exponent, optimally-safe's α; other methods ignore them), validated by
+    /// [`MethodOptions::validate`].
+    ///
+    /// ```
+    /// use cdpr_tension::{Method, MethodOptions, TensionSolver};
+    /// let s = TensionSolver::new(Method::PNorm)
+    ///     .with_options(MethodOptions { p: 6.0, ..Default::default() })
+    ///     .unwrap();
+    /// assert_eq!(s.options().p, 6.0);
+    /// assert!(TensionSolver::new(Method::PNorm)
+    ///     .with_options(MethodOptions { p: 1.0, ..Default::default() })
+    ///     .is_err());
+    /// ```
+    pub fn with_options(mut self, options: MethodOptions) -> Result<Self, TensionError> {
+        options.validate()?;
+        self.options = options;
+        Ok(self)
+    }
+
+    /// The options of the methods that take some.
+    pub fn options(&self) -> &MethodOptions {
+        &self.options
+    }
+
+    /// Iterations of the last dykstra solve (projection pairs) and of the last p-norm solve
+    /// (Newton steps), for tests and the soak.
+    pub fn iterations(&self) -> usize {
+        match self.method {
+            Method::Dykstra => self.dykstra.iterations,
+            Method::PNorm => self.p_norm.iterations,
+            _ => 0,
         }
     }
 
@@ -395,7 +449,7 @@ impl TensionSolver {
         if self.method == Method::Sotda {
             self.prepare_sotda(p, m, n)?;
         }
-        if self.method == Method::ImprovedClosedForm
+        if self.method.needs_finite_bounds()
             && let Some(cable) = p
                 .bounds
                 .max()
@@ -574,6 +628,57 @@ impl TensionSolver {
         self.sotda.prepare(&self.settings, s, p.external_wrench)
     }
 
+    /// The methods of issue 26 on the null space in `self.ns` (tensions in `self.t`, not yet
+    /// certified).
+    fn peer(&mut self, p: &TensionProblem) -> Result<(), Infeasibility> {
+        let (ns, bounds, t) = (&self.ns, p.bounds, &mut self.t[..]);
+        let o = self.options;
+        match self.method {
+            Method::PottClosedForm => self.pott.solve(ns, bounds, false, t),
+            Method::PottClosedFormEe => self.pott.solve(ns, bounds, true, t),
+            Method::Puncture => {
+                self.interior.resize(ns.n, 0.0);
+                let icf = o.interior == PunctureInterior::ImprovedClosedForm
+                    && self.icf.solve(p, &mut self.interior).is_ok();
+                if !icf {
+                    // The closed form (also when the improved one finds nothing); a bound
+                    // violation does not matter: only the line counts.
+                    let _ = self.pott.solve(ns, bounds, false, &mut self.interior);
+                }
+                puncture::solve(&ns.t0, &self.interior, bounds, t)
+            }
+            Method::Dykstra => {
+                self.dykstra
+                    .solve(ns, bounds, o.alternating, o.max_iterations, false, t)
+            }
+            Method::L2Mid => self.l2_mid.solve(ns, bounds, &mut self.dense, t),
+            Method::VertexCentroid => match self.centroid.solve(ns, bounds, t) {
+                Err(Infeasibility::NoFeasibleTension) => {
+                    // No vertex: confirm with the dense active set (l2) before answering.
+                    match self.dense.solve(ns, bounds, Objective::L2, "l2", t) {
+                        DenseEnd::Infeasible(reason) => Err(reason),
+                        DenseEnd::Solved => Err(Infeasibility::SolverFailure {
+                            detail: "vertex-centroid: no vertex found on a non-empty set"
+                                .to_string(),
+                        }),
+                        DenseEnd::Failed(why) => Err(Infeasibility::SolverFailure {
+                            detail: format!("vertex-centroid: no vertex found, and {why}"),
+                        }),
+                    }
+                }
+                other => other,
+            },
+            Method::PNorm => {
+                self.p_norm
+                    .solve(ns, bounds, o.p, o.max_iterations, &mut self.dense, t)
+            }
+            Method::OptimallySafe => {
+                optimally_safe::solve(ns, bounds, o.alpha, &mut self.dense, t).map(|_| ())
+            }
+            _ => unreachable!("only the methods of issue 26"),
+        }
+    }
+
     /// The answer of the method: `Ok(Some(residual))` when it is certified already, `Ok(None)`
     /// when the tensions in `self.t` still need their certificate.
     fn dispatch(
@@ -593,6 +698,19 @@ impl TensionSolver {
                     .map_err(|e| rename_unbounded(e, maximize))
             }
             Method::ImprovedClosedForm => self.icf.solve(p, &mut self.t),
+            Method::PottClosedForm
+            | Method::PottClosedFormEe
+            | Method::Puncture
+            | Method::Dykstra
+            | Method::L2Mid
+            | Method::VertexCentroid
+            | Method::PNorm
+            | Method::OptimallySafe => {
+                if let Err(condition) = self.null_space(p) {
+                    return Ok(Err(Infeasibility::SingularPose { condition }));
+                }
+                self.peer(p)
+            }
             // linf at r = 2 too: the active-set LP is exact and about 3.5 times cheaper than
             // bisection on the feasible polygon (issue 17, IPAnema 1: 22 000 against 78 000
             // instructions per solve).

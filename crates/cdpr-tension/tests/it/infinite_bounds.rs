@@ -89,10 +89,10 @@ proptest! {
         };
         let mut complete_verdicts = Vec::new();
         for m in Method::ALL.into_iter().filter(|m| *m != Method::Sotda) {
-            // Inapplicable methods (wrong redundancy; the improved closed form with t_max = ∞)
-            // are usage errors.
+            // Inapplicable methods (wrong redundancy; the methods that start from the middle of
+            // the bounds, with t_max = ∞) are usage errors.
             let Ok(o) = TensionSolver::new(m).solve(&p) else {
-                prop_assert!(!m.applies_to(r) || m == Method::ImprovedClosedForm, "{m} (r = {r})");
+                prop_assert!(!m.applies_to(r) || m.needs_finite_bounds(), "{m} (r = {r})");
                 continue;
             };
             if let TensionOutcome::Feasible(s) = &o {

@@ -90,6 +90,8 @@ fn zero_and_duplicate_columns_do_not_panic() {
             Method::Pinv,
             Method::ClosedForm,
             Method::Barycenter,
+            // No interior point: the barrier method's documented give-up.
+            Method::PNorm,
         ]
         .contains(m)
         {

@@ -9,6 +9,7 @@ mod improved_closed_form;
 mod infinite_bounds;
 mod input;
 mod minimum_norm_vs_l2;
+mod peers;
 mod profile;
 mod properties;
 mod soak_regressions;

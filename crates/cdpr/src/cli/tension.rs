@@ -2,8 +2,8 @@
 
 use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json};
 use cdpr::tension::{
-    FeasiblePolygon, Method, SotdaSettings, SotdaVariant, StiffnessData, TensionOutcome,
-    TensionProblem, TensionSolver,
+    FeasiblePolygon, Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant,
+    StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
 };
 use nalgebra::Vector3;
 use serde_json::json;
@@ -14,7 +14,9 @@ use std::path::PathBuf;
 /// Methods (--method): exact (n = DOF, eq. 6.12), pinv (minimum norm, eq. 6.14), closed-form
 /// (Algorithm 6.1, redundancy 1, minimum ‖t‖₁), l1 / l1-max (eq. 6.19), l2 / l2-max (eq. 6.17),
 /// linf (minimum largest tension), improved-closed-form (Pott 2014), barycenter (centroid of the
-/// feasible polygon, redundancy 2), sotda (stiffness-oriented, Picard, Caro, Plestan & Claveau 2020: --direction, --nu).
+/// feasible polygon, redundancy 2), sotda (stiffness-oriented, Picard, Caro, Plestan & Claveau 2020: --direction, --nu),
+/// pott-closed-form, pott-closed-form-ee, puncture (--interior), dykstra (--alternating),
+/// l2-mid, vertex-centroid, p-norm (--p), optimally-safe (--alpha).
 ///
 /// The external wrench is --wrench plus the platform's gravity from the robot file.
 /// Every "feasible" answer is certified (equilibrium residual and bounds to 1e-9 relative);
@@ -34,7 +36,9 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
     /// Tension distribution method: exact, pinv, closed-form, l1, l1-max, l2, l2-max, linf,
-    /// improved-closed-form, barycenter, sotda (one line each in --help).
+    /// improved-closed-form, barycenter, sotda, pott-closed-form, pott-closed-form-ee,
+    /// puncture, dykstra, l2-mid, vertex-centroid, p-norm, optimally-safe (one line each in
+    /// --help).
     #[arg(long, default_value = "l2", long_help = super::method_help())]
     method: Method,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
@@ -51,9 +55,66 @@ pub struct Args {
     /// SOTDA: search the whole polygon (same as --sotda-search full).
     #[arg(long)]
     full: bool,
+    #[command(flatten)]
+    peer: PeerOptions,
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
+}
+
+/// The options of the methods of issue 26 (each belongs to one method; given with another
+/// it is a usage error, exit 2).
+#[derive(clap::Args, Debug, Default)]
+pub struct PeerOptions {
+    /// puncture: the interior point aimed at from the minimum-norm t₀: icf (improved closed
+    /// form, default) or cf (closed form of Pott, Bruckmann & Mikelsons 2009).
+    #[arg(long)]
+    interior: Option<String>,
+    /// dykstra: plain (von Neumann) alternating projections, as WireLib and cdpyr.
+    #[arg(long)]
+    alternating: bool,
+    /// p-norm: the exponent p ≥ 2 (default 4).
+    #[arg(long)]
+    p: Option<f64>,
+    /// optimally-safe: the weight α > 0 of the upper margin t_max − t ≥ α s (default 1).
+    #[arg(long)]
+    alpha: Option<f64>,
+}
+
+impl PeerOptions {
+    /// The [`MethodOptions`] for `method`; an option of another method is refused.
+    pub fn for_method(&self, method: Method) -> Result<MethodOptions, CliError> {
+        let given = [
+            ("interior", self.interior.is_some()),
+            ("alternating", self.alternating),
+            ("p", self.p.is_some()),
+            ("alpha", self.alpha.is_some()),
+        ];
+        for (name, set) in given {
+            if set && !method.takes_option(name) {
+                return Err(format!(
+                    "--{name} is an option of another method, not of {method} (--interior: \
+                     puncture, --alternating: dykstra, --p: p-norm, --alpha: optimally-safe)"
+                )
+                .into());
+            }
+        }
+        let mut o = MethodOptions {
+            alternating: self.alternating,
+            ..MethodOptions::default()
+        };
+        if let Some(i) = &self.interior {
+            o.interior = i.parse::<PunctureInterior>()?;
+        }
+        if let Some(p) = self.p {
+            o.p = p;
+        }
+        if let Some(a) = self.alpha {
+            o.alpha = a;
+        }
+        o.validate()?;
+        Ok(o)
+    }
 }
 
 /// `--sotda-search`: the points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
@@ -127,6 +188,7 @@ pub fn polygon_json(problem: &TensionProblem) -> Result<serde_json::Value, CliEr
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     check_method(&robot, args.method)?;
+    let options = args.peer.for_method(args.method)?;
     let pose = pose(&robot, &args.pose)?;
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
@@ -151,7 +213,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             SotdaSearch::from_args(args.sotda_search, args.full),
         )?)
     } else {
-        TensionSolver::new(args.method)
+        TensionSolver::new(args.method).with_options(options)?
     };
     let outcome = solver.solve(&problem)?;
     let displacement = match (&outcome, args.method, &problem.stiffness) {

@@ -652,5 +652,58 @@ fn stiffness_refuses_negative_tensions_and_solves_with_method() {
         ]);
         assert_eq!(again["stiffness"], v["stiffness"]);
         assert!(again["tension_method"].is_null());
+/// Issue 26: the options of the peers' methods work with their method and are refused (exit 2,
+/// naming the option and its method) with another; every new method answers in JSON.
+#[test]
+fn peer_methods_and_their_options() {
+    let tdpm = robot("tdpm-4.toml");
+    let base = [
+        "tension", &tdpm, "--pose", "0,0,0", "--wrench", "0,-10,0", "--json",
+    ];
+    for (method, extra) in [
+        ("pott-closed-form", vec![]),
+        ("pott-closed-form-ee", vec![]),
+        ("puncture", vec!["--interior", "cf"]),
+        ("dykstra", vec!["--alternating"]),
+        ("l2-mid", vec![]),
+        ("vertex-centroid", vec![]),
+        ("p-norm", vec!["--p", "6"]),
+        ("optimally-safe", vec!["--alpha", "2"]),
+    ] {
+        let mut args = base.to_vec();
+        args.extend(["--method", method]);
+        args.extend(extra);
+        let v = json(&args);
+        assert_eq!(v["method"], method);
+        assert_eq!(v["feasible"], true, "{v}");
+    }
+    for (method, extra, wanted) in [
+        (
+            "l2",
+            vec!["--alpha", "2"],
+            "--alpha is an option of another method, not of l2",
+        ),
+        (
+            "dykstra",
+            vec!["--p", "3"],
+            "--p is an option of another method",
+        ),
+        (
+            "l2-mid",
+            vec!["--alternating"],
+            "--alternating is an option of another method",
+        ),
+        ("puncture", vec!["--interior", "x"], "expected icf or cf"),
+        (
+            "p-norm",
+            vec!["--p", "1.5"],
+            "expected a finite exponent p ≥ 2",
+        ),
+    ] {
+        let mut args = base.to_vec();
+        args.extend(["--method", method]);
+        args.extend(extra);
+        let err = stderr_of_failure(&args);
+        assert!(err.contains(wanted), "{args:?}: {err}");
     }
 }

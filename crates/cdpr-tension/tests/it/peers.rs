@@ -1,0 +1,263 @@
+//! The methods of issue 26 (pott-closed-form, pott-closed-form-ee, puncture, dykstra, l2-mid,
+//! vertex-centroid, p-norm, optimally-safe): hand-derived answers on a one-equation problem,
+//! and properties on random robots (equilibrium and bounds of every answer, verdicts against
+//! the LP, l2-mid's optimality against every other feasible answer, pott-closed-form against
+//! an independent pseudo-inverse from nalgebra's SVD).
+
+use cdpr_kinematics::strategies::arb_robot_and_pose;
+use cdpr_tension::{
+    GiveUp, Infeasibility, Method, MethodOptions, PunctureInterior, TensionBounds, TensionOutcome,
+    TensionProblem, TensionSolver, certify,
+};
+use nalgebra::{DMatrix, DVector};
+use proptest::prelude::*;
+
+/// The methods of issue 26.
+const PEERS: [Method; 8] = [
+    Method::PottClosedForm,
+    Method::PottClosedFormEe,
+    Method::Puncture,
+    Method::Dykstra,
+    Method::L2Mid,
+    Method::VertexCentroid,
+    Method::PNorm,
+    Method::OptimallySafe,
+];
+
+fn solve_with(
+    method: Method,
+    options: MethodOptions,
+    w: &DMatrix<f64>,
+    we: &DVector<f64>,
+    b: &TensionBounds,
+) -> TensionOutcome {
+    TensionSolver::new(method)
+        .with_options(options)
+        .unwrap()
+        .solve(&TensionProblem::new(w, we, b))
+        .unwrap()
+}
+
+fn solve(method: Method, w: &DMatrix<f64>, we: &DVector<f64>, b: &TensionBounds) -> TensionOutcome {
+    solve_with(method, MethodOptions::default(), w, we, b)
+}
+
+fn assert_close(t: &DVector<f64>, expected: &[f64], tol: f64, what: &str) {
+    for (a, e) in t.iter().zip(expected) {
+        assert!((a - e).abs() <= tol, "{what}: {t:?} against {expected:?}");
+    }
+}
+
+/// t1 − t2 = 1 (W = [1, −1], w_ext = −1), bounds [1, 10] N: the equilibrium line
+/// t = (6, 5) + μ (1, 1), the feasible segment from (2, 1) to (10, 9), t_m = (5.5, 5.5).
+#[test]
+fn hand_derived_on_one_equation() {
+    let w = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+    let we = DVector::from_vec(vec![-1.0]);
+    let b = TensionBounds::uniform(2, 1.0, 10.0).unwrap();
+    let t = |m: Method| solve(m, &w, &we, &b).tensions().unwrap().clone();
+    // The projection of t_m onto the line: (6, 5); it is inside, so also l2-mid's and
+    // dykstra's answer, the midpoint of the segment (vertex-centroid: ((2, 1) + (10, 9))/2),
+    // the p-norm optimum (deviations ±0.5 + μ, minimal at μ = 0) and the optimally safe
+    // point (t2 − 1 = 9 − t2 = s: t2 = 5).
+    for m in [
+        Method::PottClosedForm,
+        Method::L2Mid,
+        Method::Dykstra,
+        Method::VertexCentroid,
+        Method::PNorm,
+        Method::OptimallySafe,
+    ] {
+        assert_close(&t(m), &[6.0, 5.0], 1e-6, m.name());
+    }
+    // Energy-efficient: d = N Nᵀ 1 = (1, 1); lowered by δ = min(5, 4): cable 2 at t_min.
+    assert_close(&t(Method::PottClosedFormEe), &[2.0, 1.0], 1e-12, "ee");
+    // Puncture from t₀ = (0.5, −0.5) towards (6, 5): cable 2 enters last, at (2, 1).
+    assert_close(&t(Method::Puncture), &[2.0, 1.0], 1e-12, "puncture");
+    let cf = MethodOptions {
+        interior: PunctureInterior::ClosedForm,
+        ..Default::default()
+    };
+    let tc = solve_with(Method::Puncture, cf, &w, &we, &b);
+    assert_close(tc.tensions().unwrap(), &[2.0, 1.0], 1e-12, "puncture cf");
+    // α = 3: t2 − 1 = s, 9 − t2 = 3 s: s = 2, t = (4, 3).
+    let a3 = MethodOptions {
+        alpha: 3.0,
+        ..Default::default()
+    };
+    let ts = solve_with(Method::OptimallySafe, a3, &w, &we, &b);
+    assert_close(
+        ts.tensions().unwrap(),
+        &[4.0, 3.0],
+        1e-9,
+        "optimally-safe α = 3",
+    );
+    // p = 2 is l2-mid on uniform bounds.
+    let p2 = MethodOptions {
+        p: 2.0,
+        ..Default::default()
+    };
+    let tp = solve_with(Method::PNorm, p2, &w, &we, &b);
+    assert_close(tp.tensions().unwrap(), &[6.0, 5.0], 1e-6, "p-norm p = 2");
+}
+
+/// t1 − t2 = 12 with bounds [1, 10]: t1 = t2 + 12 ≥ 13 > 10, the feasible set is empty. The
+/// complete methods prove it; the closed form breaks a bound; the puncture line misses.
+#[test]
+fn hand_derived_empty_set() {
+    let w = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+    let we = DVector::from_vec(vec![-12.0]);
+    let b = TensionBounds::uniform(2, 1.0, 10.0).unwrap();
+    for m in [
+        Method::L2Mid,
+        Method::VertexCentroid,
+        Method::OptimallySafe,
+        Method::PNorm,
+        Method::Dykstra,
+    ] {
+        assert_eq!(
+            solve(m, &w, &we, &b).infeasibility(),
+            Some(&Infeasibility::NoFeasibleTension),
+            "{m}"
+        );
+    }
+    assert!(matches!(
+        solve(Method::PottClosedForm, &w, &we, &b).infeasibility(),
+        Some(Infeasibility::BoundsViolated { .. })
+    ));
+    assert_eq!(
+        solve(Method::Puncture, &w, &we, &b).infeasibility(),
+        Some(&Infeasibility::Inconclusive { method: "puncture" })
+    );
+}
+
+/// l2-mid on a target outside: t1 − t2 = 8, bounds [1, 10]: the segment (9, 1)–(10, 2);
+/// t_m's projection onto the line is (9.5, 1.5), inside: l2-mid = (9.5, 1.5). With t1 − t2 = 9
+/// the set is the single point (10, 1): no interior, so p-norm gives up; the others find it.
+#[test]
+fn hand_derived_thin_sets() {
+    let w = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+    let b = TensionBounds::uniform(2, 1.0, 10.0).unwrap();
+    let we = DVector::from_vec(vec![-8.0]);
+    let t = solve(Method::L2Mid, &w, &we, &b);
+    assert_close(t.tensions().unwrap(), &[9.5, 1.5], 1e-12, "l2-mid");
+    let point = DVector::from_vec(vec![-9.0]);
+    for m in [Method::L2Mid, Method::VertexCentroid, Method::OptimallySafe] {
+        let t = solve(m, &w, &point, &b);
+        assert_close(t.tensions().unwrap(), &[10.0, 1.0], 1e-9, m.name());
+    }
+    assert_eq!(
+        solve(Method::PNorm, &w, &point, &b).infeasibility(),
+        Some(&Infeasibility::GaveUp {
+            method: "p-norm",
+            reason: GiveUp::EmptyInterior
+        })
+    );
+}
+
+/// An iteration cap of 1 makes dykstra give up where the closed form is outside the box.
+#[test]
+fn dykstra_cap_is_a_give_up() {
+    let w = DMatrix::from_row_slice(1, 2, &[1.0, -1.0]);
+    let b = TensionBounds::uniform(2, 1.0, 10.0).unwrap();
+    let we = DVector::from_vec(vec![-8.5]);
+    let one = MethodOptions {
+        max_iterations: 1,
+        ..Default::default()
+    };
+    let out = solve_with(Method::Dykstra, one, &w, &we, &b);
+    // Whatever one projection pair reaches, it is certified tensions or a give-up, never an
+    // "infeasible" verdict (the set is non-empty: t2 ∈ [1, 1.5]).
+    match out.infeasibility() {
+        None => assert!(certify(&w, &we, &b, out.tensions().unwrap().as_slice()).is_valid()),
+        Some(r) => assert!(matches!(r, Infeasibility::GaveUp { .. }), "{r:?}"),
+    }
+}
+
+#[derive(Debug, Clone)]
+struct Case {
+    w: DMatrix<f64>,
+    we: DVector<f64>,
+    b: TensionBounds,
+}
+
+fn arb_case() -> impl Strategy<Value = Case> {
+    (
+        arb_robot_and_pose(1..=3),
+        prop::collection::vec(0.0f64..5.0, 12),
+        prop::collection::vec(1.0f64..100.0, 12),
+        prop::collection::vec(0.0f64..1.0, 12),
+        prop::collection::vec(-1.0f64..1.0, 6),
+        prop_oneof![Just(0.0), 0.0f64..60.0],
+    )
+        .prop_map(|((robot, pose), lo, span, frac, dir, mag)| {
+            let w = robot.inverse_kinematics(&pose).unwrap().wrench_matrix();
+            let (m, n) = w.shape();
+            let lo: Vec<f64> = lo[..n].to_vec();
+            let hi: Vec<f64> = (0..n).map(|i| lo[i] + span[i]).collect();
+            let tr = DVector::from_fn(n, |i, _| lo[i] + frac[i] * span[i]);
+            let we = -(&w * tr) + DVector::from_fn(m, |k, _| mag * dir[k]);
+            Case {
+                w,
+                we,
+                b: TensionBounds::new(lo, hi).unwrap(),
+            }
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// Every answer is in equilibrium and in bounds; the complete methods agree with the LP's
+    /// verdict (give-ups aside); dykstra and p-norm never answer "infeasible" on a feasible
+    /// set; l2-mid is at least as close to t_m as every other feasible answer;
+    /// pott-closed-form equals t_m − W⁺(w + W t_m) with W⁺ from the SVD.
+    #[test]
+    fn peers_are_certified_and_consistent(c in arb_case()) {
+        let lp = TensionSolver::new(Method::L1)
+            .solve(&TensionProblem::new(&c.w, &c.we, &c.b))
+            .unwrap();
+        if matches!(lp.infeasibility(), Some(Infeasibility::SingularPose { .. })) {
+            return Ok(());
+        }
+        let feasible = lp.is_feasible();
+        let tm = DVector::from_fn(c.w.ncols(), |i, _| 0.5 * (c.b.min()[i] + c.b.max()[i]));
+        let mut answers = Vec::new();
+        for m in PEERS {
+            let out = solve(m, &c.w, &c.we, &c.b);
+            match &out {
+                TensionOutcome::Feasible(s) => {
+                    prop_assert!(certify(&c.w, &c.we, &c.b, s.tensions.as_slice()).is_valid(), "{m}");
+                    prop_assert!(feasible, "{m} feasible where the LP is not");
+                    answers.push((m, s.tensions.clone()));
+                }
+                TensionOutcome::Infeasible(r) => {
+                    let gave_up = matches!(r, Infeasibility::GaveUp { .. });
+                    match m {
+                        Method::L2Mid | Method::VertexCentroid | Method::OptimallySafe => {
+                            prop_assert!(!feasible, "{m}: {r}")
+                        }
+                        Method::Dykstra | Method::PNorm => {
+                            prop_assert!(!feasible || gave_up, "{m}: {r}")
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            if m == Method::PottClosedForm {
+                let t = out.balancing_tensions().unwrap();
+                let pinv = c.w.clone().pseudo_inverse(1e-13).unwrap();
+                let reference = &tm - pinv * (&c.we + &c.w * &tm);
+                let scale = tm.amax().max(1.0);
+                prop_assert!((t - &reference).amax() <= 1e-8 * scale, "{t} vs {reference}");
+            }
+        }
+        if let Some((_, best)) = answers.iter().find(|(m, _)| *m == Method::L2Mid) {
+            let own = (best - &tm).norm();
+            for (m, t) in &answers {
+                let other = (t - &tm).norm();
+                prop_assert!(own <= other + 1e-7 * other.max(1.0), "{m} beats l2-mid: {other} < {own}");
+            }
+        }
+    }
+}
