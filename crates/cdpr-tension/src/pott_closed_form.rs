@@ -98,6 +98,11 @@ impl PottClosedForm {
             Some((cable, tension)) => Err(Infeasibility::BoundsViolated {
                 cable,
                 tension,
+                bound: if tension < bounds.min()[cable] {
+                    bounds.min()[cable]
+                } else {
+                    bounds.max()[cable]
+                },
                 tensions: Default::default(),
             }),
         }

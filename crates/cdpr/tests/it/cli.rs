@@ -652,6 +652,9 @@ fn stiffness_refuses_negative_tensions_and_solves_with_method() {
         ]);
         assert_eq!(again["stiffness"], v["stiffness"]);
         assert!(again["tension_method"].is_null());
+    }
+}
+
 /// Issue 26: the options of the peers' methods work with their method and are refused (exit 2,
 /// naming the option and its method) with another; every new method answers in JSON.
 #[test]
