@@ -156,7 +156,7 @@ impl Samples {
         if self.readings.is_empty() {
             return Err(CalibrationError::NoSamples);
         }
-        if self.readings.len() % n != 0 {
+        if !self.readings.len().is_multiple_of(n) {
             return Err(CalibrationError::WrongCount {
                 what: format!("readings (a multiple of the {n} cables)"),
                 expected: n * self.readings.len().div_ceil(n),
