@@ -34,10 +34,15 @@
 //! [`ForwardKinematics`] goes back from measured lengths to the pose (Levenberg–Marquardt, with a
 //! certificate) for either cable model.
 //!
+//! Real cables sag and stretch: [`ElasticCatenary`] (module [`catenary`], Irvine 1981) gives a
+//! heavy elastic cable's unstrained length and end forces from its span and tension, and
+//! [`SaggingCable`] places it between a frame point and a platform attachment in space.
+//!
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
 
 mod batch;
+pub mod catenary;
 mod error;
 mod forward_kinematics;
 pub mod interference;
@@ -53,6 +58,7 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
+pub use catenary::{CatenaryError, CatenarySolution, ElasticCatenary, SaggingCable};
 pub use error::KinematicsError;
 pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
 pub use interference::{
