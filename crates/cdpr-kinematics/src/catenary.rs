@@ -698,6 +698,9 @@ pub struct SaggingCable {
     pub frame_end_tension: f64,
     /// T_B (N).
     pub platform_end_tension: f64,
+    /// The smallest tension along the cable (N): F_x where the tangent turns horizontal
+    /// inside the span, else the smaller end tension.
+    pub lowest_tension: f64,
     /// Largest distance below the chord (m).
     pub max_sag: f64,
     /// Angle between the cable at B and the chord (rad).
@@ -747,12 +750,19 @@ impl SaggingCable {
     ) -> Self {
         let (max_sag, angle_to_chord) = model.sag(sol, x, z);
         let t = sol.platform_end_tension;
+        let v_a = sol.vertical_force - model.weight() * sol.unstrained_length;
+        let lowest_tension = if v_a < 0.0 && sol.vertical_force > 0.0 {
+            sol.horizontal_force
+        } else {
+            sol.frame_end_tension.min(t)
+        };
         let unit = -(horizontal * sol.horizontal_force + up * sol.vertical_force) / t;
         Self {
             unstrained_length: sol.unstrained_length,
             chord_length: x.hypot(z),
             frame_end_tension: sol.frame_end_tension,
             platform_end_tension: t,
+            lowest_tension,
             max_sag,
             angle_to_chord,
             unit,
@@ -774,6 +784,223 @@ pub fn plane_span(
     let x = h.norm();
     let e = if x > 0.0 { h / x } else { Vector3::zeros() };
     (x, z, e)
+}
+
+/// How cables are modelled (the CLI's `--cable-model`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CableModel {
+    /// Massless, inextensible straight segments (the classical model).
+    #[default]
+    Straight,
+    /// Massless elastic straight cables: L0 = l/(1 + t/EA) (needs `axial_stiffness`).
+    Elastic,
+    /// Heavy elastic cables: Irvine's elastic catenary (needs `axial_stiffness` and
+    /// `linear_density`).
+    Catenary,
+}
+
+impl CableModel {
+    /// The command-line spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Straight => "straight",
+            Self::Elastic => "elastic",
+            Self::Catenary => "catenary",
+        }
+    }
+}
+
+impl std::str::FromStr for CableModel {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "straight" => Ok(Self::Straight),
+            "elastic" => Ok(Self::Elastic),
+            "catenary" => Ok(Self::Catenary),
+            _ => Err(format!(
+                "unknown cable model `{s}` (expected straight, elastic or catenary)"
+            )),
+        }
+    }
+}
+
+/// Every cable of a robot as an [`ElasticCatenary`], and the vertical: the sag-aware
+/// inverse kinematics of a pose (issue 29).
+///
+/// ```
+/// use cdpr_kinematics::catenary::RobotCatenaries;
+/// use cdpr_kinematics::nalgebra::Vector3;
+/// use cdpr_kinematics::reference_robots::ipanema_like_8;
+/// use cdpr_kinematics::Pose;
+/// let robot = ipanema_like_8();
+/// // 20 g/m, E·S = 60 kN, gravity 9.81 m/s² along −z.
+/// let model = RobotCatenaries::new(&[0.02; 8], &[6e4; 8], &Vector3::new(0.0, 0.0, -9.81)).unwrap();
+/// let kin = robot.inverse_kinematics(&Pose::spatial(Vector3::new(0.0, 0.0, 1.0), 0.0, 0.0, 0.0)).unwrap();
+/// let mut cables = Vec::new();
+/// model.with_tensions(&kin, &[100.0; 8], &mut cables).unwrap();
+/// // A cable stretches under 100 N and sags: L0 < chord.
+/// assert!(cables.iter().all(|c| c.unstrained_length < c.chord_length && c.max_sag > 0.0));
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct RobotCatenaries {
+    cables: Vec<ElasticCatenary>,
+    up: Vector3<f64>,
+}
+
+impl RobotCatenaries {
+    /// Per cable the linear density ρ (kg/m, ≥ 0) and axial stiffness EA (N, > 0, may be
+    /// infinite); `gravity` (m/s², base coordinates) gives w = ρ ‖g‖ and the vertical
+    /// −g/‖g‖. Errors name the cable; a zero gravity with a heavy cable is an error.
+    pub fn new(
+        linear_density: &[f64],
+        axial_stiffness: &[f64],
+        gravity: &Vector3<f64>,
+    ) -> Result<Self, crate::KinematicsError> {
+        if linear_density.len() != axial_stiffness.len() {
+            return Err(crate::KinematicsError::WrongDimension {
+                what: "axial stiffnesses (one per linear density)".into(),
+                motion: "any",
+                expected: linear_density.len(),
+                found: axial_stiffness.len(),
+            });
+        }
+        let g = gravity.norm();
+        if !g.is_finite() || (g == 0.0 && linear_density.iter().any(|&r| r != 0.0)) {
+            return Err(crate::KinematicsError::InvalidSetting {
+                what: "gravity (m/s², finite and non-zero for heavy cables)",
+                value: g,
+            });
+        }
+        let cables = linear_density
+            .iter()
+            .zip(axial_stiffness)
+            .enumerate()
+            .map(|(cable, (&rho, &ea))| {
+                ElasticCatenary::from_density(rho, g, ea)
+                    .map_err(|source| crate::KinematicsError::Catenary { cable, source })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let up = if g > 0.0 { -gravity / g } else { Vector3::z() };
+        Ok(Self { cables, up })
+    }
+
+    /// Weightless elastic cables (`--cable-model elastic`): ρ = 0.
+    pub fn elastic(axial_stiffness: &[f64]) -> Result<Self, crate::KinematicsError> {
+        Self::new(
+            &vec![0.0; axial_stiffness.len()],
+            axial_stiffness,
+            &Vector3::zeros(),
+        )
+    }
+
+    /// The cables' models, in order.
+    pub fn cables(&self) -> &[ElasticCatenary] {
+        &self.cables
+    }
+
+    /// The unit vertical (against gravity).
+    pub fn up(&self) -> Vector3<f64> {
+        self.up
+    }
+
+    /// Frame exit point A and attachment B of cable i at a pose (with a pulley, A is the
+    /// tangent point of the straight model).
+    fn ends(kin: &crate::PoseKinematics, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+        let c = &kin.cables()[i];
+        (c.attachment_point + c.vector, c.attachment_point)
+    }
+
+    fn check_count(
+        &self,
+        kin: &crate::PoseKinematics,
+        given: usize,
+    ) -> Result<(), crate::KinematicsError> {
+        for (what, found) in [
+            ("cable models", self.cables.len()),
+            ("tensions or lengths", given),
+        ] {
+            if found != kin.cable_count() {
+                return Err(crate::KinematicsError::WrongDimension {
+                    what: what.into(),
+                    motion: kin.motion().name(),
+                    expected: kin.cable_count(),
+                    found,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Each cable's catenary at the pose of `kin` with platform-end tensions `tensions` (N),
+    /// written into `out` (resized; no allocation once it has the capacity).
+    pub fn with_tensions(
+        &self,
+        kin: &crate::PoseKinematics,
+        tensions: &[f64],
+        out: &mut Vec<SaggingCable>,
+    ) -> Result<(), crate::KinematicsError> {
+        self.check_count(kin, tensions.len())?;
+        out.clear();
+        for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
+            let (a, b) = Self::ends(kin, i);
+            let s = SaggingCable::with_tension(model, &a, &b, &self.up, t)
+                .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
+            out.push(s);
+        }
+        Ok(())
+    }
+
+    /// Each cable's catenary at the pose of `kin` with unstrained lengths `lengths` (m).
+    pub fn with_lengths(
+        &self,
+        kin: &crate::PoseKinematics,
+        lengths: &[f64],
+        out: &mut Vec<SaggingCable>,
+    ) -> Result<(), crate::KinematicsError> {
+        self.check_count(kin, lengths.len())?;
+        out.clear();
+        for (i, (model, &l0)) in self.cables.iter().zip(lengths).enumerate() {
+            let (a, b) = Self::ends(kin, i);
+            let s = SaggingCable::with_length(model, &a, &b, &self.up, l0)
+                .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
+            out.push(s);
+        }
+        Ok(())
+    }
+}
+
+/// The sag-aware wrench matrix: column i is [u_i; a_i × u_i] (restricted to the motion
+/// pattern's components) with u_i the unit force of the catenary at the platform
+/// ([`SaggingCable::unit`]) instead of the chord direction. Resized only if its shape differs.
+pub fn write_sagging_wrench_matrix(
+    kin: &crate::PoseKinematics,
+    cables: &[SaggingCable],
+    w: &mut nalgebra::DMatrix<f64>,
+) {
+    let (dof, n) = (kin.motion().dof(), kin.cable_count());
+    if w.shape() != (dof, n) {
+        *w = nalgebra::DMatrix::zeros(dof, n);
+    }
+    for (i, (c, s)) in kin.cables().iter().zip(cables).enumerate() {
+        let (u, a) = (&s.unit, &c.attachment);
+        let mut col = w.column_mut(i);
+        match kin.motion() {
+            crate::MotionPattern::Point2 => {
+                (col[0], col[1]) = (u.x, u.y);
+            }
+            crate::MotionPattern::Planar => {
+                (col[0], col[1], col[2]) = (u.x, u.y, a.x * u.y - a.y * u.x);
+            }
+            crate::MotionPattern::Point3 => {
+                (col[0], col[1], col[2]) = (u.x, u.y, u.z);
+            }
+            crate::MotionPattern::Spatial => {
+                let m = a.cross(u);
+                (col[0], col[1], col[2]) = (u.x, u.y, u.z);
+                (col[3], col[4], col[5]) = (m.x, m.y, m.z);
+            }
+        }
+    }
 }
 
 #[cfg(test)]

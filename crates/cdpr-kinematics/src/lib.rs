@@ -58,7 +58,9 @@ mod robot;
 pub mod strategies;
 mod structure_matrix;
 
-pub use catenary::{CatenaryError, CatenarySolution, ElasticCatenary, SaggingCable};
+pub use catenary::{
+    CableModel, CatenaryError, CatenarySolution, ElasticCatenary, RobotCatenaries, SaggingCable,
+};
 pub use error::KinematicsError;
 pub use forward_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus};
 pub use interference::{

@@ -81,6 +81,7 @@ mod outcome;
 mod planar_active_set;
 pub mod profile;
 pub mod quadratic_program;
+pub mod sagging_statics;
 pub mod solver;
 pub mod sotda;
 mod vertex_enumeration;
@@ -98,5 +99,6 @@ pub use method::{Method, RequiredRedundancy};
 /// nalgebra version your own project pins.
 pub use nalgebra;
 pub use outcome::{Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution};
+pub use sagging_statics::{SaggingOutcome, SaggingSettings, SaggingSolution, SaggingStatics};
 pub use solver::TensionSolver;
 pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};

@@ -11,6 +11,7 @@ mod input;
 mod minimum_norm_vs_l2;
 mod profile;
 mod properties;
+mod sagging_statics;
 mod soak_regressions;
 mod sotda;
 mod thesis;
