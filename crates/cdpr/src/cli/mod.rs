@@ -1,5 +1,6 @@
 //! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
 
+pub mod cable_model;
 pub mod capacity;
 pub mod convert;
 pub mod dextrous;
