@@ -149,6 +149,14 @@ fn log1p_ratio(u: f64) -> f64 {
     }
 }
 
+/// How the search on L0 ended without a solution.
+enum SearchEnd {
+    /// At the fold: the least platform-end tension seen (N).
+    Fold(f64),
+    /// A solve for the length failed.
+    Failed(CatenaryError),
+}
+
 /// The end state of the forward map and what its Jacobian reuses.
 #[derive(Clone, Copy)]
 struct Forward {
@@ -503,10 +511,22 @@ impl ElasticCatenary {
         tension: f64,
     ) -> Result<CatenarySolution, CatenaryError> {
         let chord = Self::check_span(x, z)?;
-        if !(tension.is_finite() && tension > 0.0) {
+        if !(tension.is_finite() && tension >= 0.0) {
             return Err(CatenaryError::InvalidInput {
-                what: "platform-end tension (N, > 0)",
+                what: "platform-end tension (N, ≥ 0)",
                 value: tension,
+            });
+        }
+        if tension == 0.0 {
+            // A slack weightless cable is straight at its natural length; a heavy one cannot
+            // reach B without tension.
+            if self.weight == 0.0 {
+                return Ok(self.solution(chord, 0.0, 0.0, 0));
+            }
+            return Err(CatenaryError::Unreachable {
+                horizontal: x,
+                vertical: z,
+                reason: "a heavy cable needs tension to reach the platform",
             });
         }
         if x <= 1e-12 * chord {
@@ -526,6 +546,58 @@ impl ElasticCatenary {
         t: f64,
         chord: f64,
     ) -> Result<CatenarySolution, CatenaryError> {
+        self.length_search(x, z, t, chord).map_err(|e| match e {
+            SearchEnd::Failed(e) => e,
+            SearchEnd::Fold(_) => CatenaryError::Unreachable {
+                horizontal: x,
+                vertical: z,
+                reason: "the platform-end tension is too small to hold the cable across the span",
+            },
+        })
+    }
+
+    /// The least platform-end tension (N) with which a taut cable of this model spans
+    /// (x_B, z_B): the fold of T_B(L0) (module docs). Any tension above it is reachable on the
+    /// taut branch. Zero for a weightless cable or a vertical span hanging down.
+    pub fn least_tension(&self, x: f64, z: f64) -> Result<f64, CatenaryError> {
+        let chord = Self::check_span(x, z)?;
+        if self.weight == 0.0 || (x <= 1e-12 * chord && z < 0.0) {
+            return Ok(0.0);
+        }
+        if x <= 1e-12 * chord {
+            // Straight up: T_B > w L0 with L0 the smaller root (module docs); at the limit
+            // T_B = w L0(T_B), solved by a few fixed-point steps from the inextensible w z.
+            let mut t = self.weight * z;
+            for _ in 0..100 {
+                let b = 1.0 + self.compliance * t;
+                let l0 = 2.0 * z
+                    / (b + (b * b - 2.0 * self.compliance * self.weight * z)
+                        .max(0.0)
+                        .sqrt());
+                let next = self.weight * l0;
+                if (next - t).abs() <= 1e-15 * t {
+                    break;
+                }
+                t = next;
+            }
+            return Ok(t);
+        }
+        match self.length_search(x, z, 0.0, chord) {
+            Err(SearchEnd::Fold(t)) => Ok(t),
+            Err(SearchEnd::Failed(e)) => Err(e),
+            Ok(sol) => Ok(sol.platform_end_tension),
+        }
+    }
+
+    /// Safeguarded Newton–bisection on L0 for T_B(L0) = t on the taut branch; ends at the fold
+    /// (with the least T_B) when t is below it.
+    fn length_search(
+        &self,
+        x: f64,
+        z: f64,
+        t: f64,
+        chord: f64,
+    ) -> Result<CatenarySolution, SearchEnd> {
         let c = self.compliance;
         // T_B → ∞ as L0 → lo (the chord for an inextensible cable, 0 otherwise).
         let mut lo = if c == 0.0 { chord } else { 0.0 };
@@ -537,10 +609,12 @@ impl ElasticCatenary {
             chord / (1.0 + c * t)
         };
         if self.weight == 0.0 {
-            return self.solve_for_length(x, z, l0);
+            return self.solve_for_length(x, z, l0).map_err(SearchEnd::Failed);
         }
+        let mut least = f64::INFINITY;
         for it in 0..200 {
-            let sol = self.solve_for_length(x, z, l0)?;
+            let sol = self.solve_for_length(x, z, l0).map_err(SearchEnd::Failed)?;
+            least = least.min(sol.platform_end_tension);
             let g = sol.platform_end_tension - t;
             if g.abs() <= 1e-12 * t {
                 return Ok(CatenarySolution {
@@ -578,11 +652,7 @@ impl ElasticCatenary {
                 break;
             }
         }
-        Err(CatenaryError::Unreachable {
-            horizontal: x,
-            vertical: z,
-            reason: "the platform-end tension is too small to hold the cable across the span",
-        })
+        Err(SearchEnd::Fold(least))
     }
 
     /// Newton's method on (θ, L0) from the straight cable (the fast path).
@@ -756,7 +826,12 @@ impl SaggingCable {
         } else {
             sol.frame_end_tension.min(t)
         };
-        let unit = -(horizontal * sol.horizontal_force + up * sol.vertical_force) / t;
+        let unit = if t > 0.0 {
+            -(horizontal * sol.horizontal_force + up * sol.vertical_force) / t
+        } else {
+            // No force: the chord's direction (towards A) keeps W's column defined.
+            -(horizontal * x + up * z) / x.hypot(z)
+        };
         Self {
             unstrained_length: sol.unstrained_length,
             chord_length: x.hypot(z),

@@ -14,7 +14,10 @@
 //! directions stop changing (relative 10⁻¹² by default, at most 100 iterations). Tension
 //! bounds hold along the whole cable: each iteration tightens cable i's platform-end bounds by
 //! the differences between T_B,i and the largest and smallest tension along the cable (at its
-//! ends, or the horizontal force where the cable's tangent is horizontal).
+//! ends, or the horizontal force where the cable's tangent is horizontal). A cable given less
+//! tension than the least with which it can hang taut across its span
+//! ([`cdpr_kinematics::ElasticCatenary::least_tension`]) gets that least tension as a floor of
+//! its platform-end bound, and the distribution is solved again.
 //!
 //! The answer is certified with the catenary forces themselves: W(T_B) T_B + w_ext (W from the
 //! catenaries at the returned tensions) must vanish to 10⁻⁹ · scale, and both ends (and the
@@ -31,7 +34,9 @@ use crate::{
     Infeasibility, TensionBounds, TensionError, TensionOutcome, TensionProblem, TensionSolver,
 };
 use cdpr_kinematics::catenary::write_sagging_wrench_matrix;
-use cdpr_kinematics::{PoseKinematics, RobotCatenaries, SaggingCable};
+use cdpr_kinematics::{
+    CatenaryError, KinematicsError, PoseKinematics, RobotCatenaries, SaggingCable,
+};
 use nalgebra::{DMatrix, DVector};
 
 /// Settings of the fixed point.
@@ -130,16 +135,54 @@ impl SaggingStatics {
         let mut effective = bounds.clone();
         let tol = self.settings.tolerance;
         self.previous.clear();
+        // Least platform-end tensions of cables found too slack to span (N).
+        let mut floor = vec![f64::NEG_INFINITY; n];
         for it in 1..=self.settings.max_iterations {
             let problem = TensionProblem::new(&self.w, w_ext, &effective);
             let t = match solver.solve(&problem)? {
                 TensionOutcome::Feasible(s) => s.tensions,
                 TensionOutcome::Infeasible(r) => return Ok(SaggingOutcome::Infeasible(r)),
             };
-            if let Err(e) = model.with_tensions(kin, t.as_slice(), &mut self.cables) {
-                return Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {
-                    detail: e.to_string(),
-                }));
+            match model.with_tensions(kin, t.as_slice(), &mut self.cables) {
+                Ok(()) => {}
+                Err(KinematicsError::Catenary {
+                    cable,
+                    source:
+                        CatenaryError::Unreachable {
+                            horizontal,
+                            vertical,
+                            ..
+                        },
+                }) if floor[cable] < f64::INFINITY => {
+                    // Too little tension to hold the cable up: no catenary below its least
+                    // tension, which becomes a floor of its platform-end bound.
+                    let least = model.cables()[cable]
+                        .least_tension(horizontal, vertical)
+                        .unwrap_or(f64::INFINITY);
+                    let raised = least * (1.0 + 1e-9) + 1e-12;
+                    if !(raised > floor[cable]) || raised > effective.max()[cable] {
+                        return Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {
+                            detail: format!(
+                                "cable {}: it needs at least {least} N at the platform to hold itself up across its span, above the tension the other bounds allow",
+                                cable + 1
+                            ),
+                        }));
+                    }
+                    floor[cable] = raised;
+                    let lo: Vec<f64> = effective
+                        .min()
+                        .iter()
+                        .zip(&floor)
+                        .map(|(&a, &b)| a.max(b))
+                        .collect();
+                    effective = TensionBounds::new(lo, effective.max().as_slice().to_vec())?;
+                    continue;
+                }
+                Err(e) => {
+                    return Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {
+                        detail: e.to_string(),
+                    }));
+                }
             }
             write_sagging_wrench_matrix(kin, &self.cables, &mut self.w);
             let scale = t.amax().max(1.0);
@@ -156,6 +199,7 @@ impl SaggingStatics {
             for (i, c) in self.cables.iter().enumerate() {
                 let (lowest, highest) = tension_range(c);
                 lo[i] += c.platform_end_tension - lowest;
+                lo[i] = lo[i].max(floor[i]);
                 hi[i] -= highest - c.platform_end_tension;
                 if lo[i] > hi[i] {
                     return Ok(SaggingOutcome::Infeasible(Infeasibility::NoFeasibleTension));

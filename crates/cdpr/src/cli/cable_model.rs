@@ -135,9 +135,9 @@ pub fn kinematics(
         )
         .into());
     }
-    if let Some(i) = t.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
+    if let Some(i) = t.iter().position(|&v| !(v.is_finite() && v >= 0.0)) {
         return Err(format!(
-            "--tensions: cable {} has tension {} N; a sagging cable needs a finite tension > 0",
+            "--tensions: cable {} has tension {} N; tensions are finite numbers ≥ 0",
             i + 1,
             t[i]
         )
