@@ -22,6 +22,9 @@
 //! | `barycenter` | centroid of the feasible polygon, r = 2 | [`barycenter`] |
 //! | `sotda` | stiffness-oriented, r = 2 (Picard, Caro, Plestan & Claveau 2020) | [`sotda`] |
 //!
+//! With heavy elastic cables (`cdpr_kinematics::catenary`) any of them runs inside the
+//! fixed point of [`sagging_statics`] ([`SaggingStatics`]), certified with the catenary forces.
+//!
 //! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
 //! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible
 //! λ-sets. r = n − DOF is the redundancy. For r ≥ 3 dense active-set solvers work on the same
