@@ -237,3 +237,27 @@ proptest! {
         prop_assert!((rhs - l0).abs() <= 1e-9 * l0, "{} vs {}", rhs, l0);
     }
 }
+
+/// Timing (not criterion): `cargo test -p cdpr-kinematics --test it catenary_timing --
+/// --ignored --nocapture` prints ns per solve by tension of the example cable.
+#[test]
+#[ignore]
+fn catenary_timing() {
+    let cable = ElasticCatenary::new(0.5, 1e6).unwrap();
+    let n = 200_000;
+    let start = std::time::Instant::now();
+    let mut acc = 0.0;
+    for k in 0..n {
+        let s = (k % 100) as f64 / 100.0;
+        acc += cable
+            .solve_for_tension(
+                std::hint::black_box(9.730114663 + s),
+                -5.131623707 + 2.0 * s,
+                111.8,
+            )
+            .unwrap()
+            .unstrained_length;
+    }
+    let ns = start.elapsed().as_nanos() as f64 / n as f64;
+    eprintln!("solve_for_tension: {ns:.0} ns per solve ({acc})");
+}

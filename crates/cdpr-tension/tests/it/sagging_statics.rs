@@ -175,3 +175,35 @@ fn heavy_cables_are_certified_with_their_own_forces() {
         o => panic!("{o:?}"),
     }
 }
+
+/// Timing (not criterion): `cargo test -p cdpr-tension --test it sagging_timing -- --ignored
+/// --nocapture` prints µs per pose of the l2 fixed point, 8-cable spatial robot, 0.02 kg/m.
+#[test]
+#[ignore]
+fn sagging_timing() {
+    let g = Vector3::new(0.0, 0.0, -G);
+    let model = RobotCatenaries::new(&[0.02; 8], &[6e4; 8], &g).unwrap();
+    let bounds = TensionBounds::uniform(8, 10.0, 1000.0).unwrap();
+    let kins: Vec<_> = poses()
+        .iter()
+        .map(|p| ipanema_like_8().inverse_kinematics(p).unwrap())
+        .collect();
+    let mut statics = SaggingStatics::default();
+    let mut solver = TensionSolver::new(Method::L2);
+    let (w, n) = (load(), 20_000);
+    let start = std::time::Instant::now();
+    let mut iterations = 0;
+    for k in 0..n {
+        if let SaggingOutcome::Feasible(s) = statics
+            .solve(&mut solver, &kins[k % kins.len()], &model, &w, &bounds)
+            .unwrap()
+        {
+            iterations += s.iterations;
+        }
+    }
+    let us = start.elapsed().as_secs_f64() * 1e6 / n as f64;
+    eprintln!(
+        "sagging l2 statics: {us:.2} µs per pose, {:.1} iterations",
+        iterations as f64 / n as f64
+    );
+}

@@ -196,3 +196,52 @@ fn missing_keys_and_tensions_are_usage_errors() {
         "axial_stiffness",
     );
 }
+
+#[test]
+fn trajectory_reports_unstrained_lengths_per_sample() {
+    let r = robot("ipanema-like-8.toml");
+    let v = json(&[
+        "trajectory",
+        &r,
+        "--from",
+        "0,0,1,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0",
+        "--samples",
+        "4",
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert_eq!(v["cable_model"], "elastic");
+    let lengths = v["unstrained_lengths"].as_array().unwrap();
+    assert_eq!(lengths.len(), 4);
+    for (k, l) in lengths.iter().enumerate() {
+        let (l0, t) = (floats(l), floats(&v["platform_end_tensions"][k]));
+        let pose: Vec<String> = floats(&v["poses"][k])
+            .iter()
+            .map(|x| x.to_string())
+            .collect();
+        let kin = json(&["kinematics", &r, "--pose", &pose.join(","), "--json"]);
+        let chord = floats(&kin["lengths"]);
+        for i in 0..8 {
+            assert!(
+                (l0[i] - chord[i] / (1.0 + t[i] / 6e4)).abs() < 1e-12,
+                "sample {k}"
+            );
+        }
+    }
+    // Without the flag, no new fields.
+    let plain = json(&[
+        "trajectory",
+        &r,
+        "--from",
+        "0,0,1,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0",
+        "--samples",
+        "4",
+        "--json",
+    ]);
+    assert!(plain.get("unstrained_lengths").is_none());
+}
