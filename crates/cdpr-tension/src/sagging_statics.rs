@@ -160,7 +160,8 @@ impl SaggingStatics {
                         .least_tension(horizontal, vertical)
                         .unwrap_or(f64::INFINITY);
                     let raised = least * (1.0 + 1e-9) + 1e-12;
-                    if !(raised > floor[cable]) || raised > effective.max()[cable] {
+                    if raised.is_nan() || raised <= floor[cable] || raised > effective.max()[cable]
+                    {
                         return Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {
                             detail: format!(
                                 "cable {}: it needs at least {least} N at the platform to hold itself up across its span, above the tension the other bounds allow",

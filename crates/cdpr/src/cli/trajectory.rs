@@ -217,7 +217,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         None => None,
         Some(cables) => {
             let w = |k: usize| way.at(samples[k].s) + gravity(&samples[k].pose);
-            let poses: Vec<Pose> = samples.iter().map(|p| p.pose.clone()).collect();
+            let poses: Vec<Pose> = samples.iter().map(|p| p.pose).collect();
             let c = super::cable_model::compensation(&robot, &cables, args.method, &poses, w)?;
             Some((args.cable_model.model().name(), c))
         }

@@ -1,6 +1,8 @@
 //! `--cable-model straight|elastic|catenary` (issue 29 contract): the sag-aware fields of
 //! `cdpr kinematics` and `cdpr tension`, the default unchanged, usage errors exit 2.
 
+#![allow(clippy::needless_range_loop)] // per-cable JSON arrays side by side
+
 use crate::common;
 
 use common::{cdpr, json, robot};
