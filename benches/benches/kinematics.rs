@@ -178,11 +178,51 @@ fn interference(c: &mut Criterion) {
     g.finish();
 }
 
+/// Issue 29 budget: one catenary solve (span, platform-end tension → L0 and forces) ≤ 1 µs.
+/// The issue's example cable (w = 0.5 N/m, EA = 10⁶ N) at 100 spans around its span.
+fn elastic_catenary(c: &mut Criterion) {
+    let cable = cdpr_kinematics::ElasticCatenary::new(0.5, 1e6).unwrap();
+    let spans: Vec<(f64, f64)> = (0..100)
+        .map(|k| {
+            let s = k as f64 / 100.0;
+            (9.730114663 + s, -5.131623707 + 2.0 * s)
+        })
+        .collect();
+    let mut g = c.benchmark_group("elastic_catenary");
+    g.throughput(Throughput::Elements(spans.len() as u64));
+    g.bench_function("solve_for_tension", |b| {
+        b.iter(|| {
+            let mut l = 0.0;
+            for &(x, z) in &spans {
+                l += cable
+                    .solve_for_tension(black_box(x), z, 111.8)
+                    .unwrap()
+                    .unstrained_length;
+            }
+            black_box(l)
+        })
+    });
+    g.bench_function("solve_for_length", |b| {
+        b.iter(|| {
+            let mut f = 0.0;
+            for &(x, z) in &spans {
+                f += cable
+                    .solve_for_length(black_box(x), z, 11.0)
+                    .unwrap()
+                    .horizontal_force;
+            }
+            black_box(f)
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
     inverse_kinematics,
     forward_kinematics,
     batch_from_coordinates,
-    interference
+    interference,
+    elastic_catenary
 );
 criterion_main!(benches);

@@ -256,8 +256,34 @@ fn bench_twelve_cable_l2_max(c: &mut Criterion) {
     g.finish();
 }
 
+/// Statics with sagging cables (issue 29 budget: ≤ 20 µs per pose): the fixed point of
+/// `sagging_statics` with l2 on 100 of the feasible poses above, cables of 0.02 kg/m and
+/// E·S = 60 kN (the IPAnema-like cables) under 9.80665 m/s².
+fn bench_sagging_statics(c: &mut Criterion) {
+    const N: usize = 100;
+    let (poses, we, b, es) = feasible_spatial(N);
+    let g0 = Vector3::new(0.0, 0.0, -9.80665);
+    let model = cdpr_kinematics::RobotCatenaries::new(&[0.02; 8], &es, &g0).unwrap();
+    let mut statics = cdpr_tension::SaggingStatics::default();
+    let mut solver = TensionSolver::new(Method::L2);
+    let mut g = c.benchmark_group("sagging_statics");
+    g.throughput(Throughput::Elements(N as u64));
+    g.bench_function("l2_spatial_8", |bch| {
+        bch.iter(|| {
+            let mut feasible = 0;
+            for p in &poses {
+                let o = statics.solve(&mut solver, &p.kin, &model, &we, &b).unwrap();
+                feasible += matches!(o, cdpr_tension::SaggingOutcome::Feasible(_)) as usize;
+            }
+            black_box(feasible)
+        })
+    });
+    g.finish();
+}
+
 criterion_group!(
     benches,
+    bench_sagging_statics,
     bench_spatial,
     bench_twelve_cable_l2_max,
     bench_planar,

@@ -219,6 +219,7 @@ impl Robot {
                 },
                 platform: plat,
                 axial_stiffness,
+                linear_density: None,
                 platform_shape: None,
                 cable_names: vec![None; n],
                 inertia: None,

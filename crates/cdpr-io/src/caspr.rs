@@ -320,6 +320,8 @@ impl RobotDescription {
                 gravity,
             },
             axial_stiffness,
+            // CASPR's cable models (ideal, linear springs) have no mass per length.
+            linear_density: None,
             cable_names: raw.iter().map(|c| c.name.clone()).collect(),
             inertia: body.inertia,
             home_pose: body.home,

@@ -27,7 +27,8 @@
 //! name = "cable 1"                      # optional free text (names may repeat)
 //! frame = [1.0, 0.5]                    # anchor on the fixed frame, base coordinates (2 or 3 numbers)
 //! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
-//! axial_stiffness = 60000.0             # optional E*S in N, for stiffness
+//! axial_stiffness = 60000.0             # optional E*S in N, for stiffness (and elastic cables)
+//! linear_density = 0.02                 # optional mass per unstrained metre in kg/m (sagging cables)
 //! # optional swivel pulley at the frame (Pott 2018): `frame` is then the point a on its axis,
 //! # where the cable arrives travelling along +axis; radius in m
 //! pulley = { radius = 0.05, axis = [0.0, 0.0, 1.0] }
@@ -158,6 +159,9 @@ pub struct RobotDescription {
     pub platform: Platform,
     /// Per-cable E·S (N), if every cable gives `axial_stiffness`.
     pub axial_stiffness: Option<Vec<f64>>,
+    /// Per-cable mass per unstrained length ρ (kg/m), if every cable gives `linear_density`:
+    /// the weight of a sagging cable (elastic catenary, Irvine 1981).
+    pub linear_density: Option<Vec<f64>>,
     /// The platform as a convex polyhedron in platform coordinates (`[platform] shape`), for
     /// the cable–platform interference test.
     pub platform_shape: Option<ConvexPolyhedron>,
@@ -279,6 +283,7 @@ struct RawCable {
     frame: Spanned<Vec<f64>>,
     platform: Option<Spanned<Vec<f64>>>,
     axial_stiffness: Option<Spanned<f64>>,
+    linear_density: Option<Spanned<f64>>,
     min: Option<Spanned<f64>>,
     max: Option<Spanned<f64>>,
     pulley: Option<Spanned<RawPulley>>,
@@ -617,6 +622,7 @@ impl RobotDescription {
         let cables_raw = raw.cables.get_ref();
         let (mut cables, mut mins, mut maxs, mut stiff, mut names) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let mut density = Vec::new();
         for (i, c) in cables_raw.iter().enumerate() {
             let key = |k: &str| format!("cables[{}].{k}", i + 1);
             let c = c.get_ref();
@@ -673,6 +679,17 @@ impl RobotDescription {
                 }
                 stiff.push(v);
             }
+            if let Some(rho) = &c.linear_density {
+                let v = ctx.finite(rho, &key("linear_density"))?;
+                if v < 0.0 {
+                    return Err(ctx.invalid(
+                        rho.span(),
+                        key("linear_density"),
+                        format!("{v} must not be negative (kg/m)"),
+                    ));
+                }
+                density.push(v);
+            }
         }
         let axial_stiffness = match stiff.len() {
             0 => None,
@@ -681,6 +698,17 @@ impl RobotDescription {
                 return Err(ctx.invalid(
                     raw.cables.span(),
                     "cables.axial_stiffness",
+                    "given for some cables but not all",
+                ));
+            }
+        };
+        let linear_density = match density.len() {
+            0 => None,
+            n if n == cables.len() => Some(density),
+            _ => {
+                return Err(ctx.invalid(
+                    raw.cables.span(),
+                    "cables.linear_density",
                     "given for some cables but not all",
                 ));
             }
@@ -799,6 +827,7 @@ impl RobotDescription {
             limits,
             platform,
             axial_stiffness,
+            linear_density,
             platform_shape,
             cable_names: names,
             inertia,

@@ -88,6 +88,9 @@ impl RobotDescription {
             if let Some(es) = &self.axial_stiffness {
                 let _ = writeln!(s, "axial_stiffness = {}", num(es[i]));
             }
+            if let Some(rho) = &self.linear_density {
+                let _ = writeln!(s, "linear_density = {}", num(rho[i]));
+            }
             if lo[i] != lo[0] {
                 let _ = writeln!(s, "min = {}", num(lo[i]));
             }

@@ -11,6 +11,7 @@
 //! | `<robot><platform mass>`, `<centerofgravity>`, `<inertiatensor>` | platform mass, centre of mass, inertia |
 //! | `<application min_cable_load max_cable_load>` | tension bounds of every cable |
 //! | `<cable elasticity radius>` | axial stiffness E·S = E π r² (WireLib's `Kinematics.cpp`) |
+//! | `<cable weight>` | linear density ρ (kg/m) of every cable (sagging cables) |
 //!
 //! WireLib's gravity is 9.81 m/s² along −z; the file has no gravity entry, so a converted robot
 //! states it. Orientation matrices are used as written (some files store 0.707107; they are not
@@ -285,6 +286,21 @@ impl RobotDescription {
             },
             None => None,
         };
+        // WireLib's `CCable::weight`: mass per length (kg/m).
+        let linear_density = match cable_type {
+            Some(c) => match x.attr_number(c, "weight")? {
+                Some(rho) if rho >= 0.0 => Some(vec![rho; n]),
+                Some(rho) => {
+                    return Err(x.error(
+                        c,
+                        Some("weight"),
+                        format!("{rho} kg/m must not be negative"),
+                    ));
+                }
+                None => None,
+            },
+            None => None,
+        };
         let name = robot
             .attribute("name")
             .filter(|s| !s.trim().is_empty())
@@ -302,6 +318,7 @@ impl RobotDescription {
             limits: Default::default(),
             platform,
             axial_stiffness,
+            linear_density,
             cable_names: names,
             inertia,
             home_pose: None,
@@ -333,6 +350,13 @@ impl RobotDescription {
         {
             return Err(unrepresentable(
                 "per-cable axial stiffnesses differ; .wcrfx has one cable type".into(),
+            ));
+        }
+        if let Some(rho) = &self.linear_density
+            && rho.iter().any(|&v| v != rho[0])
+        {
+            return Err(unrepresentable(
+                "per-cable linear densities differ; .wcrfx has one cable type".into(),
             ));
         }
         if let Some(springs) = &self.passive_springs {
@@ -421,14 +445,21 @@ impl RobotDescription {
             num(hi[0])
         );
         let _ = writeln!(s, "    </robot>");
-        if let Some(es) = &self.axial_stiffness {
-            // E·S = E π r² with r = 1/√π: E = E·S.
-            let _ = writeln!(
-                s,
-                "    <cable name=\"cdpr\" elasticity=\"{}\" radius=\"{}\" />",
-                num(es[0]),
-                num(1.0 / std::f64::consts::PI.sqrt())
-            );
+        if self.axial_stiffness.is_some() || self.linear_density.is_some() {
+            let mut attributes = String::new();
+            if let Some(es) = &self.axial_stiffness {
+                // E·S = E π r² with r = 1/√π: E = E·S.
+                let _ = write!(
+                    attributes,
+                    " elasticity=\"{}\" radius=\"{}\"",
+                    num(es[0]),
+                    num(1.0 / std::f64::consts::PI.sqrt())
+                );
+            }
+            if let Some(rho) = &self.linear_density {
+                let _ = write!(attributes, " weight=\"{}\"", num(rho[0]));
+            }
+            let _ = writeln!(s, "    <cable name=\"cdpr\"{attributes} />");
         }
         let _ = writeln!(s, "</models>");
         Ok(s)

@@ -119,6 +119,15 @@ pub enum KinematicsError {
         /// The value given (m).
         value: f64,
     },
+    /// A cable's elastic-catenary model or solve failed (module [`crate::catenary`]).
+    #[error("cable {}: {source}", .cable + 1)]
+    Catenary {
+        /// Cable index (0-based; the message counts from 1).
+        cable: usize,
+        /// What went wrong.
+        #[source]
+        source: crate::CatenaryError,
+    },
     /// Unknown motion pattern name.
     #[error("unknown motion pattern `{0}` (expected point2, planar, point3 or spatial)")]
     UnknownMotion(String),

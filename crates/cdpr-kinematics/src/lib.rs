@@ -34,11 +34,16 @@
 //! [`ForwardKinematics`] goes back from measured lengths to the pose (Levenberg–Marquardt, with a
 //! certificate) for either cable model.
 //!
+//! Real cables sag and stretch: [`ElasticCatenary`] (module [`catenary`], Irvine 1981) gives a
+//! heavy elastic cable's unstrained length and end forces from its span and tension, and
+//! [`SaggingCable`] places it between a frame point and a platform attachment in space.
+//!
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
 
 mod batch;
 mod cable_state;
+pub mod catenary;
 mod error;
 mod forward_kinematics;
 pub mod interference;
@@ -55,6 +60,9 @@ pub mod strategies;
 mod structure_matrix;
 
 pub use cable_state::{CableState, PulleyState};
+pub use catenary::{
+    CableModel, CatenaryError, CatenarySolution, ElasticCatenary, RobotCatenaries, SaggingCable,
+};
 pub use error::KinematicsError;
 pub use forward_kinematics::{
     ForwardKinematics, ForwardSettings, ForwardSolution, ForwardStatus, chi_square_quantile_999,

@@ -33,6 +33,9 @@
 //! given with [`TensionSolver::with_options`]. Iterative methods stop by documented rules
 //! ([`Infeasibility::GaveUp`], never an "infeasible" verdict).
 //!
+//! With heavy elastic cables (`cdpr_kinematics::catenary`) any of them runs inside the
+//! fixed point of [`sagging_statics`] ([`SaggingStatics`]), certified with the catenary forces.
+//!
 //! The geometry behind them: every equilibrium is t = t0 + N λ with N an orthonormal null-space
 //! basis; [`feasible_interval`] (r = 1) and [`FeasiblePolygon`] (r = 2) expose the feasible
 //! λ-sets. r = n − DOF is the redundancy. For r ≥ 3 dense active-set solvers work on the same
@@ -98,6 +101,7 @@ pub mod pott_closed_form;
 pub mod profile;
 pub mod puncture;
 pub mod quadratic_program;
+pub mod sagging_statics;
 pub mod solver;
 pub mod sotda;
 pub mod vertex_centroid;
@@ -118,6 +122,7 @@ pub use nalgebra;
 pub use outcome::{
     GiveUp, Infeasibility, StiffnessData, TensionOutcome, TensionProblem, TensionSolution,
 };
+pub use sagging_statics::{SaggingOutcome, SaggingSettings, SaggingSolution, SaggingStatics};
 pub use solver::TensionSolver;
 pub use sotda::{SotdaSettings, SotdaVariant, sotda_displacement};
 

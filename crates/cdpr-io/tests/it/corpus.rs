@@ -200,6 +200,7 @@ fn import_convert_reimport_keeps_every_number() {
             assert_eq!(t.bounds, d.bounds, "{what}: bounds");
             assert_eq!(t.platform, d.platform, "{what}: platform");
             assert_eq!(t.axial_stiffness, d.axial_stiffness, "{what}: stiffness");
+            assert_eq!(t.linear_density, d.linear_density, "{what}: linear density");
             assert_eq!(t.cable_names, d.cable_names, "{what}: names");
             assert_eq!(t.inertia, d.inertia, "{what}: inertia");
             assert_eq!(t.home_pose, d.home_pose, "{what}: home pose");
@@ -225,6 +226,10 @@ fn import_convert_reimport_keeps_every_number() {
                     assert_eq!(w.platform.centre_of_mass, d.platform.centre_of_mass);
                     assert_eq!(w.inertia, d.inertia, "{what}: inertia via wcrfx");
                     assert_eq!(w.cable_names.len(), d.cable_names.len());
+                    assert_eq!(
+                        w.linear_density, d.linear_density,
+                        "{what}: density via wcrfx"
+                    );
                     match (&w.axial_stiffness, &d.axial_stiffness) {
                         (Some(a), Some(b)) => {
                             for (x, y) in a.iter().zip(b) {
@@ -288,6 +293,7 @@ fn shipped_published_robots_equal_their_sources() {
         assert_eq!(shipped.platform, original.platform, "{what}");
         assert_eq!(shipped.inertia, original.inertia, "{what}");
         assert_eq!(shipped.axial_stiffness, original.axial_stiffness, "{what}");
+        assert_eq!(shipped.linear_density, original.linear_density, "{what}");
         assert_eq!(shipped.cable_names, original.cable_names, "{what}");
         assert_eq!(shipped.home_pose, original.home_pose, "{what}");
         checked += 1;

@@ -2,6 +2,7 @@
 //! one per file). Each module is one former `tests/*.rs` file.
 
 mod batch;
+mod catenary;
 mod forward_kinematics;
 mod jacobian;
 mod pulley;

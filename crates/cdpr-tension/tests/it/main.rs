@@ -12,6 +12,7 @@ mod minimum_norm_vs_l2;
 mod peers;
 mod profile;
 mod properties;
+mod sagging_statics;
 mod soak_regressions;
 mod sotda;
 mod thesis;

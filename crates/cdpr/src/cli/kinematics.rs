@@ -25,6 +25,11 @@ use std::path::PathBuf;
 /// platform and its `penetration` in m). With passive springs in the robot file (CASPR's
 /// `cable_passive_linear_spring`), `passive_springs`: their `lengths` (m), `forces` K (l − l0)
 /// (N) and `wrench` (N, N·m), the part of w_ext they contribute; null without springs.
+///
+/// With `--cable-model elastic|catenary --tensions T1,…,Tn` (platform-end tensions, N): per cable
+/// `unstrained_lengths` (m), `chord_lengths` (m), `frame_end_tensions` (N),
+/// `platform_end_tensions` (N), `max_sag` (m, below the chord), `angle_to_chord` (rad, at the
+/// platform) and the `wrench_matrix` whose columns are the unit forces the cables apply.
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
@@ -33,6 +38,11 @@ pub struct Args {
     /// Platform pose, e.g. `--pose -0.5,0.2,0` for a planar robot (x, y, φ).
     #[arg(long, allow_hyphen_values = true)]
     pose: Numbers,
+    #[command(flatten)]
+    cable_model: super::cable_model::CableModelArgs,
+    /// Platform-end cable tensions T1,…,Tn (N) for --cable-model elastic|catenary.
+    #[arg(long)]
+    tensions: Option<Numbers>,
     /// Write one JSON object on stdout instead of tables.
     #[arg(long)]
     json: bool,
@@ -43,6 +53,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     let pose = pose(&robot, &args.pose)?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
+    if let Some(cables) = args.cable_model.catenaries(&robot)? {
+        let (t, name) = (args.tensions.as_deref(), args.cable_model.model().name());
+        return super::cable_model::kinematics(
+            &robot, &kin, &cables, t, name, &args.pose, args.json,
+        );
+    }
     let model = kinematics_model(&robot);
     let n = kin.cable_count();
     let w = kin.wrench_matrix();

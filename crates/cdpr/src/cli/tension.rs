@@ -24,6 +24,9 @@ use std::path::PathBuf;
 ///
 /// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
 /// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
+/// With `--cable-model elastic|catenary`: `tensions` at the platform end, `unstrained_lengths`,
+/// `frame_end_tensions` (and the other per-cable fields of `cdpr kinematics`), certified with the
+/// catenary forces and the bounds at both ends of every cable.
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
@@ -57,6 +60,8 @@ pub struct Args {
     full: bool,
     #[command(flatten)]
     peer: PeerOptions,
+    #[command(flatten)]
+    cable_model: super::cable_model::CableModelArgs,
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -192,6 +197,13 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let pose = pose(&robot, &args.pose)?;
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
+    if let Some(cables) = args.cable_model.catenaries(&robot)? {
+        let name = args.cable_model.model().name();
+        let (m, b) = (args.method, &robot.bounds);
+        return super::cable_model::tension(
+            &robot, &kin, &cables, m, &w_ext, b, name, &args.pose, args.json,
+        );
+    }
     let w = kin.wrench_matrix();
     let es = robot.axial_stiffness.clone();
     if args.method == Method::Sotda && es.is_none() {

@@ -43,7 +43,10 @@ use std::path::PathBuf;
 ///
 /// JSON fields: `s`, `tensions` (array per sample, null where infeasible), `max_jump` (per
 /// cable), `reasons` (null or string per sample), `feasible_count`, `discontinuities` (indices k),
-/// `method`, `poses`, `t_min`, `t_max`.
+/// `method`, `poses`, `t_min`, `t_max`. With `--cable-model elastic|catenary`: `cable_model`, and
+/// per sample `unstrained_lengths` (m: what the winches pay out for the platform to be there,
+/// flex and sag compensation), `platform_end_tensions` (N) and `cable_model_reasons` from the
+/// sagging-cable statics (null where it has no certified equilibrium).
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
@@ -101,6 +104,8 @@ pub struct Args {
     /// Tension profiles (one line per cable vs s, dashed t_min/t_max, gaps where infeasible).
     #[arg(long)]
     plot: Option<PathBuf>,
+    #[command(flatten)]
+    cable_model: super::cable_model::CableModelArgs,
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -231,11 +236,20 @@ pub fn run(args: Args) -> Result<(), CliError> {
         |sample: &PathSample| way.at(sample.s) + gravity(&sample.pose),
     )?;
     let discontinuities = profile.discontinuities(args.jump_ratio);
+    let compensation = match args.cable_model.catenaries(&robot)? {
+        None => None,
+        Some(cables) => {
+            let w = |k: usize| way.at(samples[k].s) + gravity(&samples[k].pose);
+            let poses: Vec<Pose> = samples.iter().map(|p| p.pose).collect();
+            let c = super::cable_model::compensation(&robot, &cables, args.method, &poses, w)?;
+            Some((args.cable_model.model().name(), c))
+        }
+    };
     if let Some(file) = &args.plot {
         cdpr::plot::save(&profile_plot(&robot, &args, &profile), file)?;
     }
     if args.json {
-        print_json(&json!({
+        let mut v = json!({
             "robot": robot.name,
             "method": args.method.name(),
             "nu": (args.method == Method::Sotda).then_some(args.nu),
@@ -248,9 +262,25 @@ pub fn run(args: Args) -> Result<(), CliError> {
             "discontinuities": discontinuities,
             "t_min": robot.bounds.min().as_slice(),
             "t_max": robot.bounds.max().as_slice(),
-        }))
+        });
+        if let Some((name, (lengths, tensions, reasons))) = compensation {
+            v["cable_model"] = json!(name);
+            v["unstrained_lengths"] = json!(lengths);
+            v["platform_end_tensions"] = json!(tensions);
+            v["cable_model_reasons"] = json!(reasons);
+        }
+        print_json(&v)
     } else {
         print_table(&robot, &args, &profile, &samples, &discontinuities);
+        if let Some((name, (lengths, _, reasons))) = compensation {
+            println!("unstrained lengths L0_i in m ({name} cables) along s");
+            for (k, (l, r)) in lengths.iter().zip(&reasons).enumerate() {
+                match l {
+                    Some(l) => println!("{:>8.4}  {}", profile.s[k], super::nums(l)),
+                    None => println!("{:>8.4}  {}", profile.s[k], r.as_deref().unwrap_or("")),
+                }
+            }
+        }
         Ok(())
     }
 }

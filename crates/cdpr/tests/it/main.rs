@@ -2,6 +2,7 @@
 //! one per file). Each module is one former `tests/*.rs` file.
 
 mod calibrate_cli;
+mod cable_model_cli;
 mod cli;
 mod common;
 mod convert_cli;

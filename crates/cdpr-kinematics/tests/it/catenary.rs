@@ -1,0 +1,263 @@
+//! The elastic catenary (issue 29): closed form against an ODE integration of the cable,
+//! round trips, Irvine's inextensible identity, finite-difference Jacobians, limits.
+
+use cdpr_kinematics::nalgebra::Vector3;
+use cdpr_kinematics::{CatenaryError, ElasticCatenary, SaggingCable};
+use proptest::prelude::*;
+
+/// The cable's equilibrium integrated from A by RK4 over the unstrained arc length s:
+/// state (x, z, H, V) with dH/ds = 0, dV/ds = w (the weight of ds) and
+/// d(x, z)/ds = (1 + T/EA) (H, V)/T. Starts at A with (H, V_A) = (F_x, F_z − w L0).
+fn integrate(w: f64, ea: f64, l0: f64, fx: f64, fz: f64, steps: usize) -> [f64; 4] {
+    let rhs = |y: [f64; 4]| {
+        let t = y[2].hypot(y[3]);
+        let k = (1.0 + t / ea) / t;
+        [k * y[2], k * y[3], 0.0, w]
+    };
+    let h = l0 / steps as f64;
+    let mut y = [0.0, 0.0, fx, fz - w * l0];
+    let add = |y: [f64; 4], k: [f64; 4], a: f64| std::array::from_fn(|i| y[i] + a * k[i]);
+    for _ in 0..steps {
+        let k1 = rhs(y);
+        let k2 = rhs(add(y, k1, h / 2.0));
+        let k3 = rhs(add(y, k2, h / 2.0));
+        let k4 = rhs(add(y, k3, h));
+        y = std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    }
+    y
+}
+
+#[test]
+fn issue_example_reproduced_and_matches_the_ode() {
+    let cable = ElasticCatenary::new(0.5, 1e6).unwrap();
+    let b = cable.end_point(11.0, 100.0, -50.0);
+    assert!((b.x - 9.730114663).abs() < 5e-10, "x_B = {}", b.x);
+    assert!((b.y - -5.131623707).abs() < 5e-10, "z_B = {}", b.y);
+    assert!((cable.frame_end_tension(11.0, 100.0, -50.0) - 114.3689).abs() < 5e-5);
+    let y = integrate(0.5, 1e6, 11.0, 100.0, -50.0, 4000);
+    assert!(
+        (y[0] - b.x).abs() < 1e-9 && (y[1] - b.y).abs() < 1e-9,
+        "{y:?} vs {b}"
+    );
+    assert_eq!(y[2], 100.0);
+    assert!((y[3] - -50.0).abs() < 1e-10);
+}
+
+#[test]
+fn inverse_problems_recover_the_example() {
+    let cable = ElasticCatenary::new(0.5, 1e6).unwrap();
+    let (x, z) = (9.730114663, -5.131623707);
+    let by_length = cable.solve_for_length(x, z, 11.0).unwrap();
+    // The span has 10 digits: F is known to about K · 5e-10 m (K ≈ EA/L0 ≈ 1e5 N/m).
+    assert!((by_length.horizontal_force - 100.0).abs() < 1e-3);
+    assert!((by_length.vertical_force + 50.0).abs() < 1e-3);
+    assert!((by_length.frame_end_tension - 114.3689).abs() < 1e-4);
+    let by_tension = cable.solve_for_tension(x, z, 100f64.hypot(50.0)).unwrap();
+    assert!((by_tension.unstrained_length - 11.0).abs() < 1e-8);
+    assert!((by_tension.vertical_force + 50.0).abs() < 1e-3);
+}
+
+#[test]
+fn vertical_spans_in_closed_form() {
+    let cable = ElasticCatenary::new(2.0, 1e4).unwrap();
+    for (z, t) in [(-3.0, 50.0), (3.0, 50.0)] {
+        let sol = cable.solve_for_tension(0.0, z, t).unwrap();
+        assert_eq!(sol.horizontal_force, 0.0);
+        let b = cable.end_point(sol.unstrained_length, 0.0, sol.vertical_force);
+        assert!(b.x == 0.0 && (b.y - z).abs() < 1e-12, "{b}");
+        let y = integrate(
+            2.0,
+            1e4,
+            sol.unstrained_length,
+            0.0,
+            sol.vertical_force,
+            2000,
+        );
+        assert!((y[1] - z).abs() < 1e-9);
+        let back = cable
+            .solve_for_length(0.0, z, sol.unstrained_length)
+            .unwrap();
+        assert!((back.vertical_force - sol.vertical_force).abs() < 1e-9);
+    }
+    // 3 m of cable up from 5 N at 2 N/m: its own weight (6 N) is more than the tension.
+    assert!(matches!(
+        cable.solve_for_tension(0.0, 3.0, 5.0),
+        Err(CatenaryError::Unreachable { .. })
+    ));
+}
+
+#[test]
+fn taut_branch_is_the_shorter_of_two_catenaries() {
+    // An inextensible cable of 1 N/m across 10 m horizontally: T_B = H cosh(5/H) has two
+    // solutions H for T_B = 10 N; the taut one (larger H) is the shorter cable.
+    let cable = ElasticCatenary::new(1.0, f64::INFINITY).unwrap();
+    let sol = cable.solve_for_tension(10.0, 0.0, 10.0).unwrap();
+    let h = sol.horizontal_force;
+    assert!((h * (5.0 / h).cosh() - 10.0).abs() < 1e-9);
+    // The other root of H cosh(5/H) = 10, by bisection below the minimum of T_B(H).
+    let (mut lo, mut hi): (f64, f64) = (0.5, 5.0 / 1.19967864); // T_B is least at 5/H tanh(5/H) = 1
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid * (5.0 / mid).cosh() > 10.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    assert!(h > hi, "taut branch H = {h}, sagging branch H = {hi}");
+    let sagging_length = 2.0 * hi * (5.0 / hi).sinh();
+    assert!(sol.unstrained_length < sagging_length);
+    // The least tension: H cosh(5/H) at 5/H tanh(5/H) = 1.
+    let u: f64 = 1.199678640257734;
+    let least = cable.least_tension(10.0, 0.0).unwrap();
+    assert!((least - 5.0 / u * u.cosh()).abs() < 1e-8, "{least}");
+    assert!(
+        cable
+            .solve_for_tension(10.0, 0.0, least * (1.0 + 1e-6))
+            .is_ok()
+    );
+    assert!(
+        cable
+            .solve_for_tension(10.0, 0.0, least * (1.0 - 1e-6))
+            .is_err()
+    );
+    // Below the least tension no catenary fits.
+    assert!(matches!(
+        cable.solve_for_tension(10.0, 0.0, 7.0),
+        Err(CatenaryError::Unreachable { .. })
+    ));
+    assert!(matches!(
+        cable.solve_for_tension(10.0, 0.0, 0.1),
+        Err(CatenaryError::Unreachable { .. })
+    ));
+}
+
+#[test]
+fn limits_are_continuous() {
+    let (l0, fx, fz) = (7.0, 40.0, 25.0);
+    let straight = ElasticCatenary::new(0.0, 5e3).unwrap();
+    let light = ElasticCatenary::new(1e-9, 5e3).unwrap();
+    let (a, b) = (straight.end_point(l0, fx, fz), light.end_point(l0, fx, fz));
+    assert!((a - b).norm() < 1e-9, "{a} {b}");
+    assert!((straight.jacobian(l0, fx, fz) - light.jacobian(l0, fx, fz)).norm() < 1e-9);
+    let rigid = ElasticCatenary::new(0.3, f64::INFINITY).unwrap();
+    let stiff = ElasticCatenary::new(0.3, 1e15).unwrap();
+    let (a, b) = (rigid.end_point(l0, fx, fz), stiff.end_point(l0, fx, fz));
+    assert!((a - b).norm() < 1e-12);
+    // Horizontal force → 0 with the cable hanging on one side: x_B → 0.
+    let tiny = rigid.end_point(l0, 1e-12, -5.0);
+    assert!(tiny.x.abs() < 1e-9 && (tiny.y + l0).abs() < 1e-9, "{tiny}");
+}
+
+#[test]
+fn sagging_cable_in_space() {
+    // 15 m cable, 50 N, 10 g/m: CoGiRo-like scale (issue 29 intro: a few cm of sag;
+    // w L²/(8 H) ≈ 0.098 · 225/(8 · 40) ≈ 7 cm).
+    let model = ElasticCatenary::from_density(0.01, 9.81, 1e5).unwrap();
+    let a = Vector3::new(0.0, 0.0, 5.0);
+    let b = Vector3::new(9.0, 12.0, 0.0);
+    let up = Vector3::z();
+    let s = SaggingCable::with_tension(&model, &a, &b, &up, 50.0).unwrap();
+    assert!((s.chord_length - (b - a).norm()).abs() < 1e-12);
+    assert!(s.max_sag > 0.03 && s.max_sag < 0.1, "{}", s.max_sag);
+    assert!((s.unit.norm() - 1.0).abs() < 1e-12);
+    // The force on the platform points back towards A, more horizontal than the chord (sag).
+    let chord_dir = (a - b).normalize();
+    assert!((s.unit.dot(&chord_dir).acos() - s.angle_to_chord).abs() < 1e-9);
+    assert!(s.unit.z < chord_dir.z);
+    assert!(s.frame_end_tension > s.platform_end_tension);
+    let back = SaggingCable::with_length(&model, &a, &b, &up, s.unstrained_length).unwrap();
+    assert!((back.platform_end_tension - 50.0).abs() < 1e-7);
+}
+
+fn model() -> impl Strategy<Value = ElasticCatenary> {
+    (0.0..20.0f64, prop_oneof![Just(f64::INFINITY), 1e3..1e8f64])
+        .prop_map(|(w, ea)| ElasticCatenary::new(w, ea).unwrap())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// The closed form against RK4 integration of the equilibrium ODE.
+    #[test]
+    fn closed_form_matches_ode(m in model(), l0 in 0.5..20.0f64, fx in 1.0..500.0f64,
+                               fz in -500.0..500.0f64) {
+        let b = m.end_point(l0, fx, fz);
+        let y = integrate(m.weight(), m.axial_stiffness(), l0, fx, fz, 3000);
+        prop_assert!((y[0] - b.x).abs() < 1e-9 && (y[1] - b.y).abs() < 1e-9, "{:?} vs {}", y, b);
+    }
+
+    /// Finite-difference check of the analytic Jacobian ∂(x, z)/∂(F_x, F_z, L0).
+    #[test]
+    fn jacobian_matches_finite_differences(m in model(), l0 in 0.5..20.0f64,
+                                           fx in 1.0..500.0f64, fz in -500.0..500.0f64) {
+        let j = m.jacobian(l0, fx, fz);
+        let p = [fx, fz, l0];
+        for k in 0..3 {
+            let h = 1e-6 * p[k].abs().max(1.0);
+            let mut up = p;
+            let mut dn = p;
+            up[k] += h;
+            dn[k] -= h;
+            let d = (m.end_point(up[2], up[0], up[1]) - m.end_point(dn[2], dn[0], dn[1])) / (2.0 * h);
+            let scale = j.column(k).norm().max(1e-3 * l0 / fx.hypot(fz));
+            prop_assert!((d - j.column(k)).norm() <= 1e-6 * scale + 1e-9,
+                "column {}: fd {} analytic {}", k, d, j.column(k));
+        }
+    }
+
+    /// (L0, F) → span → F (solve_for_length), and → (L0, F) by tension on the taut branch:
+    /// the same cable, or a shorter one reaching the same span with the same T_B.
+    #[test]
+    fn round_trips(m in model(), l0 in 0.5..20.0f64, fx in 1.0..500.0f64,
+                   fz in -500.0..500.0f64) {
+        let b = m.end_point(l0, fx, fz);
+        // An inextensible cable barely longer than its chord has forces the span cannot fix in
+        // f64 (their condition number grows as L0/(L0 − chord)).
+        prop_assume!(m.axial_stiffness().is_finite() || l0 - b.norm() > 1e-7 * l0);
+        let sol = m.solve_for_length(b.x, b.y, l0).unwrap();
+        let t = fx.hypot(fz);
+        prop_assert!((sol.horizontal_force - fx).abs() <= 1e-7 * t);
+        prop_assert!((sol.vertical_force - fz).abs() <= 1e-7 * t);
+        let taut = m.solve_for_tension(b.x, b.y, t).unwrap();
+        let back = m.end_point(taut.unstrained_length, taut.horizontal_force, taut.vertical_force);
+        prop_assert!((back - b).norm() <= 1e-9 * b.norm().max(1.0));
+        prop_assert!((taut.platform_end_tension - t).abs() <= 1e-9 * t);
+        prop_assert!(taut.unstrained_length <= l0 * (1.0 + 1e-9));
+    }
+
+    /// Irvine's inextensible identity L0² = v² + (2H/w)² sinh²(w h/(2H)).
+    #[test]
+    fn inextensible_identity(w in 0.01..20.0f64, l0 in 0.5..20.0f64, fx in 1.0..500.0f64,
+                             fz in -500.0..500.0f64) {
+        let m = ElasticCatenary::new(w, f64::INFINITY).unwrap();
+        let b = m.end_point(l0, fx, fz);
+        let s = 2.0 * fx / w * (w * b.x / (2.0 * fx)).sinh();
+        let rhs = (b.y * b.y + s * s).sqrt();
+        prop_assert!((rhs - l0).abs() <= 1e-9 * l0, "{} vs {}", rhs, l0);
+    }
+}
+
+/// Timing (not criterion): `cargo test -p cdpr-kinematics --test it catenary_timing --
+/// --ignored --nocapture` prints ns per solve by tension of the issue's example cable.
+#[test]
+#[ignore]
+fn catenary_timing() {
+    let cable = ElasticCatenary::new(0.5, 1e6).unwrap();
+    let n = 200_000;
+    let start = std::time::Instant::now();
+    let mut acc = 0.0;
+    for k in 0..n {
+        let s = (k % 100) as f64 / 100.0;
+        acc += cable
+            .solve_for_tension(
+                std::hint::black_box(9.730114663 + s),
+                -5.131623707 + 2.0 * s,
+                111.8,
+            )
+            .unwrap()
+            .unstrained_length;
+    }
+    let ns = start.elapsed().as_nanos() as f64 / n as f64;
+    eprintln!("solve_for_tension: {ns:.0} ns per solve ({acc})");
+}

@@ -1,0 +1,294 @@
+//! `--cable-model straight|elastic|catenary` (issue 29): the flag every command where cables
+//! carry force flattens in, and the sag-aware outputs of `cdpr kinematics` and `cdpr tension`.
+//!
+//! `straight` (the default) leaves every result unchanged. `elastic` treats the cables as
+//! massless springs (needs `axial_stiffness`: L0 = l/(1 + t/EA)); `catenary` as heavy elastic
+//! cables, Irvine's elastic catenary (needs `axial_stiffness` and `linear_density`; gravity from
+//! the robot file's `[platform] gravity`).
+
+use super::{CliError, matrix_rows, print_json, print_matrix};
+use cdpr::RobotDescription;
+use cdpr::kinematics::catenary::write_sagging_wrench_matrix;
+use cdpr::kinematics::{CableModel, PoseKinematics, RobotCatenaries, SaggingCable};
+use cdpr::tension::{
+    Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionBounds, TensionSolver,
+};
+use nalgebra::{DMatrix, DVector};
+use serde_json::json;
+
+/// The `--cable-model` option, flattened into a command's arguments.
+#[derive(clap::Args, Debug, Clone)]
+pub struct CableModelArgs {
+    /// Cable model: straight (massless, inextensible; the default, results unchanged), elastic
+    /// (massless springs; needs `axial_stiffness`), catenary (heavy elastic cables, Irvine's
+    /// elastic catenary; needs `axial_stiffness` and `linear_density`).
+    #[arg(long = "cable-model", value_enum, default_value = "straight")]
+    pub cable_model: CableModelName,
+}
+
+/// The spellings of `--cable-model`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum CableModelName {
+    /// Massless inextensible straight cables.
+    Straight,
+    /// Massless elastic straight cables.
+    Elastic,
+    /// Heavy elastic cables (elastic catenary).
+    Catenary,
+}
+
+impl CableModelArgs {
+    /// The model chosen.
+    pub fn model(&self) -> CableModel {
+        match self.cable_model {
+            CableModelName::Straight => CableModel::Straight,
+            CableModelName::Elastic => CableModel::Elastic,
+            CableModelName::Catenary => CableModel::Catenary,
+        }
+    }
+
+    /// The robot's cables under the chosen model: `None` for straight cables; a usage error
+    /// when the robot file lacks the keys the model needs or has pulleys.
+    pub fn catenaries(
+        &self,
+        robot: &RobotDescription,
+    ) -> Result<Option<RobotCatenaries>, CliError> {
+        let model = self.model();
+        if model == CableModel::Straight {
+            return Ok(None);
+        }
+        let name = model.name();
+        if robot.robot.has_pulleys() {
+            return Err(format!(
+                "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
+            )
+            .into());
+        }
+        let es = robot.axial_stiffness.as_ref().ok_or_else(|| {
+            format!(
+                "--cable-model {name} needs `axial_stiffness` (E·S, N) on every cable of the robot file"
+            )
+        })?;
+        Ok(Some(match model {
+            CableModel::Elastic => RobotCatenaries::elastic(es)?,
+            _ => {
+                let rho = robot.linear_density.as_ref().ok_or(
+                    "--cable-model catenary needs `linear_density` (kg/m) on every cable of the robot file",
+                )?;
+                RobotCatenaries::new(rho, es, &robot.platform.gravity)?
+            }
+        }))
+    }
+}
+
+/// The per-cable JSON fields of sagging cables.
+pub fn cables_json(cables: &[SaggingCable]) -> serde_json::Value {
+    let field = |f: fn(&SaggingCable) -> f64| cables.iter().map(f).collect::<Vec<_>>();
+    json!({
+        "unstrained_lengths": field(|c| c.unstrained_length),
+        "chord_lengths": field(|c| c.chord_length),
+        "frame_end_tensions": field(|c| c.frame_end_tension),
+        "platform_end_tensions": field(|c| c.platform_end_tension),
+        "max_sag": field(|c| c.max_sag),
+        "angle_to_chord": field(|c| c.angle_to_chord),
+    })
+}
+
+fn print_cables(cables: &[SaggingCable]) {
+    println!(
+        "{:>6} {:>12} {:>12} {:>12} {:>14} {:>12} {:>12}",
+        "cable", "L0 (m)", "chord (m)", "T_B (N)", "T_frame (N)", "sag (m)", "angle (rad)"
+    );
+    for (i, c) in cables.iter().enumerate() {
+        println!(
+            "{:>6} {:>12.6} {:>12.6} {:>12.6} {:>14.6} {:>12.6} {:>12.6}",
+            i + 1,
+            c.unstrained_length,
+            c.chord_length,
+            c.platform_end_tension,
+            c.frame_end_tension,
+            c.max_sag,
+            c.angle_to_chord
+        );
+    }
+}
+
+/// `cdpr kinematics --cable-model elastic|catenary --tensions …`: each cable's catenary for its
+/// platform-end tension, and the sag-aware wrench matrix.
+pub fn kinematics(
+    robot: &RobotDescription,
+    kin: &PoseKinematics,
+    model: &RobotCatenaries,
+    tensions: Option<&[f64]>,
+    name: &str,
+    pose: &[f64],
+    json_out: bool,
+) -> Result<(), CliError> {
+    let n = kin.cable_count();
+    let t = tensions.ok_or_else(|| {
+        format!("--cable-model {name} needs --tensions T1,…,T{n} (platform-end tensions, N)")
+    })?;
+    if t.len() != n {
+        return Err(format!(
+            "--tensions needs {n} numbers (one per cable), got {}",
+            t.len()
+        )
+        .into());
+    }
+    if let Some(i) = t.iter().position(|&v| !(v.is_finite() && v >= 0.0)) {
+        return Err(format!(
+            "--tensions: cable {} has tension {} N; tensions are finite numbers ≥ 0",
+            i + 1,
+            t[i]
+        )
+        .into());
+    }
+    let mut cables = Vec::new();
+    model.with_tensions(kin, t, &mut cables)?;
+    let mut w = DMatrix::zeros(0, 0);
+    write_sagging_wrench_matrix(kin, &cables, &mut w);
+    if json_out {
+        let mut v = json!({
+            "robot": robot.name,
+            "motion": robot.robot.motion().name(),
+            "pose": pose,
+            "cable_model": name,
+            "wrench_matrix": matrix_rows(&w),
+        });
+        if let (Some(o), serde_json::Value::Object(c)) = (v.as_object_mut(), cables_json(&cables)) {
+            o.extend(c);
+        }
+        print_json(&v)
+    } else {
+        println!(
+            "robot {} ({}), pose {}, cable model {name}",
+            robot.name,
+            robot.robot.motion(),
+            super::pose_text(pose, robot.robot.motion().space_dim())
+        );
+        print_cables(&cables);
+        print_matrix(
+            "wrench matrix W (DOF × n; columns: unit forces of the cables at the platform), W t + w_ext = 0:",
+            &w,
+        );
+        Ok(())
+    }
+}
+
+/// `cdpr tension --cable-model elastic|catenary`: the fixed point of
+/// [`cdpr::tension::sagging_statics`] for `method`.
+#[allow(clippy::too_many_arguments)]
+pub fn tension(
+    robot: &RobotDescription,
+    kin: &PoseKinematics,
+    model: &RobotCatenaries,
+    method: Method,
+    w_ext: &DVector<f64>,
+    bounds: &TensionBounds,
+    name: &str,
+    pose: &[f64],
+    json_out: bool,
+) -> Result<(), CliError> {
+    if method == Method::Sotda {
+        return Err(format!("--cable-model {name} does not apply to sotda (its stiffness model is the straight cables')").into());
+    }
+    let outcome = SaggingStatics::new(SaggingSettings::default()).solve(
+        &mut TensionSolver::new(method),
+        kin,
+        model,
+        w_ext,
+        bounds,
+    )?;
+    if json_out {
+        let mut v = json!({
+            "robot": robot.name,
+            "pose": pose,
+            "external_wrench": w_ext.as_slice(),
+            "method": method.name(),
+            "cable_model": name,
+        });
+        match &outcome {
+            SaggingOutcome::Feasible(s) => {
+                v["feasible"] = json!(true);
+                v["tensions"] = json!(s.tensions.as_slice());
+                v["residual"] = json!(s.residual);
+                v["iterations"] = json!(s.iterations);
+                v["reason"] = json!(null);
+                v["wrench_matrix"] = json!(matrix_rows(&s.wrench_matrix));
+                if let (Some(o), serde_json::Value::Object(c)) =
+                    (v.as_object_mut(), cables_json(&s.cables))
+                {
+                    o.extend(c);
+                }
+            }
+            SaggingOutcome::Infeasible(r) => {
+                v["feasible"] = json!(false);
+                v["tensions"] = json!(null);
+                v["residual"] = json!(null);
+                v["reason"] = json!(r.to_string());
+            }
+        }
+        print_json(&v)
+    } else {
+        println!(
+            "robot {}, pose {}, w_ext {}, method {}, cable model {name}",
+            robot.name,
+            super::pose_text(pose, robot.robot.motion().space_dim()),
+            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
+            method.name()
+        );
+        match &outcome {
+            SaggingOutcome::Feasible(s) => {
+                println!(
+                    "feasible (residual {:.3e} with the catenary forces, {} fixed-point iterations)",
+                    s.residual, s.iterations
+                );
+                print_cables(&s.cables);
+            }
+            SaggingOutcome::Infeasible(r) => println!("infeasible: {r}"),
+        }
+        Ok(())
+    }
+}
+
+/// Per path sample, the sagging-cable statics (`method`, wrench `w_ext(k)`): the
+/// platform-end tensions and the unstrained lengths the winches must pay out for the platform to
+/// be at the sample (the makers' flex and sag compensation); `None` where no certified
+/// equilibrium exists (its reason in the third vector).
+pub type Compensation = (
+    Vec<Option<Vec<f64>>>,
+    Vec<Option<Vec<f64>>>,
+    Vec<Option<String>>,
+);
+
+/// Runs [`SaggingStatics`] at every pose of `poses`.
+pub fn compensation(
+    robot: &RobotDescription,
+    model: &RobotCatenaries,
+    method: Method,
+    poses: &[cdpr::kinematics::Pose],
+    w_ext: impl Fn(usize) -> DVector<f64>,
+) -> Result<Compensation, CliError> {
+    if method == Method::Sotda {
+        return Err("--cable-model elastic|catenary does not apply to sotda".into());
+    }
+    let mut statics = SaggingStatics::new(SaggingSettings::default());
+    let mut solver = TensionSolver::new(method);
+    let (mut lengths, mut tensions, mut reasons) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, pose) in poses.iter().enumerate() {
+        let kin = robot.robot.inverse_kinematics(pose)?;
+        match statics.solve(&mut solver, &kin, model, &w_ext(k), &robot.bounds)? {
+            SaggingOutcome::Feasible(s) => {
+                lengths.push(Some(s.cables.iter().map(|c| c.unstrained_length).collect()));
+                tensions.push(Some(s.tensions.as_slice().to_vec()));
+                reasons.push(None);
+            }
+            SaggingOutcome::Infeasible(r) => {
+                lengths.push(None);
+                tensions.push(None);
+                reasons.push(Some(r.to_string()));
+            }
+        }
+    }
+    Ok((lengths, tensions, reasons))
+}

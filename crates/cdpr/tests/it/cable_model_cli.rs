@@ -1,0 +1,249 @@
+//! `--cable-model straight|elastic|catenary` (issue 29 contract): the sag-aware fields of
+//! `cdpr kinematics` and `cdpr tension`, the default unchanged, usage errors exit 2.
+
+#![allow(clippy::needless_range_loop)] // per-cable JSON arrays side by side
+
+use crate::common;
+
+use common::{cdpr, json, robot};
+
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+const POSE: &str = "0,0,3,0,0,0";
+
+#[test]
+fn cogiro_at_50_n_sags_about_5_cm_and_1_2_degrees() {
+    // Issue 29's introduction: on CoGiRo a cable at 50 N hangs about 5 cm below its chord and
+    // pulls 1.2° away from it (WireCenter's cable: 0.023 kg/m, E·S = 1.1e11 · π · 0.006² N).
+    let cogiro = robot("wirecenter-cogiro.toml");
+    let t = "50,50,50,50,50,50,50,50";
+    let v = json(&[
+        "--kinematics",
+        "standard",
+        "kinematics",
+        &cogiro,
+        "--pose",
+        POSE,
+        "--cable-model",
+        "catenary",
+        "--tensions",
+        t,
+        "--json",
+    ]);
+    assert_eq!(v["cable_model"], "catenary");
+    let (sag, angle) = (floats(&v["max_sag"]), floats(&v["angle_to_chord"]));
+    let (l0, chord) = (
+        floats(&v["unstrained_lengths"]),
+        floats(&v["chord_lengths"]),
+    );
+    let (ta, tb) = (
+        floats(&v["frame_end_tensions"]),
+        floats(&v["platform_end_tensions"]),
+    );
+    for i in 0..8 {
+        assert!(
+            (0.04..0.05).contains(&sag[i]),
+            "cable {i}: sag {} m",
+            sag[i]
+        );
+        assert!((1.1..1.2).contains(&angle[i].to_degrees()), "cable {i}");
+        assert!(ta[i] > tb[i] && (tb[i] - 50.0).abs() < 1e-9);
+        // Sag outweighs the stretch: more cable than the chord.
+        assert!(l0[i] > chord[i]);
+    }
+    let w = v["wrench_matrix"].as_array().unwrap();
+    assert_eq!(w.len(), 6);
+    for j in 0..8 {
+        let u: f64 = (0..3).map(|r| w[r][j].as_f64().unwrap().powi(2)).sum();
+        assert!((u - 1.0).abs() < 1e-12, "column {j} is a unit force");
+    }
+}
+
+#[test]
+fn default_is_straight_and_elastic_statics_match_it() {
+    let r = robot("ipanema-like-8.toml");
+    let pose = "0.2,-0.1,1.0,0.02,0,0";
+    let plain = json(&["tension", &r, "--pose", pose, "--json"]);
+    let straight = json(&[
+        "tension",
+        &r,
+        "--pose",
+        pose,
+        "--json",
+        "--cable-model",
+        "straight",
+    ]);
+    assert_eq!(plain, straight);
+    let elastic = json(&[
+        "tension",
+        &r,
+        "--pose",
+        pose,
+        "--json",
+        "--cable-model",
+        "elastic",
+    ]);
+    assert_eq!(elastic["feasible"], true);
+    let (a, b) = (floats(&plain["tensions"]), floats(&elastic["tensions"]));
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() < 1e-9 * x.abs().max(1.0), "{x} vs {y}");
+    }
+    let (l0, chord) = (
+        floats(&elastic["unstrained_lengths"]),
+        floats(&elastic["chord_lengths"]),
+    );
+    for i in 0..8 {
+        assert!((l0[i] - chord[i] / (1.0 + b[i] / 6e4)).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn catenary_statics_every_method_certified_or_explained() {
+    let cogiro = robot("wirecenter-cogiro.toml");
+    for method in [
+        "l2",
+        "l1",
+        "linf",
+        "improved-closed-form",
+        "barycenter",
+        "l2-max",
+    ] {
+        let v = json(&[
+            "--kinematics",
+            "standard",
+            "tension",
+            &cogiro,
+            "--pose",
+            POSE,
+            "--method",
+            method,
+            "--cable-model",
+            "catenary",
+            "--json",
+        ]);
+        if v["feasible"] == true {
+            assert!(v["residual"].as_f64().unwrap() < 1e-9, "{method}");
+            let (tb, ta) = (floats(&v["tensions"]), floats(&v["frame_end_tensions"]));
+            for (a, b) in floats(&v["platform_end_tensions"]).iter().zip(&tb) {
+                assert!((a - b).abs() <= 1e-12 * b, "{method}: {a} vs {b}");
+            }
+            assert!(
+                ta.iter().all(|&t| (0.0..=720.0 + 1e-6).contains(&t)),
+                "{method}"
+            );
+            assert_eq!(floats(&v["unstrained_lengths"]).len(), 8);
+        } else {
+            assert!(v["reason"].is_string(), "{method}");
+        }
+    }
+}
+
+#[test]
+fn missing_keys_and_tensions_are_usage_errors() {
+    let fails = |args: &[&str], needle: &str| {
+        let out = cdpr().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{args:?}: {err}");
+    };
+    let r = robot("ipanema-like-8.toml");
+    let p = "0,0,1,0,0,0";
+    fails(
+        &["tension", &r, "--pose", p, "--cable-model", "catenary"],
+        "linear_density",
+    );
+    fails(
+        &["kinematics", &r, "--pose", p, "--cable-model", "elastic"],
+        "--tensions",
+    );
+    fails(
+        &[
+            "kinematics",
+            &r,
+            "--pose",
+            p,
+            "--cable-model",
+            "elastic",
+            "--tensions",
+            "1,2",
+        ],
+        "8 numbers",
+    );
+    fails(
+        &[
+            "tension",
+            &robot("wirecenter-cogiro.toml"),
+            "--pose",
+            POSE,
+            "--cable-model",
+            "catenary",
+        ],
+        "pulleys",
+    );
+    fails(
+        &[
+            "tension",
+            &robot("krut-4.toml"),
+            "--pose",
+            "0,0",
+            "--cable-model",
+            "elastic",
+        ],
+        "axial_stiffness",
+    );
+}
+
+#[test]
+fn trajectory_reports_unstrained_lengths_per_sample() {
+    let r = robot("ipanema-like-8.toml");
+    let v = json(&[
+        "trajectory",
+        &r,
+        "--from",
+        "0,0,1,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0",
+        "--samples",
+        "4",
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert_eq!(v["cable_model"], "elastic");
+    let lengths = v["unstrained_lengths"].as_array().unwrap();
+    assert_eq!(lengths.len(), 4);
+    for (k, l) in lengths.iter().enumerate() {
+        let (l0, t) = (floats(l), floats(&v["platform_end_tensions"][k]));
+        let pose: Vec<String> = floats(&v["poses"][k])
+            .iter()
+            .map(|x| x.to_string())
+            .collect();
+        let kin = json(&["kinematics", &r, "--pose", &pose.join(","), "--json"]);
+        let chord = floats(&kin["lengths"]);
+        for i in 0..8 {
+            assert!(
+                (l0[i] - chord[i] / (1.0 + t[i] / 6e4)).abs() < 1e-12,
+                "sample {k}"
+            );
+        }
+    }
+    // Without the flag, no new fields.
+    let plain = json(&[
+        "trajectory",
+        &r,
+        "--from",
+        "0,0,1,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0",
+        "--samples",
+        "4",
+        "--json",
+    ]);
+    assert!(plain.get("unstrained_lengths").is_none());
+}
