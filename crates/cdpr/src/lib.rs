@@ -25,8 +25,8 @@
 
 pub mod plot;
 
-pub use cdpr_dynamics as dynamics;
 pub use cdpr_calibration as calibration;
+pub use cdpr_dynamics as dynamics;
 pub use cdpr_io as io;
 pub use cdpr_io::{Limits, RobotDescription, RobotFileError};
 pub use cdpr_kinematics as kinematics;

@@ -1,7 +1,7 @@
 //! Shared conventions of the `cdpr` subcommands: argument parsing, robot loading, output.
 
-pub mod calibrate;
 pub mod cable_model;
+pub mod calibrate;
 pub mod capacity;
 pub mod convert;
 pub mod criteria;

@@ -1,8 +1,8 @@
 //! Integration tests of `cdpr`, compiled as one test binary (one link instead of
 //! one per file). Each module is one former `tests/*.rs` file.
 
-mod calibrate_cli;
 mod cable_model_cli;
+mod calibrate_cli;
 mod cli;
 mod common;
 mod convert_cli;
