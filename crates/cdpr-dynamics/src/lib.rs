@@ -53,3 +53,8 @@ pub use inverse_dynamics::{DynamicsProfile, inverse_dynamics};
 pub use nalgebra;
 pub use rigid_body::{RigidBody, euler_rate_matrix, twist_from_euler_rates};
 pub use time_law::{TimeLaw, TimedSample, TimingSettings, Trajectory};
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
