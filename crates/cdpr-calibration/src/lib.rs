@@ -90,3 +90,8 @@ fn check_inputs(
     unknowns.check(robot.motion())?;
     samples.check(robot.cable_count())
 }
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -3,8 +3,9 @@
 //! Cable robots in motion, on top of `cdpr-tension`: the platform's mass matrix M(x) and bias
 //! b(x, ẋ) in twist coordinates ([`RigidBody`]), time laws along paths ([`Trajectory`]), the
 //! inverse dynamics W t + w_ext + w_g = M ẍ + b at every sample ([`inverse_dynamics`]), the
-//! forward dynamics under given tensions or elastic cables (`forward_dynamics`), and the drive
-//! train's motor speeds and torques.
+//! forward dynamics under given tensions or elastic cables (`forward_dynamics`), and the
+//! dynamic feasibility of an acceleration box ([`DynamicFeasibility`]). The drive train (motor
+//! speeds and torques) is not modelled yet.
 //!
 //! Vocabulary: a twist ẋ = [v; ω] (m/s, rad/s, base axes) and its rate ẍ; motion patterns keep
 //! their components (planar: v_x, v_y, ω_z; points: v).
@@ -53,3 +54,8 @@ pub use inverse_dynamics::{DynamicsProfile, inverse_dynamics};
 pub use nalgebra;
 pub use rigid_body::{RigidBody, euler_rate_matrix, twist_from_euler_rates};
 pub use time_law::{TimeLaw, TimedSample, TimingSettings, Trajectory};
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;
