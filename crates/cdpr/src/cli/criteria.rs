@@ -124,7 +124,12 @@ impl CriteriaSetup {
                     .into(),
             );
         }
-        let dynamic = super::dynamic_workspace::setup(args, desc, &specs)?;
+        let dynamic = super::dynamic_workspace::setup(
+            args.acceleration_box.as_ref(),
+            args.velocity.as_ref(),
+            desc,
+            &specs,
+        )?;
         Ok(Self {
             specs,
             method,

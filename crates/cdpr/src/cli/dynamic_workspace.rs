@@ -3,10 +3,11 @@
 //! zonotope of required wrenches (`cdpr_dynamics::DynamicFeasibility`).
 
 use super::CliError;
-use super::criteria::{CriteriaArgs, Spec};
+use super::Numbers;
 use cdpr::RobotDescription;
 use cdpr::dynamics::{DynamicFeasibility, RigidBody};
 use cdpr::workspace::Criterion;
+use cdpr::workspace::CriterionSpec as Spec;
 
 /// What the `dynamic` criterion needs from the command line and the robot file.
 #[derive(Debug, Clone)]
@@ -19,13 +20,14 @@ pub struct DynamicSetup {
 /// Reads --acceleration-box/--velocity when `dynamic` is among the criteria (usage errors
 /// otherwise: a box without the criterion, the criterion without a box, wrong sizes).
 pub fn setup(
-    args: &CriteriaArgs,
+    acceleration_box: Option<&Numbers>,
+    velocity: Option<&Numbers>,
     desc: &RobotDescription,
     specs: &[Spec],
 ) -> Result<Option<DynamicSetup>, CliError> {
     let wanted = specs.contains(&Spec::Dynamic);
     let dof = desc.robot.dof();
-    match (&args.acceleration_box, wanted) {
+    match (acceleration_box, wanted) {
         (None, false) => Ok(None),
         (Some(_), false) => Err("--acceleration-box needs `dynamic` in --criteria".into()),
         (None, true) => Err(
@@ -43,7 +45,7 @@ pub fn setup(
             if let Some(x) = a.iter().find(|x| !(x.is_finite() && **x >= 0.0)) {
                 return Err(format!("--acceleration-box: {x} must be a finite number ≥ 0").into());
             }
-            let velocity = match &args.velocity {
+            let velocity = match velocity {
                 Some(v) if v.len() != dof => {
                     return Err(format!(
                         "--velocity needs {dof} numbers (one per DOF), got {}",

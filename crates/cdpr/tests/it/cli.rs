@@ -459,9 +459,16 @@ fn capacity_force_and_moment_radii() {
 fn inapplicable_methods_exit_2_up_front() {
     let r8 = robot("ipanema-like-8.toml");
     let r4 = robot("tdpm-4.toml");
-    let r2 = "methods that apply: pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, sotda";
-    let r1 =
-        "methods that apply: pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form";
+    let peers = "pott-closed-form, pott-closed-form-ee, puncture, dykstra, l2-mid, vertex-centroid, \
+                 p-norm, optimally-safe";
+    let r2 = format!(
+        "methods that apply: pinv, l1, l1-max, l2, l2-max, linf, improved-closed-form, barycenter, \
+         sotda, {peers}"
+    );
+    let r1 = format!(
+        "methods that apply: pinv, closed-form, l1, l1-max, l2, l2-max, linf, improved-closed-form, \
+         {peers}"
+    );
     let cases: Vec<(Vec<&str>, String)> = vec![
         (
             vec![
