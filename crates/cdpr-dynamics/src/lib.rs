@@ -2,7 +2,7 @@
 //!
 //! Cable robots in motion, on top of `cdpr-tension`: the platform's mass matrix M(x) and bias
 //! b(x, ẋ) in twist coordinates ([`RigidBody`]), time laws along paths ([`Trajectory`]), the
-//! inverse dynamics W t + w_ext + w_g = M ẍ + b at every sample ([`inverse_dynamics`]), the
+//! inverse dynamics W t + w_ext + w_g = M ẍ + b at every sample ([`inverse_dynamics()`]), the
 //! forward dynamics under given tensions or elastic cables (`forward_dynamics`), and the
 //! dynamic feasibility of an acceleration box ([`DynamicFeasibility`]). The drive train (motor
 //! speeds and torques) is not modelled yet.

@@ -2,11 +2,13 @@
 //!
 //! Twist coordinates ẋ = [v_P; ω]: v_P the velocity of the platform origin P, ω the angular
 //! velocity, both in base axes. With c = R c̄ the centre of mass seen from P and
-//! I_P = R I_G Rᵀ − m [c]×[c]× the inertia about P, the equations of motion read
+//! I_P = R I_G Rᵀ − m \[c\]×\[c\]× the inertia about P, the equations of motion read
 //!
 //! M(x) ẍ + b(x, ẋ) = W t + w_ext + w_g,
 //!
+//! ```text
 //! M = [[m 1, −m [c]×], [m [c]×, I_P]],   b = [m ω × (ω × c); ω × (I_P ω)].
+//! ```
 //!
 //! The planar pattern (x, y, φ) keeps the rows and columns (v_x, v_y, ω_z) of these; the point
 //! patterns have M = m 1 and b = 0 (the mass sits on the point).
