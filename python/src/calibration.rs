@@ -6,7 +6,7 @@
 //! of `cdpr calibrate --json`.
 
 use crate::arrays::{FloatArray, shape_string};
-use crate::robot::Robot;
+use crate::model::Robot;
 use crate::value_error;
 use cdpr_calibration::{Calibration, Readings, Samples, Unknowns, calibrate as run_calibration};
 use cdpr_kinematics::Pose;
