@@ -20,9 +20,9 @@
 //! - Miermeister et al. 2016, "The CableRobot Simulator", IEEE ICRA: the motor-torque model of a
 //!   cable winch, τ = (r/G) t + J θ̈.
 
+use crate::DynamicsError;
 use crate::DynamicsProfile;
 use crate::error::bad;
-use crate::DynamicsError;
 
 /// One cable's winch: drum, gear and motor (the robot file's `winch = { … }`).
 #[derive(Debug, Clone, Copy, PartialEq)]

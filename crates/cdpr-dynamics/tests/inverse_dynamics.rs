@@ -220,7 +220,10 @@ fn drive_train_of_a_vertical_lift_matches_the_hand_derivation() {
         }
         checked += 1;
     }
-    assert!(checked >= 10, "only {checked} samples in the acceleration phase");
+    assert!(
+        checked >= 10,
+        "only {checked} samples in the acceleration phase"
+    );
     // Lifting: the motors wind in (ω > 0) and drive (P > 0) while accelerating.
     assert!(d.peak_power[0] > 0.0);
 }

@@ -720,11 +720,9 @@ impl RobotDescription {
                     r.max_speed,
                 )
                 .map_err(|e| match e {
-                    cdpr_dynamics::DynamicsError::BadSetting { key: k, value, why } => ctx.invalid(
-                        w.span(),
-                        key(&k),
-                        format!("{value} {why}"),
-                    ),
+                    cdpr_dynamics::DynamicsError::BadSetting { key: k, value, why } => {
+                        ctx.invalid(w.span(), key(&k), format!("{value} {why}"))
+                    }
                     e => ctx.invalid(w.span(), key("winch"), e.to_string()),
                 })?;
                 winches.push(winch);

@@ -55,7 +55,10 @@ fn bad_winches_name_line_and_key() {
         FULL,
     ]));
     assert_eq!((line, key.as_str()), (10, "cables[2].winch.drum_radius"));
-    assert!(message.contains("-0.05") && message.contains("positive"), "{message}");
+    assert!(
+        message.contains("-0.05") && message.contains("positive"),
+        "{message}"
+    );
     let (_, key, _) = err(&robot([
         "winch = { drum_radius = 0.05, gear_ratio = 10.0, motor_inertia = nan }",
         BARE,
