@@ -224,6 +224,7 @@ impl Robot {
                 cable_names: vec![None; n],
                 inertia: None,
                 home_pose: None,
+                winches: None,
                 passive_springs: None,
                 passive_spring_names: Vec::new(),
                 warnings,

@@ -2,11 +2,14 @@
 //! 5 kg cuboid platform, centre of mass 2 cm off the origin), single thread:
 //! - `inverse_dynamics/l2_10000_samples`: a 10 000-sample quintic trajectory (2 s), ℓ2 tensions
 //!   with the inertial wrench at every sample (target ≤ 10 ms);
+//! - `inverse_dynamics/drive_train_10000_samples`: motor speeds, torques, powers, peaks and RMS
+//!   values of 8 winches along that profile;
 //! - `forward_dynamics/rk4_tension_driven`: RK4 steps under constant tensions (the static
 //!   tensions of the start pose), 1 000 steps of 1 ms per iteration (target ≥ 500 000 steps/s).
 
 use cdpr_dynamics::{
-    Drive, RigidBody, Simulator, State, TimeLaw, TimingSettings, Trajectory, inverse_dynamics,
+    Drive, RigidBody, Simulator, State, TimeLaw, TimingSettings, Trajectory, Winch, drive_train,
+    inverse_dynamics,
 };
 use cdpr_kinematics::reference_robots::ipanema_like_8;
 use cdpr_kinematics::{MotionPattern, Pose};
@@ -65,6 +68,10 @@ fn bench_inverse(c: &mut Criterion) {
                 .unwrap();
             black_box(p.feasible_count())
         })
+    });
+    let winches = [Winch::new(0.05, 10.0, 2e-4, Some(5.0), Some(300.0)).unwrap(); 8];
+    g.bench_function("drive_train_10000_samples", |bench| {
+        bench.iter(|| black_box(drive_train(&winches, &p).unwrap().within_limits))
     });
     g.finish();
 }

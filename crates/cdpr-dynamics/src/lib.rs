@@ -4,8 +4,8 @@
 //! b(x, ẋ) in twist coordinates ([`RigidBody`]), time laws along paths ([`Trajectory`]), the
 //! inverse dynamics W t + w_ext + w_g = M ẍ + b at every sample ([`inverse_dynamics()`]), the
 //! forward dynamics under given tensions or elastic cables (`forward_dynamics`), and the
-//! dynamic feasibility of an acceleration box ([`DynamicFeasibility`]). The drive train (motor
-//! speeds and torques) is not modelled yet.
+//! dynamic feasibility of an acceleration box ([`DynamicFeasibility`]), and the drive train:
+//! motor speeds and torques of the cables' winches ([`drive_train()`]).
 //!
 //! Vocabulary: a twist ẋ = [v; ω] (m/s, rad/s, base axes) and its rate ẍ; motion patterns keep
 //! their components (planar: v_x, v_y, ω_z; points: v).
@@ -40,12 +40,14 @@
 
 mod error;
 
+pub mod drive_train;
 pub mod dynamic_feasibility;
 pub mod forward_dynamics;
 pub mod inverse_dynamics;
 pub mod rigid_body;
 pub mod time_law;
 
+pub use drive_train::{DriveTrainProfile, Winch, drive_train};
 pub use dynamic_feasibility::DynamicFeasibility;
 pub use error::DynamicsError;
 pub use forward_dynamics::{Drive, Integrator, Simulation, Simulator, State};

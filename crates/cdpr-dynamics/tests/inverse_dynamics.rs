@@ -151,3 +151,79 @@ fn cable_rates_are_time_derivatives() {
 fn cable_rates_with_pulleys() {
     check_rates(&ipanema_like_8_pulleys(), TimeLaw::Cubic);
 }
+
+/// The drive train against hand-derived values: a 2 kg point on two cables to (∓1, 1) lifted
+/// straight up from (0, 0) by a trapezoid law. In the acceleration phase ÿ = a, both tensions
+/// are t = m (g + a) l / (2 (1 − y)), and with u = 1 − y, l = √(1 + u²):
+/// l̇ = −u ẏ / l, l̈ = ẏ² / l³ − u a / l, so ω_m = −(G/r) l̇ and τ = (r/G) t − J (G/r) l̈.
+#[test]
+fn drive_train_of_a_vertical_lift_matches_the_hand_derivation() {
+    use cdpr_dynamics::{Winch, drive_train};
+    use nalgebra::Vector2;
+    let robot = Robot::new(
+        MotionPattern::Point2,
+        vec![
+            cdpr_kinematics::Cable::point2(Vector2::new(-1.0, 1.0)),
+            cdpr_kinematics::Cable::point2(Vector2::new(1.0, 1.0)),
+        ],
+    )
+    .unwrap();
+    let (m, g, a) = (2.0, 9.81, 2.0);
+    let body = RigidBody::point_mass(&Platform {
+        mass: m,
+        gravity: Vector3::new(0.0, -g, 0.0),
+        ..Platform::default()
+    })
+    .unwrap();
+    let mut settings = TimingSettings::with_duration(TimeLaw::Trapezoid, 1.0);
+    settings.max_acceleration = Some(a);
+    let path = [Pose::point(0.0, 0.0, 0.0), Pose::point(0.0, 0.4, 0.0)];
+    let traj = Trajectory::new(MotionPattern::Point2, &path, &settings).unwrap();
+    let samples = traj.sample(0.01).unwrap();
+    let bounds = TensionBounds::uniform(2, 0.0, 1000.0).unwrap();
+    let mut solver = TensionSolver::new(Method::L2);
+    let weight = DVector::from_vec(vec![0.0, -m * g]);
+    let profile = inverse_dynamics(
+        &robot,
+        Some(&body),
+        &samples,
+        &bounds,
+        &mut solver,
+        None,
+        |_, _| weight.clone(),
+    )
+    .unwrap();
+    let (r, gear, j) = (0.04, 8.0, 3e-4);
+    let winch = Winch::new(r, gear, j, None, None).unwrap();
+    let d = drive_train(&[winch; 2], &profile).unwrap();
+    let mut checked = 0;
+    for (k, s) in samples.iter().enumerate() {
+        let acc = s.twist_rate[1];
+        if (acc - a).abs() > 1e-9 || s.t == 0.0 {
+            continue; // only the constant-acceleration phase
+        }
+        let (y, vy) = (s.pose.position.y, s.twist[1]);
+        let u = 1.0 - y;
+        let l = (1.0 + u * u).sqrt();
+        let t = m * (g + a) * l / (2.0 * u);
+        let l_dot = -u * vy / l;
+        let l_ddot = vy * vy / l.powi(3) - u * a / l;
+        for i in 0..2 {
+            assert_relative_eq!(d.motor_speeds[2 * k + i], -gear / r * l_dot, epsilon = 1e-9);
+            let tau = r / gear * t - j * gear / r * l_ddot;
+            assert_relative_eq!(d.motor_torques[2 * k + i], tau, epsilon = 1e-9);
+            assert_relative_eq!(
+                d.motor_powers[2 * k + i],
+                tau * (-gear / r * l_dot),
+                epsilon = 1e-8
+            );
+        }
+        checked += 1;
+    }
+    assert!(
+        checked >= 10,
+        "only {checked} samples in the acceleration phase"
+    );
+    // Lifting: the motors wind in (ω > 0) and drive (P > 0) while accelerating.
+    assert!(d.peak_power[0] > 0.0);
+}

@@ -325,6 +325,7 @@ impl RobotDescription {
             cable_names: raw.iter().map(|c| c.name.clone()).collect(),
             inertia: body.inertia,
             home_pose: body.home,
+            winches: None,
             platform_shape: None,
             passive_springs,
             passive_spring_names,

@@ -35,6 +35,10 @@
 //! # or, to fix the zero of the swivel angle too, the rows of the pulley frame Q (third column =
 //! # axis, first column = zero of the swivel angle; orthonormal to 1e-6):
 //! # pulley = { radius = 0.05, orientation = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]] }
+//! # optional drive train (every cable or none): drum radius r (m), gear ratio G (motor turns
+//! # per drum turn), rotor inertia J_m at the motor shaft (kg m²), and optional limits: motor
+//! # torque (N m) and motor speed (rad/s)
+//! winch = { drum_radius = 0.05, gear_ratio = 10.0, motor_inertia = 1.5e-4, max_torque = 3.0, max_speed = 600.0 }
 //! ```
 //!
 //! `axis` has 3 numbers (2 are accepted for 2-D motion patterns, whose pulley axes lie in the
@@ -43,6 +47,7 @@
 //!
 //! Errors name the file, the line and the key. Exact duplicate cables only give a warning.
 
+use cdpr_dynamics::Winch;
 use cdpr_kinematics::{
     Cable, ConvexPolyhedron, KinematicsError, MotionPattern, Pose, Pulley, Robot,
 };
@@ -174,6 +179,9 @@ pub struct RobotDescription {
     /// A reference pose in the motion pattern's coordinates, if the file gives one (CASPR's
     /// `q_initial`, TOML `home_pose`).
     pub home_pose: Option<Vec<f64>>,
+    /// Per-cable winches (drum, gear, motor), if every cable gives `winch`: motor speeds and
+    /// torques along timed trajectories ([`cdpr_dynamics::drive_train()`]).
+    pub winches: Option<Vec<Winch>>,
     /// Passive springs (CASPR's `cable_passive_linear_spring`, TOML `[[passive_springs]]`):
     /// not actuated, their force K (l − l₀) at each pose adds to the external wrench (see
     /// [`RobotDescription::load_wrench`]).
@@ -287,6 +295,17 @@ struct RawCable {
     min: Option<Spanned<f64>>,
     max: Option<Spanned<f64>>,
     pulley: Option<Spanned<RawPulley>>,
+    winch: Option<Spanned<RawWinch>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawWinch {
+    drum_radius: f64,
+    gear_ratio: f64,
+    motor_inertia: f64,
+    max_torque: Option<f64>,
+    max_speed: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -623,6 +642,7 @@ impl RobotDescription {
         let (mut cables, mut mins, mut maxs, mut stiff, mut names) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut density = Vec::new();
+        let mut winches = Vec::new();
         for (i, c) in cables_raw.iter().enumerate() {
             let key = |k: &str| format!("cables[{}].{k}", i + 1);
             let c = c.get_ref();
@@ -690,6 +710,23 @@ impl RobotDescription {
                 }
                 density.push(v);
             }
+            if let Some(w) = &c.winch {
+                let r = w.get_ref();
+                let winch = Winch::new(
+                    r.drum_radius,
+                    r.gear_ratio,
+                    r.motor_inertia,
+                    r.max_torque,
+                    r.max_speed,
+                )
+                .map_err(|e| match e {
+                    cdpr_dynamics::DynamicsError::BadSetting { key: k, value, why } => {
+                        ctx.invalid(w.span(), key(&k), format!("{value} {why}"))
+                    }
+                    e => ctx.invalid(w.span(), key("winch"), e.to_string()),
+                })?;
+                winches.push(winch);
+            }
         }
         let axial_stiffness = match stiff.len() {
             0 => None,
@@ -709,6 +746,17 @@ impl RobotDescription {
                 return Err(ctx.invalid(
                     raw.cables.span(),
                     "cables.linear_density",
+                    "given for some cables but not all",
+                ));
+            }
+        };
+        let winches = match winches.len() {
+            0 => None,
+            n if n == cables.len() => Some(winches),
+            _ => {
+                return Err(ctx.invalid(
+                    raw.cables.span(),
+                    "cables.winch",
                     "given for some cables but not all",
                 ));
             }
@@ -832,6 +880,7 @@ impl RobotDescription {
             cable_names: names,
             inertia,
             home_pose,
+            winches,
             passive_springs,
             passive_spring_names,
             warnings,

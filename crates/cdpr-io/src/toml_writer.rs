@@ -97,6 +97,20 @@ impl RobotDescription {
             if hi[i] != hi[0] {
                 let _ = writeln!(s, "max = {}", num(hi[i]));
             }
+            if let Some(w) = self.winches.as_ref().map(|w| w[i]) {
+                let mut fields = vec![
+                    format!("drum_radius = {}", num(w.drum_radius)),
+                    format!("gear_ratio = {}", num(w.gear_ratio)),
+                    format!("motor_inertia = {}", num(w.motor_inertia)),
+                ];
+                if let Some(v) = w.max_torque {
+                    fields.push(format!("max_torque = {}", num(v)));
+                }
+                if let Some(v) = w.max_speed {
+                    fields.push(format!("max_speed = {}", num(v)));
+                }
+                let _ = writeln!(s, "winch = {{ {} }}", fields.join(", "));
+            }
             if let Some(pulley) = &c.pulley {
                 debug_assert_eq!(motion, MotionPattern::Spatial);
                 let _ = writeln!(

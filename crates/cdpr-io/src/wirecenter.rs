@@ -12,6 +12,7 @@
 //! | `<application min_cable_load max_cable_load>` | tension bounds of every cable |
 //! | `<cable elasticity radius>` | axial stiffness E·S = E π r² (WireLib's `Kinematics.cpp`) |
 //! | `<cable weight>` | linear density ρ (kg/m) of every cable (sagging cables) |
+//! | `<winch>`: `<drum r_drum>`, `<motor gear_ratio inertia angular_velocity>`, `<cable max_velocity>` | every cable's `winch`: drum radius r (m), gear ratio G, motor inertia (kg·m²); max_speed (rad/s) = the smaller of the motor's `angular_velocity` (rpm) and the winch cable's `max_velocity` (m/s) × G/r, where given (> 0); no max_torque (the file has none) |
 //!
 //! WireLib's gravity is 9.81 m/s² along −z; the file has no gravity entry, so a converted robot
 //! states it. Orientation matrices are used as written (some files store 0.707107; they are not
@@ -46,6 +47,50 @@ pub const WIRELIB_DEFAULT_BOUNDS: (f64, f64) = (1.0, 10.0);
 
 /// WireLib's default pulley radius (m) when a `<base>` gives none.
 pub const WIRELIB_DEFAULT_PULLEY_RADIUS: f64 = 0.1;
+
+/// Every cable's winch from the file's `<winch>` (one winch type for all cables), if it has
+/// a `<drum>` with a positive `r_drum` and a `<motor>` with a positive `gear_ratio`.
+fn winches(
+    x: &XmlFile,
+    root: Node,
+    n: usize,
+) -> Result<Option<Vec<cdpr_dynamics::Winch>>, RobotFileError> {
+    let Some(winch) = XmlFile::elements(root).find(|e| e.has_tag_name("winch")) else {
+        return Ok(None);
+    };
+    let child = |tag: &str| XmlFile::elements(winch).find(|e| e.has_tag_name(tag));
+    let (Some(drum), Some(motor)) = (child("drum"), child("motor")) else {
+        return Ok(None);
+    };
+    let (Some(r), Some(gear)) = (
+        x.attr_number(drum, "r_drum")?,
+        x.attr_number(motor, "gear_ratio")?,
+    ) else {
+        return Ok(None);
+    };
+    if r <= 0.0 || gear <= 0.0 {
+        return Ok(None);
+    }
+    let inertia = x.attr_number(motor, "inertia")?.unwrap_or(0.0);
+    let motor_speed = x
+        .attr_number(motor, "angular_velocity")?
+        .filter(|&v| v > 0.0)
+        .map(|rpm| rpm * std::f64::consts::TAU / 60.0);
+    let cable_speed = match child("cable") {
+        Some(c) => x
+            .attr_number(c, "max_velocity")?
+            .filter(|&v| v > 0.0)
+            .map(|v| v * gear / r),
+        None => None,
+    };
+    let max_speed = match (motor_speed, cable_speed) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
+    let w = cdpr_dynamics::Winch::new(r, gear, inertia, None, max_speed)
+        .map_err(|e| x.error(motor, None, e.to_string()))?;
+    Ok(Some(vec![w; n]))
+}
 
 const MATRIX_KEYS: [[&str; 3]; 3] = [
     ["a11", "a12", "a13"],
@@ -301,6 +346,7 @@ impl RobotDescription {
             },
             None => None,
         };
+        let winches = winches(&x, root, n)?;
         let name = robot
             .attribute("name")
             .filter(|s| !s.trim().is_empty())
@@ -322,6 +368,7 @@ impl RobotDescription {
             cable_names: names,
             inertia,
             home_pose: None,
+            winches,
             platform_shape: None,
             passive_springs: None,
             passive_spring_names: Vec::new(),
@@ -479,6 +526,9 @@ impl RobotDescription {
         }
         if self.platform_shape.is_some() {
             out.push("the platform shape is not written".into());
+        }
+        if self.winches.is_some() {
+            out.push("the winches (drum, gear, motor) are not written".into());
         }
         let g = if self.robot.motion().space_dim() == 3 {
             Vector3::new(0.0, 0.0, -WIRELIB_GRAVITY)

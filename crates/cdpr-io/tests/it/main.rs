@@ -7,3 +7,4 @@ mod platform_shape;
 mod pulley_keys;
 mod pulley_reference;
 mod readers;
+mod winch;

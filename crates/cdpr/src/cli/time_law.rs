@@ -6,11 +6,17 @@
 //! M ẍ + b (`cdpr_dynamics::inverse_dynamics`). JSON adds `t` (s), `velocity`, `acceleration`
 //! (DOF numbers per sample: the twist [v (m/s); ω (rad/s)] and its rate), `cable_lengths` (m),
 //! `cable_speeds` (l̇ = −Wᵀẋ, m/s), `cable_accelerations` (m/s²) and, with --dynamics,
-//! `inertial_wrench` (M ẍ + b, N and N·m).
+//! `inertial_wrench` (M ẍ + b, N and N·m). With a `winch` on every cable of the robot file, the
+//! drive train (`cdpr_dynamics::drive_train`): `motor_speeds` (rad/s), `motor_torques` (N·m, null
+//! where infeasible), `motor_powers` (W), per motor `motor_peak_speed`, `motor_rms_speed`,
+//! `motor_peak_torque`, `motor_rms_torque`, `motor_peak_power`, the limits `motor_max_torque`,
+//! `motor_max_speed`, `peak_total_power` (W) and the verdict `motors_within_limits` (true,
+//! false, or null when unknown) with `motor_limit_violations`.
 
 use super::CliError;
 use cdpr::dynamics::{
-    DynamicsProfile, RigidBody, TimeLaw, TimedSample, TimingSettings, Trajectory, inverse_dynamics,
+    DriveTrainProfile, DynamicsProfile, RigidBody, TimeLaw, TimedSample, TimingSettings,
+    Trajectory, drive_train, inverse_dynamics,
 };
 use cdpr::kinematics::Pose;
 use cdpr::plot::{LinePlot, Series};
@@ -48,6 +54,18 @@ pub struct TimingArgs {
     /// and `inertia` for planar and spatial platforms).
     #[arg(long, requires = "time_law")]
     pub dynamics: bool,
+    /// Motor torques against time (N·m, one line per motor, dashed ±max_torque): needs a
+    /// `winch` on every cable of the robot file.
+    #[arg(long, value_name = "FILE", requires = "time_law")]
+    pub motor_torque_plot: Option<std::path::PathBuf>,
+    /// Cable speeds l̇ against time (m/s, one line per cable; with winches, dashed ± the cable
+    /// speed of max_speed, r/G · max_speed).
+    #[arg(long, value_name = "FILE", requires = "time_law")]
+    pub cable_speed_plot: Option<std::path::PathBuf>,
+    /// A self-contained HTML page replaying the trajectory: platform and cables moving, cables
+    /// coloured by tension, play button and time slider.
+    #[arg(long, value_name = "FILE.html", requires = "time_law")]
+    pub replay: Option<std::path::PathBuf>,
 }
 
 fn parse_law(s: &str) -> Result<TimeLaw, String> {
@@ -125,6 +143,12 @@ pub fn run(args: &TimingArgs, req: TimedRequest) -> Result<(), CliError> {
         return Err("give either --duration or a `time` on every waypoint, not both".into());
     }
     let robot = req.robot;
+    if args.motor_torque_plot.is_some() && robot.winches.is_none() {
+        return Err(
+            "--motor-torque-plot needs the drive train: `winch = { drum_radius, gear_ratio, motor_inertia }` on every cable of the robot file"
+                .into(),
+        );
+    }
     let motion = robot.robot.motion();
     let settings = TimingSettings {
         law,
@@ -172,11 +196,26 @@ pub fn run(args: &TimingArgs, req: TimedRequest) -> Result<(), CliError> {
                     .expect("checked at every sample above")
         },
     )?;
+    let drive = match &robot.winches {
+        Some(w) => Some(drive_train(w, &profile)?),
+        None => None,
+    };
     if let Some(file) = req.plot {
         cdpr::plot::save(
             &tension_plot(robot, law, req.method, args.dynamics, &profile),
             file,
         )?;
+    }
+    if let (Some(file), Some(d)) = (&args.motor_torque_plot, &drive) {
+        cdpr::plot::save(&motor_torque_plot(robot, law, &profile, d), file)?;
+    }
+    if let Some(file) = &args.cable_speed_plot {
+        cdpr::plot::save(&cable_speed_plot(robot, law, &profile), file)?;
+    }
+    if let Some(file) = &args.replay {
+        let replay = replay(robot, law, req.method, &samples, &profile);
+        cdpr::plot::replay::save_html(&replay, file)
+            .map_err(|e| format!("{}: cannot write: {e}", file.display()))?;
     }
     let n = robot.robot.cable_count();
     let dof = motion.dof();
@@ -208,10 +247,67 @@ pub fn run(args: &TimingArgs, req: TimedRequest) -> Result<(), CliError> {
         if args.dynamics {
             out["inertial_wrench"] = json!(rows(&profile.inertial_wrench, dof));
         }
+        if let (Some(d), Some(w)) = (&drive, &robot.winches) {
+            let nullable = |flat: &[f64]| -> Vec<Option<Vec<f64>>> {
+                flat.chunks(n)
+                    .map(|c| c.iter().all(|v| v.is_finite()).then(|| c.to_vec()))
+                    .collect()
+            };
+            let finite = |v: &[f64]| -> Vec<Option<f64>> {
+                v.iter().map(|x| x.is_finite().then_some(*x)).collect()
+            };
+            out["motor_speeds"] = json!(rows(&d.motor_speeds, n));
+            out["motor_torques"] = json!(nullable(&d.motor_torques));
+            out["motor_powers"] = json!(nullable(&d.motor_powers));
+            out["motor_peak_speed"] = json!(d.peak_speed);
+            out["motor_rms_speed"] = json!(d.rms_speed);
+            out["motor_peak_torque"] = json!(d.peak_torque);
+            out["motor_rms_torque"] = json!(d.rms_torque);
+            out["motor_peak_power"] = json!(finite(&d.peak_power));
+            out["peak_total_power"] =
+                json!(d.peak_total_power.is_finite().then_some(d.peak_total_power));
+            out["motor_max_torque"] = json!(w.iter().map(|w| w.max_torque).collect::<Vec<_>>());
+            out["motor_max_speed"] = json!(w.iter().map(|w| w.max_speed).collect::<Vec<_>>());
+            out["motors_within_limits"] = json!(d.within_limits);
+            out["motor_limit_violations"] = json!(d.violations);
+        }
         super::print_json(&out)
     } else {
         print_table(robot, law, req.method, args.dynamics, &profile);
+        if let Some(d) = &drive {
+            print_drive_train(d);
+        }
         Ok(())
+    }
+}
+
+/// Peaks, RMS values and the verdict of the drive train.
+fn print_drive_train(d: &DriveTrainProfile) {
+    let cells = |v: &[f64]| -> String {
+        v.iter()
+            .map(|x| format!("{x:>10.4}"))
+            .collect::<Vec<_>>()
+            .join(" ")
+    };
+    println!("drive train (motor i winds cable i in for ω, τ > 0)");
+    println!("{:>9}  {}  (rad/s)", "peak |ω|", cells(&d.peak_speed));
+    println!("{:>9}  {}  (rad/s)", "RMS ω", cells(&d.rms_speed));
+    println!("{:>9}  {}  (N·m)", "peak |τ|", cells(&d.peak_torque));
+    let rms: Vec<f64> = d.rms_torque.iter().map(|v| v.unwrap_or(f64::NAN)).collect();
+    println!("{:>9}  {}  (N·m)", "RMS τ", cells(&rms));
+    println!("{:>9}  {}  (W)", "peak P", cells(&d.peak_power));
+    println!("peak total power Σ τ ω: {:.4} W", d.peak_total_power);
+    match d.within_limits {
+        Some(true) => println!("the motors can do it: every torque and speed within its limits"),
+        Some(false) => {
+            println!("the motors cannot do it:");
+            for v in &d.violations {
+                println!("  {v}");
+            }
+        }
+        None => println!(
+            "limits not checked (no max_torque/max_speed given, or infeasible samples leave the torque unknown)"
+        ),
     }
 }
 
@@ -322,5 +418,147 @@ fn tension_plot(
         series,
         reference_lines,
         gap_label: Some("infeasible samples".into()),
+    }
+}
+
+/// Dashed ± lines at a limit shared by every motor (none when the limits differ or are absent).
+fn limit_lines(limits: &[Option<f64>], name: &str, unit: &str) -> Vec<(f64, String)> {
+    match limits.first().copied().flatten() {
+        Some(v) if limits.iter().all(|l| *l == Some(v)) => vec![
+            (v, format!("+{name} = {} {unit}", cdpr::plot::tick(v))),
+            (-v, format!("−{name} = {} {unit}", cdpr::plot::tick(v))),
+        ],
+        _ => Vec::new(),
+    }
+}
+
+/// Motor torques against time, one line per motor, dashed ±max_torque, gaps where infeasible.
+fn motor_torque_plot(
+    robot: &cdpr::RobotDescription,
+    law: TimeLaw,
+    profile: &DynamicsProfile,
+    d: &DriveTrainProfile,
+) -> LinePlot {
+    let n = d.motors;
+    let series = (0..n)
+        .map(|i| Series {
+            label: format!("τ{}", i + 1),
+            points: profile
+                .t
+                .iter()
+                .enumerate()
+                .map(|(k, &t)| (t, d.motor_torques[k * n + i]))
+                .collect(),
+        })
+        .collect();
+    let limits: Vec<Option<f64>> = robot
+        .winches
+        .iter()
+        .flatten()
+        .map(|w| w.max_torque)
+        .collect();
+    LinePlot {
+        title: format!(
+            "{}: motor torques against time ({law} law; τ = (r/G) t − J_m (G/r) l̈, > 0 winds in)",
+            robot.name
+        ),
+        labels: ("time t (s)".into(), "motor torque τ (N·m)".into()),
+        series,
+        reference_lines: limit_lines(&limits, "max_torque", "N·m"),
+        gap_label: Some("infeasible samples".into()),
+    }
+}
+
+/// Cable speeds l̇ against time, one line per cable; with winches of one max_speed, dashed ±
+/// the cable speed it allows (r/G · max_speed).
+fn cable_speed_plot(
+    robot: &cdpr::RobotDescription,
+    law: TimeLaw,
+    profile: &DynamicsProfile,
+) -> LinePlot {
+    let n = profile.cables;
+    let series = (0..n)
+        .map(|i| Series {
+            label: format!("l̇{}", i + 1),
+            points: profile
+                .t
+                .iter()
+                .enumerate()
+                .map(|(k, &t)| (t, profile.cable_speeds[k * n + i]))
+                .collect(),
+        })
+        .collect();
+    let limits: Vec<Option<f64>> = robot
+        .winches
+        .iter()
+        .flatten()
+        .map(|w| w.max_speed.map(|s| s * w.drum_radius / w.gear_ratio))
+        .collect();
+    LinePlot {
+        title: format!(
+            "{}: cable speeds against time ({law} law; l̇ = −Wᵀẋ, > 0 pays out)",
+            robot.name
+        ),
+        labels: ("time t (s)".into(), "cable speed l̇ (m/s)".into()),
+        series,
+        reference_lines: limit_lines(&limits, "max cable speed", "m/s"),
+        gap_label: None,
+    }
+}
+
+/// The replay page's data: anchors, attachments, poses and tensions at every sample.
+fn replay(
+    robot: &cdpr::RobotDescription,
+    law: TimeLaw,
+    method: &str,
+    samples: &[TimedSample],
+    profile: &DynamicsProfile,
+) -> cdpr::plot::Replay {
+    let triple = |v: &nalgebra::Vector3<f64>| [v.x, v.y, v.z];
+    let cables = robot.robot.cables();
+    let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
+    let t_min = lo.iter().cloned().fold(f64::INFINITY, f64::min);
+    let finite_max = hi
+        .iter()
+        .cloned()
+        .filter(|v| v.is_finite())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let t_max = if finite_max.is_finite() {
+        finite_max
+    } else {
+        // No finite upper bound: scale to the largest tension met.
+        profile
+            .tensions
+            .iter()
+            .flatten()
+            .flat_map(|t| t.iter().cloned())
+            .fold(t_min, f64::max)
+    };
+    cdpr::plot::Replay {
+        title: format!(
+            "{}: {law} trajectory, {method} tensions, {:.3} s",
+            robot.name,
+            profile.t.last().copied().unwrap_or(0.0)
+        ),
+        anchors: cables.iter().map(|c| triple(&c.frame)).collect(),
+        attachments: cables.iter().map(|c| triple(&c.platform)).collect(),
+        t: profile.t.clone(),
+        positions: samples.iter().map(|s| triple(&s.pose.position)).collect(),
+        rotations: samples
+            .iter()
+            .map(|s| {
+                let m = s.pose.rotation.matrix();
+                [0, 1, 2].map(|r| [m[(r, 0)], m[(r, 1)], m[(r, 2)]])
+            })
+            .collect(),
+        tensions: profile
+            .tensions
+            .iter()
+            .map(|t| t.as_ref().map(|t| t.as_slice().to_vec()))
+            .collect(),
+        reasons: profile.reasons.clone(),
+        t_min,
+        t_max,
+        planar: robot.robot.motion().space_dim() == 2,
     }
 }

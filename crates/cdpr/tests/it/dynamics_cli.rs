@@ -245,3 +245,163 @@ fn dynamic_workspace_closed_form() {
     }
     assert!(checked > 300);
 }
+
+/// The 8-cable robot with a winch on every cable (r = 0.05 m, G = 10, J_m = 2e-4 kg·m²).
+fn robot_with_winches(dir: &std::path::Path, max_torque: f64) -> String {
+    let text = std::fs::read_to_string(robot("ipanema-like-8.toml")).unwrap();
+    let winch = format!(
+        "axial_stiffness = 60000.0\nwinch = {{ drum_radius = 0.05, gear_ratio = 10.0, motor_inertia = 2e-4, max_torque = {max_torque}, max_speed = 300.0 }}"
+    );
+    let text = text.replace("axial_stiffness = 60000.0", &winch);
+    assert_eq!(text.matches("winch = ").count(), 8);
+    let file = dir.join(format!("winches-{max_torque}.toml"));
+    std::fs::write(&file, text).unwrap();
+    file.display().to_string()
+}
+
+/// The drive-train fields: τ = (r/G) t − J_m (G/r) l̈ and ω = −(G/r) l̇ against the JSON's own
+/// tensions and cable rates, the peak, and the verdict against max_torque.
+#[test]
+fn timed_trajectory_motor_torques_and_speeds() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = |file: &str| -> Vec<String> {
+        [
+            "trajectory",
+            file,
+            "--from",
+            "-0.3,0,0.8,0,0,0",
+            "--to",
+            "0.3,0.2,1.2,0,0,0.1",
+            "--time-law",
+            "quintic",
+            "--duration",
+            "1",
+            "--dt",
+            "0.05",
+            "--dynamics",
+            "--json",
+        ]
+        .map(String::from)
+        .to_vec()
+    };
+    let file = robot_with_winches(dir.path(), 100.0);
+    let a = args(&file);
+    let v = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let (r, g, j) = (0.05, 10.0, 2e-4);
+    let samples = v["t"].as_array().unwrap().len();
+    assert_eq!(samples, 21);
+    let mut peak = [0.0f64; 8];
+    for k in 0..samples {
+        let t = floats(&v["tensions"][k]);
+        let l_dot = floats(&v["cable_speeds"][k]);
+        let l_dd = floats(&v["cable_accelerations"][k]);
+        let tau = floats(&v["motor_torques"][k]);
+        let omega = floats(&v["motor_speeds"][k]);
+        for i in 0..8 {
+            let expected = r / g * t[i] - j * g / r * l_dd[i];
+            assert!((tau[i] - expected).abs() < 1e-9, "k {k} cable {i}");
+            assert!((omega[i] + g / r * l_dot[i]).abs() < 1e-9);
+            peak[i] = peak[i].max(tau[i].abs());
+        }
+    }
+    let reported = floats(&v["motor_peak_torque"]);
+    for i in 0..8 {
+        assert!((reported[i] - peak[i]).abs() < 1e-12);
+    }
+    assert_eq!(v["motors_within_limits"], true);
+    assert_eq!(floats(&v["motor_max_torque"]), [100.0; 8]);
+    // A torque limit below the peak: the verdict is no, naming the motor.
+    let lowest = peak.iter().cloned().fold(f64::INFINITY, f64::min);
+    let tight = robot_with_winches(dir.path(), 0.5 * lowest);
+    let a = args(&tight);
+    let v = json(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(v["motors_within_limits"], false);
+    let violations = v["motor_limit_violations"].as_array().unwrap();
+    assert_eq!(violations.len(), 8, "{violations:?}");
+    assert!(
+        violations[0]
+            .as_str()
+            .unwrap()
+            .starts_with("motor 1: |τ| = ")
+    );
+    // The plots are written; without winches the torque plot is a usage error.
+    let torque = dir.path().join("torques.png");
+    let speed = dir.path().join("speeds.png");
+    let mut a = args(&file);
+    a.pop();
+    a.extend([
+        "--motor-torque-plot".into(),
+        torque.display().to_string(),
+        "--cable-speed-plot".into(),
+        speed.display().to_string(),
+    ]);
+    let out = cdpr().args(&a).output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("the motors can do it"), "{text}");
+    assert!(std::fs::metadata(&torque).unwrap().len() > 1000);
+    assert!(std::fs::metadata(&speed).unwrap().len() > 1000);
+    let plain = robot("ipanema-like-8.toml");
+    let mut a = args(&plain);
+    a.extend(["--motor-torque-plot".into(), torque.display().to_string()]);
+    let out = cdpr().args(&a).output().unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("winch"));
+}
+
+/// `--replay FILE.html`: a self-contained page with every sample's pose and tensions, which
+/// draws without a script error in a headless browser (where one is installed).
+#[test]
+fn timed_trajectory_replay_page() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("replay.html");
+    let r = robot("ipanema-like-8.toml");
+    let out = cdpr()
+        .args([
+            "trajectory",
+            &r,
+            "--from",
+            "-0.3,0,0.8,0,0,0",
+            "--to",
+            "0.3,0.2,1.2,0,0,0.1",
+            "--time-law",
+            "quintic",
+            "--duration",
+            "1",
+            "--dt",
+            "0.1",
+            "--dynamics",
+            "--replay",
+            page.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    for network in ["src=\"http", "href=\"http", "<link", "fetch("] {
+        assert!(!html.contains(network), "{network}");
+    }
+    assert!(html.contains("\"t\":[0.0,0.1,"), "times");
+    assert!(html.contains("\"tMax\":1000.0"));
+    let Some(b) = crate::viewer::browser() else {
+        println!("note: no Chromium found (set CDPR_CHROMIUM): the replay page was not loaded");
+        return;
+    };
+    let dom = crate::viewer::dump_dom(&b, &page);
+    assert!(
+        dom.contains("data-state=\"ok\">replayed 11 frames of 8 cables"),
+        "{}",
+        dom.lines()
+            .filter(|l| l.contains("cdpr-status"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}

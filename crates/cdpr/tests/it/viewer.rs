@@ -52,7 +52,7 @@ fn octahedron() -> Scene {
 
 /// A browser to test with: $CDPR_CHROMIUM, or chromium / chromium-browser / google-chrome on
 /// the PATH.
-fn browser() -> Option<String> {
+pub(crate) fn browser() -> Option<String> {
     if let Ok(b) = std::env::var("CDPR_CHROMIUM") {
         return Some(b);
     }
@@ -68,7 +68,7 @@ fn browser() -> Option<String> {
 }
 
 /// Loads `page` headless and returns the DOM after the scripts ran.
-fn dump_dom(browser: &str, page: &Path) -> String {
+pub(crate) fn dump_dom(browser: &str, page: &Path) -> String {
     let profile = tempfile::tempdir().unwrap();
     let out = Command::new(browser)
         .args([
