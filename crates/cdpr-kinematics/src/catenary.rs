@@ -346,6 +346,19 @@ impl ElasticCatenary {
         z: f64,
         l0: f64,
     ) -> Result<CatenarySolution, CatenaryError> {
+        self.solve_for_length_from(x, z, l0, None)
+    }
+
+    /// [`ElasticCatenary::solve_for_length`] started from the end force `start` = (F_x, F_z)
+    /// (N, F_x > 0) when given: a nearby solution (the previous iterate of an outer loop) makes
+    /// Newton's method converge in one or two steps. The solution is the same (unique).
+    pub fn solve_for_length_from(
+        &self,
+        x: f64,
+        z: f64,
+        l0: f64,
+        start: Option<(f64, f64)>,
+    ) -> Result<CatenarySolution, CatenaryError> {
         let chord = Self::check_span(x, z)?;
         if !(l0.is_finite() && l0 > 0.0) {
             return Err(CatenaryError::InvalidInput {
@@ -385,11 +398,12 @@ impl ElasticCatenary {
             (3.0 * ((l0 * l0 - z * z) / (x * x) - 1.0)).sqrt().max(0.2)
         };
         let fx_catenary = w * x / (2.0 * lambda);
-        let mut fx = (t_elastic * x / chord).max(fx_catenary);
-        let mut fz = if t_elastic * x / chord >= fx_catenary {
-            t_elastic * z / chord + 0.5 * w * l0
-        } else {
-            0.5 * w * (l0 + z / lambda.tanh())
+        let (mut fx, mut fz) = match start {
+            Some((fx, fz)) if fx > 0.0 && fx.is_finite() && fz.is_finite() => (fx, fz),
+            _ if t_elastic * x / chord >= fx_catenary => {
+                (t_elastic * x / chord, t_elastic * z / chord + 0.5 * w * l0)
+            }
+            _ => (fx_catenary, 0.5 * w * (l0 + z / lambda.tanh())),
         };
         let tol = Self::tolerance(chord);
         let target = Vector2::new(x, z);
@@ -810,7 +824,7 @@ impl SaggingCable {
         Ok(Self::from_solution(model, &sol, x, z, &horizontal, up))
     }
 
-    fn from_solution(
+    pub(crate) fn from_solution(
         model: &ElasticCatenary,
         sol: &CatenarySolution,
         x: f64,

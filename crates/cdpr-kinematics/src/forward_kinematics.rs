@@ -770,7 +770,7 @@ fn smallest_eigenvalue<const D: usize>(a: &Square<D>) -> f64 {
 
 /// x ⊕ δ: the pose moved by the twist δ of the motion pattern (position first, then the
 /// rotation vector in base coordinates, applied on the left as in the Jacobian).
-fn displaced(motion: MotionPattern, pose: &Pose, delta: &[f64]) -> Pose {
+pub(crate) fn displaced(motion: MotionPattern, pose: &Pose, delta: &[f64]) -> Pose {
     let (dp, dphi) = match motion {
         MotionPattern::Point2 => (Vector3::new(delta[0], delta[1], 0.0), None),
         MotionPattern::Planar => (

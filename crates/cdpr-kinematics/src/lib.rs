@@ -37,6 +37,8 @@
 //! Real cables sag and stretch: [`ElasticCatenary`] (module [`catenary`], Irvine 1981) gives a
 //! heavy elastic cable's unstrained length and end forces from its span and tension, and
 //! [`SaggingCable`] places it between a frame point and a platform attachment in space.
+//! [`ElastoGeometricForward`] goes back from the unstrained lengths the winches paid out to the
+//! platform's equilibrium pose and its tensions.
 //!
 //! Enable the `proptest` feature for the `strategies` module (proptest strategies for robots
 //! and poses) that every crate of the stack tests with.
@@ -44,6 +46,7 @@
 mod batch;
 mod cable_state;
 pub mod catenary;
+mod elasto_geometric;
 mod error;
 mod forward_kinematics;
 pub mod interference;
@@ -62,6 +65,9 @@ mod structure_matrix;
 pub use cable_state::{CableState, PulleyState};
 pub use catenary::{
     CableModel, CatenaryError, CatenarySolution, ElasticCatenary, RobotCatenaries, SaggingCable,
+};
+pub use elasto_geometric::{
+    ElastoGeometricForward, ElastoGeometricSettings, ElastoGeometricSolution, ElastoGeometricStatus,
 };
 pub use error::KinematicsError;
 pub use forward_kinematics::{
