@@ -16,6 +16,8 @@
 //! - `soak [--problems N] [--json]`: every tension method on N random problems, every answer
 //!   checked independently (compensated residual, an LP solved with Clarabel directly); exit
 //!   code 1 on a false answer of a complete method (see `xtask/src/soak.rs`);
+//! - `schema`: the JSON Schema of every request and report of `cdpr-api`, written to
+//!   `docs/schema/` (see `xtask/src/schema.rs`; a test of `cdpr-api` checks the files);
 //! - `loops [--tests]`: the files of the tree that import each other in a loop; exit code 1 if there is one
 //!   (see `xtask/src/loops.rs`; its test runs the check under `cargo test`).
 
@@ -24,12 +26,13 @@ mod fuzz;
 mod gallery;
 mod loops;
 mod reproduce;
+mod schema;
 mod soak;
 
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | loops> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | loops | schema> [options]   (`cargo xtask <command> --help`)";
 
 const REPRODUCE_HELP: &str = "cargo xtask reproduce: regenerates the reproduction of the thesis chapter on \
 planar tendon-driven manipulators (Tables 6.5-6.10), Krut, Company & Pierrot 2004 and Picard, Caro, \
@@ -94,6 +97,13 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(root, &args[1..]),
         Some("fuzz") => fuzz::run(root, &args[1..]),
         Some("soak") => soak::run(&args[1..]),
+        Some("schema") => match schema::run(root) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Some("loops") => match loops::run(root, &args[1..]) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

@@ -16,6 +16,7 @@
 //! | [`StiffnessRequest`] | [`StiffnessReport`] | stiffness K = Kp + Ka |
 //! | [`CapacityRequest`] | [`CapacityReport`] | capacity margin of a required wrench set |
 //! | [`IsotropicRequest`] | [`IsotropicReport`] | isotropic force, force polytope, ellipse |
+//! | [`IsotropicMapRequest`] | [`IsotropicMapReport`] | isotropic force over a grid |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -44,6 +45,7 @@ mod error;
 mod forward;
 pub mod inputs;
 mod isotropic;
+mod isotropic_map;
 mod kinematics;
 mod robot;
 pub mod schema;
@@ -54,6 +56,9 @@ pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport}
 pub use error::ApiError;
 pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
 pub use isotropic::{EllipseReport, IsotropicReport, IsotropicRequest, definition};
+pub use isotropic_map::{
+    IsotropicMapReport, IsotropicMapRequest, MapGridReport, MapStatsReport, SliceReport,
+};
 pub use kinematics::{
     KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
 };

@@ -30,6 +30,8 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<CapacityReport>("capacity", "report"),
         entry::<IsotropicRequest>("isotropic", "request"),
         entry::<IsotropicReport>("isotropic", "report"),
+        entry::<IsotropicMapRequest>("isotropic-map", "request"),
+        entry::<IsotropicMapReport>("isotropic-map", "report"),
     ]
 }
 

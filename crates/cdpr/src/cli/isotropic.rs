@@ -1,18 +1,14 @@
 //! `cdpr isotropic`: the maximum isotropic force (Krut, Company & Pierrot 2004, §IV) at a pose, or its map.
 
-use super::{
-    CliError, Numbers, external_wrench, load_robot, num, pose_text, print_json, print_report,
-    wrench_text,
-};
+use super::{CliError, Numbers, load_robot, num, pose_text, print_report, wrench_text};
 use cdpr::RobotDescription;
-use cdpr::api::{IsotropicReport, IsotropicRequest, Robot};
-use cdpr::kinematics::{MotionPattern, Pose};
+use cdpr::api::{
+    IsotropicMapReport, IsotropicMapRequest, IsotropicReport, IsotropicRequest, Robot,
+};
+use cdpr::kinematics::MotionPattern;
 use cdpr::plot::{ForcePolygonPlot, HeatMap};
-use cdpr::polytope::{IsotropicForce, largest_inscribed_ellipse};
+use cdpr::polytope::largest_inscribed_ellipse;
 use indicatif::ProgressBar;
-use nalgebra::{DVector, Vector3};
-use rayon::prelude::*;
-use serde_json::json;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -214,179 +210,62 @@ fn print_pose_text(r: &IsotropicReport, motion: MotionPattern, args: &Args) {
     }
 }
 
-/// The pose at grid point (x, y).
-fn grid_pose(motion: MotionPattern, x: f64, y: f64, z: f64, phi: f64) -> Pose {
-    match motion {
-        MotionPattern::Point2 => Pose::point(x, y, 0.0),
-        MotionPattern::Planar => Pose::planar(x, y, phi),
-        MotionPattern::Point3 => Pose::point(x, y, z),
-        MotionPattern::Spatial => Pose::spatial(Vector3::new(x, y, z), 0.0, 0.0, phi),
-    }
-}
-
 fn run_grid(args: &Args, robot: &RobotDescription, m: usize) -> Result<(), CliError> {
-    if !(1..=2000).contains(&m) {
-        return Err("--grid M must lie in [1, 2000]".into());
-    }
-    let map = IsotropicMap::compute(args, robot, m)?;
-    let stats = MapStats::of(&map);
+    let request = IsotropicMapRequest {
+        robot: Robot::from_description(robot.clone()),
+        grid: m,
+        area: args.area.as_ref().map(|b| b.0.clone()),
+        orientation: args.orientation,
+        wrench: args.wrench.as_ref().map(|w| w.0.clone()),
+        z: args.z,
+    };
+    request.validate()?;
+    let bar = if std::io::stderr().is_terminal() {
+        ProgressBar::new(m as u64 + 1)
+    } else {
+        ProgressBar::hidden()
+    };
+    let map = request.run_with_progress(&|| bar.inc(1))?;
+    bar.finish_and_clear();
     if let Some(path) = &args.plot {
-        save_heat_map(robot, &map, &stats, path)?;
+        save_heat_map(robot, &map, path)?;
     }
     if args.json {
-        return print_json(&map_json(robot, &map, &stats));
+        return print_report(&map);
     }
-    print_map(args, robot, &map, &stats);
+    print_map(args, robot.robot.motion(), &map);
     if let Some(p) = &args.plot {
         println!("heat map written to {}", p.display());
     }
     Ok(())
 }
 
-/// The index over a grid of the box `[x0, x1] × [y0, y1]` at height `z` (3-D robots).
-struct IsotropicMap {
-    motion: MotionPattern,
-    x: (f64, f64),
-    y: (f64, f64),
-    z: f64,
-    orientation: f64,
-    /// Points per axis (M + 1).
-    k: usize,
-    xs: Vec<f64>,
-    ys: Vec<f64>,
-    /// Row-major (y then x); NaN where the index is undefined.
-    values: Vec<f64>,
-    w_ext: DVector<f64>,
-    template: IsotropicForce,
+/// The map's values row-major, NaN where undefined.
+fn map_values(map: &IsotropicMapReport) -> Vec<f64> {
+    let values = map.grid.values.iter().flatten();
+    values.map(|v| v.unwrap_or(f64::NAN)).collect()
 }
 
-impl IsotropicMap {
-    /// Reads the box, height and load, then maps the index in parallel (one evaluator per
-    /// worker; a pose where the index is undefined, a cable of zero length or a singular W, is
-    /// NaN: null in JSON, white in the plot).
-    fn compute(args: &Args, robot: &RobotDescription, m: usize) -> Result<Self, CliError> {
-        let motion = robot.robot.motion();
-        let (lo, hi) = robot.robot.frame_bounding_box();
-        let (x0, x1, y0, y1) = match &args.area {
-            Some(b) if b.len() == 4 => (b[0], b[1], b[2], b[3]),
-            Some(b) => return Err(format!("--box needs 4 numbers, got {}", b.len()).into()),
-            None => (lo.x, hi.x, lo.y, hi.y),
-        };
-        if !(x0 < x1 && y0 < y1 && [x0, x1, y0, y1].iter().all(|v| v.is_finite())) {
-            return Err(
-                format!("the grid box [{x0}, {x1}] × [{y0}, {y1}] is empty or not finite").into(),
-            );
-        }
-        let z = args.z.unwrap_or(0.5 * (lo.z + hi.z));
-        if !z.is_finite() || !args.orientation.is_finite() {
-            return Err("--z and --orientation must be finite".into());
-        }
-        let k = m + 1;
-        let axis = |a: f64, b: f64| -> Vec<f64> {
-            (0..k).map(|i| a + (b - a) * i as f64 / m as f64).collect()
-        };
-        let (xs, ys) = (axis(x0, x1), axis(y0, y1));
-        let slice_pose = grid_pose(motion, x0, y0, z, args.orientation);
-        let w_ext = external_wrench(robot, &slice_pose, args.wrench.as_deref())?;
-        let template =
-            IsotropicForce::new(&robot.robot, &robot.bounds)?.with_load(w_ext.as_slice())?;
-        let bar = if std::io::stderr().is_terminal() {
-            ProgressBar::new(k as u64)
-        } else {
-            ProgressBar::hidden()
-        };
-        let rows: Vec<Vec<f64>> = ys
-            .par_iter()
-            .map_init(
-                || template.clone(),
-                |index, &y| {
-                    let row = xs
-                        .iter()
-                        .map(|&x| {
-                            index
-                                .force_at_pose(&grid_pose(motion, x, y, z, args.orientation))
-                                .unwrap_or(f64::NAN)
-                        })
-                        .collect();
-                    bar.inc(1);
-                    row
-                },
-            )
-            .collect();
-        bar.finish_and_clear();
-        Ok(Self {
-            motion,
-            x: (x0, x1),
-            y: (y0, y1),
-            z,
-            orientation: args.orientation,
-            k,
-            xs,
-            ys,
-            values: rows.concat(),
-            w_ext,
-            template,
-        })
-    }
-}
-
-/// What the text, JSON and plot report of a map.
-struct MapStats {
-    vmin: f64,
-    vmax: f64,
-    argmax: Option<[f64; 2]>,
-    positive: usize,
-    undefined: usize,
-    /// The index at the centre of the box.
-    centre: Option<f64>,
-}
-
-impl MapStats {
-    fn of(map: &IsotropicMap) -> Self {
-        let defined: Vec<(usize, f64)> = map
-            .values
-            .iter()
-            .copied()
-            .enumerate()
-            .filter(|(_, v)| !v.is_nan())
-            .collect();
-        let (amax, vmax) = defined
-            .iter()
-            .copied()
-            .fold((usize::MAX, f64::NEG_INFINITY), |a, b| {
-                if b.1 > a.1 { b } else { a }
-            });
-        let k = map.k;
-        let centre_pose = grid_pose(
-            map.motion,
-            0.5 * (map.x.0 + map.x.1),
-            0.5 * (map.y.0 + map.y.1),
-            map.z,
-            map.orientation,
-        );
-        Self {
-            vmin: defined.iter().map(|p| p.1).fold(f64::INFINITY, f64::min),
-            vmax,
-            argmax: (amax != usize::MAX).then(|| [map.xs[amax % k], map.ys[amax / k]]),
-            positive: defined.iter().filter(|p| p.1 > 0.0).count(),
-            undefined: map.values.len() - defined.len(),
-            centre: map.template.clone().force_at_pose(&centre_pose).ok(),
-        }
-    }
+/// The first and last of an axis.
+fn range(axis: &[f64]) -> (f64, f64) {
+    (
+        axis.first().copied().unwrap_or(0.0),
+        axis.last().copied().unwrap_or(0.0),
+    )
 }
 
 /// The heat map of `--grid --plot`.
 fn save_heat_map(
     robot: &RobotDescription,
-    map: &IsotropicMap,
-    stats: &MapStats,
+    map: &IsotropicMapReport,
     path: &std::path::Path,
 ) -> Result<(), CliError> {
+    let stats = &map.stats;
     let fig = HeatMap {
         title: format!(
             "{}: maximum isotropic force{}",
             robot.name,
-            if map.motion.has_orientation() {
+            if robot.robot.motion().has_orientation() {
                 " at zero moment"
             } else {
                 ""
@@ -397,10 +276,10 @@ fn save_heat_map(
             super::region::length_axis("y"),
         ),
         value_label: "isotropic force (N)".into(),
-        x_range: map.x,
-        y_range: map.y,
-        shape: (map.k, map.k),
-        values: map.values.clone(),
+        x_range: range(&map.grid.x),
+        y_range: range(&map.grid.y),
+        shape: (map.grid.shape[0], map.grid.shape[1]),
+        values: map_values(map),
         blank_below: 0.0,
         markers: robot
             .robot
@@ -409,9 +288,9 @@ fn save_heat_map(
             .map(|c| (c.frame.x, c.frame.y))
             .collect(),
         outlines: Vec::new(),
-        highlight: match stats.argmax {
-            Some([x, y]) if stats.vmax > 0.0 => {
-                vec![((x, y), format!("max {:.1} N", stats.vmax))]
+        highlight: match (stats.argmax, stats.max) {
+            (Some([x, y]), Some(vmax)) if vmax > 0.0 => {
+                vec![((x, y), format!("max {vmax:.1} N"))]
             }
             _ => Vec::new(),
         },
@@ -420,74 +299,40 @@ fn save_heat_map(
     Ok(())
 }
 
-/// The `--grid --json` answer.
-fn map_json(robot: &RobotDescription, map: &IsotropicMap, stats: &MapStats) -> serde_json::Value {
-    let finite = |v: f64| v.is_finite().then_some(v);
-    let grid_rows: Vec<Vec<Option<f64>>> = map
-        .values
-        .chunks(map.k)
-        .map(|r| r.iter().map(|&v| finite(v)).collect())
-        .collect();
-    let mut slice = json!({ "orientation": map.orientation });
-    if map.motion.space_dim() == 3 {
-        slice["z"] = json!(map.z);
-    }
-    json!({
-        "robot": robot.name,
-        "definition": definition(map.motion),
-        "external_wrench": map.w_ext.as_slice(),
-        "slice": slice,
-        "grid": {
-            "x": map.xs,
-            "y": map.ys,
-            "shape": [map.k, map.k],
-            "values": grid_rows,
-        },
-        "stats": {
-            "min": finite(stats.vmin),
-            "max": finite(stats.vmax),
-            "argmax": stats.argmax,
-            "positive_fraction": stats.positive as f64 / map.values.len() as f64,
-            "undefined": stats.undefined,
-            "centre": stats.centre.and_then(finite),
-        },
-    })
-}
-
 /// The text answer of `--grid`.
-fn print_map(args: &Args, robot: &RobotDescription, map: &IsotropicMap, stats: &MapStats) {
-    let k = map.k;
+fn print_map(args: &Args, motion: MotionPattern, map: &IsotropicMapReport) {
+    let (k, stats) = (map.grid.shape[0], &map.stats);
+    let ((x0, x1), (y0, y1)) = (range(&map.grid.x), range(&map.grid.y));
     // A 3-D robot is mapped in the horizontal plane at one height: say which.
-    let height = if map.motion.space_dim() == 3 {
-        format!(" at z = {} m", num(map.z))
-    } else {
-        String::new()
+    let height = match map.slice.z {
+        Some(z) => format!(" at z = {} m", num(z)),
+        None => String::new(),
     };
     println!(
         "robot {}: maximum isotropic force over [{}, {}] m × [{}, {}] m{height}, {k} × {k} points",
-        robot.name,
-        num(map.x.0),
-        num(map.x.1),
-        num(map.y.0),
-        num(map.y.1)
+        map.robot,
+        num(x0),
+        num(x1),
+        num(y0),
+        num(y1)
     );
     println!(
         "on top of w_ext {} (the platform's weight{} included)",
-        wrench_text(map.w_ext.as_slice(), map.motion.translation_dof()),
+        wrench_text(&map.external_wrench, motion.translation_dof()),
         if args.wrench.is_some() {
             " and --wrench"
         } else {
             ""
         }
     );
-    println!("  ({})", definition(map.motion));
+    println!("  ({})", map.definition);
     match stats.argmax {
         Some([x, y]) => println!(
             "max {:.6} N at ({} m, {} m); min {:.6} N",
-            stats.vmax,
+            stats.max.unwrap_or(f64::NAN),
             num(x),
             num(y),
-            stats.vmin
+            stats.min.unwrap_or(f64::NAN)
         ),
         None => println!("no defined value"),
     }
@@ -496,7 +341,7 @@ fn print_map(args: &Args, robot: &RobotDescription, map: &IsotropicMap, stats: &
     }
     println!(
         "positive (pose holds every force up to the index): {:.1} % of the grid; undefined: {}",
-        100.0 * stats.positive as f64 / map.values.len() as f64,
+        100.0 * stats.positive_fraction,
         stats.undefined
     );
 }

@@ -1,6 +1,7 @@
 //! Integration tests of `cdpr`, compiled as one test binary (one link instead of
 //! one per file). Each module is one former `tests/*.rs` file.
 
+mod api_cli;
 mod cable_model_cli;
 mod calibrate_cli;
 mod cli;
