@@ -36,6 +36,14 @@ pub enum CalibrationError {
         /// The value.
         value: f64,
     },
+    /// A nominal offset or gain that is NaN or infinite.
+    #[error("nominal {what}: not a finite number ({value})")]
+    NotFiniteNominal {
+        /// Offsets or gains.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
     /// No samples at all.
     #[error("no samples")]
     NoSamples,

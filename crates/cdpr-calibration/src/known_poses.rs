@@ -29,6 +29,23 @@ pub fn calibrate_known_poses(
     unknowns: Unknowns,
     readings: &Readings,
 ) -> Result<Calibration, CalibrationError> {
+    known_poses_from(
+        robot,
+        Parameters::nominal(robot),
+        samples,
+        unknowns,
+        readings,
+    )
+}
+
+/// [`calibrate_known_poses`] from `nominal` (its offsets and gains: an earlier calibration).
+pub(crate) fn known_poses_from(
+    robot: &Robot,
+    nominal: Parameters,
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
     let (n, motion) = (robot.cable_count(), robot.motion());
     let k = crate::check_inputs(robot, samples, unknowns)?;
     let Some(poses) = samples.poses.clone() else {
@@ -38,7 +55,6 @@ pub fn calibrate_known_poses(
             found: 0,
         });
     };
-    let nominal = Parameters::nominal(robot);
     let space = ParameterSpace::new(motion, &nominal, unknowns, Gauge::None)?;
     let p = space.parameters.len();
     let counting = counting_rule(k, n, motion.dof(), p, 0, true);

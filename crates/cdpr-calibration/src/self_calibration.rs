@@ -35,10 +35,26 @@ pub fn self_calibrate(
     unknowns: Unknowns,
     readings: &Readings,
 ) -> Result<Calibration, CalibrationError> {
+    self_calibrate_from(
+        robot,
+        Parameters::nominal(robot),
+        samples,
+        unknowns,
+        readings,
+    )
+}
+
+/// [`self_calibrate`] from `nominal` (its offsets and gains: an earlier calibration).
+pub(crate) fn self_calibrate_from(
+    robot: &Robot,
+    nominal: Parameters,
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
     let (n, motion) = (robot.cable_count(), robot.motion());
     let d = motion.dof();
     let k = crate::check_inputs(robot, samples, unknowns)?;
-    let nominal = Parameters::nominal(robot);
     // Relative readings without unknown offsets see translations: only rotations about the
     // reference point remain (module `gauge`).
     let gauge = match readings {
