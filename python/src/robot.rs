@@ -226,6 +226,7 @@ impl Robot {
                 home_pose: None,
                 passive_springs: None,
                 passive_spring_names: Vec::new(),
+                encoders: None,
                 warnings,
             }),
         })
