@@ -10,7 +10,9 @@
 //!
 //! solved together by the adjustment ([`crate::adjustment`], whose normal matrix is then
 //! block-diagonal by cable). No gauge: the known poses fix the base frame. Each cable needs at
-//! least as many samples as it has unknowns (the counting rule with d = 0).
+//! least as many samples as it has unknowns (the counting rule with d = 0). Cables over swivel
+//! pulleys have the pulley model's length ([`crate::model`]), the pulleys held at their nominal
+//! radius and orientation.
 //!
 //! ## References
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018, §5 (calibration with an external
@@ -48,6 +50,7 @@ pub(crate) fn known_poses_from(
 ) -> Result<Calibration, CalibrationError> {
     let (n, motion) = (robot.cable_count(), robot.motion());
     let k = crate::check_inputs(robot, samples, unknowns)?;
+    let pulleys = crate::pulleys(robot);
     let Some(poses) = samples.poses.clone() else {
         return Err(CalibrationError::WrongCount {
             what: "known poses (one per sample)".into(),
@@ -74,7 +77,8 @@ pub(crate) fn known_poses_from(
         rho: &samples.readings,
         n,
         estimate_poses: false,
+        pulleys: pulleys.as_deref(),
     };
-    let fit = problem.solve(nominal, poses, robot.length_scale());
+    let fit = problem.solve(nominal, poses, robot.length_scale())?;
     Ok(Calibration::from_fit(fit, &space, unknowns, counting, n, 0))
 }

@@ -148,11 +148,15 @@ fn check_inputs(
     samples: &Samples,
     unknowns: Unknowns,
 ) -> Result<usize, CalibrationError> {
-    if robot.has_pulleys() {
-        return Err(CalibrationError::Pulleys);
-    }
     unknowns.check(robot.motion())?;
     samples.check(robot.cable_count())
+}
+
+/// The cables' pulleys when the robot has any (the adjustment then uses the pulley model).
+fn pulleys(robot: &Robot) -> Option<Vec<Option<cdpr_kinematics::Pulley>>> {
+    robot
+        .has_pulleys()
+        .then(|| robot.cables().iter().map(|c| c.pulley).collect())
 }
 
 /// The README's examples (the crate's page on crates.io), compiled and run as doctests.

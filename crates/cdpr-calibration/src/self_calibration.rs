@@ -55,6 +55,10 @@ pub(crate) fn self_calibrate_from(
     let (n, motion) = (robot.cable_count(), robot.motion());
     let d = motion.dof();
     let k = crate::check_inputs(robot, samples, unknowns)?;
+    if robot.has_pulleys() {
+        return Err(CalibrationError::Pulleys);
+    }
+    let pulleys = crate::pulleys(robot);
     // Relative readings without unknown offsets see translations: only rotations about the
     // reference point remain (module `gauge`).
     let gauge = match readings {
@@ -89,8 +93,9 @@ pub(crate) fn self_calibrate_from(
         rho: &samples.readings,
         n,
         estimate_poses: true,
+        pulleys: pulleys.as_deref(),
     };
-    let fit = problem.solve(nominal, poses, robot.length_scale());
+    let fit = problem.solve(nominal, poses, robot.length_scale())?;
     Ok(Calibration::from_fit(fit, &space, unknowns, counting, n, d))
 }
 

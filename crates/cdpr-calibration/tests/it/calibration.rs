@@ -6,7 +6,7 @@ use cdpr_calibration::nalgebra::{Rotation3, Vector3};
 use cdpr_calibration::{
     Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns, calibrate,
 };
-use cdpr_kinematics::reference_robots::ipanema_like_8;
+use cdpr_kinematics::reference_robots::{ipanema_like_8, ipanema_like_8_pulleys};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 
 /// A deterministic generator: splitmix64, uniform in [−1, 1) and standard normal (Box–Muller).
@@ -468,6 +468,75 @@ fn relative_readings_self_calibrate_a_hangprinter() {
     {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
+}
+
+/// Swivel pulleys (0.05 m, the IPAnema-like robot's): from known poses the pulley model
+/// recovers the anchors (points on the swivel axes), attachments and offsets exactly, where the
+/// straight model cannot fit the same readings. Self-calibration of a pulley robot is refused
+/// with its reason.
+#[test]
+fn known_poses_calibrate_a_robot_with_pulleys() {
+    let mut rng = Rng(8);
+    let nominal = ipanema_like_8_pulleys();
+    let moved = as_built(&nominal.without_pulleys(), &mut rng);
+    // The as-built robot keeps its pulleys' radius and orientation.
+    let truth = Robot::new(
+        nominal.motion(),
+        moved
+            .cables()
+            .iter()
+            .zip(nominal.cables())
+            .map(|(m, n)| Cable {
+                pulley: n.pulley,
+                ..*m
+            })
+            .collect(),
+    )
+    .unwrap();
+    let offsets = offsets_of(8, &mut rng);
+    let poses = spatial_poses(20, &mut rng);
+    let samples = Samples {
+        readings: readings(&truth, &offsets, &[1.0; 8], &poses, 0.0, &mut rng),
+        poses: Some(poses),
+    };
+    let unknowns = Unknowns::parse("frame,platform,offsets").unwrap();
+    let cal = calibrate(&nominal, &samples, unknowns, &Readings::Absolute).unwrap();
+    assert!(cal.identifiable && cal.converged, "{cal:?}");
+    assert!(cal.residual_rms < 1e-12, "{}", cal.residual_rms);
+    for (i, c) in truth.cables().iter().enumerate() {
+        assert!(
+            (cal.parameters.frame[i] - c.frame).norm() < 1e-9,
+            "anchor {i}"
+        );
+        assert!(
+            (cal.parameters.platform[i] - c.platform).norm() < 1e-9,
+            "attachment {i}"
+        );
+        assert!((cal.parameters.offsets[i] - offsets[i]).abs() < 1e-9);
+    }
+    // The straight model on the same readings: a millimetre-scale misfit.
+    let straight = calibrate(
+        &nominal.without_pulleys(),
+        &samples,
+        unknowns,
+        &Readings::Absolute,
+    )
+    .unwrap();
+    assert!(straight.residual_rms > 1e-4, "{}", straight.residual_rms);
+    // Unknown poses: refused, saying why.
+    let unknown_poses = Samples {
+        poses: None,
+        ..samples
+    };
+    let e = calibrate(
+        &nominal,
+        &unknown_poses,
+        Unknowns::parse("frame").unwrap(),
+        &Readings::Absolute,
+    )
+    .unwrap_err();
+    assert!(matches!(e, CalibrationError::Pulleys));
+    assert!(e.to_string().contains("known poses"), "{e}");
 }
 
 #[test]
