@@ -142,20 +142,22 @@ impl Problem<'_> {
         })
     }
 
-    /// The n readings of sample `s` at `pose` into `out` (an error: a pulley cable degenerate
-    /// at this pose).
+    /// Calls `f(i, reading)` for the n readings of sample `s` at `pose`, in cable order (an
+    /// error: a pulley cable degenerate at this pose). No allocation.
+    #[inline(always)]
     fn sample(
         &self,
         lengths: &mut Lengths<'_>,
         pose: &Pose,
         s: usize,
-        out: &mut Vec<Reading>,
+        mut f: impl FnMut(usize, Reading),
     ) -> Result<(), KinematicsError> {
-        out.clear();
         let rho = &self.rho[s * self.n..(s + 1) * self.n];
         match lengths {
             Lengths::Straight(params) => {
-                out.extend((0..self.n).map(|i| reading(params, self.readings, i, pose, rho[i])));
+                for (i, &r) in rho.iter().enumerate() {
+                    f(i, reading(params, self.readings, i, pose, r));
+                }
             }
             Lengths::Pulleys {
                 params,
@@ -169,14 +171,17 @@ impl Problem<'_> {
                     if let Some((k, _)) = reference {
                         model += k.cables()[i].length;
                     }
-                    out.push(Reading {
-                        residual: state.length - model,
-                        rho: rho[i],
-                        unit: state.unit,
-                        attachment: state.attachment,
-                        rotation: pose.rotation,
-                        reference: reference.as_ref().map(|(k, r)| (k.cables()[i].unit, *r)),
-                    });
+                    f(
+                        i,
+                        Reading {
+                            residual: state.length - model,
+                            rho: rho[i],
+                            unit: state.unit,
+                            attachment: state.attachment,
+                            rotation: pose.rotation,
+                            reference: reference.as_ref().map(|(k, r)| (k.cables()[i].unit, *r)),
+                        },
+                    );
                 }
             }
         }
@@ -190,15 +195,14 @@ impl Problem<'_> {
         };
         let mut sum = 0.0;
         let mut max = 0.0f64;
-        let mut out = Vec::with_capacity(self.n);
         for (s, pose) in poses.iter().enumerate() {
-            if self.sample(&mut lengths, pose, s, &mut out).is_err() {
-                return (f64::INFINITY, f64::INFINITY);
-            }
-            for rd in &out {
+            let evaluated = self.sample(&mut lengths, pose, s, |_, rd| {
                 let r = rd.residual;
                 sum += r * r;
                 max = max.max(r.abs());
+            });
+            if evaluated.is_err() {
+                return (f64::INFINITY, f64::INFINITY);
             }
         }
         (sum, max)
@@ -217,13 +221,12 @@ impl Problem<'_> {
         let (mut u, mut w, mut gx) = (Vec::new(), Vec::new(), Vec::new());
         let mut grad = [0.0; 16];
         let mut lengths = self.lengths(params)?;
-        let mut readings = Vec::with_capacity(self.n);
         for (s, pose) in poses.iter().enumerate() {
             let mut uk = DMatrix::zeros(d, d);
             let mut wk = DMatrix::zeros(d, p);
             let mut gk = DVector::zeros(d);
-            self.sample(&mut lengths, pose, s, &mut readings)?;
-            for (rd, range) in readings.iter().zip(ranges) {
+            self.sample(&mut lengths, pose, s, |i, rd| {
+                let range = &ranges[i];
                 let r = rd.residual;
                 let a = pose_gradient(self.motion, &rd.unit, &rd.attachment);
                 let m = range.len();
@@ -245,7 +248,7 @@ impl Problem<'_> {
                         wk[(a_row, range.start + x)] += a[a_row] * grad[x];
                     }
                 }
-            }
+            })?;
             u.push(uk);
             w.push(wk);
             gx.push(gk);
