@@ -54,13 +54,16 @@ enum Lengths<'p> {
     /// Swivel pulleys (Pott 2018): the inverse kinematics of `cdpr-kinematics` on the robot with
     /// these anchors and attachments; the free-segment direction takes the place of the cable
     /// direction in every derivative (the arc's rate cancels: module `cdpr_kinematics::pulley`).
-    Pulleys {
-        params: &'p Parameters,
-        robot: Robot,
-        kin: PoseKinematics,
-        /// The lengths and directions at the reference pose (relative readings).
-        reference: Option<(PoseKinematics, Rotation3<f64>)>,
-    },
+    Pulleys(Box<PulleyLengths<'p>>),
+}
+
+/// The pulley robot of one set of parameters and its kinematics buffers.
+struct PulleyLengths<'p> {
+    params: &'p Parameters,
+    robot: Robot,
+    kin: PoseKinematics,
+    /// The lengths and directions at the reference pose (relative readings).
+    reference: Option<(PoseKinematics, Rotation3<f64>)>,
 }
 
 /// The outcome of the adjustment.
@@ -134,12 +137,12 @@ impl Problem<'_> {
                 Some((robot.inverse_kinematics(reference)?, reference.rotation))
             }
         };
-        Ok(Lengths::Pulleys {
+        Ok(Lengths::Pulleys(Box::new(PulleyLengths {
             params,
             kin: PoseKinematics::for_robot(&robot),
             robot,
             reference,
-        })
+        })))
     }
 
     /// Calls `f(i, reading)` for the n readings of sample `s` at `pose`, in cable order (an
@@ -159,12 +162,13 @@ impl Problem<'_> {
                     f(i, reading(params, self.readings, i, pose, r));
                 }
             }
-            Lengths::Pulleys {
-                params,
-                robot,
-                kin,
-                reference,
-            } => {
+            Lengths::Pulleys(pulleys) => {
+                let PulleyLengths {
+                    params,
+                    robot,
+                    kin,
+                    reference,
+                } = &mut **pulleys;
                 robot.update_kinematics(pose, kin)?;
                 for (i, state) in kin.cables().iter().enumerate() {
                     let mut model = params.gains[i] * rho[i] + params.offsets[i];
