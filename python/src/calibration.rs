@@ -8,7 +8,8 @@
 use crate::arrays::{FloatArray, shape_string};
 use crate::model::Robot;
 use crate::value_error;
-use cdpr_calibration::{Calibration, Readings, Samples, Unknowns, calibrate as run_calibration};
+use cdpr_calibration::{Calibration, Readings, Samples, Unknowns, calibrate_with_encoders};
+use cdpr_io::Encoders;
 use cdpr_kinematics::Pose;
 use cdpr_kinematics::nalgebra::Vector3;
 use pyo3::prelude::*;
@@ -17,7 +18,9 @@ use pyo3::types::PyDict;
 /// Calibrates ``robot`` from ``samples`` (``(k, n)`` readings ρ, true length = gain · ρ +
 /// offset): from ``known_poses`` (``(k, DOF)``) when given, else by self-calibration (unknown
 /// poses). ``unknowns``: comma-separated ``frame``, ``platform``, ``offsets``, ``gains``.
-/// ``relative``: readings count from ``reference`` (a pose, default the origin). Returns a dict
+/// ``relative``: readings count from ``reference`` (a pose, default the origin). A robot file
+/// with the cables' ``offset`` and ``gain`` keys (written by ``cdpr calibrate -o``) gives the
+/// starting offsets and gains (held when not unknowns); otherwise 0 and 1. Returns a dict
 /// with the fields of ``cdpr calibrate --json`` (``frame``, ``platform``, ``offsets``,
 /// ``gains``, ``poses``, ``residual_rms``, ``sigma``, ``identifiable``, ``rank_deficiency``,
 /// ``condition_number``, ``samples_needed``, ``reason``, …; ``None`` for undefined values).
@@ -78,8 +81,22 @@ pub fn calibrate<'py>(
         readings: s.data().into_owned(),
         poses,
     };
+    let encoders = robot
+        .desc
+        .encoders
+        .clone()
+        .unwrap_or_else(|| Encoders::identity(n));
     let cal = py
-        .detach(|| run_calibration(geo, &samples, unknowns, &readings))
+        .detach(|| {
+            calibrate_with_encoders(
+                geo,
+                &encoders.offsets,
+                &encoders.gains,
+                &samples,
+                unknowns,
+                &readings,
+            )
+        })
         .map_err(value_error)?;
     report(py, robot, &cal, k)
 }

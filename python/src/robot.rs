@@ -227,6 +227,7 @@ impl Robot {
                 winches: None,
                 passive_springs: None,
                 passive_spring_names: Vec::new(),
+                encoders: None,
                 warnings,
             }),
         })

@@ -133,6 +133,18 @@ pub const TARGETS: &[Target] = &[
         per: Per::Iteration,
         what: "1000-sample sotda trajectory",
     },
+    Target {
+        id: "calibration/self_calibration_8_spatial_40_samples",
+        limit: 50.0 * MS,
+        per: Per::Iteration,
+        what: "self-calibration, 8 cables, 40 samples",
+    },
+    Target {
+        id: "kinematics/fk_8_spatial_noisy",
+        limit: 5.0 * US,
+        per: Per::Iteration,
+        what: "FK on noisy lengths, 8 cables",
+    },
 ];
 
 /// The target of a benchmark id, if the issues set one.

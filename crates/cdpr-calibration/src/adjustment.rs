@@ -25,8 +25,8 @@ use crate::covariance::{NormalAnalysis, analyse_normal_matrix};
 use crate::gauge::ParameterSpace;
 use crate::model::{Reading, displaced, pose_gradient, reading};
 use crate::{Parameters, Readings};
-use cdpr_kinematics::nalgebra::{DMatrix, DVector};
-use cdpr_kinematics::{MotionPattern, Pose};
+use cdpr_kinematics::nalgebra::{DMatrix, DVector, Rotation3};
+use cdpr_kinematics::{Cable, KinematicsError, MotionPattern, Pose, PoseKinematics, Pulley, Robot};
 use std::ops::Range;
 
 /// Largest number of Levenberg–Marquardt iterations (accepted or rejected steps). Long curved
@@ -42,6 +42,28 @@ pub(crate) struct Problem<'a> {
     pub n: usize,
     /// Whether the poses are unknowns.
     pub estimate_poses: bool,
+    /// The swivel pulleys of the cables (held at their nominal radius and orientation), when
+    /// the robot has any: the lengths are then those of the pulley model.
+    pub pulleys: Option<&'a [Option<Pulley>]>,
+}
+
+/// Where the lengths of one set of parameters come from.
+enum Lengths<'p> {
+    /// Straight cables, eq. (6.4) in closed form ([`reading`]).
+    Straight(&'p Parameters),
+    /// Swivel pulleys (Pott 2018): the inverse kinematics of `cdpr-kinematics` on the robot with
+    /// these anchors and attachments; the free-segment direction takes the place of the cable
+    /// direction in every derivative (the arc's rate cancels: module `cdpr_kinematics::pulley`).
+    Pulleys(Box<PulleyLengths<'p>>),
+}
+
+/// The pulley robot of one set of parameters and its kinematics buffers.
+struct PulleyLengths<'p> {
+    params: &'p Parameters,
+    robot: Robot,
+    kin: PoseKinematics,
+    /// The lengths and directions at the reference pose (relative readings).
+    reference: Option<(PoseKinematics, Rotation3<f64>)>,
 }
 
 /// The outcome of the adjustment.
@@ -92,37 +114,123 @@ impl Problem<'_> {
         out
     }
 
-    fn reading(&self, params: &Parameters, pose: &Pose, s: usize, i: usize) -> Reading {
-        reading(params, self.readings, i, pose, self.rho[s * self.n + i])
+    /// The length model of `params` (for pulleys: their robot, built once per evaluation).
+    fn lengths<'p>(&self, params: &'p Parameters) -> Result<Lengths<'p>, KinematicsError> {
+        let Some(pulleys) = self.pulleys else {
+            return Ok(Lengths::Straight(params));
+        };
+        let cables = params
+            .frame
+            .iter()
+            .zip(&params.platform)
+            .zip(pulleys)
+            .map(|((c, a), p)| Cable {
+                frame: *c,
+                platform: *a,
+                pulley: *p,
+            })
+            .collect();
+        let robot = Robot::new(self.motion, cables)?;
+        let reference = match self.readings {
+            Readings::Absolute => None,
+            Readings::Relative { reference } => {
+                Some((robot.inverse_kinematics(reference)?, reference.rotation))
+            }
+        };
+        Ok(Lengths::Pulleys(Box::new(PulleyLengths {
+            params,
+            kin: PoseKinematics::for_robot(&robot),
+            robot,
+            reference,
+        })))
     }
 
-    /// (Σ r², max |r|).
+    /// Calls `f(i, reading)` for the n readings of sample `s` at `pose`, in cable order (an
+    /// error: a pulley cable degenerate at this pose). No allocation.
+    #[inline(always)]
+    fn sample(
+        &self,
+        lengths: &mut Lengths<'_>,
+        pose: &Pose,
+        s: usize,
+        mut f: impl FnMut(usize, Reading),
+    ) -> Result<(), KinematicsError> {
+        let rho = &self.rho[s * self.n..(s + 1) * self.n];
+        match lengths {
+            Lengths::Straight(params) => {
+                for (i, &r) in rho.iter().enumerate() {
+                    f(i, reading(params, self.readings, i, pose, r));
+                }
+            }
+            Lengths::Pulleys(pulleys) => {
+                let PulleyLengths {
+                    params,
+                    robot,
+                    kin,
+                    reference,
+                } = &mut **pulleys;
+                robot.update_kinematics(pose, kin)?;
+                for (i, state) in kin.cables().iter().enumerate() {
+                    let mut model = params.gains[i] * rho[i] + params.offsets[i];
+                    if let Some((k, _)) = reference {
+                        model += k.cables()[i].length;
+                    }
+                    f(
+                        i,
+                        Reading {
+                            residual: state.length - model,
+                            rho: rho[i],
+                            unit: state.unit,
+                            attachment: state.attachment,
+                            rotation: pose.rotation,
+                            reference: reference.as_ref().map(|(k, r)| (k.cables()[i].unit, *r)),
+                        },
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// (Σ r², max |r|); infinite when a pulley cable is degenerate at a pose.
     fn cost(&self, params: &Parameters, poses: &[Pose]) -> (f64, f64) {
+        let Ok(mut lengths) = self.lengths(params) else {
+            return (f64::INFINITY, f64::INFINITY);
+        };
         let mut sum = 0.0;
         let mut max = 0.0f64;
         for (s, pose) in poses.iter().enumerate() {
-            for i in 0..self.n {
-                let r = self.reading(params, pose, s, i).residual;
+            let evaluated = self.sample(&mut lengths, pose, s, |_, rd| {
+                let r = rd.residual;
                 sum += r * r;
                 max = max.max(r.abs());
+            });
+            if evaluated.is_err() {
+                return (f64::INFINITY, f64::INFINITY);
             }
         }
         (sum, max)
     }
 
-    fn normal(&self, params: &Parameters, poses: &[Pose], ranges: &[Range<usize>]) -> Normal {
+    fn normal(
+        &self,
+        params: &Parameters,
+        poses: &[Pose],
+        ranges: &[Range<usize>],
+    ) -> Result<Normal, KinematicsError> {
         let d = self.dof();
         let p = self.space.parameters.len();
         let mut v = DMatrix::zeros(p, p);
         let mut gt = DVector::zeros(p);
         let (mut u, mut w, mut gx) = (Vec::new(), Vec::new(), Vec::new());
         let mut grad = [0.0; 16];
+        let mut lengths = self.lengths(params)?;
         for (s, pose) in poses.iter().enumerate() {
             let mut uk = DMatrix::zeros(d, d);
             let mut wk = DMatrix::zeros(d, p);
             let mut gk = DVector::zeros(d);
-            for (i, range) in ranges.iter().enumerate() {
-                let rd = self.reading(params, pose, s, i);
+            self.sample(&mut lengths, pose, s, |i, rd| {
+                let range = &ranges[i];
                 let r = rd.residual;
                 let a = pose_gradient(self.motion, &rd.unit, &rd.attachment);
                 let m = range.len();
@@ -144,12 +252,12 @@ impl Problem<'_> {
                         wk[(a_row, range.start + x)] += a[a_row] * grad[x];
                     }
                 }
-            }
+            })?;
             u.push(uk);
             w.push(wk);
             gx.push(gk);
         }
-        Normal { u, w, gx, v, gt }
+        Ok(Normal { u, w, gx, v, gt })
     }
 
     /// The damped step (δθ, δx_k), or `None` when a damped block is not positive definite.
@@ -209,8 +317,14 @@ impl Problem<'_> {
         (s, singular)
     }
 
-    /// Levenberg–Marquardt from (params, poses).
-    pub fn solve(&self, mut params: Parameters, mut poses: Vec<Pose>, length_scale: f64) -> Fit {
+    /// Levenberg–Marquardt from (params, poses); an error when a pulley cable is degenerate at
+    /// a starting pose.
+    pub fn solve(
+        &self,
+        mut params: Parameters,
+        mut poses: Vec<Pose>,
+        length_scale: f64,
+    ) -> Result<Fit, KinematicsError> {
         let ranges = self.ranges();
         let (mut cost, _) = self.cost(&params, &poses);
         let mut mu = 0.0;
@@ -220,7 +334,8 @@ impl Problem<'_> {
         let step_tolerance = 1e-14 * length_scale;
         while iterations < MAX_ITERATIONS {
             iterations += 1;
-            let nm = self.normal(&params, &poses, &ranges);
+            // Every accepted point has a finite cost: its lengths evaluate.
+            let nm = self.normal(&params, &poses, &ranges)?;
             let gradient = nm
                 .gt
                 .iter()
@@ -277,11 +392,11 @@ impl Problem<'_> {
                 }
             }
         }
-        let nm = self.normal(&params, &poses, &ranges);
+        let nm = self.normal(&params, &poses, &ranges)?;
         let (s, singular_poses) = self.schur(&nm);
         let analysis = analyse_normal_matrix(&s);
         let (squared, max_residual) = self.cost(&params, &poses);
-        Fit {
+        Ok(Fit {
             parameters: params,
             poses,
             iterations,
@@ -290,6 +405,6 @@ impl Problem<'_> {
             max_residual,
             analysis,
             singular_poses,
-        }
+        })
     }
 }

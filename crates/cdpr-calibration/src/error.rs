@@ -36,12 +36,27 @@ pub enum CalibrationError {
         /// The value.
         value: f64,
     },
+    /// A nominal offset or gain that is NaN or infinite.
+    #[error("nominal {what}: not a finite number ({value})")]
+    NotFiniteNominal {
+        /// Offsets or gains.
+        what: &'static str,
+        /// The value.
+        value: f64,
+    },
     /// No samples at all.
     #[error("no samples")]
     NoSamples,
-    /// The calibration models straight cables only.
+    /// Self-calibration (unknown poses) of a robot with swivel pulleys, which this crate does
+    /// not do: the pulley axes stay fixed in the base frame, so rotating the frame and the poses
+    /// together changes the lengths (through the pulley radii only): the gauge is no longer the
+    /// rigid motions, and those rotations are barely determined. Known poses work with pulleys.
     #[error(
-        "calibration models straight cables; this robot has pulleys (calibrate its standard model)"
+        "self-calibration (unknown poses) of a robot with swivel pulleys is not supported: the \
+         pulley axes are fixed in the base frame, so a rotation of the frame and the poses \
+         together is no longer a gauge freedom but a direction the lengths see only through the \
+         pulley radii (barely determined); calibrate from known poses (a tracker), or calibrate \
+         the robot without its pulleys"
     )]
     Pulleys,
     /// The anchors (or attachments) do not span the space the gauge needs.

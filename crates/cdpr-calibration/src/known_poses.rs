@@ -10,7 +10,9 @@
 //!
 //! solved together by the adjustment ([`crate::adjustment`], whose normal matrix is then
 //! block-diagonal by cable). No gauge: the known poses fix the base frame. Each cable needs at
-//! least as many samples as it has unknowns (the counting rule with d = 0).
+//! least as many samples as it has unknowns (the counting rule with d = 0). Cables over swivel
+//! pulleys have the pulley model's length ([`crate::model`]), the pulleys held at their nominal
+//! radius and orientation.
 //!
 //! ## References
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018, §5 (calibration with an external
@@ -29,8 +31,26 @@ pub fn calibrate_known_poses(
     unknowns: Unknowns,
     readings: &Readings,
 ) -> Result<Calibration, CalibrationError> {
+    known_poses_from(
+        robot,
+        Parameters::nominal(robot),
+        samples,
+        unknowns,
+        readings,
+    )
+}
+
+/// [`calibrate_known_poses`] from `nominal` (its offsets and gains: an earlier calibration).
+pub(crate) fn known_poses_from(
+    robot: &Robot,
+    nominal: Parameters,
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
     let (n, motion) = (robot.cable_count(), robot.motion());
     let k = crate::check_inputs(robot, samples, unknowns)?;
+    let pulleys = crate::pulleys(robot);
     let Some(poses) = samples.poses.clone() else {
         return Err(CalibrationError::WrongCount {
             what: "known poses (one per sample)".into(),
@@ -38,7 +58,6 @@ pub fn calibrate_known_poses(
             found: 0,
         });
     };
-    let nominal = Parameters::nominal(robot);
     let space = ParameterSpace::new(motion, &nominal, unknowns, Gauge::None)?;
     let p = space.parameters.len();
     let counting = counting_rule(k, n, motion.dof(), p, 0, true);
@@ -58,7 +77,8 @@ pub fn calibrate_known_poses(
         rho: &samples.readings,
         n,
         estimate_poses: false,
+        pulleys: pulleys.as_deref(),
     };
-    let fit = problem.solve(nominal, poses, robot.length_scale());
+    let fit = problem.solve(nominal, poses, robot.length_scale())?;
     Ok(Calibration::from_fit(fit, &space, unknowns, counting, n, 0))
 }

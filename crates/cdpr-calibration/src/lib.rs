@@ -78,17 +78,85 @@ pub fn calibrate(
     }
 }
 
+/// [`calibrate`] a robot whose encoders were calibrated before: the nominal offsets o_i and
+/// gains g_i (one per cable, e.g. a robot file's `offset` and `gain` keys) instead of 0 and 1.
+/// Groups not among the unknowns keep these values; the others start from them.
+///
+/// ```
+/// use cdpr_calibration::{Readings, Samples, Unknowns, calibrate_with_encoders};
+/// use cdpr_calibration::nalgebra::Vector3;
+/// use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
+///
+/// let anchors = [[2.0, 2.0, 3.0], [-2.0, 2.0, 3.0], [-2.0, -2.0, 3.0], [2.0, -2.0, 2.5]];
+/// let robot = Robot::new(MotionPattern::Point3,
+///     anchors.iter().map(|a| Cable::point3(Vector3::from(*a))).collect()).unwrap();
+/// let offsets = [0.01, -0.02, 0.03, 0.0];
+/// let poses: Vec<Pose> = (0..8).map(|k| {
+///     let t = k as f64;
+///     Pose::point(0.5 * t.cos(), 0.5 * t.sin(), 1.0 + 0.1 * t)
+/// }).collect();
+/// // Readings ρ = l − o: with the offsets known, the anchors fit exactly.
+/// let readings = poses.iter().flat_map(|p| {
+///     robot.inverse_kinematics(p).unwrap().lengths().zip(offsets).map(|(l, o)| l - o)
+///         .collect::<Vec<_>>()
+/// }).collect();
+/// let samples = Samples { readings, poses: Some(poses) };
+/// let cal = calibrate_with_encoders(&robot, &offsets, &[1.0; 4], &samples,
+///     Unknowns::parse("frame").unwrap(), &Readings::Absolute).unwrap();
+/// assert!(cal.identifiable && cal.residual_rms < 1e-12);
+/// assert_eq!(cal.parameters.offsets, offsets); // held: not among the unknowns
+/// ```
+pub fn calibrate_with_encoders(
+    robot: &Robot,
+    offsets: &[f64],
+    gains: &[f64],
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
+    let n = robot.cable_count();
+    for (what, v) in [
+        ("offsets (one per cable)", offsets),
+        ("gains (one per cable)", gains),
+    ] {
+        if v.len() != n {
+            return Err(CalibrationError::WrongCount {
+                what: what.into(),
+                expected: n,
+                found: v.len(),
+            });
+        }
+        if let Some(&bad) = v.iter().find(|x| !x.is_finite()) {
+            return Err(CalibrationError::NotFiniteNominal { what, value: bad });
+        }
+    }
+    let nominal = Parameters {
+        offsets: offsets.to_vec(),
+        gains: gains.to_vec(),
+        ..Parameters::nominal(robot)
+    };
+    if samples.poses.is_some() {
+        known_poses::known_poses_from(robot, nominal, samples, unknowns, readings)
+    } else {
+        self_calibration::self_calibrate_from(robot, nominal, samples, unknowns, readings)
+    }
+}
+
 /// Shared input checks; returns the number of samples k.
 fn check_inputs(
     robot: &Robot,
     samples: &Samples,
     unknowns: Unknowns,
 ) -> Result<usize, CalibrationError> {
-    if robot.has_pulleys() {
-        return Err(CalibrationError::Pulleys);
-    }
     unknowns.check(robot.motion())?;
     samples.check(robot.cable_count())
+}
+
+/// The cables' pulleys when the robot has any (the adjustment then uses the pulley model).
+fn pulleys(robot: &Robot) -> Option<Vec<Option<cdpr_kinematics::Pulley>>> {
+    robot
+        .has_pulleys()
+        .then(|| robot.cables().iter().map(|c| c.pulley).collect())
 }
 
 /// The README's examples (the crate's page on crates.io), compiled and run as doctests.

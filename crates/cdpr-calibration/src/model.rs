@@ -22,10 +22,18 @@
 //! forward kinematics: l̇ = −Wᵀ q̇), minus the same anchor/attachment derivatives at x_ref for
 //! relative readings.
 //!
+//! Cables over swivel pulleys (Pott 2018) have the pulley model's length L = ρβ + l_f from the
+//! point on the swivel axis (the cable's `frame`), with the pulleys held at their nominal radius
+//! and orientation; the derivatives keep their form with u the free-segment direction (the arc
+//! and swivel cancel from L̇, module `cdpr_kinematics::pulley`; moving the axis point moves the
+//! whole pulley). The adjustment evaluates them with the kinematics of `cdpr-kinematics`.
+//!
 //! ## References
 //! - Pott, *Cable-Driven Parallel Robots*, Springer 2018, ch. 4–5 (kinematic model and its
 //!   calibration).
 //! - Gouttefarde et al.'s thesis chapter on planar tendon-driven manipulators, eqs. (6.2)–(6.4).
+//! - Pott, *Cable-Driven Parallel Robots: Theory and Application*, Springer 2018 (pulley
+//!   kinematics).
 
 use crate::CalibrationError;
 use cdpr_kinematics::nalgebra::{Rotation3, Vector3};

@@ -10,7 +10,8 @@
 //! with the gauge fixed ([`crate::gauge`]). The starting poses are the forward kinematics of
 //! the nominal robot on the readings taken at face value (l = g ρ + o with the nominal gains
 //! and offsets): each sample from the previous sample's pose, or by the multi-start when that
-//! does not give a solution ([`cdpr_kinematics::ForwardKinematics`]). Levenberg–Marquardt then
+//! does not give a solution nor a least-squares pose within twice the misfit the multi-start
+//! found so far ([`cdpr_kinematics::ForwardKinematics`]). Levenberg–Marquardt then
 //! runs on poses and parameters at once ([`crate::adjustment`]). Identifiable only if
 //! k (n − d) ≥ p − g ([`crate::identifiability`]); a robot with n = d never is.
 //!
@@ -25,7 +26,7 @@ use crate::gauge::{Gauge, ParameterSpace};
 use crate::identifiability::counting_rule;
 use crate::model::cable;
 use crate::{Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns};
-use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, Robot};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardStatus, Pose, Robot};
 
 /// Self-calibrates `unknowns` of `robot` from readings at unknown poses (`samples.poses` is
 /// ignored).
@@ -35,10 +36,30 @@ pub fn self_calibrate(
     unknowns: Unknowns,
     readings: &Readings,
 ) -> Result<Calibration, CalibrationError> {
+    self_calibrate_from(
+        robot,
+        Parameters::nominal(robot),
+        samples,
+        unknowns,
+        readings,
+    )
+}
+
+/// [`self_calibrate`] from `nominal` (its offsets and gains: an earlier calibration).
+pub(crate) fn self_calibrate_from(
+    robot: &Robot,
+    nominal: Parameters,
+    samples: &Samples,
+    unknowns: Unknowns,
+    readings: &Readings,
+) -> Result<Calibration, CalibrationError> {
     let (n, motion) = (robot.cable_count(), robot.motion());
     let d = motion.dof();
     let k = crate::check_inputs(robot, samples, unknowns)?;
-    let nominal = Parameters::nominal(robot);
+    if robot.has_pulleys() {
+        return Err(CalibrationError::Pulleys);
+    }
+    let pulleys = crate::pulleys(robot);
     // Relative readings without unknown offsets see translations: only rotations about the
     // reference point remain (module `gauge`).
     let gauge = match readings {
@@ -73,8 +94,9 @@ pub fn self_calibrate(
         rho: &samples.readings,
         n,
         estimate_poses: true,
+        pulleys: pulleys.as_deref(),
     };
-    let fit = problem.solve(nominal, poses, robot.length_scale());
+    let fit = problem.solve(nominal, poses, robot.length_scale())?;
     Ok(Calibration::from_fit(fit, &space, unknowns, counting, n, d))
 }
 
@@ -98,21 +120,34 @@ fn starting_poses(
         .collect();
     let mut poses = Vec::with_capacity(k);
     let mut lengths = vec![0.0; n];
+    // The largest residual_rms of the multi-start answers so far: the misfit of the nominal
+    // robot on readings taken at face value (unknown offsets of centimetres make every sample
+    // `inconsistent`, so "is a solution" cannot be the test of a warm start).
+    let mut typical_misfit: Option<f64> = None;
     for s in 0..k {
         for i in 0..n {
             let rho = samples.readings[s * n + i];
             lengths[i] = (nominal.gains[i] * rho + nominal.offsets[i] + reference[i]).max(0.0);
         }
+        // Warm start from the previous sample's pose: kept when it answers the lengths, or
+        // when it converged to a least-squares pose no worse than twice the typical misfit
+        // (a far-off local minimum has a much larger residual); otherwise the multi-start.
         let from_previous = match poses.last() {
-            Some(prev) => fk
-                .solve(&lengths, prev)
-                .ok()
-                .filter(|s| s.status.is_solution()),
+            Some(prev) => fk.solve(&lengths, prev).ok().filter(|s| {
+                s.status.is_solution()
+                    || (s.converged
+                        && s.status == ForwardStatus::Inconsistent
+                        && typical_misfit.is_some_and(|t| s.residual_rms <= 2.0 * t))
+            }),
             None => None,
         };
         let sol = match from_previous {
             Some(s) => s,
-            None => fk.solve_multistart(&lengths)?[0],
+            None => {
+                let best = fk.solve_multistart(&lengths)?[0];
+                typical_misfit = Some(typical_misfit.unwrap_or(0.0).max(best.residual_rms));
+                best
+            }
         };
         poses.push(sol.pose);
     }

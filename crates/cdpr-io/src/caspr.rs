@@ -329,6 +329,7 @@ impl RobotDescription {
             platform_shape: None,
             passive_springs,
             passive_spring_names,
+            encoders: None,
             warnings,
         })
     }

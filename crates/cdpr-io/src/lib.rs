@@ -34,7 +34,7 @@ mod xml;
 
 pub use caspr::{CASPR_GRAVITY, pulley_frame};
 pub use nalgebra;
-pub use toml_file::{Limits, RobotDescription, RobotFileError, pulley_toml};
+pub use toml_file::{Encoders, Limits, RobotDescription, RobotFileError, pulley_toml};
 pub use wirecenter::{WIRELIB_DEFAULT_BOUNDS, WIRELIB_DEFAULT_PULLEY_RADIUS, WIRELIB_GRAVITY};
 
 use std::path::Path;

@@ -29,6 +29,9 @@
 //! platform = [0.0707106781, 0.0707106781]   # attachment, platform coordinates (absent for point2/point3)
 //! axial_stiffness = 60000.0             # optional E*S in N, for stiffness (and elastic cables)
 //! linear_density = 0.02                 # optional mass per unstrained metre in kg/m (sagging cables)
+//! offset = 0.0                          # optional encoder calibration (`cdpr calibrate -o`): the
+//! gain = 1.0                            # true length is gain · reading + offset (offset in m,
+//!                                       # default 0; gain in m per reading unit, default 1)
 //! # optional swivel pulley at the frame (Pott 2018): `frame` is then the point a on its axis,
 //! # where the cable arrives travelling along +axis; radius in m
 //! pulley = { radius = 0.05, axis = [0.0, 0.0, 1.0] }
@@ -149,6 +152,41 @@ pub struct Limits {
     pub min_jacobian_det: Option<f64>,
 }
 
+/// The calibration of the cable-length encoders (per cable): the true length of cable i is
+/// l_i = `gains[i]` · ρ_i + `offsets[i]` for the reading ρ_i (the measurement model of
+/// `cdpr-calibration`). Robot-file keys `offset` and `gain` of each `[[cables]]` entry.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Encoders {
+    /// Length offsets o_i (m).
+    pub offsets: Vec<f64>,
+    /// Gains g_i (m per reading unit).
+    pub gains: Vec<f64>,
+}
+
+impl Encoders {
+    /// The identity (offset 0, gain 1) for `n` cables.
+    pub fn identity(n: usize) -> Self {
+        Self {
+            offsets: vec![0.0; n],
+            gains: vec![1.0; n],
+        }
+    }
+
+    /// The true lengths g_i ρ_i + o_i of readings ρ.
+    ///
+    /// ```
+    /// let e = cdpr_io::Encoders { offsets: vec![0.1, 0.0], gains: vec![1.0, 2.0] };
+    /// assert_eq!(e.lengths(&[1.0, 1.5]), vec![1.1, 3.0]);
+    /// ```
+    pub fn lengths(&self, readings: &[f64]) -> Vec<f64> {
+        readings
+            .iter()
+            .zip(self.offsets.iter().zip(&self.gains))
+            .map(|(r, (o, g))| g * r + o)
+            .collect()
+    }
+}
+
 /// Everything a robot file describes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RobotDescription {
@@ -188,6 +226,9 @@ pub struct RobotDescription {
     pub passive_springs: Option<PassiveSprings>,
     /// Per-spring names as the file gives them (display only).
     pub passive_spring_names: Vec<Option<String>>,
+    /// The encoders' offsets and gains, if any cable gives `offset` or `gain` (the others then
+    /// have offset 0 and gain 1): written by `cdpr calibrate -o`.
+    pub encoders: Option<Encoders>,
     /// Non-fatal remarks (e.g. duplicate cables).
     pub warnings: Vec<String>,
 }
@@ -292,6 +333,8 @@ struct RawCable {
     platform: Option<Spanned<Vec<f64>>>,
     axial_stiffness: Option<Spanned<f64>>,
     linear_density: Option<Spanned<f64>>,
+    offset: Option<Spanned<f64>>,
+    gain: Option<Spanned<f64>>,
     min: Option<Spanned<f64>>,
     max: Option<Spanned<f64>>,
     pulley: Option<Spanned<RawPulley>>,
@@ -643,6 +686,8 @@ impl RobotDescription {
             (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let mut density = Vec::new();
         let mut winches = Vec::new();
+        let mut encoders = Encoders::identity(cables_raw.len());
+        let mut has_encoders = false;
         for (i, c) in cables_raw.iter().enumerate() {
             let key = |k: &str| format!("cables[{}].{k}", i + 1);
             let c = c.get_ref();
@@ -726,6 +771,22 @@ impl RobotDescription {
                     e => ctx.invalid(w.span(), key("winch"), e.to_string()),
                 })?;
                 winches.push(winch);
+            }
+            if let Some(o) = &c.offset {
+                encoders.offsets[i] = ctx.finite(o, &key("offset"))?;
+                has_encoders = true;
+            }
+            if let Some(g) = &c.gain {
+                let v = ctx.finite(g, &key("gain"))?;
+                if v == 0.0 {
+                    return Err(ctx.invalid(
+                        g.span(),
+                        key("gain"),
+                        "is zero: the length would not depend on the reading",
+                    ));
+                }
+                encoders.gains[i] = v;
+                has_encoders = true;
             }
         }
         let axial_stiffness = match stiff.len() {
@@ -883,6 +944,7 @@ impl RobotDescription {
             winches,
             passive_springs,
             passive_spring_names,
+            encoders: has_encoders.then_some(encoders),
             warnings,
         })
     }

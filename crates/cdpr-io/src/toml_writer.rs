@@ -91,6 +91,10 @@ impl RobotDescription {
             if let Some(rho) = &self.linear_density {
                 let _ = writeln!(s, "linear_density = {}", num(rho[i]));
             }
+            if let Some(e) = &self.encoders {
+                let _ = writeln!(s, "offset = {}", num(e.offsets[i]));
+                let _ = writeln!(s, "gain = {}", num(e.gains[i]));
+            }
             if lo[i] != lo[0] {
                 let _ = writeln!(s, "min = {}", num(lo[i]));
             }

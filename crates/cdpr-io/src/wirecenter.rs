@@ -372,6 +372,7 @@ impl RobotDescription {
             platform_shape: None,
             passive_springs: None,
             passive_spring_names: Vec::new(),
+            encoders: None,
             warnings,
         })
     }
@@ -513,7 +514,8 @@ impl RobotDescription {
     }
 
     /// What a `.wcrfx` file of this robot would not hold (empty if nothing): workspace limits,
-    /// the home pose, a gravity other than WireLib's, per-cable names that are not ids.
+    /// the home pose, the platform shape, the encoders' offsets and gains, a gravity other than
+    /// WireLib's.
     pub fn wcrfx_losses(&self) -> Vec<String> {
         let mut out = Vec::new();
         if self.limits != Default::default() {
@@ -529,6 +531,9 @@ impl RobotDescription {
         }
         if self.winches.is_some() {
             out.push("the winches (drum, gear, motor) are not written".into());
+        }
+        if self.encoders.is_some() {
+            out.push("the encoders' offsets and gains are not written".into());
         }
         let g = if self.robot.motion().space_dim() == 3 {
             Vector3::new(0.0, 0.0, -WIRELIB_GRAVITY)

@@ -23,7 +23,15 @@
 //! let kin = robot.robot.inverse_kinematics(&Pose::planar(0.0, 0.0, 0.0)).unwrap();
 //! assert_eq!(kin.wrench_matrix().shape(), (3, 4));
 //! ```
+//!
+//! ## Features
+//!
+//! - `plot` (default, through `cli`): the `cdpr::plot` module (plotters figures, the HTML viewer).
+//! - `cli` (default): the `cdpr` program; implies `plot`.
+//!
+//! `default-features = false` leaves the re-exported layers only: no clap, no plotters.
 
+#[cfg(feature = "plot")]
 pub mod plot;
 
 /// Typed requests and reports of every analysis (the `--json` output is the serialised report).

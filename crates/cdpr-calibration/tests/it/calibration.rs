@@ -6,7 +6,7 @@ use cdpr_calibration::nalgebra::{Rotation3, Vector3};
 use cdpr_calibration::{
     Calibration, CalibrationError, Parameters, Readings, Samples, Unknowns, calibrate,
 };
-use cdpr_kinematics::reference_robots::ipanema_like_8;
+use cdpr_kinematics::reference_robots::{ipanema_like_8, ipanema_like_8_pulleys};
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 
 /// A deterministic generator: splitmix64, uniform in [−1, 1) and standard normal (Box–Muller).
@@ -258,6 +258,99 @@ fn reported_sigma_matches_the_spread_over_draws() {
     }
 }
 
+/// The same check for self-calibration (unknown poses, gauge fixed): an 8-cable point robot
+/// (the IPAnema-like frame, a point platform), anchors and offsets unknown (p = 32, g = 6),
+/// 20 samples: N = 160 readings, P = 26 parameters + 60 pose coordinates. The mean of
+/// residual_rms² over the draws is σ² (1 − P/N), and the reported σ of every coordinate not
+/// held by the gauge matches the spread of the estimates (in the gauge's datum) within a
+/// factor of 2.
+#[test]
+fn self_calibration_sigma_matches_the_spread_over_draws() {
+    let mut rng = Rng(7);
+    let nominal = Robot::new(
+        MotionPattern::Point3,
+        ipanema_like_8()
+            .cables()
+            .iter()
+            .map(|c| Cable::point3(c.frame))
+            .collect(),
+    )
+    .unwrap();
+    let truth = as_built(&nominal, &mut rng);
+    let offsets = offsets_of(8, &mut rng);
+    let poses: Vec<Pose> = spatial_poses(20, &mut rng)
+        .iter()
+        .map(|p| Pose::point(p.position.x, p.position.y, p.position.z))
+        .collect();
+    let sigma = 1e-4;
+    let unknowns = Unknowns::parse("frame,offsets").unwrap();
+    let draws = 30;
+    let (n_readings, p_unknowns) = (160.0, 26.0 + 60.0);
+    let mut estimates: Vec<Parameters> = Vec::new();
+    let mut reported: Vec<Calibration> = Vec::new();
+    let mut mean_square = 0.0;
+    for _ in 0..draws {
+        let samples = Samples {
+            readings: readings(&truth, &offsets, &[1.0; 8], &poses, sigma, &mut rng),
+            poses: None,
+        };
+        let cal = calibrate(&nominal, &samples, unknowns, &Readings::Absolute).unwrap();
+        assert!(
+            cal.identifiable && cal.converged && cal.poses_estimated,
+            "{cal:?}"
+        );
+        assert_eq!((cal.counting.parameters, cal.counting.gauge), (32, 6));
+        mean_square += cal.residual_rms.powi(2) / draws as f64;
+        estimates.push(cal.parameters.clone());
+        reported.push(cal);
+    }
+    let expected_rms = sigma * (1.0f64 - p_unknowns / n_readings).sqrt();
+    assert!(
+        (mean_square.sqrt() / expected_rms - 1.0).abs() < 0.1,
+        "rms {} vs σ √(1 − P/N) = {expected_rms}",
+        mean_square.sqrt()
+    );
+    let spread = |f: &dyn Fn(&Parameters) -> f64| {
+        let mean = estimates.iter().map(f).sum::<f64>() / draws as f64;
+        (estimates.iter().map(|p| (f(p) - mean).powi(2)).sum::<f64>() / (draws - 1) as f64).sqrt()
+    };
+    let mut compared = 0;
+    for i in 0..8 {
+        for axis in 0..3 {
+            let s = spread(&|p: &Parameters| p.frame[i][axis]);
+            let r = reported
+                .iter()
+                .map(|c| c.sigma.as_ref().unwrap().frame.as_ref().unwrap()[i][axis])
+                .sum::<f64>()
+                / draws as f64;
+            if r == 0.0 {
+                // Held by the gauge: the estimate does not move either.
+                assert!(s < 1e-12, "anchor {i} axis {axis} held but spread {s}");
+                continue;
+            }
+            compared += 1;
+            assert!(
+                r / s < 2.0 && s / r < 2.0,
+                "anchor {i} axis {axis}: reported {r}, spread {s}"
+            );
+        }
+        let s = spread(&|p: &Parameters| p.offsets[i]);
+        let r = reported
+            .iter()
+            .map(|c| c.sigma.as_ref().unwrap().offsets.as_ref().unwrap()[i])
+            .sum::<f64>()
+            / draws as f64;
+        compared += 1;
+        assert!(
+            r / s < 2.0 && s / r < 2.0,
+            "offset {i}: reported {r}, spread {s}"
+        );
+    }
+    // 24 anchor coordinates less the 3 + 2 + 1 the datum holds (anchor 1; anchor 2 moves along
+    // x, anchor 3 in z = 2 m: the box's edges are axis-aligned), plus the 8 offsets.
+    assert_eq!(compared, 24 - 6 + 8);
+}
+
 /// Six cables on a six-DOF platform: k (n − d) = 0, never identifiable, whatever k.
 #[test]
 fn a_six_cable_spatial_robot_is_not_identifiable() {
@@ -375,6 +468,75 @@ fn relative_readings_self_calibrate_a_hangprinter() {
     {
         assert!((a - b).abs() < 1e-9, "{a} vs {b}");
     }
+}
+
+/// Swivel pulleys (0.05 m, the IPAnema-like robot's): from known poses the pulley model
+/// recovers the anchors (points on the swivel axes), attachments and offsets exactly, where the
+/// straight model cannot fit the same readings. Self-calibration of a pulley robot is refused
+/// with its reason.
+#[test]
+fn known_poses_calibrate_a_robot_with_pulleys() {
+    let mut rng = Rng(8);
+    let nominal = ipanema_like_8_pulleys();
+    let moved = as_built(&nominal.without_pulleys(), &mut rng);
+    // The as-built robot keeps its pulleys' radius and orientation.
+    let truth = Robot::new(
+        nominal.motion(),
+        moved
+            .cables()
+            .iter()
+            .zip(nominal.cables())
+            .map(|(m, n)| Cable {
+                pulley: n.pulley,
+                ..*m
+            })
+            .collect(),
+    )
+    .unwrap();
+    let offsets = offsets_of(8, &mut rng);
+    let poses = spatial_poses(20, &mut rng);
+    let samples = Samples {
+        readings: readings(&truth, &offsets, &[1.0; 8], &poses, 0.0, &mut rng),
+        poses: Some(poses),
+    };
+    let unknowns = Unknowns::parse("frame,platform,offsets").unwrap();
+    let cal = calibrate(&nominal, &samples, unknowns, &Readings::Absolute).unwrap();
+    assert!(cal.identifiable && cal.converged, "{cal:?}");
+    assert!(cal.residual_rms < 1e-12, "{}", cal.residual_rms);
+    for (i, c) in truth.cables().iter().enumerate() {
+        assert!(
+            (cal.parameters.frame[i] - c.frame).norm() < 1e-9,
+            "anchor {i}"
+        );
+        assert!(
+            (cal.parameters.platform[i] - c.platform).norm() < 1e-9,
+            "attachment {i}"
+        );
+        assert!((cal.parameters.offsets[i] - offsets[i]).abs() < 1e-9);
+    }
+    // The straight model on the same readings: a millimetre-scale misfit.
+    let straight = calibrate(
+        &nominal.without_pulleys(),
+        &samples,
+        unknowns,
+        &Readings::Absolute,
+    )
+    .unwrap();
+    assert!(straight.residual_rms > 1e-4, "{}", straight.residual_rms);
+    // Unknown poses: refused, saying why.
+    let unknown_poses = Samples {
+        poses: None,
+        ..samples
+    };
+    let e = calibrate(
+        &nominal,
+        &unknown_poses,
+        Unknowns::parse("frame").unwrap(),
+        &Readings::Absolute,
+    )
+    .unwrap_err();
+    assert!(matches!(e, CalibrationError::Pulleys));
+    assert!(e.to_string().contains("known poses"), "{e}");
 }
 
 #[test]

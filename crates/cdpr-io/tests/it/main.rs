@@ -2,6 +2,7 @@
 //! one per file). Each module is one former `tests/*.rs` file.
 
 mod corpus;
+mod encoders;
 mod linear_density;
 mod platform_shape;
 mod pulley_keys;

@@ -3,7 +3,8 @@
 
 use super::{CliError, load_robot, print_json};
 use cdpr::RobotDescription;
-use cdpr::calibration::{Calibration, Readings, Samples, Unknowns, calibrate};
+use cdpr::calibration::{Calibration, Readings, Samples, Unknowns, calibrate_with_encoders};
+use cdpr::io::Encoders;
 use cdpr::kinematics::nalgebra::Vector3;
 use cdpr::kinematics::{MotionPattern, Pose};
 use serde_json::{Value, json};
@@ -20,7 +21,9 @@ use std::path::{Path, PathBuf};
 /// `gauge` says what is held). The samples identify p parameters up to the gauge g only if
 /// k (n − d) ≥ p − g (k samples, n cables, d DOF) and the Jacobian has full rank: otherwise
 /// `identifiable` is false, with `samples_needed` and `reason` (exit 0). A robot with as many
-/// cables as DOF never self-calibrates. A condition number above 1e3 is warned about.
+/// cables as DOF never self-calibrates. A condition number above 1e3 is warned about. Robots
+/// with swivel pulleys calibrate from known poses with the pulley model (pulley radius and
+/// orientation held); their self-calibration is refused (exit 2, with the reason).
 ///
 /// CSV (comma-separated, a header line first, `#` comments and blank lines skipped): with
 /// --known-poses the pose coordinates by name (point2 `x,y`; planar `x,y,phi`; point3 `x,y,z`;
@@ -54,8 +57,9 @@ pub struct Args {
     /// Readings relative to the reference pose (the file's `home_pose`, else the origin).
     #[arg(long)]
     relative: bool,
-    /// Write the calibrated robot (TOML or .wcrfx, by extension; offsets and gains, which robot
-    /// files do not hold, go into the header comment).
+    /// Write the calibrated robot (TOML or .wcrfx, by extension): anchors and attachments, and
+    /// in TOML the offsets and gains as the cables' `offset` and `gain` keys (.wcrfx cannot
+    /// hold them: a warning says so).
     #[arg(short = 'o', long = "output", value_name = "OUT")]
     output: Option<PathBuf>,
     /// Write one JSON object on stdout instead of a table.
@@ -79,7 +83,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
     } else {
         Readings::Absolute
     };
-    let cal = calibrate(robot, &samples, unknowns, &readings)?;
+    // A robot file written by `calibrate -o` holds calibrated encoders: start from them.
+    let encoders = desc
+        .encoders
+        .clone()
+        .unwrap_or_else(|| Encoders::identity(robot.cable_count()));
+    let cal = calibrate_with_encoders(
+        robot,
+        &encoders.offsets,
+        &encoders.gains,
+        &samples,
+        unknowns,
+        &readings,
+    )?;
     for w in &cal.warnings {
         eprintln!("warning: {w}");
     }
@@ -323,7 +339,7 @@ fn identifiability_reason(cal: &Calibration) -> String {
     }
 }
 
-/// Writes the calibrated geometry; offsets and gains go into the header comment.
+/// Writes the calibrated geometry, offsets and gains (robot-file keys `offset`, `gain`).
 fn write_robot(desc: &RobotDescription, cal: &Calibration, out: &Path) -> Result<(), CliError> {
     if !cal.identifiable {
         return Err(format!(
@@ -340,18 +356,14 @@ fn write_robot(desc: &RobotDescription, cal: &Calibration, out: &Path) -> Result
         c.platform = cal.parameters.platform[i];
     }
     calibrated.robot = cdpr::kinematics::Robot::new(desc.robot.motion(), cables)?;
-    let list = |v: &[f64]| {
-        v.iter()
-            .map(|x| format!("{x:.9}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    calibrated.encoders = Some(Encoders {
+        offsets: cal.parameters.offsets.clone(),
+        gains: cal.parameters.gains.clone(),
+    });
     let header = format!(
-        "{} — calibrated by `cdpr calibrate` (residual rms {:.3e} m); offsets (m): [{}]; gains: [{}]",
-        desc.name,
-        cal.residual_rms,
-        list(&cal.parameters.offsets),
-        list(&cal.parameters.gains)
+        "{} — calibrated by `cdpr calibrate` (residual rms {:.3e} m; the cables' `offset` (m) \
+         and `gain` keys: true length = gain · reading + offset)",
+        desc.name, cal.residual_rms,
     );
     for w in calibrated.save(out, &header)? {
         eprintln!("warning: {}: {w}", out.display());

@@ -113,9 +113,42 @@ fn calibrate_known_poses_recovers_the_anchors() {
     ] {
         assert!(v.get(key).is_some(), "{key}");
     }
-    // The written robot carries the calibrated anchors.
+    // The written robot carries the calibrated anchors, offsets and gains exactly (robot-file
+    // keys `frame`, `offset`, `gain`).
     let written = RobotDescription::load(&out_robot).unwrap();
     assert!((written.robot.cables()[2].frame - truth.cables()[2].frame).norm() < 1e-9);
+    let encoders = written.encoders.as_ref().expect("offset and gain keys");
+    for (i, c) in written.robot.cables().iter().enumerate() {
+        for k in 0..3 {
+            assert_eq!(c.frame[k], v["frame"][i][k].as_f64().unwrap());
+        }
+        assert_eq!(encoders.offsets[i], v["offsets"][i].as_f64().unwrap());
+        assert_eq!(encoders.gains[i], v["gains"][i].as_f64().unwrap());
+    }
+    // Round trip: the written file is the calibrated model. Calibrating its anchors again from
+    // the same readings starts from its offsets (held: not unknowns) and changes nothing.
+    let again = json(&[
+        "calibrate",
+        &out_robot,
+        "--samples",
+        &path,
+        "--known-poses",
+        "--unknowns",
+        "frame",
+        "--json",
+    ]);
+    assert_eq!(again["identifiable"], true, "{again}");
+    assert!(again["residual_rms"].as_f64().unwrap() < 1e-9, "{again}");
+    for i in 0..4 {
+        assert_eq!(again["offsets"][i], v["offsets"][i]);
+        for k in 0..3 {
+            let (a, b) = (
+                again["frame"][i][k].as_f64().unwrap(),
+                v["frame"][i][k].as_f64().unwrap(),
+            );
+            assert!((a - b).abs() < 1e-9, "{i} {k}: {a} vs {b}");
+        }
+    }
 }
 
 #[test]
