@@ -98,7 +98,10 @@ fn a_malformed_robot_fails_with_its_line() {
     });
     let e = serde_json::from_value::<KinematicsRequest>(json).unwrap_err();
     // The fourth cable's frame is on line 16 of SQUARE.
-    assert!(e.to_string().contains("x.toml:16: `cables[4].frame`"), "{e}");
+    assert!(
+        e.to_string().contains("x.toml:16: `cables[4].frame`"),
+        "{e}"
+    );
     let e = serde_json::from_value::<TensionRequest>(serde_json::json!({
         "robot": { "format": "toml", "text": SQUARE },
         "pose": [0.0, 0.0],

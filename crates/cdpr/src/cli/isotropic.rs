@@ -100,8 +100,6 @@ pub struct Args {
     json: bool,
 }
 
-use cdpr::api::definition;
-
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;

@@ -29,12 +29,19 @@ fn pose_commands_print_their_reports() {
         json(&["kinematics", &file, "--pose", pose, "--json"]),
     );
 
-    let mut t = TensionRequest::new(api_robot("tdpm-4.toml"), q.clone(), Method::Barycenter);
+    let mut t = TensionRequest::new(api_robot("tdpm-4.toml"), q.clone(), Method::ClosedForm);
     t.wrench = Some(vec![0.0, -10.0, 0.0]);
     same(
         &t.run().unwrap(),
         json(&[
-            "tension", &file, "--pose", pose, "--wrench", "0,-10,0", "--method", "barycenter",
+            "tension",
+            &file,
+            "--pose",
+            pose,
+            "--wrench",
+            "0,-10,0",
+            "--method",
+            "closed-form",
             "--json",
         ]),
     );
@@ -51,7 +58,13 @@ fn pose_commands_print_their_reports() {
     same(
         &c.run().unwrap(),
         json(&[
-            "capacity", &file, "--pose", pose, "--wrench-box", "5,5,0.5", "--json",
+            "capacity",
+            &file,
+            "--pose",
+            pose,
+            "--wrench-box",
+            "5,5,0.5",
+            "--json",
         ]),
     );
 
@@ -78,8 +91,15 @@ fn pose_commands_print_their_reports() {
     same(
         &s.run().unwrap(),
         json(&[
-            "stiffness", &file, "--pose", pose, "--tensions", "10,20,30,40",
-            "--axial-stiffness", "1000", "--json",
+            "stiffness",
+            &file,
+            "--pose",
+            pose,
+            "--tensions",
+            "10,20,30,40",
+            "--axial-stiffness",
+            "1000",
+            "--json",
         ]),
     );
 
@@ -95,7 +115,13 @@ fn pose_commands_print_their_reports() {
     same(
         &f.run().unwrap(),
         json(&[
-            "forward", &file, "--lengths", &l.join(","), "--guess", "0,0,0", "--json",
+            "forward",
+            &file,
+            "--lengths",
+            &l.join(","),
+            "--guess",
+            "0,0,0",
+            "--json",
         ]),
     );
 }
