@@ -247,14 +247,14 @@ pub fn drive_train(
     for (i, w) in winches.iter().enumerate() {
         if let (Some(max), Some((t, tau))) = (w.max_torque, first_over_torque[i]) {
             out.violations.push(format!(
-                "motor {}: |τ| = {} N·m > max_torque = {max} N·m at t = {t} s",
+                "motor {}: |τ| = {:.6} N·m > max_torque = {max} N·m at t = {t} s",
                 i + 1,
                 tau.abs()
             ));
         }
         if let (Some(max), Some((t, speed))) = (w.max_speed, first_over_speed[i]) {
             out.violations.push(format!(
-                "motor {}: |ω| = {} rad/s > max_speed = {max} rad/s at t = {t} s",
+                "motor {}: |ω| = {:.6} rad/s > max_speed = {max} rad/s at t = {t} s",
                 i + 1,
                 speed.abs()
             ));
