@@ -518,22 +518,19 @@ fn replay(
     let cables = robot.robot.cables();
     let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
     let t_min = lo.iter().cloned().fold(f64::INFINITY, f64::min);
-    let finite_max = hi
+    // The colour scale ends at the largest tension met (the largest finite bound if none is).
+    let met = profile
+        .tensions
+        .iter()
+        .flatten()
+        .flat_map(|t| t.iter().cloned())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let bound = hi
         .iter()
         .cloned()
         .filter(|v| v.is_finite())
-        .fold(f64::NEG_INFINITY, f64::max);
-    let t_max = if finite_max.is_finite() {
-        finite_max
-    } else {
-        // No finite upper bound: scale to the largest tension met.
-        profile
-            .tensions
-            .iter()
-            .flatten()
-            .flat_map(|t| t.iter().cloned())
-            .fold(t_min, f64::max)
-    };
+        .fold(t_min, f64::max);
+    let t_max = if met.is_finite() { met } else { bound };
     cdpr::plot::Replay {
         title: format!(
             "{}: {law} trajectory, {method} tensions, {:.3} s",
