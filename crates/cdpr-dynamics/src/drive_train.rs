@@ -15,10 +15,9 @@
 //! it?". The drum's friction and the gear's efficiency are not modelled.
 //!
 //! ## References
-//! - Pott 2018, *Cable-Driven Parallel Robots: Theory and Application*, Springer, ch. 7 (winch
-//!   and drive-train design: drum radius, gear ratio, reflected inertia).
-//! - Miermeister et al. 2016, "The CableRobot Simulator", IEEE ICRA: the motor-torque model of a
-//!   cable winch, τ = (r/G) t + J θ̈.
+//! - Pott 2018, *Cable-Driven Parallel Robots: Theory and Application*, Springer (winches:
+//!   drum, gear and motor); WireCenter's `<winch>` (`<drum r_drum>`, `<motor gear_ratio inertia
+//!   angular_velocity>`) holds the same parameters.
 
 use crate::DynamicsError;
 use crate::DynamicsProfile;
