@@ -119,7 +119,7 @@ pub struct DriveTrainProfile {
     pub motor_powers: Vec<f64>,
     /// Per motor, max |ω_m| (rad/s).
     pub peak_speed: Vec<f64>,
-    /// Per motor, max |τ| over the feasible samples (N·m).
+    /// Per motor, max |τ| over the feasible samples (N·m; NaN when no sample is feasible).
     pub peak_torque: Vec<f64>,
     /// Per motor, max P over the feasible samples (W).
     pub peak_power: Vec<f64>,
@@ -237,7 +237,9 @@ pub fn drive_train(
         out.rms_speed[i] = rms(&profile.t, |k| out.motor_speeds[k * n + i], span).unwrap_or(0.0);
         out.rms_torque[i] = rms(&profile.t, |k| out.motor_torques[k * n + i], span);
         if out.peak_power[i] == f64::NEG_INFINITY {
+            // No feasible sample: the torque (and so its peak) is unknown.
             out.peak_power[i] = f64::NAN;
+            out.peak_torque[i] = f64::NAN;
         }
     }
     if out.peak_total_power == f64::NEG_INFINITY {
@@ -370,6 +372,12 @@ mod tests {
         let d = drive_train(&[w], &p).unwrap();
         assert!(d.motor_torques[1].is_nan());
         assert_eq!(d.rms_torque[0], None);
+        assert!((d.peak_torque[0] - 0.2).abs() < 1e-12);
+        // No feasible sample at all: no peak either.
+        let p = profile(vec![None, None], vec![0.0, 0.0], vec![0.0, 0.0]);
+        let d = drive_train(&[w], &p).unwrap();
+        assert!(d.peak_torque[0].is_nan() && d.peak_power[0].is_nan());
+        assert!(d.peak_total_power.is_nan());
         assert_eq!(d.within_limits, None);
         let none = Winch::new(0.1, 5.0, 0.0, None, None).unwrap();
         let p = profile(vec![Some(10.0)], vec![0.0], vec![0.0]);
