@@ -15,10 +15,9 @@
 //! it?". The drum's friction and the gear's efficiency are not modelled.
 //!
 //! ## References
-//! - Pott 2018, *Cable-Driven Parallel Robots: Theory and Application*, Springer, ch. 7 (winch
-//!   and drive-train design: drum radius, gear ratio, reflected inertia).
-//! - Miermeister et al. 2016, "The CableRobot Simulator", IEEE ICRA: the motor-torque model of a
-//!   cable winch, τ = (r/G) t + J θ̈.
+//! - Pott 2018, *Cable-Driven Parallel Robots: Theory and Application*, Springer (winches:
+//!   drum, gear and motor); WireCenter's `<winch>` (`<drum r_drum>`, `<motor gear_ratio inertia
+//!   angular_velocity>`) holds the same parameters.
 
 use crate::DynamicsError;
 use crate::DynamicsProfile;
@@ -120,7 +119,7 @@ pub struct DriveTrainProfile {
     pub motor_powers: Vec<f64>,
     /// Per motor, max |ω_m| (rad/s).
     pub peak_speed: Vec<f64>,
-    /// Per motor, max |τ| over the feasible samples (N·m).
+    /// Per motor, max |τ| over the feasible samples (N·m; NaN when no sample is feasible).
     pub peak_torque: Vec<f64>,
     /// Per motor, max P over the feasible samples (W).
     pub peak_power: Vec<f64>,
@@ -238,7 +237,9 @@ pub fn drive_train(
         out.rms_speed[i] = rms(&profile.t, |k| out.motor_speeds[k * n + i], span).unwrap_or(0.0);
         out.rms_torque[i] = rms(&profile.t, |k| out.motor_torques[k * n + i], span);
         if out.peak_power[i] == f64::NEG_INFINITY {
+            // No feasible sample: the torque (and so its peak) is unknown.
             out.peak_power[i] = f64::NAN;
+            out.peak_torque[i] = f64::NAN;
         }
     }
     if out.peak_total_power == f64::NEG_INFINITY {
@@ -247,14 +248,14 @@ pub fn drive_train(
     for (i, w) in winches.iter().enumerate() {
         if let (Some(max), Some((t, tau))) = (w.max_torque, first_over_torque[i]) {
             out.violations.push(format!(
-                "motor {}: |τ| = {} N·m > max_torque = {max} N·m at t = {t} s",
+                "motor {}: |τ| = {:.6} N·m > max_torque = {max} N·m at t = {t} s",
                 i + 1,
                 tau.abs()
             ));
         }
         if let (Some(max), Some((t, speed))) = (w.max_speed, first_over_speed[i]) {
             out.violations.push(format!(
-                "motor {}: |ω| = {} rad/s > max_speed = {max} rad/s at t = {t} s",
+                "motor {}: |ω| = {:.6} rad/s > max_speed = {max} rad/s at t = {t} s",
                 i + 1,
                 speed.abs()
             ));
@@ -371,6 +372,12 @@ mod tests {
         let d = drive_train(&[w], &p).unwrap();
         assert!(d.motor_torques[1].is_nan());
         assert_eq!(d.rms_torque[0], None);
+        assert!((d.peak_torque[0] - 0.2).abs() < 1e-12);
+        // No feasible sample at all: no peak either.
+        let p = profile(vec![None, None], vec![0.0, 0.0], vec![0.0, 0.0]);
+        let d = drive_train(&[w], &p).unwrap();
+        assert!(d.peak_torque[0].is_nan() && d.peak_power[0].is_nan());
+        assert!(d.peak_total_power.is_nan());
         assert_eq!(d.within_limits, None);
         let none = Winch::new(0.1, 5.0, 0.0, None, None).unwrap();
         let p = profile(vec![Some(10.0)], vec![0.0], vec![0.0]);

@@ -425,8 +425,8 @@ fn tension_plot(
 fn limit_lines(limits: &[Option<f64>], name: &str, unit: &str) -> Vec<(f64, String)> {
     match limits.first().copied().flatten() {
         Some(v) if limits.iter().all(|l| *l == Some(v)) => vec![
-            (v, format!("+{name} = {} {unit}", cdpr::plot::tick(v))),
-            (-v, format!("−{name} = {} {unit}", cdpr::plot::tick(v))),
+            (v, format!("+{} {unit} ({name})", cdpr::plot::tick(v))),
+            (-v, format!("−{} {unit} ({name})", cdpr::plot::tick(v))),
         ],
         _ => Vec::new(),
     }
@@ -442,7 +442,7 @@ fn motor_torque_plot(
     let n = d.motors;
     let series = (0..n)
         .map(|i| Series {
-            label: format!("τ{}", i + 1),
+            label: format!("motor {}", i + 1),
             points: profile
                 .t
                 .iter()
@@ -459,12 +459,12 @@ fn motor_torque_plot(
         .collect();
     LinePlot {
         title: format!(
-            "{}: motor torques against time ({law} law; τ = (r/G) t − J_m (G/r) l̈, > 0 winds in)",
+            "{}: motor torques against time ({law} law; τ = (r/G) t − J_m (G/r) d²l/dt², > 0 winds in)",
             robot.name
         ),
         labels: ("time t (s)".into(), "motor torque τ (N·m)".into()),
         series,
-        reference_lines: limit_lines(&limits, "max_torque", "N·m"),
+        reference_lines: limit_lines(&limits, "max", "N·m"),
         gap_label: Some("infeasible samples".into()),
     }
 }
@@ -479,7 +479,7 @@ fn cable_speed_plot(
     let n = profile.cables;
     let series = (0..n)
         .map(|i| Series {
-            label: format!("l̇{}", i + 1),
+            label: format!("cable {}", i + 1),
             points: profile
                 .t
                 .iter()
@@ -496,12 +496,12 @@ fn cable_speed_plot(
         .collect();
     LinePlot {
         title: format!(
-            "{}: cable speeds against time ({law} law; l̇ = −Wᵀẋ, > 0 pays out)",
+            "{}: cable speeds against time ({law} law; dl/dt = −Wᵀ dx/dt, > 0 pays out)",
             robot.name
         ),
-        labels: ("time t (s)".into(), "cable speed l̇ (m/s)".into()),
+        labels: ("time t (s)".into(), "cable speed dl/dt (m/s)".into()),
         series,
-        reference_lines: limit_lines(&limits, "max cable speed", "m/s"),
+        reference_lines: limit_lines(&limits, "max", "m/s"),
         gap_label: None,
     }
 }
@@ -518,22 +518,19 @@ fn replay(
     let cables = robot.robot.cables();
     let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
     let t_min = lo.iter().cloned().fold(f64::INFINITY, f64::min);
-    let finite_max = hi
+    // The colour scale ends at the largest tension met (the largest finite bound if none is).
+    let met = profile
+        .tensions
+        .iter()
+        .flatten()
+        .flat_map(|t| t.iter().cloned())
+        .fold(f64::NEG_INFINITY, f64::max);
+    let bound = hi
         .iter()
         .cloned()
         .filter(|v| v.is_finite())
-        .fold(f64::NEG_INFINITY, f64::max);
-    let t_max = if finite_max.is_finite() {
-        finite_max
-    } else {
-        // No finite upper bound: scale to the largest tension met.
-        profile
-            .tensions
-            .iter()
-            .flatten()
-            .flat_map(|t| t.iter().cloned())
-            .fold(t_min, f64::max)
-    };
+        .fold(t_min, f64::max);
+    let t_max = if met.is_finite() { met } else { bound };
     cdpr::plot::Replay {
         title: format!(
             "{}: {law} trajectory, {method} tensions, {:.3} s",

@@ -3,7 +3,8 @@
 //! `cdpr trajectory … --time-law LAW --replay FILE.html` writes one self-contained page (no
 //! library, no network; `replay.js`, licensed with this crate): the platform (the convex hull of
 //! its attachments) and its cables moving along the trajectory, cables coloured by tension on
-//! a blue → red scale from t_min to t_max and dashed grey at infeasible samples, the path of the
+//! a blue → red scale from t_min to the largest tension along the trajectory (`t_max` of
+//! [`Replay`]) and dashed grey at infeasible samples, the path of the
 //! platform origin, a play button (real time) and a time slider; drag to orbit, wheel to zoom.
 //!
 //! When the page has drawn, it writes `replayed N frames of n cables` into `#cdpr-status`
@@ -34,9 +35,9 @@ pub struct Replay {
     pub tensions: Vec<Option<Vec<f64>>>,
     /// Why a sample is infeasible.
     pub reasons: Vec<Option<String>>,
-    /// The colour scale's ends (N).
+    /// Lower end of the colour scale (N): t_min.
     pub t_min: f64,
-    /// Upper end of the colour scale (N).
+    /// Upper end of the colour scale (N): the largest tension along the trajectory.
     pub t_max: f64,
     /// A 2-D robot (seen from +z).
     pub planar: bool,

