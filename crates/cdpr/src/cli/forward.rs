@@ -27,14 +27,39 @@ use std::path::PathBuf;
 /// rad), `length_sigma` (m), `iterations`, `converged`, `status`, `min_singular_value`, and
 /// `solutions` (every distinct solution found, each with the same fields; one entry with
 /// --guess).
+///
+/// With `--unstrained-lengths L1,…,Ln --cable-model elastic|catenary` (issue 29: elasto-geometric
+/// forward kinematics) it finds the platform's equilibrium pose under its weight (robot file)
+/// and `--wrench` with elastic or sagging cables of those unstrained lengths (Newton's step from
+/// the stiffness matrix, started from --guess or from the straight cables' pose for the
+/// unstrained lengths). JSON fields: `cable_model`, `pose`, `tensions` (platform end, N),
+/// `frame_end_tensions` (N), `unstrained_lengths` and `chord_lengths` (m), `max_sag` (m),
+/// `angle_to_chord` (rad), `residual` (max equilibrium residual, N; moments in N·m divided by
+/// the robot's length scale in m), `status` ("equilibrium" or "did not converge"),
+/// `iterations`, `slack_cables` (cable numbers from 1), `external_wrench` (N, N·m, at the pose).
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML, CASPR XML or WireCenter .wcrfx).
     robot: PathBuf,
     /// Measured cable lengths L_1,…,L_n (m), in cable order; with pulleys measured from each
     /// cable's `frame` point over its pulley.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "unstrained_lengths",
+        conflicts_with = "unstrained_lengths"
+    )]
+    lengths: Option<Numbers>,
+    /// Unstrained cable lengths L0_1,…,L0_n (m) paid out by the winches, for --cable-model
+    /// elastic|catenary: the equilibrium pose under the platform's weight and --wrench.
     #[arg(long, allow_hyphen_values = true)]
-    lengths: Numbers,
+    unstrained_lengths: Option<Numbers>,
+    #[command(flatten)]
+    cable_model: super::cable_model::CableModelArgs,
+    /// External wrench w_e on the platform with --unstrained-lengths (DOF numbers, N and N·m;
+    /// default zero), added to the platform's weight from the robot file.
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
     /// Starting pose (motion-pattern coordinates, e.g. x,y,z,rx,ry,rz); without it, multi-start.
     #[arg(long, allow_hyphen_values = true)]
     guess: Option<Numbers>,
@@ -54,6 +79,21 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     let motion = robot.robot.motion();
+    if let Some(l0) = &args.unstrained_lengths {
+        let guess = args.guess.as_ref().map(|g| pose(&robot, g)).transpose()?;
+        return super::cable_model::forward(
+            &robot,
+            &args.cable_model,
+            l0,
+            args.wrench.as_deref(),
+            guess,
+            args.json,
+        );
+    }
+    if args.cable_model.model() != cdpr::kinematics::CableModel::Straight || args.wrench.is_some() {
+        return Err("--cable-model elastic|catenary and --wrench go with --unstrained-lengths (measured lengths --lengths are the straight cables')".into());
+    }
+    let lengths = args.lengths.as_deref().unwrap_or_default();
     let settings = ForwardSettings {
         tolerance: args.tolerance,
         length_sigma: args.length_sigma,
@@ -61,8 +101,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
     };
     let mut fk = ForwardKinematics::new(&robot.robot, settings)?;
     let solutions = match &args.guess {
-        Some(g) => vec![fk.solve(&args.lengths, &pose(&robot, g)?)?],
-        None => fk.solve_multistart(&args.lengths)?,
+        Some(g) => vec![fk.solve(lengths, &pose(&robot, g)?)?],
+        None => fk.solve_multistart(lengths)?,
     };
     let best = solutions[0];
     let model = kinematics_model(&robot);
