@@ -217,12 +217,59 @@ fn elastic_catenary(c: &mut Criterion) {
     g.finish();
 }
 
+/// Issue 29 budget: elastic forward kinematics ≤ 10 µs. IPAnema-like 8-cable robot, 100 poses
+/// of `spatial_poses`, platform-end tensions 100 N (the wrench they balance is the load), each
+/// solve started 1 mm and 1 mrad from the pose (tracking a moving platform); E·S = 60 kN,
+/// weightless (`elastic`) and 0.02 kg/m (`catenary`).
+fn elasto_geometric_forward(c: &mut Criterion) {
+    use cdpr_kinematics::catenary::write_sagging_wrench_matrix;
+    use cdpr_kinematics::{ElastoGeometricForward, RobotCatenaries};
+    let robot = ipanema_like_8();
+    let poses = spatial_poses(100);
+    let mut g = c.benchmark_group("elasto_geometric_forward");
+    g.throughput(Throughput::Elements(poses.len() as u64));
+    for (name, rho) in [("elastic_spatial_8", 0.0), ("catenary_spatial_8", 0.02)] {
+        let model =
+            RobotCatenaries::new(&[rho; 8], &[6e4; 8], &Vector3::new(0.0, 0.0, -9.81)).unwrap();
+        let mut cases = Vec::new();
+        let mut cables = Vec::new();
+        let mut w = DMatrix::zeros(0, 0);
+        for p in &poses {
+            let kin = robot.inverse_kinematics(p).unwrap();
+            model.with_tensions(&kin, &[100.0; 8], &mut cables).unwrap();
+            write_sagging_wrench_matrix(&kin, &cables, &mut w);
+            let w_ext: Vec<f64> = (0..6).map(|r| -100.0 * w.row(r).sum()).collect();
+            let l0: Vec<f64> = cables.iter().map(|c| c.unstrained_length).collect();
+            let start = Pose::new(
+                p.position + Vector3::new(1e-3, -1e-3, 1e-3),
+                Rotation3::new(Vector3::new(1e-3, 0.0, -1e-3)) * p.rotation,
+            );
+            cases.push((l0, w_ext, start));
+        }
+        let mut fk = ElastoGeometricForward::new(&robot, &model, Default::default()).unwrap();
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let mut ok = 0;
+                for (l0, w_ext, start) in &cases {
+                    let s = fk.solve(black_box(l0), w_ext, start).unwrap();
+                    ok +=
+                        (s.status == cdpr_kinematics::ElastoGeometricStatus::Equilibrium) as usize;
+                }
+                assert_eq!(ok, cases.len());
+                black_box(ok)
+            })
+        });
+    }
+    g.finish();
+}
+
 criterion_group!(
     benches,
     inverse_kinematics,
     forward_kinematics,
     batch_from_coordinates,
     interference,
-    elastic_catenary
+    elastic_catenary,
+    elasto_geometric_forward
 );
 criterion_main!(benches);

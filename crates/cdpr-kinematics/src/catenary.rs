@@ -213,8 +213,9 @@ impl ElasticCatenary {
     fn forward(&self, l0: f64, fx: f64, fz: f64) -> Forward {
         let (w, c) = (self.weight, self.compliance);
         let v = fz - w * l0;
-        let tb = fx.hypot(fz);
-        let ta = fx.hypot(v);
+        // √(a² + b²) rather than `hypot` (several times faster; forces are far from overflow).
+        let tb = (fx * fx + fz * fz).sqrt();
+        let ta = (fx * fx + v * v).sqrt();
         let sum = ta + tb;
         let x = if fx > 0.0 {
             // P/Q with P = F_z + T_B, Q = V + T_A formed without subtraction.
@@ -524,6 +525,20 @@ impl ElasticCatenary {
         z: f64,
         tension: f64,
     ) -> Result<CatenarySolution, CatenaryError> {
+        self.solve_for_tension_from(x, z, tension, None)
+    }
+
+    /// [`ElasticCatenary::solve_for_tension`] with Newton's method started from `start` (a
+    /// nearby taut solution: the previous iterate of an outer loop, whose angle and unstrained
+    /// length it reuses) instead of the straight cable. The fallback and the answer are the
+    /// same: the start is kept only while Newton stays on the taut branch.
+    pub fn solve_for_tension_from(
+        &self,
+        x: f64,
+        z: f64,
+        tension: f64,
+        start: Option<&CatenarySolution>,
+    ) -> Result<CatenarySolution, CatenaryError> {
         let chord = Self::check_span(x, z)?;
         if !(tension.is_finite() && tension >= 0.0) {
             return Err(CatenaryError::InvalidInput {
@@ -546,7 +561,20 @@ impl ElasticCatenary {
         if x <= 1e-12 * chord {
             return self.vertical_for_tension(x, z, tension);
         }
-        match self.tension_newton(x, z, tension, chord) {
+        let warm = start
+            .filter(|s| s.horizontal_force > 0.0 && s.unstrained_length > 0.0)
+            .map(|s| {
+                (
+                    s.vertical_force.atan2(s.horizontal_force),
+                    s.unstrained_length,
+                )
+            });
+        if let Some(w) = warm
+            && let Ok(sol) = self.tension_newton(x, z, tension, chord, Some(w))
+        {
+            return Ok(sol);
+        }
+        match self.tension_newton(x, z, tension, chord, None) {
             Ok(sol) => Ok(sol),
             Err(_) => self.tension_by_length(x, z, tension, chord),
         }
@@ -676,14 +704,19 @@ impl ElasticCatenary {
         z: f64,
         tension: f64,
         chord: f64,
+        start: Option<(f64, f64)>,
     ) -> Result<CatenarySolution, CatenaryError> {
         let (w, c, t) = (self.weight, self.compliance, tension);
         let target = Vector2::new(x, z);
-        // Start: the straight cable, its end force tilted by half the weight.
-        let stretch = 1.0 + c * t;
-        let mut l0 = chord / stretch;
-        let sin0 = (z / chord + 0.5 * w * l0 / t).clamp(-0.999, 0.999);
-        let mut theta = sin0.asin();
+        let (mut theta, mut l0) = match start {
+            Some(s) => s,
+            None => {
+                // The straight cable, its end force tilted by half the weight.
+                let l0 = chord / (1.0 + c * t);
+                let sin0 = (z / chord + 0.5 * w * l0 / t).clamp(-0.999, 0.999);
+                (sin0.asin(), l0)
+            }
+        };
         let eval = |theta: f64, l0: f64| {
             let (s, co) = theta.sin_cos();
             let f = self.forward(l0, t * co, t * s);
@@ -806,8 +839,21 @@ impl SaggingCable {
         up: &Vector3<f64>,
         tension: f64,
     ) -> Result<Self, CatenaryError> {
+        Self::with_tension_from(model, frame_point, attachment_point, up, tension, None)
+    }
+
+    /// [`SaggingCable::with_tension`] warm-started from a nearby solution
+    /// ([`ElasticCatenary::solve_for_tension_from`]).
+    pub fn with_tension_from(
+        model: &ElasticCatenary,
+        frame_point: &Vector3<f64>,
+        attachment_point: &Vector3<f64>,
+        up: &Vector3<f64>,
+        tension: f64,
+        start: Option<&CatenarySolution>,
+    ) -> Result<Self, CatenaryError> {
         let (x, z, horizontal) = plane_span(frame_point, attachment_point, up);
-        let sol = model.solve_for_tension(x, z, tension)?;
+        let sol = model.solve_for_tension_from(x, z, tension, start)?;
         Ok(Self::from_solution(model, &sol, x, z, &horizontal, up))
     }
 
@@ -1033,6 +1079,29 @@ impl RobotCatenaries {
         for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
             let (a, b) = Self::ends(kin, i);
             let s = SaggingCable::with_tension(model, &a, &b, &self.up, t)
+                .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
+            out.push(s);
+        }
+        Ok(())
+    }
+
+    /// [`RobotCatenaries::with_tensions`], each cable's solve started from its catenary in
+    /// `previous` (the last iterate of a fixed point at the same pose; ignored unless it has one
+    /// entry per cable).
+    pub fn with_tensions_from(
+        &self,
+        kin: &crate::PoseKinematics,
+        tensions: &[f64],
+        previous: &[SaggingCable],
+        out: &mut Vec<SaggingCable>,
+    ) -> Result<(), crate::KinematicsError> {
+        self.check_count(kin, tensions.len())?;
+        let warm = previous.len() == tensions.len();
+        out.clear();
+        for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
+            let (a, b) = Self::ends(kin, i);
+            let start = warm.then(|| &previous[i].solution);
+            let s = SaggingCable::with_tension_from(model, &a, &b, &self.up, t, start)
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
             out.push(s);
         }

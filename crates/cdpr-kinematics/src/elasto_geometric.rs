@@ -346,6 +346,85 @@ impl<'a> ElastoGeometricForward<'a> {
         self.iterate(l0, &mut Load::Posed(load), *guess)
     }
 
+    /// Without a guess: the equilibria reached from the straight cables' poses for the
+    /// unstrained lengths ([`crate::ForwardKinematics::solve_multistart`] on all the cables
+    /// and, with n > DOF, on every set leaving one cable out — a cable that hangs far below its
+    /// chord misleads the straight model), the best returned and its cable states kept:
+    /// certified equilibria first, among them the fewest slack cables, then the smallest
+    /// largest tension (a heuristic for the physical, hanging equilibrium: a fixed set of
+    /// starts can miss it; give a guess near it); without an equilibrium, the smallest
+    /// residual.
+    pub fn solve_multistart_with_load(
+        &mut self,
+        l0: &[f64],
+        load: &mut PoseLoad<'_>,
+    ) -> Result<ElastoGeometricSolution, KinematicsError> {
+        let n = self.robot.cable_count();
+        self.check(l0, &Pose::point(0.0, 0.0, 0.0))?;
+        let mut starts = Vec::new();
+        let geometric = |robot: &Robot, lengths: &[f64], starts: &mut Vec<Pose>| {
+            let settings = crate::ForwardSettings::default();
+            if let Ok(mut fk) = crate::ForwardKinematics::new(robot, settings)
+                && let Ok(sols) = fk.solve_multistart(lengths)
+            {
+                starts.extend(sols.iter().map(|s| s.pose));
+            }
+        };
+        geometric(self.robot, l0, &mut starts);
+        if n > self.robot.dof() {
+            let mut lengths = Vec::with_capacity(n - 1);
+            for skip in 0..n {
+                let keep: Vec<usize> = (0..n).filter(|&i| i != skip).collect();
+                lengths.clear();
+                lengths.extend(keep.iter().map(|&i| l0[i]));
+                if let Ok(sub) = self.robot.permuted(&keep) {
+                    geometric(&sub, &lengths, &mut starts);
+                }
+            }
+        }
+        let rank = |s: &ElastoGeometricSolution, t_max: f64| {
+            (
+                s.status != ElastoGeometricStatus::Equilibrium,
+                if s.status == ElastoGeometricStatus::Equilibrium {
+                    (s.slack_count as f64, t_max)
+                } else {
+                    (0.0, s.residual)
+                },
+            )
+        };
+        let mut best: Option<(ElastoGeometricSolution, f64)> = None;
+        for start in &starts {
+            let Ok(sol) = self.solve_with_load(l0, load, start) else {
+                continue;
+            };
+            let t_max = self
+                .cables
+                .iter()
+                .fold(0.0f64, |m, c| m.max(c.platform_end_tension));
+            let better = match &best {
+                None => true,
+                Some((b, bt)) => {
+                    rank(&sol, t_max).partial_cmp(&rank(b, *bt)) == Some(std::cmp::Ordering::Less)
+                }
+            };
+            if better {
+                best = Some((sol, t_max));
+            }
+        }
+        let Some((sol, _)) = best else {
+            return Err(KinematicsError::InvalidSetting {
+                what: "elasto-geometric start (no straight-cable pose for these lengths reaches an equilibrium start; give a guess)",
+                value: f64::NAN,
+            });
+        };
+        // The cable states of the best solution.
+        let again = self.solve_with_load(l0, load, &sol.pose)?;
+        Ok(ElastoGeometricSolution {
+            iterations: sol.iterations,
+            ..again
+        })
+    }
+
     /// Every cable's force and stiffness at the pose of `kin` into `out`, each solve started
     /// from the plane force `out` holds; `None` when a cable cannot reach (inextensible and too
     /// short) or its solve fails.
@@ -433,6 +512,7 @@ impl<'a> ElastoGeometricForward<'a> {
         let (mut cost, mut max) = self.measure(&g);
         let (mut mu, mut nu) = (0.0, 2.0);
         let mut iterations = 0;
+        // A pose that moves less than this (m) has converged at the precision of the forces.
         let step_tolerance = 1e-14 * scale;
         let mut gt = Vector6::zeros();
         while iterations < self.settings.max_iterations {
@@ -515,7 +595,10 @@ impl<'a> ElastoGeometricForward<'a> {
                     break;
                 }
             } else {
-                if size <= step_tolerance {
+                // A rejected step at the noise floor of the catenary solves: certified already.
+                if size <= step_tolerance
+                    || max <= 1e-3 * self.certified_residual(self.force_scale(&forces, load))
+                {
                     break;
                 }
                 mu = if mu == 0.0 { 1e-6 } else { mu * nu };

@@ -143,7 +143,8 @@ impl SaggingStatics {
                 TensionOutcome::Feasible(s) => s.tensions,
                 TensionOutcome::Infeasible(r) => return Ok(SaggingOutcome::Infeasible(r)),
             };
-            match model.with_tensions(kin, t.as_slice(), &mut self.cables) {
+            // Each cable's solve starts from its catenary of the previous iteration.
+            match model.with_tensions_from(kin, t.as_slice(), &self.previous, &mut self.cables) {
                 Ok(()) => {}
                 Err(KinematicsError::Catenary {
                     cable,

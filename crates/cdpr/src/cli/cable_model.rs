@@ -292,3 +292,93 @@ pub fn compensation(
     }
     Ok((lengths, tensions, reasons))
 }
+
+/// `cdpr forward --unstrained-lengths … --cable-model elastic|catenary`: the elasto-geometric
+/// forward kinematics ([`cdpr::kinematics::ElastoGeometricForward`]) under the platform's
+/// weight (and springs) from the robot file plus `wrench`, from `guess` or else from the
+/// straight cables' poses for the unstrained lengths (multi-start).
+pub fn forward(
+    robot: &RobotDescription,
+    args: &CableModelArgs,
+    l0: &[f64],
+    wrench: Option<&[f64]>,
+    guess: Option<cdpr::kinematics::Pose>,
+    json_out: bool,
+) -> Result<(), CliError> {
+    use cdpr::kinematics::ElastoGeometricForward;
+    let name = args.model().name();
+    let Some(model) = args.catenaries(robot)? else {
+        return Err(
+            "--unstrained-lengths needs --cable-model elastic or catenary (straight cables have no unstrained length: use --lengths)"
+                .into(),
+        );
+    };
+    let n = robot.robot.cable_count();
+    if l0.len() != n {
+        return Err(format!(
+            "--unstrained-lengths needs {n} numbers (one per cable), got {}",
+            l0.len()
+        )
+        .into());
+    }
+    if let Some(i) = l0.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
+        return Err(format!(
+            "--unstrained-lengths: cable {} has length {} m; lengths are finite numbers > 0",
+            i + 1,
+            l0[i]
+        )
+        .into());
+    }
+    let w_e = super::wrench(robot, wrench)?;
+    let mut fk = ElastoGeometricForward::new(&robot.robot, &model, Default::default())?;
+    let mut load = |p: &cdpr::kinematics::Pose, out: &mut [f64]| {
+        let w = robot.load_wrench(p)? + &w_e;
+        out.copy_from_slice(w.as_slice());
+        Ok(())
+    };
+    let sol = match guess {
+        Some(g) => fk.solve_with_load(l0, &mut load, &g)?,
+        None => fk.solve_multistart_with_load(l0, &mut load)?,
+    };
+    let w_ext = robot.load_wrench(&sol.pose)? + &w_e;
+    let motion = robot.robot.motion();
+    let slack: Vec<usize> = (0..n).filter(|&i| fk.is_slack(i)).map(|i| i + 1).collect();
+    let cables = fk.cables();
+    let coordinates = sol.pose.coordinates(motion);
+    if json_out {
+        let mut v = json!({
+            "robot": robot.name,
+            "motion": motion.name(),
+            "cable_model": name,
+            "pose": coordinates,
+            "tensions": cables.iter().map(|c| c.platform_end_tension).collect::<Vec<_>>(),
+            "residual": sol.residual,
+            "status": sol.status.name(),
+            "iterations": sol.iterations,
+            "slack_cables": slack,
+            "external_wrench": w_ext.as_slice(),
+        });
+        if let (Some(o), serde_json::Value::Object(c)) = (v.as_object_mut(), cables_json(cables)) {
+            o.extend(c);
+        }
+        print_json(&v)
+    } else {
+        println!(
+            "robot {} ({motion}), cable model {name}, w_ext {}",
+            robot.name,
+            super::wrench_text(w_ext.as_slice(), motion.translation_dof()),
+        );
+        println!(
+            "{} after {} iterations: pose {} (m, rad), residual {:.3e} N",
+            sol.status.name(),
+            sol.iterations,
+            super::pose_text(&coordinates, motion.space_dim()),
+            sol.residual
+        );
+        if !slack.is_empty() {
+            println!("slack cables: {slack:?}");
+        }
+        print_cables(cables);
+        Ok(())
+    }
+}

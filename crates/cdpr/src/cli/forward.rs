@@ -1,6 +1,6 @@
 //! `cdpr forward`: forward kinematics, from measured cable lengths to the platform pose.
 
-use super::{CliError, Numbers, print_report, request_robot};
+use super::{CliError, Numbers, load_robot, pose, print_report, request_robot};
 use cdpr::api::{ForwardReport, ForwardRequest};
 use std::path::PathBuf;
 
@@ -26,14 +26,39 @@ use std::path::PathBuf;
 /// rad), `length_sigma` (m), `iterations`, `converged`, `status`, `min_singular_value`, and
 /// `solutions` (every distinct solution found, each with the same fields; one entry with
 /// --guess).
+///
+/// With `--unstrained-lengths L1,…,Ln --cable-model elastic|catenary` (issue 29: elasto-geometric
+/// forward kinematics) it finds the platform's equilibrium pose under its weight (robot file)
+/// and `--wrench` with elastic or sagging cables of those unstrained lengths (Newton's step from
+/// the stiffness matrix, started from --guess or from the straight cables' pose for the
+/// unstrained lengths). JSON fields: `cable_model`, `pose`, `tensions` (platform end, N),
+/// `frame_end_tensions` (N), `unstrained_lengths` and `chord_lengths` (m), `max_sag` (m),
+/// `angle_to_chord` (rad), `residual` (max equilibrium residual, N; moments in N·m divided by
+/// the robot's length scale in m), `status` ("equilibrium" or "did not converge"),
+/// `iterations`, `slack_cables` (cable numbers from 1), `external_wrench` (N, N·m, at the pose).
 #[derive(clap::Args)]
 pub struct Args {
     /// Robot file (TOML, CASPR XML or WireCenter .wcrfx).
     robot: PathBuf,
     /// Measured cable lengths L_1,…,L_n (m), in cable order; with pulleys measured from each
     /// cable's `frame` point over its pulley.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "unstrained_lengths",
+        conflicts_with = "unstrained_lengths"
+    )]
+    lengths: Option<Numbers>,
+    /// Unstrained cable lengths L0_1,…,L0_n (m) paid out by the winches, for --cable-model
+    /// elastic|catenary: the equilibrium pose under the platform's weight and --wrench.
     #[arg(long, allow_hyphen_values = true)]
-    lengths: Numbers,
+    unstrained_lengths: Option<Numbers>,
+    #[command(flatten)]
+    cable_model: super::cable_model::CableModelArgs,
+    /// External wrench w_e on the platform with --unstrained-lengths (DOF numbers, N and N·m;
+    /// default zero), added to the platform's weight from the robot file.
+    #[arg(long, allow_hyphen_values = true)]
+    wrench: Option<Numbers>,
     /// Starting pose (motion-pattern coordinates, e.g. x,y,z,rx,ry,rz); without it, multi-start.
     #[arg(long, allow_hyphen_values = true)]
     guess: Option<Numbers>,
@@ -51,9 +76,24 @@ pub struct Args {
 
 /// Runs the command: the request, its report, rendered as JSON or a table.
 pub fn run(args: Args) -> Result<(), CliError> {
+    if let Some(l0) = &args.unstrained_lengths {
+        let robot = load_robot(&args.robot)?;
+        let guess = args.guess.as_ref().map(|g| pose(&robot, g)).transpose()?;
+        return super::cable_model::forward(
+            &robot,
+            &args.cable_model,
+            l0,
+            args.wrench.as_deref(),
+            guess,
+            args.json,
+        );
+    }
+    if args.cable_model.model() != cdpr::kinematics::CableModel::Straight || args.wrench.is_some() {
+        return Err("--cable-model elastic|catenary and --wrench go with --unstrained-lengths (measured lengths --lengths are the straight cables')".into());
+    }
     let request = ForwardRequest {
         robot: request_robot(&args.robot)?,
-        lengths: args.lengths.0,
+        lengths: args.lengths.map(|l| l.0).unwrap_or_default(),
         guess: args.guess.map(|g| g.0),
         tolerance: args.tolerance,
         length_sigma: args.length_sigma,

@@ -247,3 +247,81 @@ fn trajectory_reports_unstrained_lengths_per_sample() {
     ]);
     assert!(plain.get("unstrained_lengths").is_none());
 }
+
+#[test]
+fn forward_from_unstrained_lengths_returns_the_statics_pose() {
+    // Issue 29 check: forward kinematics returns the pose whose tensions gave the lengths.
+    // CoGiRo (25 kg, centre of mass off the origin) with sagging cables: l2 statics at POSE give
+    // the unstrained lengths; `cdpr forward --unstrained-lengths` goes back to POSE and the
+    // same tensions (from its default start, the straight cables' pose for those lengths).
+    let cogiro = robot("wirecenter-cogiro.toml");
+    let statics = json(&[
+        "--kinematics",
+        "standard",
+        "tension",
+        &cogiro,
+        "--pose",
+        POSE,
+        "--method",
+        "l2",
+        "--cable-model",
+        "catenary",
+        "--json",
+    ]);
+    assert_eq!(statics["feasible"], true);
+    let l0: Vec<String> = floats(&statics["unstrained_lengths"])
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+    let v = json(&[
+        "--kinematics",
+        "standard",
+        "forward",
+        &cogiro,
+        "--unstrained-lengths",
+        &l0.join(","),
+        "--cable-model",
+        "catenary",
+        "--json",
+    ]);
+    assert_eq!(v["status"], "equilibrium", "{v}");
+    assert_eq!(v["cable_model"], "catenary");
+    let truth = [0.0, 0.0, 3.0, 0.0, 0.0, 0.0];
+    for (p, t) in floats(&v["pose"]).iter().zip(truth) {
+        assert!((p - t).abs() < 1e-9, "{p} vs {t}");
+    }
+    for (a, b) in floats(&v["tensions"])
+        .iter()
+        .zip(floats(&statics["tensions"]))
+    {
+        assert!((a - b).abs() < 1e-6 * b.max(1.0), "{a} vs {b}");
+    }
+    assert!(v["residual"].as_f64().unwrap() < 1e-6);
+    assert_eq!(v["slack_cables"].as_array().unwrap().len(), 0);
+    assert_eq!(floats(&v["frame_end_tensions"]).len(), 8);
+    // Usage errors exit 2: straight cables have no unstrained lengths, a wrong count.
+    for (args, needle) in [
+        (
+            vec!["--cable-model", "straight"],
+            "--cable-model elastic or catenary",
+        ),
+        (
+            vec!["--cable-model", "catenary", "--guess", "0,0"],
+            "needs 6",
+        ),
+    ] {
+        let mut all = vec![
+            "--kinematics",
+            "standard",
+            "forward",
+            &cogiro,
+            "--unstrained-lengths",
+            "10,10,10,10,10,10,10,10",
+        ];
+        all.extend(args);
+        let out = cdpr().args(&all).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{all:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{all:?}: {err}");
+    }
+}
