@@ -483,15 +483,21 @@ pub fn has_ray(w: &DMatrix<f64>, bounds: &TensionBounds) -> Option<bool> {
     }
 }
 
-/// Runs problems `indices` and counts.
-pub fn soak_range(
+/// Runs problems `indices` with every method of [`Method::ALL`] and counts.
+#[cfg(test)]
+pub fn soak_range(seed: u64, indices: std::ops::Range<u64>, progress: impl FnMut(u64)) -> Report {
+    soak_range_of(seed, indices, &Method::ALL, progress)
+}
+
+/// Runs problems `indices` with `methods` and counts.
+pub fn soak_range_of(
     seed: u64,
     indices: std::ops::Range<u64>,
+    methods: &[Method],
     mut progress: impl FnMut(u64),
 ) -> Report {
     let mut report = Report::default();
-    let mut solvers: Vec<TensionSolver> =
-        Method::ALL.iter().map(|&m| TensionSolver::new(m)).collect();
+    let mut solvers: Vec<TensionSolver> = methods.iter().map(|&m| TensionSolver::new(m)).collect();
     for index in indices {
         progress(index);
         let Some(d) = draw(seed, index) else { continue };
@@ -509,7 +515,7 @@ pub fn soak_range(
         let mut witness = false;
         // Verified "feasible" answers, for the optimality check.
         let mut answers: Vec<(Method, DVector<f64>)> = Vec::new();
-        for (solver, &method) in solvers.iter_mut().zip(Method::ALL.iter()) {
+        for (solver, &method) in solvers.iter_mut().zip(methods) {
             let c = report.methods.entry(method.name()).or_default();
             let complete = COMPLETE.contains(&method);
             let out = match solver.solve(&problem) {
@@ -668,8 +674,20 @@ fn objective(method: Method) -> Option<(fn(&DVector<f64>) -> f64, bool)> {
     }
 }
 
-/// Runs `problems` problems on `threads` threads.
+/// Runs `problems` problems on `threads` threads with every method.
+#[cfg(test)]
 pub fn soak(seed: u64, problems: u64, threads: usize, verbose: bool) -> Report {
+    soak_of(seed, problems, threads, &Method::ALL, verbose)
+}
+
+/// Runs `problems` problems on `threads` threads with `methods`.
+pub fn soak_of(
+    seed: u64,
+    problems: u64,
+    threads: usize,
+    methods: &[Method],
+    verbose: bool,
+) -> Report {
     let threads = threads.max(1) as u64;
     let start = Instant::now();
     let chunk = problems.div_ceil(threads);
@@ -681,7 +699,7 @@ pub fn soak(seed: u64, problems: u64, threads: usize, verbose: bool) -> Report {
                 scope.spawn(move || {
                     let total = range.end - range.start;
                     let first = range.start;
-                    soak_range(seed, range, |i| {
+                    soak_range_of(seed, range, methods, |i| {
                         let done = i - first;
                         if verbose && k == 0 && done > 0 && done % 10_000 == 0 {
                             eprintln!(
@@ -706,7 +724,8 @@ pub fn soak(seed: u64, problems: u64, threads: usize, verbose: bool) -> Report {
     report
 }
 
-const HELP: &str = "usage: cargo xtask soak [--problems N] [--seed S] [--threads T] [--json]
+const HELP: &str =
+    "usage: cargo xtask soak [--problems N] [--seed S] [--threads T] [--methods A,B] [--json]
 
 Draws N random tension problems (default 100000; planar robots with 3-8 cables, spatial with
 6-12; wide and tight bounds, fixed cables, infinite t_max; feasible and infeasible wrenches),
@@ -715,6 +734,8 @@ residual and the bounds, every \"infeasible\" by an LP solved with Clarabel dire
 \"unbounded\" by a recession-cone LP, and the optimum of l1, l2, linf, l1-max and l2-max
 against every other method's verified answer (not_optimal: beaten by more than 1e-7 relative);
 and that is_feasible, the verdict workspace grids use, agrees with solve (verdict_mismatch).
+--methods runs only the named methods (CLI names, comma-separated; default all): the same
+problems, the optimality check among those methods only.
 Exit code 1 if a complete method gave a false answer, an optimiser a non-optimal one, or a
 verdict disagreed.
 Progress on stderr; --json prints one object {\"methods\": {NAME: {\"solves\", \"false_feasible\",
@@ -724,6 +745,7 @@ Progress on stderr; --json prints one object {\"methods\": {NAME: {\"solves\", \
 pub fn run(args: &[String]) -> ExitCode {
     let (mut problems, mut seed, mut json) = (100_000u64, 20_261_122u64, false);
     let mut threads = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let mut methods: Vec<Method> = Method::ALL.to_vec();
     let mut it = args.iter();
     while let Some(a) = it.next() {
         let mut value = |name: &str| -> Option<u64> {
@@ -747,6 +769,22 @@ pub fn run(args: &[String]) -> ExitCode {
                 None => return ExitCode::from(2),
             },
             "--json" => json = true,
+            "--methods" => {
+                let parsed: Option<Vec<Method>> = it
+                    .next()
+                    .map(|v| v.split(',').map(|m| m.trim().parse().ok()).collect())
+                    .unwrap_or(None);
+                match parsed {
+                    Some(list) if !list.is_empty() => methods = list,
+                    _ => {
+                        eprintln!(
+                            "error: --methods needs method names, e.g. l2-mid,dykstra (one of: {})",
+                            Method::ALL.map(|m| m.name()).join(", ")
+                        );
+                        return ExitCode::from(2);
+                    }
+                }
+            }
             "-h" | "--help" => {
                 println!("{HELP}");
                 return ExitCode::SUCCESS;
@@ -758,13 +796,13 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     }
     let start = Instant::now();
-    let report = soak(seed, problems, threads, true);
+    let report = soak_of(seed, problems, threads, &methods, true);
     let seconds = start.elapsed().as_secs_f64();
     for f in &report.failures {
         eprintln!("failure: {f}");
     }
     if json {
-        let methods: serde_json::Map<String, serde_json::Value> = Method::ALL
+        let methods: serde_json::Map<String, serde_json::Value> = methods
             .iter()
             .map(|m| {
                 let c = report.methods.get(m.name()).cloned().unwrap_or_default();
@@ -830,7 +868,7 @@ pub fn run(args: &[String]) -> ExitCode {
             "missed_h",
             "gave_up"
         );
-        for m in Method::ALL {
+        for &m in &methods {
             let c = report.methods.get(m.name()).cloned().unwrap_or_default();
             println!(
                 "{:<21} {:>9} {:>9} {:>9} {:>9} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>8} {:>8} {:>7}",
@@ -886,6 +924,12 @@ mod tests {
     #[test]
     fn soak_regressions_l2_max_at_large_tensions() {
         assert_clean(&[295_857, 857_204, 804_927]);
+    }
+
+    /// l2-mid called these feasible problems infeasible (100 000-problem soak, seed 20261122).
+    #[test]
+    fn soak_regressions_l2_mid() {
+        assert_clean(&[37_673, 51_618]);
     }
 
     /// Soak problems (seed 20261122) that must have no false or non-optimal answer.

@@ -8,7 +8,8 @@
 //! ```
 //!
 //! (a cable with N_i = 0 has t_i = t0_i on the whole equilibrium set: its bounds are checked
-//! directly and it contributes no row). Every row has norm ‖N_i‖ ≤ 1, so slacks are in tension
+//! directly, with the certificate's tolerance since t0 carries the rounding of −W⁺ w_ext, and
+//! it contributes no row; at r = 0 every cable is such a cable). Every row has norm ‖N_i‖ ≤ 1, so slacks are in tension
 //! units. On these rows `a_jᵀ x ≥ b_j`:
 //!
 //! - **l2** (thesis eq. (6.17)): ‖t0 + N λ‖² = ‖t0‖² + 2 gᵀλ + ‖λ‖² with g = Nᵀ t0, a strictly
@@ -52,7 +53,7 @@
 //! - Bland, R. G. (1977), *New finite pivoting rules for the simplex method*, Math. Oper. Res. 2.
 //! - Thesis eqs. (6.17), (6.19); Picard, Caro, Plestan & Claveau 2020, eq. (5).
 
-use crate::certificate::bound_violation;
+use crate::certificate::{BOUND_TOLERANCE, bound_violation};
 use crate::interior_point::Objective;
 use crate::null_space::NullSpace;
 use crate::{Infeasibility, TensionBounds};
@@ -325,7 +326,12 @@ impl ActiveSet {
                 norm2 += ns.basis[j * n + i] * ns.basis[j * n + i];
             }
             if norm2 <= ZERO_ROW * ZERO_ROW {
-                if bound_violation(lo[i], hi[i], t0) > FEAS {
+                // t_i = t0_i on the whole equilibrium set (every cable at r = 0). t0 carries
+                // the rounding of −W⁺ w_ext (≈ κ(W) ε ‖t‖, 10⁻¹³–10⁻⁹ relative), so the
+                // cable is judged with the certificate's tolerance, which snaps it onto its
+                // bound, not with FEAS: a fixed cable (t_min = t_max) 10⁻¹² off its bound was
+                // "no feasible tension" (soak problems 37673 and 51618, l2-mid at r = 0).
+                if bound_violation(lo[i], hi[i], t0) > BOUND_TOLERANCE {
                     return Err(Infeasibility::NoFeasibleTension);
                 }
                 continue;

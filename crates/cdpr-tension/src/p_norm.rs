@@ -24,8 +24,12 @@
 //! μ = 1, 10⁻¹, …, 10⁻⁹ (the central path; each stage ends when the Newton decrement² is below
 //! 10⁻¹⁴, when the line search finds no decrease above rounding, or after 50 steps). At μ = 10⁻⁹ the barrier answer is within 2nμ of the constrained optimum's objective
 //! (in units of h^p). The start is the optimally safe point (module `optimally_safe`, α = 1):
-//! its margin s* > 0 makes it strictly interior. A margin s* ≤ 10⁻⁹·h (no interior point) is
-//! the documented give-up [`crate::GiveUp::EmptyInterior`]; s* < 0 proves the set empty; the
+//! its margin s* > 0 makes it strictly interior. Cables fixed at t_min = t_max (a zero-width
+//! interval: no barrier exists) are moved into the load, w' = w_ext + Σ_fixed w_i t_i, and the
+//! method runs on the other cables (`TensionSolver`; their terms |t_i − t_m,i|^p are 0 on the
+//! whole feasible set, so the optimum is unchanged). A margin s* ≤ 10⁻⁹·h on the cables left
+//! (no interior point: a set that only touches a bound) is the documented give-up
+//! [`crate::GiveUp::EmptyInterior`], as are fewer free cables than DOF; s* < 0 proves the set empty; the
 //! Newton steps are capped by `max_iterations` ([`crate::GiveUp::IterationLimit`]).
 //!
 //! ## References

@@ -668,6 +668,9 @@ impl TensionSolver {
                 }
                 other => other,
             },
+            Method::PNorm if bounds.min().iter().zip(bounds.max()).any(|(l, h)| l == h) => {
+                self.p_norm_fixed_cables(p)
+            }
             Method::PNorm => {
                 self.p_norm
                     .solve(ns, bounds, o.p, o.max_iterations, &mut self.dense, t)
@@ -677,6 +680,50 @@ impl TensionSolver {
             }
             _ => unreachable!("only the methods of issue 26"),
         }
+    }
+
+    /// p-norm with cables fixed at t_min = t_max, which leave the feasible set no interior for
+    /// the log barriers: each fixed cable is moved into the load (w' = w_ext + Σ_fixed w_i t_i)
+    /// and p-norm runs on the other cables (their own null space). A fixed cable's term
+    /// |t_i − t_m,i|^p is 0 on the whole feasible set, so the reduced optimum is the optimum.
+    /// Fewer free cables than DOF, or a singular reduced W, is still the documented give-up
+    /// `EmptyInterior` (allocates: a cold path).
+    #[cold]
+    fn p_norm_fixed_cables(&mut self, p: &TensionProblem) -> Result<(), Infeasibility> {
+        let give_up = Infeasibility::GaveUp {
+            method: "p-norm",
+            reason: crate::GiveUp::EmptyInterior,
+        };
+        let (lo, hi) = (p.bounds.min(), p.bounds.max());
+        let (m, n) = p.wrench_matrix.shape();
+        let free: Vec<usize> = (0..n).filter(|&i| lo[i] != hi[i]).collect();
+        if free.len() < m {
+            return Err(give_up);
+        }
+        let w = p.wrench_matrix.select_columns(free.iter());
+        let mut load = p.external_wrench.clone();
+        for i in (0..n).filter(|&i| lo[i] == hi[i]) {
+            load.axpy(lo[i], &p.wrench_matrix.column(i), 1.0);
+            self.t[i] = lo[i];
+        }
+        let Ok(bounds) = TensionBounds::new(
+            free.iter().map(|&i| lo[i]).collect(),
+            free.iter().map(|&i| hi[i]).collect(),
+        ) else {
+            return Err(give_up);
+        };
+        let mut ns = NullSpace::default();
+        if ns.compute(&w, &load).is_err() {
+            return Err(give_up);
+        }
+        let mut t = vec![0.0; free.len()];
+        let o = self.options;
+        self.p_norm
+            .solve(&ns, &bounds, o.p, o.max_iterations, &mut self.dense, &mut t)?;
+        for (&i, ti) in free.iter().zip(t) {
+            self.t[i] = ti;
+        }
+        Ok(())
     }
 
     /// The answer of the method: `Ok(Some(residual))` when it is certified already, `Ok(None)`

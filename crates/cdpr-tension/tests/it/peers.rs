@@ -155,6 +155,47 @@ fn hand_derived_thin_sets() {
     );
 }
 
+/// A cable fixed at t_min = t_max leaves no interior for the barriers: p-norm moves it into
+/// the load and solves for the others. t1 + t2 − t3 = 4 (W = [1, 1, −1], w_ext = −4), t3 fixed
+/// at 2, t1, t2 ∈ [1, 10]: t1 + t2 = 6, t_m = (5.5, 5.5), min |t1 − 5.5|^p + |t2 − 5.5|^p on
+/// the line is the symmetric point (3, 3) for every p (p = 2: also l2-mid's answer). Before
+/// the reduction p-norm gave up (`EmptyInterior`) here.
+#[test]
+fn p_norm_with_a_fixed_cable() {
+    let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, -1.0]);
+    let we = DVector::from_vec(vec![-4.0]);
+    let b = TensionBounds::new(vec![1.0, 1.0, 2.0], vec![10.0, 10.0, 2.0]).unwrap();
+    for p in [2.0, 4.0, 6.0] {
+        let o = MethodOptions {
+            p,
+            ..Default::default()
+        };
+        let t = solve_with(Method::PNorm, o, &w, &we, &b);
+        assert_close(
+            t.tensions().unwrap(),
+            &[3.0, 3.0, 2.0],
+            1e-6,
+            "p-norm, fixed t3",
+        );
+    }
+    let t = solve(Method::L2Mid, &w, &we, &b);
+    assert_close(
+        t.tensions().unwrap(),
+        &[3.0, 3.0, 2.0],
+        1e-9,
+        "l2-mid, fixed t3",
+    );
+    // Only fixed cables (fewer free cables than DOF): still the documented give-up.
+    let all = TensionBounds::new(vec![3.0, 3.0, 2.0], vec![3.0, 3.0, 2.0]).unwrap();
+    assert_eq!(
+        solve(Method::PNorm, &w, &we, &all).infeasibility(),
+        Some(&Infeasibility::GaveUp {
+            method: "p-norm",
+            reason: GiveUp::EmptyInterior
+        })
+    );
+}
+
 /// An iteration cap of 1 makes dykstra give up where the closed form is outside the box.
 #[test]
 fn dykstra_cap_is_a_give_up() {
