@@ -16,6 +16,9 @@
 //! - `soak [--problems N] [--json]`: every tension method on N random problems, every answer
 //!   checked independently (compensated residual, an LP solved with Clarabel directly); exit
 //!   code 1 on a false answer of a complete method (see `xtask/src/soak.rs`);
+//! - `studio [--check]`: the browser studio into `target/studio/` (cdpr-studio compiled to
+//!   WebAssembly, wasm-bindgen, the page and the example robots); `--check` loads it in headless
+//!   Chromium and compares its numbers with the CLI's (see `xtask/src/studio.rs`);
 //! - `loops [--tests]`: the files of the tree that import each other in a loop; exit code 1 if there is one
 //!   (see `xtask/src/loops.rs`; its test runs the check under `cargo test`).
 
@@ -25,11 +28,12 @@ mod gallery;
 mod loops;
 mod reproduce;
 mod soak;
+mod studio;
 
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | loops> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | studio | loops> [options]   (`cargo xtask <command> --help`)";
 
 const REPRODUCE_HELP: &str = "cargo xtask reproduce: regenerates the reproduction of the thesis chapter on \
 planar tendon-driven manipulators (Tables 6.5-6.10), Krut, Company & Pierrot 2004 and Picard, Caro, \
@@ -94,6 +98,7 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(root, &args[1..]),
         Some("fuzz") => fuzz::run(root, &args[1..]),
         Some("soak") => soak::run(&args[1..]),
+        Some("studio") => studio::run(root, &args[1..]),
         Some("loops") => match loops::run(root, &args[1..]) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {
