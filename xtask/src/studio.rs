@@ -169,7 +169,10 @@ fn build(root: &Path, out: &Path) -> Result<(), String> {
         .collect();
     names.sort();
     for n in &names {
-        copy(root.join("examples/robots").join(n), out.join("robots").join(n))?;
+        copy(
+            root.join("examples/robots").join(n),
+            out.join("robots").join(n),
+        )?;
     }
     std::fs::write(
         out.join("robots/index.json"),
@@ -328,11 +331,8 @@ fn numbers(v: &Value) -> Vec<f64> {
 /// |a − b| ≤ 1e-9 (1 + |b|) component by component.
 fn close(what: &str, page: &Value, cli: &Value) -> Result<(), String> {
     let (a, b) = (numbers(page), numbers(cli));
-    if a.len() != b.len()
-        || a.iter()
-            .zip(&b)
-            .any(|(x, y)| !((x - y).abs() <= 1e-9 * (1.0 + y.abs())))
-    {
+    let agree = |x: &f64, y: &f64| (x - y).abs() <= 1e-9 * (1.0 + y.abs());
+    if a.len() != b.len() || !a.iter().zip(&b).all(|(x, y)| agree(x, y)) {
         return Err(format!("{what}: page {a:?}, CLI {b:?}"));
     }
     Ok(())
@@ -386,8 +386,16 @@ fn check_robot(
     let extra: Vec<&str> = extra.iter().map(String::as_str).collect();
     let ten = cli("tension", &extra)?;
     close(&format!("{robot}: pose"), &state["pose"], &ten["pose"])?;
-    close(&format!("{robot}: lengths (m)"), &state["lengths"], &kin["lengths"])?;
-    close(&format!("{robot}: tensions (N)"), &state["tensions"], &ten["tensions"])?;
+    close(
+        &format!("{robot}: lengths (m)"),
+        &state["lengths"],
+        &kin["lengths"],
+    )?;
+    close(
+        &format!("{robot}: tensions (N)"),
+        &state["tensions"],
+        &ten["tensions"],
+    )?;
     close(
         &format!("{robot}: external wrench"),
         &state["external_wrench"],
@@ -406,7 +414,9 @@ fn check_robot(
          feasible {}; pose update {:.2} ms",
         numbers(&state["lengths"]).len(),
         state["feasible"],
-        state["timing_ms"]["pose_update"].as_f64().unwrap_or(f64::NAN)
+        state["timing_ms"]["pose_update"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
     );
     Ok(state)
 }
@@ -424,7 +434,15 @@ fn check(root: &Path, out: &Path) -> Result<(), String> {
         "l2",
         "0,0,-50,0,0,0",
     )?;
-    check_robot(root, &browser, port, "tdpm-4.toml", "0.1,-0.05,0.2", "linf", "0,-10,0")?;
+    check_robot(
+        root,
+        &browser,
+        port,
+        "tdpm-4.toml",
+        "0.1,-0.05,0.2",
+        "linf",
+        "0,-10,0",
+    )?;
     // A bad pose is a message for the user, not a script error.
     let url = format!("http://127.0.0.1:{port}/index.html?robot=robots/tdpm-4.toml&pose=0,0");
     let dom = headless(&browser, &url, &["--dump-dom"])?;
@@ -432,7 +450,9 @@ fn check(root: &Path, out: &Path) -> Result<(), String> {
         .map_err(|e| format!("bad-pose page: {e}"))?;
     let message = state["error"].as_str().unwrap_or_default();
     if !message.contains('3') || !output(&dom, "cdpr-errors").unwrap_or_default().is_empty() {
-        return Err(format!("bad pose: expected a message naming 3 coordinates, got {state}"));
+        return Err(format!(
+            "bad pose: expected a message naming 3 coordinates, got {state}"
+        ));
     }
     println!("studio check: a 2-number pose for a planar robot says: {message}");
     // The screenshot: the 8-cable robot with its workspace mesh (grid 30), timed.
@@ -447,7 +467,9 @@ fn check(root: &Path, out: &Path) -> Result<(), String> {
         "studio check: workspace mesh grid 30 in the page: {:.0} ms, volume {} m³; first state {:.0} ms",
         state["timing_ms"]["mesh"].as_f64().unwrap_or(f64::NAN),
         state["workspace"]["volume_m3"],
-        state["timing_ms"]["first_state"].as_f64().unwrap_or(f64::NAN)
+        state["timing_ms"]["first_state"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
     );
     headless(
         &browser,
@@ -468,10 +490,7 @@ mod tests {
     #[test]
     fn outputs_are_read_and_unescaped() {
         let dom = r#"<p>x</p><output id="cdpr-state" hidden="">{"a":"&lt;b&gt; &amp; c"}</output>"#;
-        assert_eq!(
-            output(dom, "cdpr-state").unwrap(),
-            r#"{"a":"<b> & c"}"#
-        );
+        assert_eq!(output(dom, "cdpr-state").unwrap(), r#"{"a":"<b> & c"}"#);
         assert!(output(dom, "cdpr-errors").is_none());
     }
 

@@ -118,7 +118,10 @@ mod tests {
     #[test]
     fn mesh_of_the_8_cable_robot_is_closed_and_planar_robots_are_refused() {
         let open = |name: &str| {
-            let path = format!("{}/../../examples/robots/{name}", env!("CARGO_MANIFEST_DIR"));
+            let path = format!(
+                "{}/../../examples/robots/{name}",
+                env!("CARGO_MANIFEST_DIR")
+            );
             Studio::open(&[RobotFileText {
                 name: name.into(),
                 text: std::fs::read_to_string(path).unwrap(),

@@ -173,7 +173,7 @@ impl Studio {
             cables.push(Cable {
                 frame,
                 platform: Vector3::from(row.platform),
-                pulley: old.pulley.clone(),
+                pulley: old.pulley,
             });
         }
         let robot = Robot::new(d.robot.motion(), cables)?;
@@ -207,7 +207,10 @@ mod tests {
     use crate::{RobotFileText, Studio};
 
     fn open(name: &str) -> Studio {
-        let path = format!("{}/../../examples/robots/{name}", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/../../examples/robots/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
         Studio::open(&[RobotFileText {
             name: name.into(),
             text: std::fs::read_to_string(path).unwrap(),

@@ -159,7 +159,10 @@ mod tests {
     use crate::{RobotFileText, Studio};
 
     fn open(name: &str) -> Studio {
-        let path = format!("{}/../../examples/robots/{name}", env!("CARGO_MANIFEST_DIR"));
+        let path = format!(
+            "{}/../../examples/robots/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
         let text = std::fs::read_to_string(path).unwrap();
         Studio::open(&[RobotFileText {
             name: name.into(),
@@ -172,7 +175,9 @@ mod tests {
     #[test]
     fn lengths_and_certified_tensions_at_a_pose() {
         let s = open("tdpm-4.toml");
-        let st = s.state(&[0.0, 0.0, 0.0], "l2", Some(&[0.0, -10.0, 0.0])).unwrap();
+        let st = s
+            .state(&[0.0, 0.0, 0.0], "l2", Some(&[0.0, -10.0, 0.0]))
+            .unwrap();
         let d = s.description();
         for (i, c) in d.robot.cables().iter().enumerate() {
             assert!((st.lengths[i] - (c.frame - c.platform).norm()).abs() < 1e-12);
@@ -196,11 +201,21 @@ mod tests {
         let s = open("tdpm-4.toml");
         let e = s.state(&[0.0, 0.0], "l2", None).unwrap_err().to_string();
         assert!(e.contains("3"), "{e}");
-        let e = s.state(&[0.0, 0.0, 0.0], "magic", None).unwrap_err().to_string();
-        assert!(e.contains("unknown tension method `magic`") && e.contains("l2"), "{e}");
+        let e = s
+            .state(&[0.0, 0.0, 0.0], "magic", None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("unknown tension method `magic`") && e.contains("l2"),
+            "{e}"
+        );
         let e = s.state(&[f64::NAN, 0.0, 0.0], "l2", None).unwrap_err();
         assert!(e.to_string().contains("finite"), "{e}");
         // closed-form needs redundancy 1; tdpm-4 (n = 4, DOF 3) has it, krut-5 (r = 3) not.
-        assert!(open("krut-5.toml").state(&[0.0, 0.0], "closed-form", None).is_err());
+        assert!(
+            open("krut-5.toml")
+                .state(&[0.0, 0.0], "closed-form", None)
+                .is_err()
+        );
     }
 }
