@@ -6,7 +6,10 @@
 // tensions, feasible, method, ... and the page's timings in ms); <output id="cdpr-errors">
 // collects script errors (it stays empty on a healthy page). Query: ?robot=URL&pose=…&method=…
 // &wrench=…&mesh=GRID (numbers comma-separated; a CASPR model by its NAME_cables.xml URL).
-import init, { StudioSession } from "./cdpr_studio.js";
+// With &timing=N the page loads synchronously and times N pose changes in real time (headless
+// Chromium's --virtual-time-budget freezes performance.now(); --dump-dom without it dumps at the
+// load event, which a synchronous page has reached only when everything is computed).
+import init, { initSync, StudioSession } from "./cdpr_studio.js";
 
 const $ = (id) => document.getElementById(id);
 const errors = $("cdpr-errors");
@@ -88,7 +91,20 @@ async function openFiles(files, pose) {
   return true;
 }
 
+const SYNC = new URLSearchParams(location.search).has("timing");
+
+// Synchronous requests (the timing mode only).
+function syncRequest(url, binary) {
+  const x = new XMLHttpRequest();
+  x.open("GET", url, false);
+  if (binary) x.overrideMimeType("text/plain; charset=x-user-defined");
+  x.send();
+  if (x.status !== 200) throw new Error(`${url}: HTTP ${x.status}`);
+  return x.responseText;
+}
+
 async function fetchText(url) {
+  if (SYNC) return syncRequest(url, false);
   const r = await fetch(url);
   if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
   return r.text();
@@ -266,7 +282,7 @@ function computeMesh() {
   const grid = Number($("grid").value);
   $("mesh-result").textContent = "computing…";
   // Let the page paint the message before the (single-threaded) computation.
-  return new Promise((done) => setTimeout(() => {
+  return new Promise((done) => (SYNC ? (f) => f() : (f) => setTimeout(f, 0))(() => {
     const t0 = performance.now();
     try {
       page.mesh = JSON.parse(page.session.workspace_mesh(page.pose.join(","), grid, page.method, page.wrench));
@@ -282,7 +298,25 @@ function computeMesh() {
     $("stl").disabled = $("mesh-json").disabled = false;
     update(true);
     done(true);
-  }, 0));
+  }));
+}
+
+// Real-time cost of `n` pose changes (library + drawing) around the current pose: the median
+// and the largest, in ms.
+function timePoseChanges(n) {
+  const base = page.pose.slice(), times = [];
+  for (let i = 0; i < n; i++) {
+    const t0 = performance.now();
+    page.pose = base.map((v, k) => v + (k < 3 ? 0.05 : 0.02) * Math.sin(0.1 * i + k));
+    update(false);
+    times.push(performance.now() - t0);
+  }
+  page.pose = base;
+  update(false);
+  times.sort((a, b) => a - b);
+  page.timing.pose_changes = n;
+  page.timing.pose_change_median = times[Math.floor(n / 2)];
+  page.timing.pose_change_max = times[n - 1];
 }
 
 // ---- start -------------------------------------------------------------------------------------
@@ -293,7 +327,14 @@ function numbers(text) {
 
 async function main() {
   const t0 = performance.now();
-  await init();
+  if (SYNC) {
+    const text = syncRequest("cdpr_studio_bg.wasm", true);
+    const bytes = new Uint8Array(text.length);
+    for (let i = 0; i < text.length; i++) bytes[i] = text.charCodeAt(i) & 0xff;
+    initSync({ module: bytes });
+  } else {
+    await init();
+  }
   page.timing.wasm_load = performance.now() - t0;
   const q = new URLSearchParams(location.search);
   page.method = q.get("method") || "l2";
@@ -343,6 +384,7 @@ async function main() {
     await computeMesh();
   }
   page.timing.first_state = performance.now() - t0;
+  if (SYNC && page.session) timePoseChanges(Math.max(1, Number(q.get("timing")) || 100));
   page.ready = true;
   writeState();
 }
