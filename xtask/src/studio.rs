@@ -30,6 +30,14 @@ and the example robots). --check also serves it from 127.0.0.1, loads it in head
 two robots and compares the page's state with the CLI's JSON, and writes \
 target/studio/screenshot.png.";
 
+/// The CLI the page is compared with is built with xtask's own profile (`cargo xtask` is a
+/// release build; `cargo run -p xtask -- studio --check` a debug one).
+const PROFILE: &[&str] = if cfg!(debug_assertions) {
+    &[]
+} else {
+    &["--release"]
+};
+
 /// The wasm-bindgen CLI version the crate pins (`wasm-bindgen = \"=0.2.130\"`).
 const WASM_BINDGEN_VERSION: &str = "0.2.130";
 
@@ -370,7 +378,10 @@ fn check_robot(
         let out = run_cmd(
             Command::new(cargo())
                 .current_dir(root)
-                .args(["run", "-q", "--release", "-p", "cdpr", "--", cmd])
+                .args(["run", "-q", "-p", "cdpr"])
+                .args(PROFILE)
+                .arg("--")
+                .arg(cmd)
                 .arg(&file)
                 .arg(format!("--pose={pose}"))
                 .args(extra)

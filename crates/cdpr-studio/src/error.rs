@@ -5,7 +5,6 @@
 
 use cdpr_io::RobotFileError;
 use cdpr_kinematics::KinematicsError;
-use cdpr_polytope::PolytopeError;
 use cdpr_tension::TensionError;
 use cdpr_workspace::WorkspaceError;
 use cdpr_wrench::WrenchError;
@@ -23,15 +22,15 @@ pub enum StudioError {
     /// A pose, wrench or robot is not valid for the kinematics.
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
+    /// A request of the request/report layer failed (the command line's message).
+    #[error(transparent)]
+    Api(#[from] cdpr_api::ApiError),
     /// A wrench does not fit the motion pattern.
     #[error(transparent)]
     Wrench(#[from] WrenchError),
     /// The tension method does not apply or failed.
     #[error(transparent)]
     Tension(#[from] TensionError),
-    /// The available wrench set could not be built.
-    #[error(transparent)]
-    Polytope(#[from] PolytopeError),
     /// The workspace could not be computed.
     #[error(transparent)]
     Workspace(#[from] WorkspaceError),

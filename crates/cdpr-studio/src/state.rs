@@ -1,24 +1,19 @@
 //! # The state at a pose
 //!
-//! What the page shows live while the pose changes: inverse kinematics (cable lengths l_i,
-//! thesis eqs. (6.2)–(6.4)), the tension distribution W t + w_ext = 0, t_min ≤ t ≤ t_max by the
-//! chosen method (certified before "feasible" is returned), the capacity margin of the load
-//! (Guay et al. 2014) and the isotropic force (Krut, Company & Pierrot 2004, eq. (19)) from the
-//! available wrench set (hyperplane shifting, Gouttefarde & Krut 2010). The numbers are those of
-//! `cdpr kinematics`, `cdpr tension`, `cdpr capacity` and `cdpr isotropic` with `--json`: the same
-//! library calls in the same order.
+//! What the page shows live while the pose changes, each number from the request/report layer
+//! (`cdpr-api`), the same requests `cdpr kinematics`, `cdpr tension`, `cdpr capacity` and
+//! `cdpr isotropic` run: cable lengths l_i (inverse kinematics, thesis eqs. (6.2)–(6.4)), the
+//! tension distribution W t + w_ext = 0, t_min ≤ t ≤ t_max by the chosen method (certified before
+//! "feasible" is returned), the capacity margin of the load (Guay et al. 2014) and the isotropic
+//! force (Krut, Company & Pierrot 2004, eq. (19)) from the available wrench set (hyperplane
+//! shifting, Gouttefarde & Krut 2010).
 //!
 //! ## References
 //! - Gouttefarde & Krut 2010; Guay, Cardou, Cruz-Ruiz & Caro 2014; Krut, Company & Pierrot 2004.
 
 use crate::{Studio, StudioError};
-use cdpr_polytope::{
-    RequiredWrenchSet, hyperplane_shifting, isotropic_force_under_load, limiting_facet,
-};
-use cdpr_tension::{
-    Method, SotdaSettings, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
-};
-use nalgebra::DVector;
+use cdpr_api::{CapacityRequest, IsotropicRequest, KinematicsRequest, Robot, TensionRequest};
+use cdpr_tension::Method;
 use serde::Serialize;
 
 /// The page's state at one pose (the JSON of `<output id="cdpr-state">`, without the page's
@@ -28,11 +23,11 @@ pub struct State {
     /// Robot name.
     pub robot: String,
     /// Motion pattern (`point2`, `planar`, `point3`, `spatial`).
-    pub motion: &'static str,
+    pub motion: String,
     /// Pose in motion-pattern coordinates (m, rad; spatial: x, y, z, XYZ Euler angles).
     pub pose: Vec<f64>,
     /// Tension method (command-line name).
-    pub method: &'static str,
+    pub method: String,
     /// What the method computes and its reference.
     pub method_reference: &'static str,
     /// External wrench w_ext (N, N·m): the wrench asked for plus gravity and passive springs.
@@ -70,80 +65,62 @@ impl Studio {
         method: &str,
         wrench: Option<&[f64]>,
     ) -> Result<State, StudioError> {
-        let d = &self.desc;
         let method = parse_method(method)?;
-        cdpr_wrench::require_enough_cables(&d.robot, "tension distribution")?;
-        let r = d.robot.cable_count() as isize - d.robot.dof() as isize;
-        method.check_redundancy(r)?;
-        if method == Method::ImprovedClosedForm
-            && let Some(cable) = d.bounds.max().iter().position(|v| !v.is_finite())
-        {
-            return Err(TensionError::NeedsFiniteBounds { method, cable }.into());
+        let robot = Robot::from_description(self.desc.clone());
+        let pose = q.to_vec();
+        let wrench = wrench.map(<[f64]>::to_vec);
+        let mut tension = TensionRequest::new(robot.clone(), pose.clone(), method);
+        tension.wrench = wrench.clone();
+        let tension = tension.run()?;
+        let kinematics = KinematicsRequest {
+            robot: robot.clone(),
+            pose: pose.clone(),
         }
-        let motion = d.robot.motion();
-        let pose = cdpr_kinematics::Pose::from_coordinates(motion, q)?;
-        let given = match wrench {
-            Some(w) => cdpr_wrench::wrench_from_slice(motion, w)?,
-            None => DVector::zeros(motion.dof()),
-        };
-        let w_ext = given + d.load_wrench(&pose)?;
-        let kin = d.robot.inverse_kinematics(&pose)?;
-        let w = kin.wrench_matrix();
-        let mut problem = TensionProblem::new(&w, &w_ext, &d.bounds);
-        if let Some(es) = &d.axial_stiffness {
-            problem.stiffness = Some(StiffnessData {
-                kinematics: &kin,
-                axial_stiffness: es,
-            });
+        .run()?;
+        // The wrench-set indices need finite bounds (and wrench closure for the isotropic
+        // force): where they do not apply the page says why instead of failing.
+        let capacity = CapacityRequest {
+            robot: robot.clone(),
+            pose: pose.clone(),
+            wrench: wrench.clone(),
+            wrench_box: None,
+            wrench_ball: None,
+            force_radius: None,
+            moment_radius: None,
         }
-        let mut solver = if method == Method::Sotda {
-            if d.axial_stiffness.is_none() {
-                return Err(StudioError::Files(
-                    "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file"
-                        .into(),
-                ));
-            }
-            TensionSolver::sotda(SotdaSettings::default())
-        } else {
-            TensionSolver::new(method)
+        .run();
+        let isotropic = IsotropicRequest {
+            robot,
+            pose,
+            wrench,
+            ellipse: false,
+        }
+        .run();
+        let note = match (&capacity, &isotropic) {
+            (Err(e), _) | (_, Err(e)) => Some(e.to_string()),
+            _ => None,
         };
-        let outcome = solver.solve(&problem)?;
-        let (capacity_margin, isotropic_force, polytope_note) =
-            match hyperplane_shifting::available_wrench_set(&w, &d.bounds) {
-                Ok(aws) => {
-                    let load = RequiredWrenchSet::point(w_ext.clone())?;
-                    let margin = limiting_facet(&aws, &load)?.map(|(_, m)| m);
-                    let iso = isotropic_force_under_load(&aws, motion, &w_ext);
-                    let note = iso.as_ref().err().map(ToString::to_string);
-                    (margin, iso.ok(), note)
-                }
-                Err(e) => (None, None, Some(e.to_string())),
-            };
+        let d = &self.desc;
         Ok(State {
-            robot: d.name.clone(),
-            motion: motion.name(),
-            pose: q.to_vec(),
-            method: method.name(),
+            robot: tension.robot,
+            motion: kinematics.motion,
+            pose: tension.pose,
+            method: tension.method,
             method_reference: method.summary(),
-            external_wrench: w_ext.as_slice().to_vec(),
-            lengths: kin.lengths().collect(),
-            tensions: outcome.balancing_tensions().map(|t| t.as_slice().to_vec()),
-            feasible: outcome.is_feasible(),
-            reason: outcome.infeasibility().map(|r| r.to_string()),
-            residual: match &outcome {
-                TensionOutcome::Feasible(s) => Some(s.residual),
-                TensionOutcome::Infeasible(_) => None,
-            },
+            external_wrench: tension.external_wrench,
+            lengths: kinematics.lengths,
+            tensions: tension.tensions,
+            feasible: tension.feasible,
+            reason: tension.reason,
+            residual: tension.residual,
             t_min: d.bounds.min().as_slice().to_vec(),
             t_max: d.bounds.max().as_slice().to_vec(),
-            capacity_margin,
-            isotropic_force,
-            polytope_note,
+            capacity_margin: capacity.ok().and_then(|c| c.capacity_margin),
+            isotropic_force: isotropic.ok().map(|i| i.isotropic_force),
+            polytope_note: note,
         })
     }
 }
-
-use cdpr_tension::TensionError;
 
 /// A method by its command-line name.
 pub(crate) fn parse_method(name: &str) -> Result<Method, StudioError> {

@@ -53,7 +53,7 @@ function colour(t, lo, hi) {
   const eps = 1e-9 * Math.max(1, Math.abs(top));
   if (t < lo - eps || (hi !== null && t > hi + eps)) return "#c51b7d";
   const s = hi === null ? 0.5 : Math.max(0, Math.min(1, (t - lo) / Math.max(hi - lo, 1e-12)));
-  const stops = [[44, 123, 182], [171, 217, 233], [253, 174, 97], [215, 25, 28]];
+  const stops = [[33, 102, 172], [27, 158, 119], [230, 97, 1], [178, 24, 43]];
   const x = s * (stops.length - 1), i = Math.min(stops.length - 2, Math.floor(x)), f = x - i;
   const c = stops[i].map((a, k) => Math.round(a + f * (stops[i + 1][k] - a)));
   return `rgb(${c[0]},${c[1]},${c[2]})`;

@@ -12,6 +12,7 @@
 //! | [`polytope`] | `cdpr-polytope` | available wrench set, isotropic force, capacity margin |
 //! | [`dynamics`] | `cdpr-dynamics` | mass matrix, time laws, inverse and forward dynamics |
 //! | [`workspace`] | `cdpr-workspace` | grid and chord workspaces, dextrous workspace, synthesis |
+//! | [`api`] | `cdpr-api` | one typed request and report per analysis (the CLI's JSON) |
 //!
 //! ```
 //! use cdpr::RobotDescription;
@@ -25,6 +26,8 @@
 
 pub mod plot;
 
+/// Typed requests and reports of every analysis (the `--json` output is the serialised report).
+pub use cdpr_api as api;
 pub use cdpr_calibration as calibration;
 pub use cdpr_dynamics as dynamics;
 pub use cdpr_io as io;

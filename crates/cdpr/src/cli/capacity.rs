@@ -1,9 +1,7 @@
 //! `cdpr capacity`: the capacity margin of a required wrench set at a pose.
 
-use super::{CliError, Numbers, external_wrench, load_robot, pose, print_json};
-use cdpr::polytope::{RequiredWrenchSet, hyperplane_shifting, limiting_facet};
-use nalgebra::DVector;
-use serde_json::json;
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{CapacityReport, CapacityRequest};
 use std::path::PathBuf;
 
 /// Capacity margin (Guay et al. 2014) of a required set of external wrenches at one pose.
@@ -69,111 +67,38 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or text.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let robot = load_robot(&args.robot)?;
-    cdpr::wrench::require_enough_cables(&robot.robot, "the capacity margin (wrench closure)")?;
-    let p = pose(&robot, &args.pose)?;
-    let centre = external_wrench(&robot, &p, args.wrench.as_deref())?;
-    let dof = centre.len();
-    let motion = robot.robot.motion();
-    let split = (args.force_radius.is_some() || args.moment_radius.is_some()).then(|| {
-        (
-            args.force_radius.unwrap_or(0.0),
-            args.moment_radius.unwrap_or(0.0),
-        )
-    });
-    for (name, v) in [
-        ("--wrench-ball", args.wrench_ball),
-        ("--force-radius", args.force_radius),
-        ("--moment-radius", args.moment_radius),
-    ] {
-        if let Some(v) = v.filter(|v| !(v.is_finite() && *v >= 0.0)) {
-            return Err(format!("{name}: the radius must be a finite number ≥ 0, got {v}").into());
-        }
-    }
-    if args.moment_radius.is_some() && !motion.has_orientation() {
-        return Err(format!(
-            "--moment-radius: a `{}` robot takes no moments (use --force-radius)",
-            motion.name()
-        )
-        .into());
-    }
-    let (required, shape) = match (&args.wrench_box, args.wrench_ball) {
-        _ if split.is_some() => {
-            let (f, m) = split.unwrap_or_default();
-            (
-                RequiredWrenchSet::force_and_moment_balls(
-                    centre.clone(),
-                    motion.translation_dof(),
-                    f,
-                    m,
-                )?,
-                "force-moment-balls",
-            )
-        }
-        (Some(h), _) => {
-            if h.len() != dof {
-                return Err(format!(
-                    "--wrench-box needs {dof} half-widths (one per wrench component), got {}",
-                    h.len()
-                )
-                .into());
-            }
-            (
-                RequiredWrenchSet::boxed(centre.clone(), DVector::from_column_slice(h))?,
-                "box",
-            )
-        }
-        (None, Some(r)) => (RequiredWrenchSet::ball(centre.clone(), r)?, "ball"),
-        (None, None) => (RequiredWrenchSet::point(centre.clone())?, "point"),
+    let request = CapacityRequest {
+        robot: request_robot(&args.robot)?,
+        pose: args.pose.0,
+        wrench: args.wrench.map(|w| w.0),
+        wrench_box: args.wrench_box.map(|w| w.0),
+        wrench_ball: args.wrench_ball,
+        force_radius: args.force_radius,
+        moment_radius: args.moment_radius,
     };
-    let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
-    let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds)?;
-    let limit = limiting_facet(&aws, &required)?;
-    let margin = limit.map_or(f64::INFINITY, |(_, m)| m);
-    let feasible = margin >= 0.0;
+    let report = request.run()?;
     if args.json {
-        let mut req = json!({ "shape": shape, "centre": centre.as_slice() });
-        if let Some(h) = required.half_widths() {
-            req["half_widths"] = json!(h);
-        }
-        if let Some(r) = required.radius() {
-            req["radius"] = json!(r);
-        }
-        if let Some((f, m)) = required.force_and_moment_radii() {
-            req["force_radius"] = json!(f);
-            req["moment_radius"] = json!(m);
-        }
-        return print_json(&json!({
-            "robot": robot.name,
-            "pose": args.pose.0,
-            "required": req,
-            "capacity_margin": margin.is_finite().then_some(margin),
-            "feasible": feasible,
-            "limiting_facet": limit.map(|(k, _)| {
-                let f = &aws.facets()[k];
-                json!({ "index": k, "normal": f.normal.as_slice(), "offset": f.offset })
-            }),
-            "facets": aws.facets().len(),
-        }));
+        return print_report(&report);
     }
-    let forces = motion.translation_dof();
+    let motion = request.robot.robot.motion();
+    print_text(&report, motion.translation_dof(), motion.space_dim());
+    Ok(())
+}
+
+/// The report as text (`forces` force components, `dim` position coordinates).
+fn print_text(r: &CapacityReport, forces: usize, dim: usize) {
+    let q = &r.required;
+    let dof = q.centre.len();
+    println!("robot {}, pose {}", r.robot, super::pose_text(&r.pose, dim));
     println!(
-        "robot {}, pose {}",
-        robot.name,
-        super::pose_text(&args.pose.0, motion.space_dim())
-    );
-    println!(
-        "required {shape} of external wrenches centred on {} (--wrench + gravity){}",
-        super::wrench_text(centre.as_slice(), forces),
-        match (
-            required.half_widths(),
-            required.radius(),
-            required.force_and_moment_radii()
-        ) {
-            (Some(h), _, _) => format!(", half-widths {}", super::wrench_text(h, forces)),
-            (None, Some(r), _) if r > 0.0 => format!(
+        "required {} of external wrenches centred on {} (--wrench + gravity){}",
+        q.shape,
+        super::wrench_text(&q.centre, forces),
+        match (&q.half_widths, q.radius, q.force_radius, q.moment_radius) {
+            (Some(h), _, _, _) => format!(", half-widths {}", super::wrench_text(h, forces)),
+            (None, Some(r), _, _) if r > 0.0 => format!(
                 ", radius {} ({})",
                 super::num(r),
                 if forces == dof {
@@ -182,12 +107,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
                     "N and N·m combined, length scale 1 m"
                 }
             ),
-            (_, _, Some((f, m))) => format!(", forces up to {f} N and moments up to {m} N·m"),
+            (_, _, Some(f), Some(m)) => {
+                format!(", forces up to {f} N and moments up to {m} N·m")
+            }
             _ => String::new(),
         }
     );
     println!(
-        "capacity margin: {margin:.6} {}",
+        "capacity margin: {:.6} {}",
+        r.capacity_margin.unwrap_or(f64::INFINITY),
         if forces == dof {
             "N"
         } else {
@@ -196,21 +124,19 @@ pub fn run(args: Args) -> Result<(), CliError> {
     );
     println!(
         "{}",
-        if feasible {
+        if r.feasible {
             "feasible: every required wrench can be balanced with tensions in bounds"
         } else {
             "infeasible: part of the required set cannot be balanced"
         }
     );
-    if let Some((k, _)) = limit {
-        let f = &aws.facets()[k];
+    if let Some(f) = &r.limiting_facet {
         println!(
             "limiting facet {} of {}: unit normal {}, offset {:.6}",
-            k + 1,
-            aws.facets().len(),
-            super::nums(f.normal.as_slice()),
+            f.index + 1,
+            r.facets,
+            super::nums(&f.normal),
             f.offset
         );
     }
-    Ok(())
 }

@@ -1,8 +1,7 @@
 //! `cdpr forward`: forward kinematics, from measured cable lengths to the platform pose.
 
-use super::{CliError, Numbers, kinematics_model, load_robot, pose, print_json};
-use cdpr::kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, MotionPattern};
-use serde_json::json;
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{ForwardReport, ForwardRequest};
 use std::path::PathBuf;
 
 /// The platform pose whose cable lengths are the measured ones (Levenberg–Marquardt on
@@ -50,92 +49,63 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or a table.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let robot = load_robot(&args.robot)?;
-    let motion = robot.robot.motion();
-    let settings = ForwardSettings {
+    let request = ForwardRequest {
+        robot: request_robot(&args.robot)?,
+        lengths: args.lengths.0,
+        guess: args.guess.map(|g| g.0),
         tolerance: args.tolerance,
         length_sigma: args.length_sigma,
-        ..ForwardSettings::default()
     };
-    let mut fk = ForwardKinematics::new(&robot.robot, settings)?;
-    let solutions = match &args.guess {
-        Some(g) => vec![fk.solve(&args.lengths, &pose(&robot, g)?)?],
-        None => fk.solve_multistart(&args.lengths)?,
-    };
-    let best = solutions[0];
-    let model = kinematics_model(&robot);
+    let report = request.run()?;
     if args.json {
-        let mut out = entry(motion, &best);
-        out["robot"] = json!(robot.name);
-        out["motion"] = json!(motion.name());
-        out["kinematics"] = json!(model.name());
-        out["length_sigma"] = json!(args.length_sigma);
-        out["solutions"] = solutions.iter().map(|s| entry(motion, s)).collect();
-        print_json(&out)
+        print_report(&report)
     } else {
-        println!(
-            "robot {} ({}, {} kinematics), {} from {}",
-            robot.name,
-            motion,
-            model.name(),
-            if solutions.len() == 1 {
-                "1 answer".to_string()
-            } else {
-                format!("{} distinct solutions", solutions.len())
-            },
-            if args.guess.is_some() {
-                "the guess"
-            } else {
-                "the multi-start"
-            }
-        );
-        println!(
-            "{:>3}  {:<24} {:>12} {:>12} {:>6} {:>12}  pose (m, rad)",
-            "#", "status", "residual (m)", "rms (m)", "iter", "σ_min(J)"
-        );
-        for (i, s) in solutions.iter().enumerate() {
-            let p: Vec<String> = s
-                .pose
-                .coordinates(motion)
-                .iter()
-                .map(|x| format!("{x:.9}"))
-                .collect();
-            println!(
-                "{:>3}  {:<24} {:>12.3e} {:>12.3e} {:>6} {:>12.4e}  {}",
-                i + 1,
-                s.status.name(),
-                s.residual,
-                s.residual_rms,
-                s.iterations,
-                s.min_singular_value,
-                p.join(",")
-            );
-        }
-        let std: Vec<String> = best
-            .pose_std(motion.dof())
-            .iter()
-            .map(|x| format!("{x:.3e}"))
-            .collect();
-        println!(
-            "pose standard deviations of #1 (σ = {:e} m per length; m, rad): {}",
-            args.length_sigma,
-            std.join(",")
-        );
+        print_text(&report, request.guess.is_some());
         Ok(())
     }
 }
 
-fn entry(motion: MotionPattern, s: &ForwardSolution) -> serde_json::Value {
-    json!({
-        "pose": s.pose.coordinates(motion),
-        "residual": s.residual,
-        "residual_rms": s.residual_rms,
-        "pose_std": s.pose_std(motion.dof()),
-        "iterations": s.iterations,
-        "converged": s.converged,
-        "status": s.status.name(),
-        "min_singular_value": s.min_singular_value,
-    })
+/// The report as a table.
+fn print_text(r: &ForwardReport, from_guess: bool) {
+    println!(
+        "robot {} ({}, {} kinematics), {} from {}",
+        r.robot,
+        r.motion,
+        r.kinematics.name(),
+        if r.solutions.len() == 1 {
+            "1 answer".to_string()
+        } else {
+            format!("{} distinct solutions", r.solutions.len())
+        },
+        if from_guess {
+            "the guess"
+        } else {
+            "the multi-start"
+        }
+    );
+    println!(
+        "{:>3}  {:<24} {:>12} {:>12} {:>6} {:>12}  pose (m, rad)",
+        "#", "status", "residual (m)", "rms (m)", "iter", "σ_min(J)"
+    );
+    for (i, s) in r.solutions.iter().enumerate() {
+        let p: Vec<String> = s.pose.iter().map(|x| format!("{x:.9}")).collect();
+        println!(
+            "{:>3}  {:<24} {:>12.3e} {:>12.3e} {:>6} {:>12.4e}  {}",
+            i + 1,
+            s.status,
+            s.residual,
+            s.residual_rms,
+            s.iterations,
+            s.min_singular_value,
+            p.join(",")
+        );
+    }
+    let std: Vec<String> = r.best.pose_std.iter().map(|x| format!("{x:.3e}")).collect();
+    println!(
+        "pose standard deviations of #1 (σ = {:e} m per length; m, rad): {}",
+        r.length_sigma,
+        std.join(",")
+    );
 }

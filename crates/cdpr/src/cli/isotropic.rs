@@ -1,19 +1,18 @@
 //! `cdpr isotropic`: the maximum isotropic force (Krut, Company & Pierrot 2004, §IV) at a pose, or its map.
 
 use super::{
-    CliError, Numbers, external_wrench, load_robot, num, pose, pose_text, print_json, wrench_text,
+    CliError, Numbers, external_wrench, load_robot, num, pose_text, print_json, print_report,
+    wrench_text,
 };
 use cdpr::RobotDescription;
+use cdpr::api::{IsotropicReport, IsotropicRequest, Robot};
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::plot::{ForcePolygonPlot, HeatMap};
-use cdpr::polytope::{
-    InscribedEllipse, IsotropicForce, hyperplane_shifting, isotropic_force_under_load,
-    largest_inscribed_ellipse,
-};
+use cdpr::polytope::{IsotropicForce, largest_inscribed_ellipse};
 use indicatif::ProgressBar;
 use nalgebra::{DVector, Vector3};
 use rayon::prelude::*;
-use serde_json::{Value, json};
+use serde_json::json;
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -105,18 +104,7 @@ pub struct Args {
     json: bool,
 }
 
-/// What the index means for this motion pattern (JSON `definition`).
-fn definition(motion: MotionPattern) -> &'static str {
-    if motion.has_orientation() {
-        "force at zero moment: radius of the largest force ball centred at -w_ext (the origin \
-         without load) inside the moment = 0 slice of the available wrench set \
-         {W t : t_min <= t <= t_max}; negative when -w_ext is outside"
-    } else {
-        "radius of the largest force ball centred at -w_ext (the origin without load) inside the \
-         available force polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, \
-         eq. 19); negative when -w_ext is outside"
-    }
-}
+use cdpr::api::definition;
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
@@ -129,27 +117,8 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
-fn ellipse_json(e: &Option<InscribedEllipse>) -> Value {
-    match e {
-        Some(e) => json!({
-            "semi_axes": e.semi_axes,
-            "angle": e.angle,
-            "angle_deg": e.angle.to_degrees(),
-            "area": e.area(),
-        }),
-        None => Value::Null,
-    }
-}
-
 fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliError> {
     let motion = robot.robot.motion();
-    if args.ellipse && motion != MotionPattern::Point2 {
-        return Err(format!(
-            "--ellipse needs a 2-D force polygon (a point2 robot); this robot is {}",
-            motion.name()
-        )
-        .into());
-    }
     if args.plot.is_some() && motion != MotionPattern::Point2 {
         return Err(format!(
             "--plot with --pose draws the 2-D force polygon and needs a point2 robot; this robot \
@@ -158,87 +127,84 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         )
         .into());
     }
-    let p = pose(robot, q)?;
-    let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
-    let aws = hyperplane_shifting::available_wrench_set(&w, &robot.bounds)?;
-    let w_ext = external_wrench(robot, &p, args.wrench.as_deref())?;
-    let force = isotropic_force_under_load(&aws, motion, &w_ext)?;
-    let radius = aws
-        .supporting_halfspaces()
-        .iter()
-        .map(|f| f.offset + f.normal.dot(&w_ext))
-        .fold(f64::INFINITY, f64::min);
-    let ellipse = if args.ellipse || args.plot.is_some() {
-        Some(largest_inscribed_ellipse(&aws)?)
-    } else {
-        None
+    let request = IsotropicRequest {
+        robot: Robot::from_description(robot.clone()),
+        pose: q.to_vec(),
+        wrench: args.wrench.as_ref().map(|w| w.0.clone()),
+        ellipse: args.ellipse,
     };
+    request.validate()?;
     if let Some(path) = &args.plot {
-        let mut fig = ForcePolygonPlot::operational(&aws, ellipse.flatten().as_ref())
-            .ok_or("the force polygon is unbounded (an infinite t_max): nothing to draw")?;
-        fig.title = format!(
-            "{}: available force polygon {{W t}} at position ({})",
-            robot.name,
-            q.iter()
-                .map(|v| cdpr::plot::tick(*v))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
-        cdpr::plot::save(&fig, path)?;
+        plot_polygon(&request, path)?;
     }
+    let report = request.run()?;
     if args.json {
-        let mut v = json!({
-            "robot": robot.name,
-            "pose": q,
-            "isotropic_force": force,
-            "wrench_radius": radius,
-            "external_wrench": w_ext.as_slice(),
-            "definition": definition(motion),
-            "facets": aws.facets().len(),
-            "vertices": aws.vertices().map(|v| v.iter().map(|p| p.as_slice().to_vec()).collect::<Vec<_>>()),
-        });
-        if let (true, Some(e)) = (args.ellipse, &ellipse) {
-            v["ellipse"] = ellipse_json(e);
-        }
-        return print_json(&v);
+        return print_report(&report);
     }
+    print_pose_text(&report, motion, args);
+    Ok(())
+}
+
+/// The available force polygon with its largest centred circle and ellipse (point2 robots).
+fn plot_polygon(request: &IsotropicRequest, path: &std::path::Path) -> Result<(), CliError> {
+    let aws = request.wrench_set()?;
+    let ellipse = largest_inscribed_ellipse(&aws)?;
+    let mut fig = ForcePolygonPlot::operational(&aws, ellipse.as_ref())
+        .ok_or("the force polygon is unbounded (an infinite t_max): nothing to draw")?;
+    fig.title = format!(
+        "{}: available force polygon {{W t}} at position ({})",
+        request.robot.name,
+        request
+            .pose
+            .iter()
+            .map(|v| cdpr::plot::tick(*v))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    cdpr::plot::save(&fig, path)?;
+    Ok(())
+}
+
+/// The pose report as text.
+fn print_pose_text(r: &IsotropicReport, motion: MotionPattern, args: &Args) {
     let forces = motion.translation_dof();
     println!(
         "robot {}, pose {}",
-        robot.name,
-        pose_text(q, motion.space_dim())
+        r.robot,
+        pose_text(&r.pose, motion.space_dim())
     );
     println!(
         "external wrench w_ext {} (the platform's weight{} included)",
-        wrench_text(w_ext.as_slice(), forces),
+        wrench_text(&r.external_wrench, forces),
         if args.wrench.is_some() {
             " and --wrench"
         } else {
             ""
         }
     );
-    println!("maximum isotropic force on top of w_ext: {force:.6} N");
-    println!("  ({})", definition(motion));
     println!(
-        "wrench-space ball radius: {radius:.6} {}",
-        if forces == w_ext.len() {
+        "maximum isotropic force on top of w_ext: {:.6} N",
+        r.isotropic_force
+    );
+    println!("  ({})", r.definition);
+    println!(
+        "wrench-space ball radius: {:.6} {}",
+        r.wrench_radius,
+        if forces == r.external_wrench.len() {
             "N"
         } else {
             "(N and N·m combined, length scale 1 m)"
         }
     );
-    println!("available wrench set: {} facets", aws.facets().len());
-    if force < 0.0 {
+    println!("available wrench set: {} facets", r.facets);
+    if r.isotropic_force < 0.0 {
         println!("w_ext is outside the set of wrenches the cables can balance: it cannot be held");
     }
-    match ellipse.as_ref().filter(|_| args.ellipse) {
+    match &r.ellipse {
         Some(Some(e)) => println!(
             "largest centred ellipse (no load): semi-axes {:.6} N, {:.6} N; major axis at \
              {:.4}°; area {:.6} N²",
-            e.semi_axes[0],
-            e.semi_axes[1],
-            e.angle.to_degrees(),
-            e.area()
+            e.semi_axes[0], e.semi_axes[1], e.angle_deg, e.area
         ),
         Some(None) => println!("largest centred ellipse: none (the origin is not strictly inside)"),
         None => {}
@@ -246,7 +212,6 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
     if let Some(p) = &args.plot {
         println!("force polygon written to {}", p.display());
     }
-    Ok(())
 }
 
 /// The pose at grid point (x, y).

@@ -1,10 +1,8 @@
 //! `cdpr kinematics`: inverse kinematics and the wrench matrix at one pose.
 
-use super::{
-    CliError, KinematicsModel, Numbers, kinematics_model, load_robot, matrix_rows, pose,
-    print_json, print_matrix,
-};
-use serde_json::json;
+use super::{CliError, Numbers, load_robot, pose, print_matrix, print_report};
+use cdpr::api::{KinematicsModel, KinematicsReport, KinematicsRequest, Robot};
+use nalgebra::DMatrix;
 use std::path::PathBuf;
 
 /// Inverse kinematics at a pose (thesis eqs. (6.2)–(6.4), (6.11); pulleys: Pott 2018).
@@ -48,130 +46,94 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or tables.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
-    let pose = pose(&robot, &args.pose)?;
-    let kin = robot.robot.inverse_kinematics(&pose)?;
     if let Some(cables) = args.cable_model.catenaries(&robot)? {
+        let p = pose(&robot, &args.pose)?;
+        let kin = robot.robot.inverse_kinematics(&p)?;
         let (t, name) = (args.tensions.as_deref(), args.cable_model.model().name());
         return super::cable_model::kinematics(
             &robot, &kin, &cables, t, name, &args.pose, args.json,
         );
     }
-    let model = kinematics_model(&robot);
-    let n = kin.cable_count();
-    let w = kin.wrench_matrix();
-    let dim = robot.robot.motion().space_dim();
-    let vec_of = |v: &nalgebra::Vector3<f64>| v.iter().take(dim).copied().collect::<Vec<f64>>();
-    let closest = cdpr::kinematics::closest_cables(&kin);
-    let through = robot.platform_shape.as_ref().map(|shape| {
-        cdpr::kinematics::platform_interference(&kin, shape, &pose.position, &pose.rotation)
-    });
-    let springs = match &robot.passive_springs {
-        None => None,
-        Some(s) => {
-            let (sk, forces) = s.state(&pose)?;
-            let ws = sk.wrench_matrix() * nalgebra::DVector::from_column_slice(&forces);
-            Some((sk.lengths().collect::<Vec<_>>(), forces, ws))
-        }
+    let request = KinematicsRequest {
+        robot: Robot::from_description(robot),
+        pose: args.pose.0,
     };
+    let report = request.run()?;
     if args.json {
-        print_json(&json!({
-            "robot": robot.name,
-            "motion": robot.robot.motion().name(),
-            "pose": args.pose.0,
-            "kinematics": model.name(),
-            "lengths": kin.lengths().collect::<Vec<_>>(),
-            "free_lengths": (0..n).map(|i| kin.free_length(i)).collect::<Vec<_>>(),
-            "swivel_angles": (0..n).map(|i| kin.swivel_angle(i)).collect::<Vec<_>>(),
-            "wrap_angles": (0..n).map(|i| kin.wrap_angle(i)).collect::<Vec<_>>(),
-            "unit_vectors": kin.cables().iter().map(|c| vec_of(&c.unit)).collect::<Vec<_>>(),
-            "attachment_points": kin.cables().iter().map(|c| vec_of(&c.attachment_point)).collect::<Vec<_>>(),
-            "exit_points": (0..n).map(|i| vec_of(&kin.exit_point(i))).collect::<Vec<_>>(),
-            "wrench_matrix": matrix_rows(&w),
-            "jacobian_determinant": kin.jacobian_determinant(),
-            "closest_cables": closest.map(|c| [c.cables.0 + 1, c.cables.1 + 1]),
-            "closest_distance": closest.map(|c| c.distance),
-            "closest_points": closest.map(|c| [vec_of(&c.points.0), vec_of(&c.points.1)]),
-            "platform_interference": match through {
-                None => json!(null),
-                Some(None) => json!({ "cable": null, "penetration": 0.0 }),
-                Some(Some(p)) => json!({ "cable": p.cable + 1, "penetration": p.penetration }),
-            },
-            "passive_springs": springs.as_ref().map(|(l, f, w)| json!({
-                "lengths": l, "forces": f, "wrench": w.as_slice(),
-            })),
-        }))
+        print_report(&report)
     } else {
+        print_text(&report, request.robot.robot.motion().space_dim());
+        Ok(())
+    }
+}
+
+/// The report as tables (`dim` position coordinates in the pose).
+fn print_text(r: &KinematicsReport, dim: usize) {
+    println!(
+        "robot {} ({}, {} kinematics), pose {}",
+        r.robot,
+        r.motion,
+        r.kinematics.name(),
+        super::pose_text(&r.pose, dim)
+    );
+    let pulleys = r.kinematics == KinematicsModel::Pulley;
+    if pulleys {
         println!(
-            "robot {} ({}, {} kinematics), pose {}",
-            robot.name,
-            robot.robot.motion(),
-            model.name(),
-            super::pose_text(&args.pose.0, robot.robot.motion().space_dim())
+            "{:>6} {:>12} {:>12} {:>10} {:>10}  unit vector",
+            "cable", "length (m)", "free (m)", "swivel γ", "wrap β"
         );
-        let pulleys = model == KinematicsModel::Pulley;
+    } else {
+        println!("{:>6} {:>12}  unit vector", "cable", "length (m)");
+    }
+    for (i, unit) in r.unit_vectors.iter().enumerate() {
+        let u: Vec<String> = unit.iter().map(|x| format!("{x:>10.6}")).collect();
         if pulleys {
             println!(
-                "{:>6} {:>12} {:>12} {:>10} {:>10}  unit vector",
-                "cable", "length (m)", "free (m)", "swivel γ", "wrap β"
+                "{:>6} {:>12.6} {:>12.6} {:>6.4} rad {:>6.4} rad  {}",
+                i + 1,
+                r.lengths[i],
+                r.free_lengths[i],
+                r.swivel_angles[i],
+                r.wrap_angles[i],
+                u.join(" ")
             );
         } else {
-            println!("{:>6} {:>12}  unit vector", "cable", "length (m)");
+            println!("{:>6} {:>12.6}  {}", i + 1, r.lengths[i], u.join(" "));
         }
-        for (i, c) in kin.cables().iter().enumerate() {
-            let u: Vec<String> = vec_of(&c.unit)
-                .iter()
-                .map(|x| format!("{x:>10.6}"))
-                .collect();
-            if pulleys {
-                println!(
-                    "{:>6} {:>12.6} {:>12.6} {:>6.4} rad {:>6.4} rad  {}",
-                    i + 1,
-                    c.length,
-                    kin.free_length(i),
-                    kin.swivel_angle(i),
-                    kin.wrap_angle(i),
-                    u.join(" ")
-                );
-            } else {
-                println!("{:>6} {:>12.6}  {}", i + 1, c.length, u.join(" "));
-            }
+    }
+    let w = &r.wrench_matrix;
+    let cols = w.first().map_or(0, Vec::len);
+    let w = DMatrix::from_row_iterator(w.len(), cols, w.iter().flatten().copied());
+    print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
+    if let Some(s) = &r.passive_springs {
+        println!("{:>6} {:>12} {:>12}", "spring", "length (m)", "force (N)");
+        for (j, (l, f)) in s.lengths.iter().zip(&s.forces).enumerate() {
+            println!("{:>6} {:>12.6} {:>12.6}", j + 1, l, f);
         }
-        print_matrix("wrench matrix W (DOF × n), W t + w_ext = 0:", &w);
-        if let Some((l, f, ws)) = &springs {
-            println!("{:>6} {:>12} {:>12}", "spring", "length (m)", "force (N)");
-            for (j, (l, f)) in l.iter().zip(f).enumerate() {
-                println!("{:>6} {:>12.6} {:>12.6}", j + 1, l, f);
-            }
-            let parts: Vec<String> = ws.iter().map(|v| format!("{v:.6}")).collect();
-            println!(
-                "passive springs' wrench (N, N·m; part of w_ext): [{}]",
-                parts.join(", ")
-            );
-        }
-        if let Some(d) = kin.jacobian_determinant() {
-            println!("det J = {d:.6e}");
-        }
-        match closest {
+        let parts: Vec<String> = s.wrench.iter().map(|v| format!("{v:.6}")).collect();
+        println!(
+            "passive springs' wrench (N, N·m; part of w_ext): [{}]",
+            parts.join(", ")
+        );
+    }
+    if let Some(d) = r.jacobian_determinant {
+        println!("det J = {d:.6e}");
+    }
+    match (r.closest_cables, r.closest_distance) {
+        (Some([a, b]), Some(d)) => println!("closest cables: {a} and {b}, {d:.6} m apart"),
+        _ => println!("closest cables: none (every pair shares an anchor or attachment)"),
+    }
+    match &r.platform_interference {
+        None => {}
+        Some(p) => match p.cable {
+            None => println!("platform: no cable passes through it"),
             Some(c) => println!(
-                "closest cables: {} and {}, {:.6} m apart",
-                c.cables.0 + 1,
-                c.cables.1 + 1,
-                c.distance
-            ),
-            None => println!("closest cables: none (every pair shares an anchor or attachment)"),
-        }
-        match through {
-            None => {}
-            Some(None) => println!("platform: no cable passes through it"),
-            Some(Some(p)) => println!(
-                "platform: cable {} passes through it, {:.6} m deep",
-                p.cable + 1,
+                "platform: cable {c} passes through it, {:.6} m deep",
                 p.penetration
             ),
-        }
-        Ok(())
+        },
     }
 }

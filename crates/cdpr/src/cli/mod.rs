@@ -144,16 +144,6 @@ pub enum KinematicsModel {
     Standard,
 }
 
-impl KinematicsModel {
-    /// The name on the command line and in JSON output.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Pulley => "pulley",
-            Self::Standard => "standard",
-        }
-    }
-}
-
 /// `--kinematics` as given, set once by `main` before a command runs (a process-wide option:
 /// every command loads its robot through [`load_robot`], which applies it).
 static KINEMATICS: OnceLock<Option<KinematicsModel>> = OnceLock::new();
@@ -162,16 +152,6 @@ static KINEMATICS: OnceLock<Option<KinematicsModel>> = OnceLock::new();
 pub fn set_kinematics_model(model: Option<KinematicsModel>) {
     // A second call (never made by `main`) keeps the first value.
     let _ = KINEMATICS.set(model);
-}
-
-/// The model in force for `robot` as loaded: `standard` when asked for or when no cable has a
-/// pulley, else `pulley` (the default for robots with pulleys).
-pub fn kinematics_model(robot: &RobotDescription) -> KinematicsModel {
-    if robot.robot.has_pulleys() {
-        KinematicsModel::Pulley
-    } else {
-        KinematicsModel::Standard
-    }
 }
 
 /// A usage error (exit 2) when `method` does not apply to the robot: its redundancy
@@ -301,6 +281,16 @@ pub fn print_matrix(title: &str, m: &DMatrix<f64>) {
             .collect();
         println!("  {}", cells.join(" "));
     }
+}
+
+/// The robot of a request ([`cdpr::api::Robot`]), loaded by [`load_robot`].
+pub fn request_robot(path: &Path) -> Result<cdpr::api::Robot, CliError> {
+    Ok(cdpr::api::Robot::from_description(load_robot(path)?))
+}
+
+/// Prints a report as the command's JSON (keys in the same sorted order as [`print_json`]).
+pub fn print_report<T: serde::Serialize>(report: &T) -> Result<(), CliError> {
+    print_json(&serde_json::to_value(report)?)
 }
 
 /// Prints a JSON value on stdout.

@@ -1,13 +1,9 @@
 //! `cdpr stiffness`: the stiffness matrix at one pose under given tensions.
 
-use super::{
-    CliError, Numbers, check_method, external_wrench, load_robot, matrix_rows, pose, print_json,
-    print_matrix,
-};
-use cdpr::RobotDescription;
-use cdpr::kinematics::{Pose, PoseKinematics};
-use cdpr::tension::{Method, TensionOutcome, TensionProblem, TensionSolver};
-use serde_json::json;
+use super::{CliError, Numbers, print_matrix, print_report, request_robot};
+use cdpr::api::StiffnessRequest;
+use cdpr::tension::Method;
+use nalgebra::DMatrix;
 use std::path::PathBuf;
 
 /// Stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020, eqs. (3)–(4)), k_i = E·S / l_i.
@@ -43,99 +39,34 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or tables.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let robot = load_robot(&args.robot)?;
-    robot.require_no_passive_springs(
-        "the stiffness matrix (cables only; the springs' K would add to it)",
-    )?;
-    let pose = pose(&robot, &args.pose)?;
-    let kin = robot.robot.inverse_kinematics(&pose)?;
-    let n = robot.robot.cable_count();
-    let es = match (args.axial_stiffness, &robot.axial_stiffness) {
-        (Some(v), _) => vec![v; n],
-        (None, Some(v)) => v.clone(),
-        (None, None) => return Err("no axial stiffness: give `axial_stiffness` on every cable of the robot file, or --axial-stiffness".into()),
+    let request = StiffnessRequest {
+        robot: request_robot(&args.robot)?,
+        pose: args.pose.0,
+        tensions: args.tensions.map(|t| t.0),
+        method: args.method,
+        wrench: args.wrench.map(|w| w.0),
+        axial_stiffness: args.axial_stiffness,
     };
-    let (tensions, method) = match &args.tensions {
-        Some(t) => (checked_tensions(t)?, None),
-        None => {
-            let method = args.method.unwrap_or(Method::L2);
-            (
-                solved_tensions(&robot, &pose, &kin, method, &args)?,
-                Some(method),
-            )
-        }
-    };
-    let k = cdpr::wrench::stiffness_matrix(&kin, &tensions, &es)?;
-    let kp = cdpr::wrench::passive_stiffness(&kin, &es)?;
-    let ka = cdpr::wrench::active_stiffness(&kin, &tensions)?;
+    let r = request.run()?;
     if args.json {
-        print_json(&json!({
-            "robot": robot.name,
-            "pose": args.pose.0,
-            "tensions": tensions,
-            "tension_method": method.map(|m| m.name()),
-            "stiffness": matrix_rows(&k),
-            "passive": matrix_rows(&kp),
-            "active": matrix_rows(&ka),
-        }))
-    } else {
-        if let Some(m) = method {
-            println!("tensions ({}): {} N", m.name(), super::nums(&tensions));
-        }
-        print_matrix(
-            "stiffness K = Kp + Ka (N/m on translations, N·m/rad on rotations, N coupling):",
-            &k,
-        );
-        print_matrix("passive Kp:", &kp);
-        print_matrix("active Ka:", &ka);
-        Ok(())
+        return print_report(&r);
     }
+    if let Some(m) = &r.tension_method {
+        println!("tensions ({m}): {} N", super::nums(&r.tensions));
+    }
+    print_matrix(
+        "stiffness K = Kp + Ka (N/m on translations, N·m/rad on rotations, N coupling):",
+        &matrix(&r.stiffness),
+    );
+    print_matrix("passive Kp:", &matrix(&r.passive));
+    print_matrix("active Ka:", &matrix(&r.active));
+    Ok(())
 }
 
-/// `--tensions` as given: finite and ≥ 0 (a cable only pulls; a negative tension used to give
-/// a stiffness matrix without a word).
-fn checked_tensions(t: &[f64]) -> Result<Vec<f64>, CliError> {
-    if let Some((i, v)) = t
-        .iter()
-        .enumerate()
-        .find(|(_, v)| !(v.is_finite() && **v >= 0.0))
-    {
-        return Err(format!(
-            "--tensions: t_{} = {v} N; tensions are finite and ≥ 0 (a cable can only pull)",
-            i + 1
-        )
-        .into());
-    }
-    Ok(t.to_vec())
-}
-
-/// The tensions of `method` balancing the platform's weight and `--wrench` at the pose; an
-/// infeasible pose is an error (no stiffness without tensions).
-fn solved_tensions(
-    robot: &RobotDescription,
-    pose: &Pose,
-    kin: &PoseKinematics,
-    method: Method,
-    args: &Args,
-) -> Result<Vec<f64>, CliError> {
-    if method == Method::Sotda {
-        return Err(
-            "--method sotda needs its own options: run `cdpr tension --method sotda` \
-                    and pass its tensions with --tensions"
-                .into(),
-        );
-    }
-    check_method(robot, method)?;
-    let w = kin.wrench_matrix();
-    let w_ext = external_wrench(robot, pose, args.wrench.as_deref())?;
-    match TensionSolver::new(method).solve(&TensionProblem::new(&w, &w_ext, &robot.bounds))? {
-        TensionOutcome::Feasible(s) => Ok(s.tensions.as_slice().to_vec()),
-        TensionOutcome::Infeasible(reason) => Err(format!(
-            "no tensions within the bounds at this pose ({}): {reason}; give --tensions",
-            method.name()
-        )
-        .into()),
-    }
+/// A matrix from its rows.
+fn matrix(rows: &[Vec<f64>]) -> DMatrix<f64> {
+    let cols = rows.first().map_or(0, Vec::len);
+    DMatrix::from_row_iterator(rows.len(), cols, rows.iter().flatten().copied())
 }

@@ -1,12 +1,9 @@
 //! `cdpr tension`: a tension distribution at one pose.
 
-use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json};
-use cdpr::tension::{
-    FeasiblePolygon, Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant,
-    StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
-};
-use nalgebra::Vector3;
-use serde_json::json;
+use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_report};
+use cdpr::RobotDescription;
+use cdpr::api::{Robot, TensionReport, TensionRequest};
+use cdpr::tension::{Method, SotdaSettings};
 use std::path::PathBuf;
 
 /// Cable tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max at one pose.
@@ -87,38 +84,14 @@ pub struct PeerOptions {
 }
 
 impl PeerOptions {
-    /// The [`MethodOptions`] for `method`; an option of another method is refused.
-    pub fn for_method(&self, method: Method) -> Result<MethodOptions, CliError> {
-        let given = [
-            ("interior", self.interior.is_some()),
-            ("alternating", self.alternating),
-            ("p", self.p.is_some()),
-            ("alpha", self.alpha.is_some()),
-        ];
-        for (name, set) in given {
-            if set && !method.takes_option(name) {
-                return Err(format!(
-                    "--{name} is an option of another method, not of {method} (--interior: \
-                     puncture, --alternating: dykstra, --p: p-norm, --alpha: optimally-safe)"
-                )
-                .into());
-            }
-        }
-        let mut o = MethodOptions {
+    /// The request's options of the peers' methods.
+    pub fn to_api(&self) -> cdpr::api::PeerOptions {
+        cdpr::api::PeerOptions {
+            interior: self.interior.clone(),
             alternating: self.alternating,
-            ..MethodOptions::default()
-        };
-        if let Some(i) = &self.interior {
-            o.interior = i.parse::<PunctureInterior>()?;
+            p: self.p,
+            alpha: self.alpha,
         }
-        if let Some(p) = self.p {
-            o.p = p;
-        }
-        if let Some(a) = self.alpha {
-            o.alpha = a;
-        }
-        o.validate()?;
-        Ok(o)
     }
 }
 
@@ -134,18 +107,18 @@ pub enum SotdaSearch {
 }
 
 impl SotdaSearch {
-    /// The command-line spelling (JSON `sotda_search`).
-    pub fn name(self) -> &'static str {
-        match self {
-            SotdaSearch::Corners => "corners",
-            SotdaSearch::Vertices => "vertices",
-            SotdaSearch::Full => "full",
-        }
-    }
-
     /// The search chosen by `--sotda-search` and the older `--full` switch.
     pub fn from_args(search: SotdaSearch, full: bool) -> Self {
         if full { SotdaSearch::Full } else { search }
+    }
+
+    /// The request's spelling.
+    pub fn to_api(self) -> cdpr::api::SotdaSearch {
+        match self {
+            SotdaSearch::Corners => cdpr::api::SotdaSearch::Corners,
+            SotdaSearch::Vertices => cdpr::api::SotdaSearch::Vertices,
+            SotdaSearch::Full => cdpr::api::SotdaSearch::Full,
+        }
     }
 }
 
@@ -155,163 +128,95 @@ pub fn sotda_settings(
     nu: f64,
     search: SotdaSearch,
 ) -> Result<SotdaSettings, CliError> {
-    let mut s = SotdaSettings {
-        nu,
-        ..SotdaSettings::default()
-    };
-    if let Some(d) = direction {
-        s.direction = match d.len() {
-            2 => Vector3::new(d[0], d[1], 0.0),
-            3 => Vector3::new(d[0], d[1], d[2]),
-            k => return Err(format!("--direction needs 2 or 3 numbers, got {k}").into()),
-        };
-    }
-    s.variant = match search {
-        SotdaSearch::Corners => SotdaVariant::Corners,
-        SotdaSearch::Vertices => SotdaVariant::Vertices,
-        SotdaSearch::Full => SotdaVariant::Full,
-    };
-    s.validate()?;
-    Ok(s)
+    Ok(cdpr::api::sotda_settings(direction, nu, search.to_api())?)
 }
 
-/// Vertices and barycentre of the feasible polygon as JSON (null when there is none).
-pub fn polygon_json(problem: &TensionProblem) -> Result<serde_json::Value, CliError> {
-    Ok(match FeasiblePolygon::compute(problem)? {
-        Ok(p) => json!({
-            "vertices_lambda": p.vertices.iter().map(|v| [v.x, v.y]).collect::<Vec<_>>(),
-            "vertices_tension": p.tension_vertices.iter().map(|t| t.as_slice().to_vec()).collect::<Vec<_>>(),
-            "barycenter_lambda": [p.barycenter_lambda().x, p.barycenter_lambda().y],
-            "barycenter": p.barycenter().as_slice().to_vec(),
-            "area": p.area(),
-        }),
-        Err(reason) => json!({ "none": reason.to_string() }),
-    })
-}
-
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or a table.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
-    check_method(&robot, args.method)?;
-    let options = args.peer.for_method(args.method)?;
-    let pose = pose(&robot, &args.pose)?;
-    let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
-    let kin = robot.robot.inverse_kinematics(&pose)?;
     if let Some(cables) = args.cable_model.catenaries(&robot)? {
-        let name = args.cable_model.model().name();
-        let (m, b) = (args.method, &robot.bounds);
-        return super::cable_model::tension(
-            &robot, &kin, &cables, m, &w_ext, b, name, &args.pose, args.json,
-        );
+        return run_sagging(&args, &robot, &cables);
     }
-    let w = kin.wrench_matrix();
-    let es = robot.axial_stiffness.clone();
-    if args.method == Method::Sotda && es.is_none() {
-        return Err(
-            "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file".into(),
-        );
-    }
-    let mut problem = TensionProblem::new(&w, &w_ext, &robot.bounds);
-    if let Some(es) = &es {
-        problem.stiffness = Some(StiffnessData {
-            kinematics: &kin,
-            axial_stiffness: es,
-        });
-    }
-    let mut solver = if args.method == Method::Sotda {
-        TensionSolver::sotda(sotda_settings(
-            args.direction.as_deref(),
-            args.nu,
-            SotdaSearch::from_args(args.sotda_search, args.full),
-        )?)
-    } else {
-        TensionSolver::new(args.method).with_options(options)?
+    let request = TensionRequest {
+        robot: Robot::from_description(robot),
+        pose: args.pose.0.clone(),
+        wrench: args.wrench.as_ref().map(|w| w.0.clone()),
+        method: args.method,
+        direction: args.direction.as_ref().map(|d| d.0.clone()),
+        nu: args.nu,
+        sotda_search: SotdaSearch::from_args(args.sotda_search, args.full).to_api(),
+        options: args.peer.to_api(),
     };
-    let outcome = solver.solve(&problem)?;
-    let displacement = match (&outcome, args.method, &problem.stiffness) {
-        (TensionOutcome::Feasible(s), Method::Sotda, Some(st)) => {
-            cdpr::tension::sotda_displacement(
-                st,
-                solver.sotda_settings(),
-                &w_ext,
-                s.tensions.as_slice(),
-            )?
-        }
-        _ => None,
-    };
-    let with_polygon = matches!(args.method, Method::Barycenter | Method::Sotda);
+    let report = request.run()?;
     if args.json {
-        let mut v = json!({
-            "robot": robot.name,
-            "pose": args.pose.0,
-            "external_wrench": w_ext.as_slice(),
-            "method": args.method.name(),
-            "feasible": outcome.is_feasible(),
-            // exact / pinv: t = −W⁺ w_ext even when it breaks a bound (`feasible` false,
-            // `reason` names the cable).
-            "tensions": outcome.balancing_tensions().map(|t| t.as_slice().to_vec()),
-            "residual": match &outcome { TensionOutcome::Feasible(s) => Some(s.residual), _ => None },
-            "reason": outcome.infeasibility().map(|r| r.to_string()),
-        });
-        if with_polygon {
-            v["polygon"] = polygon_json(&problem)?;
-        }
-        if args.method == Method::Sotda {
-            v["displacement"] = json!(displacement);
-            v["nu"] = json!(args.nu);
-            v["sotda_search"] = json!(SotdaSearch::from_args(args.sotda_search, args.full).name());
-        }
-        print_json(&v)
+        print_report(&report)
     } else {
-        println!(
-            "robot {}, pose {}, w_ext {}, method {}",
-            robot.name,
-            super::pose_text(&args.pose.0, robot.robot.motion().space_dim()),
-            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
-            args.method.name()
-        );
-        match &outcome {
-            TensionOutcome::Feasible(s) => {
-                println!("feasible (residual {:.3e})", s.residual);
+        print_text(&request.robot, &report);
+        Ok(())
+    }
+}
+
+/// `--cable-model elastic|catenary`: the sag-aware statics (cli/cable_model.rs).
+fn run_sagging(
+    args: &Args,
+    robot: &RobotDescription,
+    cables: &cdpr::kinematics::RobotCatenaries,
+) -> Result<(), CliError> {
+    check_method(robot, args.method)?;
+    args.peer.to_api().for_method(args.method)?;
+    let pose = pose(robot, &args.pose)?;
+    let w_ext = external_wrench(robot, &pose, args.wrench.as_deref())?;
+    let kin = robot.robot.inverse_kinematics(&pose)?;
+    let name = args.cable_model.model().name();
+    let (m, b) = (args.method, &robot.bounds);
+    super::cable_model::tension(
+        robot, &kin, cables, m, &w_ext, b, name, &args.pose, args.json,
+    )
+}
+
+/// The report as a table.
+fn print_text(robot: &RobotDescription, r: &TensionReport) {
+    let motion = robot.robot.motion();
+    println!(
+        "robot {}, pose {}, w_ext {}, method {}",
+        r.robot,
+        super::pose_text(&r.pose, motion.space_dim()),
+        super::wrench_text(&r.external_wrench, motion.translation_dof()),
+        r.method
+    );
+    let (min, max) = (robot.bounds.min(), robot.bounds.max());
+    match (r.feasible, &r.tensions) {
+        (true, Some(t)) => {
+            println!("feasible (residual {:.3e})", r.residual.unwrap_or(0.0));
+            println!(
+                "{:>6} {:>14} {:>10} {:>10}",
+                "cable", "tension (N)", "t_min (N)", "t_max (N)"
+            );
+            for (i, t) in t.iter().enumerate() {
+                println!(
+                    "{:>6} {:>14.6} {:>10} {:>10}",
+                    i + 1,
+                    t,
+                    super::num(min[i]),
+                    super::num(max[i])
+                );
+            }
+            if let Some(d) = r.sotda.as_ref().and_then(|s| s.displacement) {
+                println!("displacement along the direction: {d:.6e} m");
+            }
+        }
+        (_, t) => {
+            println!("infeasible: {}", r.reason.as_deref().unwrap_or_default());
+            if let Some(t) = t {
+                println!("the solution t = −W⁺ w_ext (balances the wrench, breaks the bounds):");
                 println!(
                     "{:>6} {:>14} {:>10} {:>10}",
-                    "cable", "tension (N)", "t_min (N)", "t_max (N)"
+                    "cable", "tension", "t_min", "t_max"
                 );
-                for (i, t) in s.tensions.iter().enumerate() {
-                    println!(
-                        "{:>6} {:>14.6} {:>10} {:>10}",
-                        i + 1,
-                        t,
-                        super::num(robot.bounds.min()[i]),
-                        super::num(robot.bounds.max()[i])
-                    );
-                }
-                if let Some(d) = displacement {
-                    println!("displacement along the direction: {d:.6e} m");
-                }
-            }
-            TensionOutcome::Infeasible(r) => {
-                println!("infeasible: {r}");
-                if let Some(t) = outcome.balancing_tensions() {
-                    println!(
-                        "the solution t = −W⁺ w_ext (balances the wrench, breaks the bounds):"
-                    );
-                    println!(
-                        "{:>6} {:>14} {:>10} {:>10}",
-                        "cable", "tension", "t_min", "t_max"
-                    );
-                    for (i, t) in t.iter().enumerate() {
-                        println!(
-                            "{:>6} {:>14.6} {:>10} {:>10}",
-                            i + 1,
-                            t,
-                            robot.bounds.min()[i],
-                            robot.bounds.max()[i]
-                        );
-                    }
+                for (i, t) in t.iter().enumerate() {
+                    println!("{:>6} {:>14.6} {:>10} {:>10}", i + 1, t, min[i], max[i]);
                 }
             }
         }
-        Ok(())
     }
 }

@@ -1,0 +1,78 @@
+//! # cdpr-api
+//!
+//! One typed request and one report per analysis of cable-driven parallel robots: the layer
+//! under every front end. The `cdpr` command parses its arguments into a request, runs it and
+//! renders the report (its `--json` output is the serialised report); Python builds the same
+//! requests from keyword arguments; a browser builds them from a form and sends them as JSON.
+//! The crate sits beside the analysis stack, above every analysis crate and `cdpr-io`; it needs
+//! no file system, no command line and no plotting (it builds for `wasm32-unknown-unknown`
+//! without its default `parallel` feature).
+//!
+//! | request | report | analysis |
+//! |---|---|---|
+//! | [`KinematicsRequest`] | [`KinematicsReport`] | inverse kinematics, wrench matrix W |
+//! | [`ForwardRequest`] | [`ForwardReport`] | forward kinematics from cable lengths |
+//! | [`TensionRequest`] | [`TensionReport`] | tension distribution by any method |
+//! | [`StiffnessRequest`] | [`StiffnessReport`] | stiffness K = Kp + Ka |
+//! | [`CapacityRequest`] | [`CapacityReport`] | capacity margin of a required wrench set |
+//! | [`IsotropicRequest`] | [`IsotropicReport`] | isotropic force, force polytope, ellipse |
+//!
+//! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
+//! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
+//! Schema ([`schema`]). The robot travels as a robot file's text ([`RobotSource`]).
+//!
+//! ```
+//! use cdpr_api::{Method, Robot, RobotSource, TensionRequest};
+//!
+//! let text = std::fs::read_to_string(concat!(
+//!     env!("CARGO_MANIFEST_DIR"),
+//!     "/../../examples/robots/tdpm-4.toml"
+//! ))
+//! .unwrap();
+//! let robot = Robot::from_source(RobotSource::toml(text)).unwrap();
+//! let request = TensionRequest::new(robot, vec![0.0, 0.0, 0.0], Method::L2);
+//! let report = request.run().unwrap();
+//! assert!(report.feasible);
+//! assert_eq!(report.tensions.unwrap().len(), 4);
+//! ```
+//!
+//! ## References
+//! - docs/architecture.md, "Requests and reports".
+
+mod capacity;
+mod error;
+mod forward;
+pub mod inputs;
+mod isotropic;
+mod kinematics;
+mod robot;
+pub mod schema;
+mod stiffness;
+mod tension;
+
+pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
+pub use error::ApiError;
+pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
+pub use isotropic::{EllipseReport, IsotropicReport, IsotropicRequest, definition};
+pub use kinematics::{
+    KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
+};
+pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
+pub use stiffness::{StiffnessReport, StiffnessRequest};
+pub use tension::{
+    PeerOptions, PolygonReport, SotdaReport, SotdaSearch, TensionReport, TensionRequest,
+    sotda_settings,
+};
+
+/// The nalgebra of the whole stack.
+pub use nalgebra;
+
+/// A loaded robot file ([`Robot::from_description`]).
+pub use cdpr_io::RobotDescription;
+/// The tension distribution methods a request names.
+pub use cdpr_tension::Method;
+
+/// The README's examples (the crate's page on crates.io), compiled and run as doctests.
+#[doc = include_str!("../README.md")]
+#[cfg(doctest)]
+pub struct ReadmeDoctests;

@@ -1,0 +1,348 @@
+//! # Tension distribution at a pose
+//!
+//! Cable tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max by any method of `cdpr-tension`
+//! (closed form, ℓ1, ℓ2, barycentre, SOTDA, the peers' methods, …). Every "feasible" answer is
+//! certified by the solver (equilibrium residual and bounds); "infeasible" comes with its reason.
+//!
+//! ## References
+//! - Picard, Caro, Plestan & Claveau 2020 (SOTDA, the feasible polygon and the displacement).
+//! - Pott 2014 (improved closed form); Gouttefarde, Lamaury, Reichert & Bruckmann 2015
+//!   (barycentre).
+
+use cdpr_tension::{
+    FeasiblePolygon, Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant,
+    StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+};
+use nalgebra::Vector3;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::inputs::{check_method, external_wrench, method_name, pose};
+use crate::{ApiError, Robot};
+
+/// The points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum SotdaSearch {
+    /// Picard, Caro, Plestan & Claveau's (2020) real-time variant: the vertices with a cable at
+    /// t_max.
+    #[default]
+    Corners,
+    /// Every vertex of the polygon.
+    Vertices,
+    /// A grid over the whole polygon refined by a pattern search.
+    Full,
+}
+
+impl SotdaSearch {
+    /// The command-line spelling (JSON `sotda_search`).
+    pub fn name(self) -> &'static str {
+        match self {
+            SotdaSearch::Corners => "corners",
+            SotdaSearch::Vertices => "vertices",
+            SotdaSearch::Full => "full",
+        }
+    }
+}
+
+/// SOTDA settings: direction d (2 or 3 numbers; default +y), ν and the search.
+pub fn sotda_settings(
+    direction: Option<&[f64]>,
+    nu: f64,
+    search: SotdaSearch,
+) -> Result<SotdaSettings, ApiError> {
+    let mut s = SotdaSettings {
+        nu,
+        ..SotdaSettings::default()
+    };
+    if let Some(d) = direction {
+        s.direction = match d.len() {
+            2 => Vector3::new(d[0], d[1], 0.0),
+            3 => Vector3::new(d[0], d[1], d[2]),
+            k => {
+                return Err(ApiError::invalid(format!(
+                    "--direction needs 2 or 3 numbers, got {k}"
+                )));
+            }
+        };
+    }
+    s.variant = match search {
+        SotdaSearch::Corners => SotdaVariant::Corners,
+        SotdaSearch::Vertices => SotdaVariant::Vertices,
+        SotdaSearch::Full => SotdaVariant::Full,
+    };
+    s.validate()?;
+    Ok(s)
+}
+
+/// The options of the peers' methods (issue 26); each belongs to one method and is refused with
+/// another.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct PeerOptions {
+    /// puncture: the interior point aimed at, `icf` (default) or `cf`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interior: Option<String>,
+    /// dykstra: plain (von Neumann) alternating projections.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub alternating: bool,
+    /// p-norm: the exponent p ≥ 2 (default 4).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub p: Option<f64>,
+    /// optimally-safe: the weight α > 0 of the upper margin (default 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub alpha: Option<f64>,
+}
+
+impl PeerOptions {
+    /// The [`MethodOptions`] for `method`; an option of another method is refused.
+    pub fn for_method(&self, method: Method) -> Result<MethodOptions, ApiError> {
+        let given = [
+            ("interior", self.interior.is_some()),
+            ("alternating", self.alternating),
+            ("p", self.p.is_some()),
+            ("alpha", self.alpha.is_some()),
+        ];
+        for (name, set) in given {
+            if set && !method.takes_option(name) {
+                return Err(ApiError::invalid(format!(
+                    "--{name} is an option of another method, not of {method} (--interior: \
+                     puncture, --alternating: dykstra, --p: p-norm, --alpha: optimally-safe)"
+                )));
+            }
+        }
+        let mut o = MethodOptions {
+            alternating: self.alternating,
+            ..MethodOptions::default()
+        };
+        if let Some(i) = &self.interior {
+            o.interior = i.parse::<PunctureInterior>()?;
+        }
+        if let Some(p) = self.p {
+            o.p = p;
+        }
+        if let Some(a) = self.alpha {
+            o.alpha = a;
+        }
+        o.validate()?;
+        Ok(o)
+    }
+}
+
+fn default_method() -> Method {
+    Method::L2
+}
+
+fn default_nu() -> f64 {
+    1.0
+}
+
+/// Cable tensions at one pose (`cdpr tension`).
+#[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
+pub struct TensionRequest {
+    /// The robot.
+    pub robot: Robot,
+    /// Platform pose (m, rad).
+    pub pose: Vec<f64>,
+    /// External wrench w_e (N, N·m; DOF numbers; default zero), added to the robot file's load.
+    #[serde(default)]
+    pub wrench: Option<Vec<f64>>,
+    /// Tension distribution method (default `l2`).
+    #[serde(default = "default_method", with = "method_name")]
+    #[schemars(with = "String")]
+    pub method: Method,
+    /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    #[serde(default)]
+    pub direction: Option<Vec<f64>>,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
+    #[serde(default = "default_nu")]
+    pub nu: f64,
+    /// SOTDA: which points of the feasible polygon are evaluated.
+    #[serde(default)]
+    pub sotda_search: SotdaSearch,
+    /// Options of the peers' methods.
+    #[serde(default, flatten)]
+    pub options: PeerOptions,
+}
+
+/// The feasible polygon of a redundancy-2 problem (barycenter, sotda), or why there is none.
+#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+#[serde(untagged)]
+pub enum PolygonReport {
+    /// The polygon.
+    Polygon {
+        /// Vertices in the null-space coordinates λ.
+        vertices_lambda: Vec<[f64; 2]>,
+        /// Vertices as tensions (N).
+        vertices_tension: Vec<Vec<f64>>,
+        /// The barycentre in λ.
+        barycenter_lambda: [f64; 2],
+        /// The barycentre as tensions (N).
+        barycenter: Vec<f64>,
+        /// Area in λ.
+        area: f64,
+    },
+    /// No polygon.
+    None {
+        /// Why.
+        none: String,
+    },
+}
+
+impl PolygonReport {
+    /// The feasible polygon of `problem`.
+    pub fn of(problem: &TensionProblem) -> Result<Self, ApiError> {
+        Ok(match FeasiblePolygon::compute(problem)? {
+            Ok(p) => Self::Polygon {
+                vertices_lambda: p.vertices.iter().map(|v| [v.x, v.y]).collect(),
+                vertices_tension: p
+                    .tension_vertices
+                    .iter()
+                    .map(|t| t.as_slice().to_vec())
+                    .collect(),
+                barycenter_lambda: [p.barycenter_lambda().x, p.barycenter_lambda().y],
+                barycenter: p.barycenter().as_slice().to_vec(),
+                area: p.area(),
+            },
+            Err(reason) => Self::None {
+                none: reason.to_string(),
+            },
+        })
+    }
+}
+
+/// SOTDA's part of a tension report.
+#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+pub struct SotdaReport {
+    /// Platform displacement along the direction (m), null when infeasible.
+    pub displacement: Option<f64>,
+    /// ν as requested.
+    pub nu: f64,
+    /// The search as requested.
+    pub sotda_search: SotdaSearch,
+}
+
+/// The JSON of `cdpr tension --json`.
+#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+pub struct TensionReport {
+    /// Robot name.
+    pub robot: String,
+    /// The pose (m, rad).
+    pub pose: Vec<f64>,
+    /// w_ext = w_e + the robot file's load (N, N·m).
+    pub external_wrench: Vec<f64>,
+    /// The method's name.
+    pub method: String,
+    /// Whether certified tensions exist.
+    pub feasible: bool,
+    /// The tensions (N); exact/pinv: t = −W⁺ w_ext even when it breaks a bound; else null.
+    pub tensions: Option<Vec<f64>>,
+    /// Equilibrium residual ‖W t + w_ext‖ of a feasible answer.
+    pub residual: Option<f64>,
+    /// Why it is infeasible, or null.
+    pub reason: Option<String>,
+    /// barycenter and sotda: the feasible polygon.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub polygon: Option<PolygonReport>,
+    /// sotda: `displacement`, `nu`, `sotda_search`.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub sotda: Option<SotdaReport>,
+}
+
+impl TensionRequest {
+    /// A request for `method` at `pose` with every option at its default.
+    pub fn new(robot: Robot, pose: Vec<f64>, method: Method) -> Self {
+        Self {
+            robot,
+            pose,
+            wrench: None,
+            method,
+            direction: None,
+            nu: 1.0,
+            sotda_search: SotdaSearch::Corners,
+            options: PeerOptions::default(),
+        }
+    }
+
+    /// Checks the request: the method applies to the robot, its options, the pose and wrench.
+    pub fn validate(&self) -> Result<(), ApiError> {
+        self.checked().map(|_| ())
+    }
+
+    fn checked(&self) -> Result<TensionSolver, ApiError> {
+        if !(0.0..=1.0).contains(&self.nu) {
+            return Err(ApiError::invalid(format!(
+                "--nu must lie in [0, 1], got {}",
+                self.nu
+            )));
+        }
+        check_method(&self.robot, self.method)?;
+        let options = self.options.for_method(self.method)?;
+        let p = pose(&self.robot, &self.pose)?;
+        external_wrench(&self.robot, &p, self.wrench.as_deref())?;
+        if self.method == Method::Sotda {
+            if self.robot.axial_stiffness.is_none() {
+                return Err(ApiError::invalid(
+                    "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file",
+                ));
+            }
+            let s = sotda_settings(self.direction.as_deref(), self.nu, self.sotda_search)?;
+            return Ok(TensionSolver::sotda(s));
+        }
+        Ok(TensionSolver::new(self.method).with_options(options)?)
+    }
+
+    /// Solves for the tensions.
+    pub fn run(&self) -> Result<TensionReport, ApiError> {
+        let mut solver = self.checked()?;
+        let robot = &self.robot;
+        let p = pose(robot, &self.pose)?;
+        let w_ext = external_wrench(robot, &p, self.wrench.as_deref())?;
+        let kin = robot.robot.inverse_kinematics(&p)?;
+        let w = kin.wrench_matrix();
+        let mut problem = TensionProblem::new(&w, &w_ext, &robot.bounds);
+        if let Some(es) = &robot.axial_stiffness {
+            problem.stiffness = Some(StiffnessData {
+                kinematics: &kin,
+                axial_stiffness: es,
+            });
+        }
+        let outcome = solver.solve(&problem)?;
+        let sotda = if self.method == Method::Sotda {
+            let displacement = match (&outcome, &problem.stiffness) {
+                (TensionOutcome::Feasible(s), Some(st)) => cdpr_tension::sotda_displacement(
+                    st,
+                    solver.sotda_settings(),
+                    &w_ext,
+                    s.tensions.as_slice(),
+                )?,
+                _ => None,
+            };
+            Some(SotdaReport {
+                displacement,
+                nu: self.nu,
+                sotda_search: self.sotda_search,
+            })
+        } else {
+            None
+        };
+        let polygon = match self.method {
+            Method::Barycenter | Method::Sotda => Some(PolygonReport::of(&problem)?),
+            _ => None,
+        };
+        Ok(TensionReport {
+            robot: robot.name.clone(),
+            pose: self.pose.clone(),
+            external_wrench: w_ext.as_slice().to_vec(),
+            method: self.method.name().to_string(),
+            feasible: outcome.is_feasible(),
+            tensions: outcome.balancing_tensions().map(|t| t.as_slice().to_vec()),
+            residual: match &outcome {
+                TensionOutcome::Feasible(s) => Some(s.residual),
+                _ => None,
+            },
+            reason: outcome.infeasibility().map(|r| r.to_string()),
+            polygon,
+            sotda,
+        })
+    }
+}
