@@ -18,6 +18,9 @@
 //!   code 1 on a false answer of a complete method (see `xtask/src/soak.rs`);
 //! - `schema`: the JSON Schema of every request and report of `cdpr-api`, written to
 //!   `docs/schema/` (see `xtask/src/schema.rs`; a test of `cdpr-api` checks the files);
+//! - `studio [--check]`: the browser studio into `target/studio/` (cdpr-studio compiled to
+//!   WebAssembly, wasm-bindgen, the page and the example robots); `--check` loads it in headless
+//!   Chromium and compares its numbers with the CLI's (see `xtask/src/studio.rs`);
 //! - `loops [--tests]`: the files of the tree that import each other in a loop; exit code 1 if there is one
 //!   (see `xtask/src/loops.rs`; its test runs the check under `cargo test`).
 
@@ -28,11 +31,12 @@ mod loops;
 mod reproduce;
 mod schema;
 mod soak;
+mod studio;
 
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | loops | schema> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | studio | loops | schema> [options]   (`cargo xtask <command> --help`)";
 
 const REPRODUCE_HELP: &str = "cargo xtask reproduce: regenerates the reproduction of the thesis chapter on \
 planar tendon-driven manipulators (Tables 6.5-6.10), Krut, Company & Pierrot 2004 and Picard, Caro, \
@@ -104,6 +108,7 @@ fn main() -> ExitCode {
                 ExitCode::FAILURE
             }
         },
+        Some("studio") => studio::run(root, &args[1..]),
         Some("loops") => match loops::run(root, &args[1..]) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

@@ -1,37 +1,32 @@
-// cdpr workspace viewer: a small orthographic canvas renderer (painter's algorithm).
+// cdpr 3-D renderer: a small orthographic canvas renderer (painter's algorithm), shared by the
+// self-contained HTML viewer (`--plot FILE.html`, inlined by viewer.rs) and the studio (copied
+// to target/studio/viewer.js by `cargo xtask studio`).
 // Part of the cdpr crate (MIT OR Apache-2.0); no external library.
-(function () {
+var CdprViewer = (function () {
   "use strict";
-  var status = document.getElementById("cdpr-status");
-  function fail(msg) {
-    status.textContent = "error: " + msg;
-    status.setAttribute("data-state", "error");
-  }
-  window.addEventListener("error", function (e) { fail(e.message); });
-  try {
-    var S = JSON.parse(document.getElementById("scene").textContent);
-    var canvas = document.getElementById("view");
-    var ctx = canvas.getContext("2d");
-    document.getElementById("title").textContent = S.title;
-    document.getElementById("mesh-label").textContent = S.meshLabel || "workspace";
-    var legend = document.getElementById("legend");
-    S.legend.forEach(function (line) {
-      var p = document.createElement("p");
-      p.textContent = line;
-      legend.appendChild(p);
-    });
 
-    var lo = S.box[0].slice(), hi = S.box[1].slice();
-    S.anchors.concat(S.vertices).forEach(function (p) {
-      for (var k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], p[k]); hi[k] = Math.max(hi[k], p[k]); }
-    });
-    var centre = [0, 1, 2].map(function (k) { return 0.5 * (lo[k] + hi[k]); });
-    var radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+  // A renderer on `canvas` for scene S: { anchors, cables, platform, platformPosition, vertices,
+  // triangles, box, cableColours? } (m). `controls` (all optional): the cut-plane `axis` select,
+  // `cut` slider and `cutValue` label, and `onDraw(triangles)` called after each drawing.
+  // Returns { draw(), setScene(S, refit) }.
+  function create(canvas, S, controls) {
+    controls = controls || {};
+    var ctx = canvas.getContext("2d");
+    var centre = [0, 0, 0], radius = 1;
+    // The view frames the box, the anchors and the mesh.
+    function fit() {
+      var lo = S.box[0].slice(), hi = S.box[1].slice();
+      S.anchors.concat(S.vertices).forEach(function (p) {
+        for (var k = 0; k < 3; k++) { lo[k] = Math.min(lo[k], p[k]); hi[k] = Math.max(hi[k], p[k]); }
+      });
+      centre = [0, 1, 2].map(function (k) { return 0.5 * (lo[k] + hi[k]); });
+      radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+    }
     var view = { yaw: -0.65, pitch: 0.45, zoom: 1 };
-    var axisSel = document.getElementById("axis"), cutSlider = document.getElementById("cut");
-    var cutLabel = document.getElementById("cut-value");
+    var axisSel = controls.axis, cutSlider = controls.cut, cutLabel = controls.cutValue;
 
     function cutValue() {
+      if (!axisSel) return Infinity;
       var a = +axisSel.value;
       return S.box[0][a] + (S.box[1][a] - S.box[0][a]) * (+cutSlider.value) / 1000;
     }
@@ -102,8 +97,8 @@
       ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
       scale = view.zoom * Math.min(W, H) / (2.15 * radius);
       ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
-      var axis = +axisSel.value, cut = cutValue();
-      cutLabel.textContent = cut.toFixed(3);
+      var axis = axisSel ? +axisSel.value : 2, cut = cutValue();
+      if (cutLabel) cutLabel.textContent = cut.toFixed(3);
 
       // Frame: the anchors' bounding box (grey) and the search box (dashed blue).
       if (S.anchors.length) {
@@ -152,7 +147,10 @@
       section.forEach(function (s) { line(s[0], s[1], "#d62728", 2); });
 
       // Robot at the draw pose: cables, platform, anchors with labels.
-      S.cables.forEach(function (c) { line(c[0], c[1], "#555", 1.2); });
+      S.cables.forEach(function (c, i) {
+        var colour = S.cableColours ? S.cableColours[i] : "#555";
+        line(c[0], c[1], colour, S.cableColours ? 2.5 : 1.2);
+      });
       var faces = S.platform.map(function (f) {
         var v = f.map(toView);
         return { v: v, depth: v.reduce(function (d, q) { return d + q[2]; }, 0) / v.length };
@@ -186,8 +184,7 @@
         line(o, e, ["#c0392b", "#27ae60", "#2e62c9"][k], 2);
         var s = project(e); ctx.fillStyle = "#333"; ctx.fillText(name + " (m)", s[0] + 3, s[1] - 3);
       });
-      status.textContent = "rendered " + S.triangles.length + " triangles";
-      status.setAttribute("data-state", "ok");
+      if (controls.onDraw) controls.onDraw(S.triangles.length);
     }
 
     var drag = null;
@@ -206,11 +203,50 @@
       draw();
     }, { passive: false });
     canvas.addEventListener("dblclick", function () { view.yaw = -0.65; view.pitch = 0.45; view.zoom = 1; draw(); });
-    cutSlider.addEventListener("input", draw);
-    axisSel.addEventListener("change", draw);
+    if (cutSlider) cutSlider.addEventListener("input", draw);
+    if (axisSel) axisSel.addEventListener("change", draw);
     window.addEventListener("resize", draw);
-    draw();
-  } catch (e) {
-    fail(e && e.message ? e.message : String(e));
+    function setScene(next, refit) {
+      S = next;
+      if (refit) fit();
+      draw();
+    }
+    fit();
+    return { draw: draw, setScene: setScene };
   }
+
+  // The self-contained page of `--plot FILE.html`: the scene from #scene, its title and legend,
+  // the status marker #cdpr-status that the browser test reads.
+  function standalone() {
+    var status = document.getElementById("cdpr-status");
+    function fail(msg) {
+      status.textContent = "error: " + msg;
+      status.setAttribute("data-state", "error");
+    }
+    window.addEventListener("error", function (e) { fail(e.message); });
+    try {
+      var S = JSON.parse(document.getElementById("scene").textContent);
+      document.getElementById("title").textContent = S.title;
+      document.getElementById("mesh-label").textContent = S.meshLabel || "workspace";
+      var legend = document.getElementById("legend");
+      S.legend.forEach(function (line) {
+        var p = document.createElement("p");
+        p.textContent = line;
+        legend.appendChild(p);
+      });
+      create(document.getElementById("view"), S, {
+        axis: document.getElementById("axis"),
+        cut: document.getElementById("cut"),
+        cutValue: document.getElementById("cut-value"),
+        onDraw: function (n) {
+          status.textContent = "rendered " + n + " triangles";
+          status.setAttribute("data-state", "ok");
+        }
+      }).draw();
+    } catch (e) {
+      fail(e && e.message ? e.message : String(e));
+    }
+  }
+
+  return { create: create, standalone: standalone };
 })();

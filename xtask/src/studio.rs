@@ -1,0 +1,516 @@
+//! # `cargo xtask studio [--check]`: the browser studio
+//!
+//! Builds the studio into `target/studio/`: `crates/cdpr-studio` compiled in release for
+//! `wasm32-unknown-unknown` (single-threaded: cdpr-workspace without `parallel`), wrapped by the
+//! `wasm-bindgen` CLI (`--target web`: an ES module, no bundler), the page
+//! (`crates/cdpr-studio/web/`), the shared renderer (`crates/cdpr/src/plot/viewer.js`) and the
+//! shipped example robots (`examples/robots/*.toml`, listed in `robots/index.json`).
+//!
+//! `--check` then serves the folder from 127.0.0.1 (a small static server on a thread), opens
+//! the page in headless Chromium for two robots (`--dump-dom` after a virtual-time budget),
+//! reads the page's `<output id="cdpr-state">` and compares its lengths, tensions, feasibility
+//! and method with `cdpr kinematics --json` and `cdpr tension --json` of the same build; the
+//! page's `<output id="cdpr-errors">` must stay empty. It also checks that a bad pose gets a
+//! message (not a script error), and saves `target/studio/screenshot.png`. Exit code 1 on a
+//! mismatch, 2 on a usage error or a missing tool.
+//!
+//! Tools: the `wasm32-unknown-unknown` target (rustup), `wasm-bindgen` 0.2.130 (`$WASM_BINDGEN`,
+//! `target/wasm-tools/bin/wasm-bindgen` or the PATH; `cargo install wasm-bindgen-cli --version
+//! 0.2.130 --root target/wasm-tools`), Chromium (`$CDPR_CHROMIUM`, `chromium` or `chromium-browser`).
+
+use serde_json::Value;
+use std::io::{BufRead, BufReader, Write};
+use std::net::{TcpListener, TcpStream};
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+const HELP: &str = "cargo xtask studio [--check]: builds the browser studio into target/studio/ \
+(wasm32-unknown-unknown release build of crates/cdpr-studio, wasm-bindgen --target web, the page \
+and the example robots). --check also serves it from 127.0.0.1, loads it in headless Chromium for \
+two robots and compares the page's state with the CLI's JSON, and writes \
+target/studio/screenshot.png.";
+
+/// The CLI the page is compared with is built with xtask's own profile (`cargo xtask` is a
+/// release build; `cargo run -p xtask -- studio --check` a debug one).
+const PROFILE: &[&str] = if cfg!(debug_assertions) {
+    &[]
+} else {
+    &["--release"]
+};
+
+/// The wasm-bindgen CLI version the crate pins (`wasm-bindgen = \"=0.2.130\"`).
+const WASM_BINDGEN_VERSION: &str = "0.2.130";
+
+/// Runs `cargo xtask studio`.
+pub fn run(root: &Path, args: &[String]) -> ExitCode {
+    let mut check = false;
+    for a in args {
+        match a.as_str() {
+            "--check" => check = true,
+            "-h" | "--help" => {
+                println!("{HELP}");
+                return ExitCode::SUCCESS;
+            }
+            other => {
+                eprintln!("error: unknown option `{other}`\n\n{HELP}");
+                return ExitCode::from(2);
+            }
+        }
+    }
+    let out = root.join("target/studio");
+    if let Err(e) = build(root, &out) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
+    println!("studio: {}", out.display());
+    if !check {
+        return ExitCode::SUCCESS;
+    }
+    match self::check(root, &out) {
+        Ok(()) => {
+            println!("studio check: ok");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("studio check failed: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn cargo() -> String {
+    std::env::var("CARGO").unwrap_or_else(|_| "cargo".into())
+}
+
+fn run_cmd(cmd: &mut Command) -> Result<Vec<u8>, String> {
+    let o = cmd
+        .output()
+        .map_err(|e| format!("{:?}: {e}", cmd.get_program()))?;
+    if !o.status.success() {
+        return Err(format!(
+            "{:?} {:?} failed ({}):\n{}",
+            cmd.get_program(),
+            cmd.get_args().collect::<Vec<_>>(),
+            o.status,
+            String::from_utf8_lossy(&o.stderr)
+        ));
+    }
+    Ok(o.stdout)
+}
+
+fn wasm_bindgen(root: &Path) -> Result<PathBuf, String> {
+    let candidates = std::env::var("WASM_BINDGEN")
+        .ok()
+        .map(PathBuf::from)
+        .into_iter()
+        .chain([root.join("target/wasm-tools/bin/wasm-bindgen")])
+        .chain([PathBuf::from("wasm-bindgen")]);
+    for c in candidates {
+        if let Ok(o) = Command::new(&c).arg("--version").output()
+            && o.status.success()
+        {
+            let v = String::from_utf8_lossy(&o.stdout);
+            if !v.contains(WASM_BINDGEN_VERSION) {
+                return Err(format!(
+                    "{} is {}, the crate needs {WASM_BINDGEN_VERSION}: cargo install \
+                     wasm-bindgen-cli --version {WASM_BINDGEN_VERSION} --root target/wasm-tools",
+                    c.display(),
+                    v.trim()
+                ));
+            }
+            return Ok(c);
+        }
+    }
+    Err(format!(
+        "wasm-bindgen not found ($WASM_BINDGEN, target/wasm-tools/bin or PATH): cargo install \
+         wasm-bindgen-cli --version {WASM_BINDGEN_VERSION} --root target/wasm-tools"
+    ))
+}
+
+/// Builds the studio into `out`.
+fn build(root: &Path, out: &Path) -> Result<(), String> {
+    let bindgen = wasm_bindgen(root)?;
+    // Release without debug info (the workspace's release profile keeps line tables for
+    // profiling; the page does not need them).
+    run_cmd(
+        Command::new(cargo())
+            .current_dir(root)
+            .env("CARGO_PROFILE_RELEASE_DEBUG", "0")
+            .args([
+                "build",
+                "--release",
+                "-p",
+                "cdpr-studio",
+                "--target",
+                "wasm32-unknown-unknown",
+            ]),
+    )?;
+    let wasm = root.join("target/wasm32-unknown-unknown/release/cdpr_studio.wasm");
+    if out.exists() {
+        std::fs::remove_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    }
+    std::fs::create_dir_all(out.join("robots")).map_err(|e| e.to_string())?;
+    run_cmd(
+        Command::new(&bindgen)
+            .args(["--target", "web", "--no-typescript", "--out-dir"])
+            .arg(out)
+            .arg(&wasm),
+    )?;
+    let copy = |from: PathBuf, to: PathBuf| {
+        std::fs::copy(&from, &to)
+            .map(|_| ())
+            .map_err(|e| format!("{} → {}: {e}", from.display(), to.display()))
+    };
+    let web = root.join("crates/cdpr-studio/web");
+    for f in ["index.html", "studio.js", "studio.css"] {
+        copy(web.join(f), out.join(f))?;
+    }
+    copy(
+        root.join("crates/cdpr/src/plot/viewer.js"),
+        out.join("viewer.js"),
+    )?;
+    let mut names: Vec<String> = std::fs::read_dir(root.join("examples/robots"))
+        .map_err(|e| e.to_string())?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".toml"))
+        .collect();
+    names.sort();
+    for n in &names {
+        copy(
+            root.join("examples/robots").join(n),
+            out.join("robots").join(n),
+        )?;
+    }
+    std::fs::write(
+        out.join("robots/index.json"),
+        serde_json::to_string(&names).expect("names serialise"),
+    )
+    .map_err(|e| e.to_string())?;
+    report_size(out);
+    Ok(())
+}
+
+/// Prints the first-load size (page, glue, wasm; gzip -9 as a static host would serve them).
+fn report_size(out: &Path) {
+    let files = [
+        "index.html",
+        "studio.js",
+        "studio.css",
+        "viewer.js",
+        "cdpr_studio.js",
+        "cdpr_studio_bg.wasm",
+    ];
+    let (mut raw, mut gz) = (0u64, 0u64);
+    for f in files {
+        let p = out.join(f);
+        raw += std::fs::metadata(&p).map(|m| m.len()).unwrap_or(0);
+        if let Ok(o) = Command::new("gzip").arg("-9c").arg(&p).output() {
+            gz += o.stdout.len() as u64;
+        }
+    }
+    println!(
+        "studio first load: {:.2} MB, {:.2} MB gzip -9 (goal ≤ 3 MB compressed)",
+        raw as f64 / 1e6,
+        gz as f64 / 1e6
+    );
+}
+
+// ---- the check -----------------------------------------------------------------------------
+
+/// A static file server on 127.0.0.1 for `dir` (GET only), on a background thread.
+fn serve(dir: PathBuf) -> Result<u16, String> {
+    let listener = TcpListener::bind("127.0.0.1:0").map_err(|e| e.to_string())?;
+    let port = listener.local_addr().map_err(|e| e.to_string())?.port();
+    std::thread::spawn(move || {
+        for stream in listener.incoming().flatten() {
+            let dir = dir.clone();
+            std::thread::spawn(move || {
+                let _ = respond(&dir, stream);
+            });
+        }
+    });
+    Ok(port)
+}
+
+fn respond(dir: &Path, mut stream: TcpStream) -> std::io::Result<()> {
+    let mut line = String::new();
+    let mut reader = BufReader::new(stream.try_clone()?);
+    reader.read_line(&mut line)?;
+    // Drain the headers.
+    let mut h = String::new();
+    while reader.read_line(&mut h)? > 2 {
+        h.clear();
+    }
+    let path = line.split_whitespace().nth(1).unwrap_or("/");
+    let path = path.split('?').next().unwrap_or("/");
+    let rel = if path == "/" {
+        "index.html"
+    } else {
+        path.trim_start_matches('/')
+    };
+    let file = dir.join(rel);
+    let inside = !rel.split('/').any(|p| p == "..");
+    match std::fs::read(&file) {
+        Ok(body) if inside => {
+            let ty = match file.extension().and_then(|e| e.to_str()) {
+                Some("html") => "text/html; charset=utf-8",
+                Some("js") => "text/javascript; charset=utf-8",
+                Some("css") => "text/css; charset=utf-8",
+                Some("wasm") => "application/wasm",
+                Some("json") => "application/json",
+                _ => "text/plain; charset=utf-8",
+            };
+            write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: {ty}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
+                body.len()
+            )?;
+            stream.write_all(&body)
+        }
+        _ => write!(
+            stream,
+            "HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\nConnection: close\r\n\r\n"
+        ),
+    }
+}
+
+fn chromium() -> Result<String, String> {
+    if let Ok(b) = std::env::var("CDPR_CHROMIUM") {
+        return Ok(b);
+    }
+    ["chromium", "chromium-browser", "google-chrome"]
+        .into_iter()
+        .find(|b| {
+            Command::new(b)
+                .arg("--version")
+                .output()
+                .is_ok_and(|o| o.status.success())
+        })
+        .map(String::from)
+        .ok_or_else(|| "no Chromium (apt-get install chromium, or set CDPR_CHROMIUM)".into())
+}
+
+fn headless(browser: &str, url: &str, extra: &[&str]) -> Result<String, String> {
+    let profile = std::env::temp_dir().join(format!("cdpr-studio-chromium-{}", std::process::id()));
+    let out = run_cmd(
+        Command::new(browser)
+            .args([
+                "--headless",
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                "--no-first-run",
+                "--hide-scrollbars",
+                "--window-size=1400,860",
+                "--virtual-time-budget=20000",
+            ])
+            .args(extra)
+            .arg(format!("--user-data-dir={}", profile.display()))
+            .arg(url),
+    )?;
+    let _ = std::fs::remove_dir_all(&profile);
+    Ok(String::from_utf8_lossy(&out).into_owned())
+}
+
+/// The text of `<output id="ID" …>…</output>` in a dumped DOM, unescaped.
+fn output(dom: &str, id: &str) -> Option<String> {
+    let start = dom.find(&format!("<output id=\"{id}\""))?;
+    let open = start + dom[start..].find('>')? + 1;
+    let close = open + dom[open..].find("</output>")?;
+    Some(
+        dom[open..close]
+            .replace("&lt;", "<")
+            .replace("&gt;", ">")
+            .replace("&quot;", "\"")
+            .replace("&nbsp;", "\u{a0}")
+            .replace("&amp;", "&"),
+    )
+}
+
+fn numbers(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .map(|a| a.iter().map(|x| x.as_f64().unwrap_or(f64::NAN)).collect())
+        .unwrap_or_default()
+}
+
+/// |a − b| ≤ 1e-9 (1 + |b|) component by component.
+fn close(what: &str, page: &Value, cli: &Value) -> Result<(), String> {
+    let (a, b) = (numbers(page), numbers(cli));
+    let agree = |x: &f64, y: &f64| (x - y).abs() <= 1e-9 * (1.0 + y.abs());
+    if a.len() != b.len() || !a.iter().zip(&b).all(|(x, y)| agree(x, y)) {
+        return Err(format!("{what}: page {a:?}, CLI {b:?}"));
+    }
+    Ok(())
+}
+
+/// One robot: the page's state against `cdpr kinematics` and `cdpr tension`.
+fn check_robot(
+    root: &Path,
+    browser: &str,
+    port: u16,
+    robot: &str,
+    pose: &str,
+    method: &str,
+    wrench: &str,
+) -> Result<Value, String> {
+    let url = format!(
+        "http://127.0.0.1:{port}/index.html?robot=robots/{robot}&pose={pose}&method={method}&wrench={wrench}"
+    );
+    let dom = headless(browser, &url, &["--dump-dom"])?;
+    let errors = output(&dom, "cdpr-errors").ok_or("no <output id=\"cdpr-errors\"> in the page")?;
+    if !errors.trim().is_empty() {
+        return Err(format!("{robot}: script errors in the page:\n{errors}"));
+    }
+    let text = output(&dom, "cdpr-state").ok_or("no <output id=\"cdpr-state\"> in the page")?;
+    let state: Value =
+        serde_json::from_str(&text).map_err(|e| format!("{robot}: state `{text}`: {e}"))?;
+    if state["ready"] != Value::Bool(true) {
+        return Err(format!("{robot}: the page did not finish: {state}"));
+    }
+    if let Some(e) = state.get("error") {
+        return Err(format!("{robot}: the page reports {e}"));
+    }
+    let file = root.join("examples/robots").join(robot);
+    let cli = |cmd: &str, extra: &[&str]| -> Result<Value, String> {
+        let out = run_cmd(
+            Command::new(cargo())
+                .current_dir(root)
+                .args(["run", "-q", "-p", "cdpr"])
+                .args(PROFILE)
+                .arg("--")
+                .arg(cmd)
+                .arg(&file)
+                .arg(format!("--pose={pose}"))
+                .args(extra)
+                .arg("--json"),
+        )?;
+        serde_json::from_slice(&out).map_err(|e| format!("cdpr {cmd} --json: {e}"))
+    };
+    let kin = cli("kinematics", &[])?;
+    let mut extra = vec![format!("--method={method}")];
+    if !wrench.is_empty() {
+        extra.push(format!("--wrench={wrench}"));
+    }
+    let extra: Vec<&str> = extra.iter().map(String::as_str).collect();
+    let ten = cli("tension", &extra)?;
+    close(&format!("{robot}: pose"), &state["pose"], &ten["pose"])?;
+    close(
+        &format!("{robot}: lengths (m)"),
+        &state["lengths"],
+        &kin["lengths"],
+    )?;
+    close(
+        &format!("{robot}: tensions (N)"),
+        &state["tensions"],
+        &ten["tensions"],
+    )?;
+    close(
+        &format!("{robot}: external wrench"),
+        &state["external_wrench"],
+        &ten["external_wrench"],
+    )?;
+    for key in ["feasible", "method", "robot", "reason"] {
+        if state[key] != ten[key] {
+            return Err(format!(
+                "{robot}: {key}: page {}, CLI {}",
+                state[key], ten[key]
+            ));
+        }
+    }
+    println!(
+        "studio check: {robot} at ({pose}), {method}: {} lengths and tensions equal the CLI's; \
+         feasible {}; pose update {:.2} ms",
+        numbers(&state["lengths"]).len(),
+        state["feasible"],
+        state["timing_ms"]["pose_update"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
+    );
+    Ok(state)
+}
+
+fn check(root: &Path, out: &Path) -> Result<(), String> {
+    let browser = chromium()?;
+    let port = serve(out.to_path_buf())?;
+    // A spatial 8-cable robot with a load, and the thesis' planar 4-cable robot.
+    check_robot(
+        root,
+        &browser,
+        port,
+        "ipanema-like-8.toml",
+        "0.3,0.2,1.1,0.05,-0.03,0.1",
+        "l2",
+        "0,0,-50,0,0,0",
+    )?;
+    check_robot(
+        root,
+        &browser,
+        port,
+        "tdpm-4.toml",
+        "0.1,-0.05,0.2",
+        "linf",
+        "0,-10,0",
+    )?;
+    // A bad pose is a message for the user, not a script error.
+    let url = format!("http://127.0.0.1:{port}/index.html?robot=robots/tdpm-4.toml&pose=0,0");
+    let dom = headless(&browser, &url, &["--dump-dom"])?;
+    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
+        .map_err(|e| format!("bad-pose page: {e}"))?;
+    let message = state["error"].as_str().unwrap_or_default();
+    if !message.contains('3') || !output(&dom, "cdpr-errors").unwrap_or_default().is_empty() {
+        return Err(format!(
+            "bad pose: expected a message naming 3 coordinates, got {state}"
+        ));
+    }
+    println!("studio check: a 2-number pose for a planar robot says: {message}");
+    // The screenshot: the 8-cable robot with its workspace mesh (grid 30), timed.
+    let shot = out.join("screenshot.png");
+    let url = format!(
+        "http://127.0.0.1:{port}/index.html?robot=robots/ipanema-like-8.toml&method=l2&mesh=30"
+    );
+    let dom = headless(&browser, &url, &["--dump-dom"])?;
+    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
+        .map_err(|e| format!("mesh page: {e}"))?;
+    println!(
+        "studio check: workspace mesh grid 30 in the page: {:.0} ms, volume {} m³; first state {:.0} ms",
+        state["timing_ms"]["mesh"].as_f64().unwrap_or(f64::NAN),
+        state["workspace"]["volume_m3"],
+        state["timing_ms"]["first_state"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
+    );
+    headless(
+        &browser,
+        &url,
+        &[&format!("--screenshot={}", shot.display())],
+    )?;
+    if !std::fs::read(&shot).is_ok_and(|b| b.starts_with(b"\x89PNG")) {
+        return Err(format!("{}: no screenshot", shot.display()));
+    }
+    println!("studio check: screenshot {}", shot.display());
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn outputs_are_read_and_unescaped() {
+        let dom = r#"<p>x</p><output id="cdpr-state" hidden="">{"a":"&lt;b&gt; &amp; c"}</output>"#;
+        assert_eq!(output(dom, "cdpr-state").unwrap(), r#"{"a":"<b> & c"}"#);
+        assert!(output(dom, "cdpr-errors").is_none());
+    }
+
+    #[test]
+    fn numbers_must_agree_to_1e9() {
+        let a = serde_json::json!([1.0, 2.0]);
+        assert!(close("x", &a, &serde_json::json!([1.0, 2.0 + 1e-12])).is_ok());
+        assert!(close("x", &a, &serde_json::json!([1.0, 2.001])).is_err());
+        assert!(close("x", &a, &serde_json::json!([1.0])).is_err());
+        assert!(close("x", &serde_json::json!(null), &serde_json::json!([1.0])).is_err());
+    }
+}
