@@ -563,7 +563,12 @@ impl ElasticCatenary {
         }
         let warm = start
             .filter(|s| s.horizontal_force > 0.0 && s.unstrained_length > 0.0)
-            .map(|s| (s.vertical_force.atan2(s.horizontal_force), s.unstrained_length));
+            .map(|s| {
+                (
+                    s.vertical_force.atan2(s.horizontal_force),
+                    s.unstrained_length,
+                )
+            });
         if let Some(w) = warm
             && let Ok(sol) = self.tension_newton(x, z, tension, chord, Some(w))
         {
