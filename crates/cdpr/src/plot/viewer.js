@@ -39,7 +39,7 @@ var CdprViewer = (function () {
       var ce = Math.cos(view.pitch), se = Math.sin(view.pitch);
       return [x1, y1 * se + z * ce, -y1 * ce + z * se]; // screen x, screen y (up), depth (towards eye)
     }
-    var W = 0, H = 0, scale = 1;
+    var W = 0, H = 0, scale = 1, layer = null;
     function toScreen(v) { return [W / 2 + v[0] * scale, H / 2 - v[1] * scale]; }
     function project(p) { return toScreen(toView(p)); }
 
@@ -96,55 +96,68 @@ var CdprViewer = (function () {
       canvas.width = W * dpr; canvas.height = H * dpr;
       ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
       scale = view.zoom * Math.min(W, H) / (2.15 * radius);
-      ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
       var axis = axisSel ? +axisSel.value : 2, cut = cutValue();
       if (cutLabel) cutLabel.textContent = cut.toFixed(3);
 
-      // Frame: the anchors' bounding box (grey) and the search box (dashed blue).
-      if (S.anchors.length) {
-        var alo = S.anchors[0].slice(), ahi = S.anchors[0].slice();
-        S.anchors.forEach(function (p) { for (var k = 0; k < 3; k++) { alo[k] = Math.min(alo[k], p[k]); ahi[k] = Math.max(ahi[k], p[k]); } });
-        boxEdges(alo, ahi, "#c8c8c8", 1);
-      }
-      boxEdges(S.box[0], S.box[1], "#1f5fa0", 1, [5, 4]);
-
-      // Workspace mesh, clipped by the cut plane, back to front.
-      var light = [0.35, 0.45, 0.82];
-      var polys = [];
-      var section = [];
-      for (var t = 0; t < S.triangles.length; t++) {
-        var tri = S.triangles[t];
-        var pts = [S.vertices[tri[0]], S.vertices[tri[1]], S.vertices[tri[2]]];
-        var v = pts.map(toView);
-        var ux = v[1][0] - v[0][0], uy = v[1][1] - v[0][1], uz = v[1][2] - v[0][2];
-        var wx = v[2][0] - v[0][0], wy = v[2][1] - v[0][1], wz = v[2][2] - v[0][2];
-        var n = [uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx];
-        var nn = Math.hypot(n[0], n[1], n[2]) || 1;
-        var shade = Math.abs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]) / nn;
-        var poly = clip(pts, axis, cut);
-        if (poly.length < 3) continue;
-        var cutPts = [];
-        for (var i = 0; i < 3; i++) {
-          var a = pts[i], b = pts[(i + 1) % 3];
-          if ((a[axis] - cut) * (b[axis] - cut) < 0) {
-            var s = (cut - a[axis]) / (b[axis] - a[axis]);
-            cutPts.push([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]);
-          }
+      // The frame, the search box and the mesh change with the view only, not with the pose:
+      // drawn once into a layer and reused while the platform moves (thousands of triangles).
+      var key = [W, H, dpr, view.yaw, view.pitch, view.zoom, axis, cut, JSON.stringify(S.anchors), JSON.stringify(S.box)].join(";");
+      if (!layer || layer.key !== key || layer.vertices !== S.vertices || layer.triangles !== S.triangles) {
+        var main = ctx, off = layer ? layer.canvas : document.createElement("canvas");
+        off.width = canvas.width; off.height = canvas.height;
+        ctx = off.getContext("2d");
+        ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+        ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, W, H);
+        // Frame: the anchors' bounding box (grey) and the search box (dashed blue).
+        if (S.anchors.length) {
+          var alo = S.anchors[0].slice(), ahi = S.anchors[0].slice();
+          S.anchors.forEach(function (p) { for (var k = 0; k < 3; k++) { alo[k] = Math.min(alo[k], p[k]); ahi[k] = Math.max(ahi[k], p[k]); } });
+          boxEdges(alo, ahi, "#c8c8c8", 1);
         }
-        if (cutPts.length === 2) section.push(cutPts);
-        var pv = poly.map(toView);
-        var depth = pv.reduce(function (d, q) { return d + q[2]; }, 0) / pv.length;
-        polys.push({ p: pv, depth: depth, shade: shade });
+        boxEdges(S.box[0], S.box[1], "#1f5fa0", 1, [5, 4]);
+
+        // Workspace mesh, clipped by the cut plane, back to front.
+        var light = [0.35, 0.45, 0.82];
+        var polys = [];
+        var section = [];
+        for (var t = 0; t < S.triangles.length; t++) {
+          var tri = S.triangles[t];
+          var pts = [S.vertices[tri[0]], S.vertices[tri[1]], S.vertices[tri[2]]];
+          var v = pts.map(toView);
+          var ux = v[1][0] - v[0][0], uy = v[1][1] - v[0][1], uz = v[1][2] - v[0][2];
+          var wx = v[2][0] - v[0][0], wy = v[2][1] - v[0][1], wz = v[2][2] - v[0][2];
+          var n = [uy * wz - uz * wy, uz * wx - ux * wz, ux * wy - uy * wx];
+          var nn = Math.hypot(n[0], n[1], n[2]) || 1;
+          var shade = Math.abs(n[0] * light[0] + n[1] * light[1] + n[2] * light[2]) / nn;
+          var poly = clip(pts, axis, cut);
+          if (poly.length < 3) continue;
+          var cutPts = [];
+          for (var i = 0; i < 3; i++) {
+            var a = pts[i], b = pts[(i + 1) % 3];
+            if ((a[axis] - cut) * (b[axis] - cut) < 0) {
+              var s = (cut - a[axis]) / (b[axis] - a[axis]);
+              cutPts.push([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1]), a[2] + s * (b[2] - a[2])]);
+            }
+          }
+          if (cutPts.length === 2) section.push(cutPts);
+          var pv = poly.map(toView);
+          var depth = pv.reduce(function (d, q) { return d + q[2]; }, 0) / pv.length;
+          polys.push({ p: pv, depth: depth, shade: shade });
+        }
+        polys.sort(function (a, b) { return a.depth - b.depth; });
+        polys.forEach(function (q) {
+          var k = 0.45 + 0.55 * q.shade;
+          ctx.fillStyle = "rgba(" + Math.round(70 * k) + "," + Math.round(130 * k) + "," + Math.round(180 * k + 40 * (1 - k)) + ",0.45)";
+          ctx.beginPath();
+          q.p.forEach(function (v, i) { var s = toScreen(v); if (i) ctx.lineTo(s[0], s[1]); else ctx.moveTo(s[0], s[1]); });
+          ctx.closePath(); ctx.fill();
+        });
+        section.forEach(function (s) { line(s[0], s[1], "#d62728", 2); });
+
+        ctx = main;
+        layer = { canvas: off, key: key, vertices: S.vertices, triangles: S.triangles };
       }
-      polys.sort(function (a, b) { return a.depth - b.depth; });
-      polys.forEach(function (q) {
-        var k = 0.45 + 0.55 * q.shade;
-        ctx.fillStyle = "rgba(" + Math.round(70 * k) + "," + Math.round(130 * k) + "," + Math.round(180 * k + 40 * (1 - k)) + ",0.45)";
-        ctx.beginPath();
-        q.p.forEach(function (v, i) { var s = toScreen(v); if (i) ctx.lineTo(s[0], s[1]); else ctx.moveTo(s[0], s[1]); });
-        ctx.closePath(); ctx.fill();
-      });
-      section.forEach(function (s) { line(s[0], s[1], "#d62728", 2); });
+      ctx.save(); ctx.setTransform(1, 0, 0, 1, 0, 0); ctx.drawImage(layer.canvas, 0, 0); ctx.restore();
 
       // Robot at the draw pose: cables, platform, anchors with labels.
       S.cables.forEach(function (c, i) {
