@@ -35,7 +35,9 @@ use std::path::PathBuf;
 ///
 /// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--plot polygon.png] [--json]`;
 /// for point2 robots `--plot` draws the available force polygon with the largest centred circle
-/// and ellipse and the facet the circle touches (Krut, Company & Pierrot 2004, Fig. 4).
+/// and ellipse and the facet the circle touches (Krut, Company & Pierrot 2004, Fig. 4); for
+/// point3 robots `--plot polytope.html` writes a 3-D view of the force polytope with the
+/// largest ball centred at −w_ext (radius = the index).
 /// A map: `cdpr isotropic ROBOT.toml --grid 100 [--box ...] [--orientation PHI] [--z Z]
 /// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (Krut, Company & Pierrot 2004, Figs. 9–10; white
 /// where the index is negative).
@@ -44,8 +46,10 @@ use std::path::PathBuf;
 /// set itself (no load).
 ///
 /// JSON (pose): `isotropic_force` (N), `wrench_radius` (N and N·m combined), `external_wrench`
-/// (N, N·m), `definition`, `facets`, `vertices` (of the available wrench set, N, N·m; wrench
-/// spaces of dimension 2 and 3), `ellipse` (with --ellipse: `semi_axes` N, `angle` rad,
+/// (N, N·m), `definition`, `facets` (a count), `vertices` (of the available wrench set, N, N·m;
+/// wrench spaces of dimension 2 and 3), `faces` (lists of vertex indices, counter-clockwise seen
+/// from outside; edges in 2-D), `normals` (unit, outward) and `offsets` (N, N·m; n · w ≤ d) of
+/// the faces, `ellipse` (with --ellipse: `semi_axes` N, `angle` rad,
 /// `angle_deg`, `area` N²). JSON (grid): `grid` {`x`, `y` (m), `values` (N; rows along y, null
 /// where undefined)}, `stats` {`min`, `max` (N), `argmax` (m), `positive_fraction`,
 /// `undefined`, `centre` (N)}, `external_wrench`, `definition`.
@@ -93,7 +97,8 @@ pub struct Args {
     /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.
     /// Pose (point2 robots only): the available force polygon with the largest centred circle
     /// (radius = the index) and ellipse, the origin and the facet the circle touches
-    /// (Krut, Company & Pierrot 2004, Fig. 4).
+    /// (Krut, Company & Pierrot 2004, Fig. 4). Pose, point3 robots: a 3-D view of the force
+    /// polytope with the largest ball centred at −w_ext (.html).
     #[arg(long)]
     plot: Option<PathBuf>,
     /// Pose: also the largest-area centred ellipse inside the force polygon (Krut, Company & Pierrot 2004, §IV-C;
@@ -141,6 +146,55 @@ fn ellipse_json(e: &Option<InscribedEllipse>) -> Value {
     }
 }
 
+/// JSON `faces` (vertex indices, counter-clockwise seen from outside; edges for DOF 2),
+/// `normals` (outward, unit) and `offsets` (N, N·m: n · w ≤ d), one per face, when the set has
+/// vertices.
+fn add_faces_json(v: &mut Value, aws: &cdpr::polytope::AvailableWrenchSet) {
+    if let Some(faces) = aws.faces() {
+        let facet = |f: &cdpr::polytope::Face| &aws.facets()[f.facet];
+        v["faces"] = json!(faces.iter().map(|f| &f.vertices).collect::<Vec<_>>());
+        v["normals"] = json!(
+            faces
+                .iter()
+                .map(|f| facet(f).normal.as_slice())
+                .collect::<Vec<_>>()
+        );
+        v["offsets"] = json!(faces.iter().map(|f| facet(f).offset).collect::<Vec<_>>());
+    }
+}
+
+/// The HTML view of a point3 robot's force polytope with the largest ball centred at −w_ext.
+fn save_polytope_view(
+    robot: &RobotDescription,
+    q: &[f64],
+    aws: &cdpr::polytope::AvailableWrenchSet,
+    w_ext: &DVector<f64>,
+    force: f64,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let centre = [-w_ext[0], -w_ext[1], -w_ext[2]];
+    let mut scene = cdpr::plot::force_polytope_scene(aws, centre, force)
+        .ok_or("the force polytope is unbounded (an infinite t_max): nothing to draw")?;
+    scene.title = format!(
+        "{}: available force polytope {{W t}} at position ({}) m",
+        robot.name,
+        q.iter()
+            .map(|v| cdpr::plot::tick(*v))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    scene.legend = vec![
+        format!("maximum isotropic force on top of w_ext: {} N", num(force)),
+        format!(
+            "w_ext {} (the platform's weight and --wrench)",
+            wrench_text(w_ext.as_slice(), 3)
+        ),
+        format!("{} facets", aws.facets().len()),
+    ];
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
 fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliError> {
     let motion = robot.robot.motion();
     if args.ellipse && motion != MotionPattern::Point2 {
@@ -150,13 +204,21 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         )
         .into());
     }
-    if args.plot.is_some() && motion != MotionPattern::Point2 {
+    let html = args.plot.as_deref().is_some_and(super::region::is_html);
+    if args.plot.is_some()
+        && motion != MotionPattern::Point2
+        && !(html && motion == MotionPattern::Point3)
+    {
         return Err(format!(
-            "--plot with --pose draws the 2-D force polygon and needs a point2 robot; this robot \
-             is {} (use --grid --plot for a map of the index)",
+            "--plot with --pose draws the 2-D force polygon (a point2 robot, .png or .svg) or the \
+             3-D force polytope (a point3 robot, .html); this robot is {} (use --grid --plot for a \
+             map of the index)",
             motion.name()
         )
         .into());
+    }
+    if html && motion == MotionPattern::Point2 {
+        return Err("--plot: the force polygon of a point2 robot is drawn as .png or .svg".into());
     }
     let p = pose(robot, q)?;
     let w = robot.robot.inverse_kinematics(&p)?.wrench_matrix();
@@ -168,12 +230,14 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         .iter()
         .map(|f| f.offset + f.normal.dot(&w_ext))
         .fold(f64::INFINITY, f64::min);
-    let ellipse = if args.ellipse || args.plot.is_some() {
+    let ellipse = if args.ellipse || (args.plot.is_some() && !html) {
         Some(largest_inscribed_ellipse(&aws)?)
     } else {
         None
     };
-    if let Some(path) = &args.plot {
+    if let Some(path) = args.plot.as_ref().filter(|_| html) {
+        save_polytope_view(robot, q, &aws, &w_ext, force, path)?;
+    } else if let Some(path) = &args.plot {
         let mut fig = ForcePolygonPlot::operational(&aws, ellipse.flatten().as_ref())
             .ok_or("the force polygon is unbounded (an infinite t_max): nothing to draw")?;
         fig.title = format!(
@@ -197,6 +261,7 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
             "facets": aws.facets().len(),
             "vertices": aws.vertices().map(|v| v.iter().map(|p| p.as_slice().to_vec()).collect::<Vec<_>>()),
         });
+        add_faces_json(&mut v, &aws);
         if let (true, Some(e)) = (args.ellipse, &ellipse) {
             v["ellipse"] = ellipse_json(e);
         }
@@ -244,7 +309,12 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         None => {}
     }
     if let Some(p) = &args.plot {
-        println!("force polygon written to {}", p.display());
+        let what = if html {
+            "force polytope view"
+        } else {
+            "force polygon"
+        };
+        println!("{what} written to {}", p.display());
     }
     Ok(())
 }
