@@ -2,8 +2,9 @@
 
 use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_json};
 use cdpr::tension::{
-    FeasiblePolygon, Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant,
-    StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    ClosestBalance, FeasiblePolygon, Infeasibility, Method, MethodOptions, PunctureInterior,
+    SotdaSettings, SotdaVariant, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    closest_balancing_tensions,
 };
 use nalgebra::Vector3;
 use serde_json::json;
@@ -23,7 +24,11 @@ use std::path::PathBuf;
 /// "infeasible" comes with its reason and exit code 0.
 ///
 /// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
-/// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
+/// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda;
+/// `binding_cables` {`violation` (N), `cables` [{`cable`, `tension` (N), `bound` (N), `which`}]}
+/// when the feasible set is empty: the balancing tensions closest to the bounds and the cables
+/// that break them most there (text: "cable 3 would need 157 N, below its t_min of 200 N").
+/// --nu, --direction and --full are SOTDA's: refused with another method (exit 2).
 /// With `--cable-model elastic|catenary`: `tensions` at the platform end, `unstrained_lengths`,
 /// `frame_end_tensions` (and the other per-cable fields of `cdpr kinematics`), certified with the
 /// catenary forces and the bounds at both ends of every cable.
@@ -45,11 +50,13 @@ pub struct Args {
     #[arg(long, default_value = "l2", long_help = super::method_help())]
     method: Method,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    /// Refused with another method.
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
-    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
-    #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
-    nu: f64,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1);
+    /// default 1. Refused with another method.
+    #[arg(long, value_parser = super::unit_interval)]
+    nu: Option<f64>,
     /// SOTDA: which points of the feasible polygon are evaluated. corners: Picard, Caro, Plestan & Claveau's (2020) real-time
     /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
     /// the whole polygon refined by a pattern search.
@@ -119,6 +126,80 @@ impl PeerOptions {
         }
         o.validate()?;
         Ok(o)
+    }
+}
+
+/// For an empty feasible set: the balancing tensions closest to the bounds and the cables
+/// that bind there (module `cdpr_tension::binding`); `None` for other answers.
+fn closest_balance(
+    problem: &TensionProblem,
+    outcome: &TensionOutcome,
+) -> Result<Option<ClosestBalance>, CliError> {
+    match outcome.infeasibility() {
+        Some(Infeasibility::NoFeasibleTension) => Ok(closest_balancing_tensions(problem)?),
+        _ => Ok(None),
+    }
+}
+
+/// JSON `binding_cables`: `violation` (N, the smallest widening of every [t_min, t_max] that
+/// balances the wrench) and `cables` [{`cable` (1-based), `tension` (N), `bound` (N), `which`
+/// ("t_min" or "t_max")}].
+fn binding_json(c: &ClosestBalance) -> serde_json::Value {
+    json!({
+        "violation": c.violation,
+        "cables": c.binding.iter().map(|b| json!({
+            "cable": b.cable + 1,
+            "tension": b.tension,
+            "bound": b.bound,
+            "which": if b.below() { "t_min" } else { "t_max" },
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The text lines of the binding cables.
+fn print_binding(c: &ClosestBalance) {
+    println!(
+        "binding cables (the balancing tensions closest to the bounds break them by {} N):",
+        super::num(c.violation)
+    );
+    for b in &c.binding {
+        println!("  {b}");
+    }
+}
+
+/// `--nu`, `--direction` and `--full` belong to SOTDA: with another method they would be
+/// ignored, so they are a usage error (exit 2) naming the method.
+pub fn refuse_sotda_options(
+    method: Method,
+    nu: Option<f64>,
+    direction: bool,
+    full: bool,
+) -> Result<(), CliError> {
+    if method == Method::Sotda {
+        return Ok(());
+    }
+    let given: Vec<&str> = [
+        ("--nu", nu.is_some()),
+        ("--direction", direction),
+        ("--full", full),
+    ]
+    .into_iter()
+    .filter_map(|(name, set)| set.then_some(name))
+    .collect();
+    match given.as_slice() {
+        [] => Ok(()),
+        names => Err(format!(
+            "{} {} of the sotda method only, and the method is {method} (add --method \
+             sotda, or leave {} out)",
+            names.join(", "),
+            if names.len() == 1 {
+                "is an option"
+            } else {
+                "are options"
+            },
+            if names.len() == 1 { "it" } else { "them" }
+        )
+        .into()),
     }
 }
 
@@ -194,6 +275,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     check_method(&robot, args.method)?;
     let options = args.peer.for_method(args.method)?;
+    refuse_sotda_options(args.method, args.nu, args.direction.is_some(), args.full)?;
     let pose = pose(&robot, &args.pose)?;
     let w_ext = external_wrench(&robot, &pose, args.wrench.as_deref())?;
     let kin = robot.robot.inverse_kinematics(&pose)?;
@@ -221,7 +303,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
     let mut solver = if args.method == Method::Sotda {
         TensionSolver::sotda(sotda_settings(
             args.direction.as_deref(),
-            args.nu,
+            args.nu.unwrap_or(1.0),
             SotdaSearch::from_args(args.sotda_search, args.full),
         )?)
     } else {
@@ -240,6 +322,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         _ => None,
     };
     let with_polygon = matches!(args.method, Method::Barycenter | Method::Sotda);
+    let closest = closest_balance(&problem, &outcome)?;
     if args.json {
         let mut v = json!({
             "robot": robot.name,
@@ -256,9 +339,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         if with_polygon {
             v["polygon"] = polygon_json(&problem)?;
         }
+        if let Some(c) = &closest {
+            v["binding_cables"] = binding_json(c);
+        }
         if args.method == Method::Sotda {
             v["displacement"] = json!(displacement);
-            v["nu"] = json!(args.nu);
+            v["nu"] = json!(args.nu.unwrap_or(1.0));
             v["sotda_search"] = json!(SotdaSearch::from_args(args.sotda_search, args.full).name());
         }
         print_json(&v)
@@ -292,6 +378,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
             }
             TensionOutcome::Infeasible(r) => {
                 println!("infeasible: {r}");
+                if let Some(c) = &closest {
+                    print_binding(c);
+                }
                 if let Some(t) = outcome.balancing_tensions() {
                     println!(
                         "the solution t = −W⁺ w_ext (balances the wrench, breaks the bounds):"
