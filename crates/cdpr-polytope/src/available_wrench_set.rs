@@ -352,35 +352,32 @@ impl AvailableWrenchSet {
                 .iter()
                 .fold(DVector::zeros(self.dof), |s, &i| s + &vertices[i])
                 / on.len() as f64;
-            // In-plane basis: 2-D, u = n rotated by +90° (the counter-clockwise tangent);
-            // 3-D, u ⟂ n from the axis least aligned with n, v = n × u.
-            let angle: Box<dyn Fn(&DVector<f64>) -> f64> = if self.dof == 2 {
-                let u = [-n[1], n[0]];
-                Box::new(move |p: &DVector<f64>| {
-                    let d = p - &centroid;
-                    u[0] * d[0] + u[1] * d[1]
-                })
-            } else {
-                let n3 = nalgebra::Vector3::new(n[0], n[1], n[2]);
-                let axis = if n3.x.abs() <= n3.y.abs() && n3.x.abs() <= n3.z.abs() {
-                    nalgebra::Vector3::x()
-                } else if n3.y.abs() <= n3.z.abs() {
-                    nalgebra::Vector3::y()
+            let key = |p: &DVector<f64>| -> f64 {
+                if self.dof == 2 {
+                    // Along u = n rotated by +90° (the counter-clockwise tangent).
+                    -n[1] * (p[0] - centroid[0]) + n[0] * (p[1] - centroid[1])
                 } else {
-                    nalgebra::Vector3::z()
-                };
-                let u = n3.cross(&axis).normalize();
-                let v = n3.cross(&u);
-                Box::new(move |p: &DVector<f64>| {
+                    // The angle in a basis (u, v = n × u) of the plane, u ⟂ n from the axis
+                    // least aligned with n.
+                    let n3 = nalgebra::Vector3::new(n[0], n[1], n[2]);
+                    let axis = if n3.x.abs() <= n3.y.abs() && n3.x.abs() <= n3.z.abs() {
+                        nalgebra::Vector3::x()
+                    } else if n3.y.abs() <= n3.z.abs() {
+                        nalgebra::Vector3::y()
+                    } else {
+                        nalgebra::Vector3::z()
+                    };
+                    let u = n3.cross(&axis).normalize();
+                    let v = n3.cross(&u);
                     let d = nalgebra::Vector3::new(
                         p[0] - centroid[0],
                         p[1] - centroid[1],
                         p[2] - centroid[2],
                     );
                     d.dot(&v).atan2(d.dot(&u))
-                })
+                }
             };
-            on.sort_by(|&a, &b| angle(&vertices[a]).total_cmp(&angle(&vertices[b])));
+            on.sort_by(|&a, &b| key(&vertices[a]).total_cmp(&key(&vertices[b])));
             faces.push(Face {
                 vertices: on,
                 facet: k,

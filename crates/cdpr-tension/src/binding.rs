@@ -160,7 +160,7 @@ pub fn closest_balancing_tensions(
     }
     let x = &solver.solution.x;
     let violation = x[n] * scale;
-    if !(violation > 1e-9 * scale) {
+    if violation.is_nan() || violation <= 1e-9 * scale {
         return Ok(None);
     }
     let tensions = DVector::from_fn(n, |i, _| x[i] * scale);
