@@ -37,6 +37,8 @@ pub struct Scene {
     pub ball: Option<([f64; 3], f64)>,
     /// What the ball is, for the legend.
     pub ball_label: String,
+    /// Anchor labels: the cables' `name` keys (empty: `A1`, `A2`, …; see [`super::anchor_label`]).
+    pub anchor_names: Vec<String>,
     /// Whether to leave out the dashed box (`region` then only frames the view).
     pub hide_box: bool,
 }

@@ -198,7 +198,8 @@
       S.anchors.forEach(function (a, i) {
         var p = project(a);
         var g = groups.find(function (q) { return Math.abs(q.x - p[0]) <= 2 && Math.abs(q.y - p[1]) <= 2; });
-        if (g) g.names.push("A" + (i + 1)); else groups.push({ x: p[0], y: p[1], names: ["A" + (i + 1)] });
+        var name = S.anchorNames[i];
+        if (g) g.names.push(name); else groups.push({ x: p[0], y: p[1], names: [name] });
       });
       groups.forEach(function (g) {
         ctx.fillStyle = "#000"; ctx.fillRect(g.x - 3, g.y - 3, 6, 6);

@@ -26,6 +26,9 @@ pub fn html(scene: &Scene) -> String {
     let data = json!({
         "title": scene.title,
         "anchors": scene.anchors,
+        "anchorNames": (0..scene.anchors.len())
+            .map(|i| super::anchor_label(&scene.anchor_names, i))
+            .collect::<Vec<_>>(),
         "cables": scene.cables.iter().map(|(a, b)| [a, b]).collect::<Vec<_>>(),
         "platform": scene.platform,
         "platformPosition": scene.platform_position,

@@ -248,3 +248,44 @@ fn force_polytope_page_draws_in_a_headless_browser() {
             .join("\n")
     );
 }
+
+/// Anchors carry the cables' `name` keys (NE, NW, …) in the HTML viewer and in the isometric
+/// figure alike; robots without names get A1, A2, ….
+#[test]
+fn anchors_are_labelled_by_cable_name_in_every_3d_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let (page, svg) = (dir.path().join("s.html"), dir.path().join("s.svg"));
+    for p in [&page, &svg] {
+        let out = cdpr()
+            .args([
+                "workspace",
+                &robot("spidercam-like-4.toml"),
+                "--grid",
+                "3",
+                "--plot",
+            ])
+            .arg(p)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.contains("\"anchorNames\":[\"NE\",\"NW\",\"SW\",\"SE\"]"),
+        "names in the viewer"
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    for name in ["NE", "NW", "SW", "SE"] {
+        assert!(
+            text.contains(&format!(">{name}<")) || text.contains(&format!(">{name}/")),
+            "{name} in the figure"
+        );
+    }
+    assert!(!text.contains(">A1<"));
+    let html = cdpr::plot::viewer::html(&octahedron());
+    assert!(html.contains("\"anchorNames\":[\"A1\",\"A2\""));
+}
