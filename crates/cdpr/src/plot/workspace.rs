@@ -343,7 +343,7 @@ mod tests {
         assert_eq!(labels[0].1, "A1, A5");
         let names: Vec<String> = ["NE", "", "", "", "NE low"].map(String::from).to_vec();
         assert_eq!(anchor_labels(&anchors, &names, 1e-3)[0].1, "NE, NE low");
-        assert_eq!(labels[3].1, "c4, c8");
+        assert_eq!(labels[3].1, "A4, A8");
         let s = 0.5f64.sqrt();
         assert!((labels[1].2.0 + s).abs() < 1e-12 && (labels[1].2.1 - s).abs() < 1e-12);
         // Distinct anchors keep their own labels.
