@@ -80,6 +80,16 @@ pub struct IsotropicReport {
     pub facets: usize,
     /// Vertices of the available wrench set (N, N·m; wrench spaces of dimension 2 and 3).
     pub vertices: Option<Vec<Vec<f64>>>,
+    /// Faces of a bounded set of dimension 2 or 3: vertex indices into `vertices`,
+    /// counter-clockwise seen from outside (DOF 2: edges).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub faces: Option<Vec<Vec<usize>>>,
+    /// The faces' outward unit normals n (one per face).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normals: Option<Vec<Vec<f64>>>,
+    /// The faces' offsets d (n · w ≤ d; N, or N·m for moment directions).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub offsets: Option<Vec<f64>>,
     /// With `ellipse`: the largest centred ellipse, null when the origin is not strictly inside.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ellipse: Option<Option<EllipseReport>>,
@@ -135,7 +145,16 @@ impl IsotropicRequest {
         } else {
             None
         };
+        let faces = aws.faces();
+        let facet = |f: &cdpr_polytope::Face| &aws.facets()[f.facet];
         Ok(IsotropicReport {
+            faces: faces.map(|fs| fs.iter().map(|f| f.vertices.clone()).collect()),
+            normals: faces.map(|fs| {
+                fs.iter()
+                    .map(|f| facet(f).normal.as_slice().to_vec())
+                    .collect()
+            }),
+            offsets: faces.map(|fs| fs.iter().map(|f| facet(f).offset).collect()),
             robot: robot.name.clone(),
             pose: self.pose.clone(),
             isotropic_force: force,

@@ -65,8 +65,8 @@ pub use kinematics::{
 pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
 pub use stiffness::{StiffnessReport, StiffnessRequest};
 pub use tension::{
-    PeerOptions, PolygonReport, SotdaReport, SotdaSearch, TensionReport, TensionRequest,
-    sotda_settings,
+    BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
+    TensionReport, TensionRequest, sotda_settings,
 };
 
 /// The nalgebra of the whole stack.

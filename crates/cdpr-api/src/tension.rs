@@ -10,8 +10,9 @@
 //!   (barycentre).
 
 use cdpr_tension::{
-    FeasiblePolygon, Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant,
-    StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    ClosestBalance, FeasiblePolygon, Infeasibility, Method, MethodOptions, PunctureInterior,
+    SotdaSettings, SotdaVariant, StiffnessData, TensionOutcome, TensionProblem, TensionSolver,
+    closest_balancing_tensions,
 };
 use nalgebra::Vector3;
 use schemars::JsonSchema;
@@ -221,6 +222,47 @@ pub struct SotdaReport {
     pub sotda_search: SotdaSearch,
 }
 
+/// One cable that breaks its bound in the closest balancing tensions.
+#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+pub struct BindingCable {
+    /// Cable number (from 1).
+    pub cable: usize,
+    /// Its tension in the closest balancing tensions (N).
+    pub tension: f64,
+    /// The bound it breaks (N).
+    pub bound: f64,
+    /// Which bound: "t_min" or "t_max".
+    pub which: String,
+}
+
+/// Why the feasible set is empty: the balancing tensions closest to the bounds
+/// (`cdpr_tension::binding`) and the cables that break them most there.
+#[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
+pub struct BindingReport {
+    /// The smallest widening of every [t_min, t_max] that balances the wrench (N).
+    pub violation: f64,
+    /// The cables that break a bound by that much, in cable order.
+    pub cables: Vec<BindingCable>,
+}
+
+impl From<ClosestBalance> for BindingReport {
+    fn from(c: ClosestBalance) -> Self {
+        Self {
+            violation: c.violation,
+            cables: c
+                .binding
+                .iter()
+                .map(|b| BindingCable {
+                    cable: b.cable + 1,
+                    tension: b.tension,
+                    bound: b.bound,
+                    which: if b.below() { "t_min" } else { "t_max" }.to_string(),
+                })
+                .collect(),
+        }
+    }
+}
+
 /// The JSON of `cdpr tension --json`.
 #[derive(Clone, Debug, PartialEq, Serialize, JsonSchema)]
 pub struct TensionReport {
@@ -246,6 +288,10 @@ pub struct TensionReport {
     /// sotda: `displacement`, `nu`, `sotda_search`.
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub sotda: Option<SotdaReport>,
+    /// An empty feasible set: the binding cables ("cable 3 would need 157 N, below its t_min of
+    /// 200 N").
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub binding_cables: Option<BindingReport>,
 }
 
 impl TensionRequest {
@@ -329,7 +375,14 @@ impl TensionRequest {
             Method::Barycenter | Method::Sotda => Some(PolygonReport::of(&problem)?),
             _ => None,
         };
+        let binding_cables = match outcome.infeasibility() {
+            Some(Infeasibility::NoFeasibleTension) => {
+                closest_balancing_tensions(&problem)?.map(BindingReport::from)
+            }
+            _ => None,
+        };
         Ok(TensionReport {
+            binding_cables,
             robot: robot.name.clone(),
             pose: self.pose.clone(),
             external_wrench: w_ext.as_slice().to_vec(),

@@ -37,8 +37,23 @@ pub struct Facet {
     pub offset: f64,
 }
 
-/// The available wrench set {W t : t_min ≤ t ≤ t_max} in H-representation, plus its vertices for
-/// DOF 2 and 3 when it is bounded.
+/// One face of a bounded available wrench set of DOF 2 or 3: the vertices on the facet
+/// `facets()[facet]`, as indices into [`AvailableWrenchSet::vertices`].
+///
+/// DOF 3: a polygon, its vertices counter-clockwise seen from outside (along −n), so that
+/// n · ((v₁ − v₀) × (v₂ − v₀)) > 0. DOF 2: an edge, its two vertices in the counter-clockwise
+/// order of the polygon.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Face {
+    /// Vertex indices, counter-clockwise seen from outside.
+    pub vertices: Vec<usize>,
+    /// Index of the face's facet `n · w ≤ d` in [`AvailableWrenchSet::facets`] (its outward
+    /// unit normal and offset).
+    pub facet: usize,
+}
+
+/// The available wrench set {W t : t_min ≤ t ≤ t_max} in H-representation, plus its vertices and
+/// faces for DOF 2 and 3 when it is bounded.
 ///
 /// Two lists describe the same set: [`AvailableWrenchSet::supporting_halfspaces`], every
 /// half-space the method produced, and [`AvailableWrenchSet::facets`], the same with
@@ -54,6 +69,7 @@ pub struct AvailableWrenchSet {
     group: Vec<usize>,
     facets: Vec<Facet>,
     vertices: Option<Vec<DVector<f64>>>,
+    faces: Option<Vec<Face>>,
     scale: f64,
 }
 
@@ -165,10 +181,13 @@ impl AvailableWrenchSet {
             group,
             facets,
             vertices: None,
+            faces: None,
             scale,
         };
         if bounded && (dof == 2 || dof == 3) {
-            set.vertices = Some(set.compute_vertices());
+            let vertices = set.compute_vertices();
+            set.faces = Some(set.compute_faces(&vertices));
+            set.vertices = Some(vertices);
         }
         set
     }
@@ -215,6 +234,29 @@ impl AvailableWrenchSet {
     /// `None` for other DOF or when a t_max is infinite (unbounded set).
     pub fn vertices(&self) -> Option<&[DVector<f64>]> {
         self.vertices.as_deref()
+    }
+
+    /// The faces (DOF 2: edges; DOF 3: polygons) with their vertices counter-clockwise seen from
+    /// outside, one per facet that holds at least DOF vertices (facets that only touch the
+    /// set at a vertex or an edge have none); `None` when [`AvailableWrenchSet::vertices`] is
+    /// `None`. Every vertex v satisfies every facet, n_k · v ≤ d_k; for DOF 3, V − E + F = 2
+    /// (Euler).
+    ///
+    /// ```
+    /// use cdpr_polytope::hyperplane_shifting::available_wrench_set;
+    /// use cdpr_tension::TensionBounds;
+    /// use nalgebra::DMatrix;
+    ///
+    /// // Three orthogonal cables and one along −(1,1,1): the image of a box in 3-D.
+    /// let s = -1.0 / 3f64.sqrt();
+    /// let w = DMatrix::from_row_slice(3, 4, &[1.0, 0.0, 0.0, s, 0.0, 1.0, 0.0, s, 0.0, 0.0, 1.0, s]);
+    /// let aws = available_wrench_set(&w, &TensionBounds::uniform(4, 10.0, 100.0)?)?;
+    /// let (v, faces) = (aws.vertices().unwrap(), aws.faces().unwrap());
+    /// assert_eq!(v.len() + faces.len(), faces.iter().map(|f| f.vertices.len()).sum::<usize>() / 2 + 2);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn faces(&self) -> Option<&[Face]> {
+        self.faces.as_deref()
     }
 
     /// Every supporting half-space `n · w ≤ d` the method produced (unit normals, finite
@@ -288,6 +330,60 @@ impl AvailableWrenchSet {
             });
         }
         out
+    }
+}
+
+impl AvailableWrenchSet {
+    /// The faces of [`AvailableWrenchSet::faces`]: for each facet, the vertices within
+    /// 10⁻⁸·scale of its plane, sorted by angle about their centroid in a basis (u, v) of the
+    /// plane with u × v = n (counter-clockwise seen from outside).
+    fn compute_faces(&self, vertices: &[DVector<f64>]) -> Vec<Face> {
+        let tol = 1e-8 * self.scale;
+        let mut faces = Vec::new();
+        for (k, f) in self.facets.iter().enumerate() {
+            let mut on: Vec<usize> = (0..vertices.len())
+                .filter(|&i| (f.normal.dot(&vertices[i]) - f.offset).abs() <= tol)
+                .collect();
+            if on.len() < self.dof {
+                continue;
+            }
+            let n = &f.normal;
+            let centroid = on
+                .iter()
+                .fold(DVector::zeros(self.dof), |s, &i| s + &vertices[i])
+                / on.len() as f64;
+            let key = |p: &DVector<f64>| -> f64 {
+                if self.dof == 2 {
+                    // Along u = n rotated by +90° (the counter-clockwise tangent).
+                    -n[1] * (p[0] - centroid[0]) + n[0] * (p[1] - centroid[1])
+                } else {
+                    // The angle in a basis (u, v = n × u) of the plane, u ⟂ n from the axis
+                    // least aligned with n.
+                    let n3 = nalgebra::Vector3::new(n[0], n[1], n[2]);
+                    let axis = if n3.x.abs() <= n3.y.abs() && n3.x.abs() <= n3.z.abs() {
+                        nalgebra::Vector3::x()
+                    } else if n3.y.abs() <= n3.z.abs() {
+                        nalgebra::Vector3::y()
+                    } else {
+                        nalgebra::Vector3::z()
+                    };
+                    let u = n3.cross(&axis).normalize();
+                    let v = n3.cross(&u);
+                    let d = nalgebra::Vector3::new(
+                        p[0] - centroid[0],
+                        p[1] - centroid[1],
+                        p[2] - centroid[2],
+                    );
+                    d.dot(&v).atan2(d.dot(&u))
+                }
+            };
+            on.sort_by(|&a, &b| key(&vertices[a]).total_cmp(&key(&vertices[b])));
+            faces.push(Face {
+                vertices: on,
+                facet: k,
+            });
+        }
+        faces
     }
 }
 
@@ -466,6 +562,100 @@ mod tests {
                     .then(a.offset.total_cmp(&b.offset))
             });
             assert_eq!(merge_sorted(&raw), merge_quadratic(&raw), "case {case}");
+        }
+    }
+
+    /// A pseudo-random wrench matrix DOF × n (entries in [−1, 1]).
+    fn random_w(dof: usize, n: usize, seed: u64) -> DMatrix<f64> {
+        let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        DMatrix::from_fn(dof, n, |_, _| {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            2.0 * ((state >> 11) as f64 / (1u64 << 53) as f64) - 1.0
+        })
+    }
+
+    /// 3-D: every vertex satisfies every facet, each face's vertices lie on its facet, faces
+    /// turn counter-clockwise seen from outside, V − E + F = 2, and a generic zonotope of n
+    /// generators has n(n − 1) parallelogram faces.
+    #[test]
+    fn faces_of_3d_polytopes_are_oriented_and_satisfy_euler() {
+        for seed in 0..40 {
+            let n = 3 + (seed as usize % 6);
+            let w = random_w(3, n, seed);
+            let bounds = cdpr_tension::TensionBounds::uniform(n, 5.0, 120.0).unwrap();
+            let aws = crate::hyperplane_shifting::available_wrench_set(&w, &bounds).unwrap();
+            let v = aws.vertices().unwrap();
+            let faces = aws.faces().unwrap();
+            let scale = 120.0 * n as f64;
+            for p in v {
+                for f in aws.facets() {
+                    assert!(f.normal.dot(p) <= f.offset + 1e-9 * scale, "seed {seed}");
+                }
+            }
+            let mut edges = 0;
+            for face in faces {
+                let f = &aws.facets()[face.facet];
+                for &i in &face.vertices {
+                    assert!((f.normal.dot(&v[i]) - f.offset).abs() <= 1e-8 * scale);
+                }
+                let m = face.vertices.len();
+                edges += m;
+                for j in 0..m {
+                    let [a, b, c] = [0, 1, 2].map(|d| &v[face.vertices[(j + d) % m]]);
+                    let (e1, e2) = (b - a, c - a);
+                    let cross = nalgebra::Vector3::new(e1[0], e1[1], e1[2])
+                        .cross(&nalgebra::Vector3::new(e2[0], e2[1], e2[2]));
+                    let turn = cross.dot(&nalgebra::Vector3::new(
+                        f.normal[0],
+                        f.normal[1],
+                        f.normal[2],
+                    ));
+                    assert!(turn > 0.0, "seed {seed}: face {face:?} turns clockwise");
+                }
+            }
+            assert_eq!(edges % 2, 0);
+            let (nv, ne, nf) = (v.len() as i64, edges as i64 / 2, faces.len() as i64);
+            assert_eq!(nv - ne + nf, 2, "seed {seed}: V {nv}, E {ne}, F {nf}");
+            let zonotope_faces = (n * (n - 1)) as i64;
+            assert_eq!(nf, zonotope_faces, "seed {seed}");
+            assert_eq!(nv, zonotope_faces + 2, "seed {seed}");
+        }
+    }
+
+    /// 2-D: the faces are the polygon's edges, consecutive in counter-clockwise order, with
+    /// the outward normal on their right: n × (v₁ − v₀) > 0.
+    #[test]
+    fn faces_of_2d_polygons_are_its_edges_counter_clockwise() {
+        let f = |x: f64, y: f64| Facet {
+            normal: DVector::from_vec(vec![x, y]),
+            offset: 1.0,
+        };
+        let set = AvailableWrenchSet::from_halfspaces(
+            2,
+            vec![f(1.0, 0.0), f(0.0, 1.0), f(-1.0, 0.0), f(0.0, -1.0)],
+            true,
+            1.0,
+        );
+        let v = set.vertices().unwrap();
+        let faces = set.faces().unwrap();
+        assert_eq!(faces.len(), 4);
+        for face in faces {
+            let [a, b] = [face.vertices[0], face.vertices[1]];
+            assert_eq!(b, (a + 1) % 4, "{face:?}");
+            let n = &set.facets()[face.facet].normal;
+            let e = &v[b] - &v[a];
+            assert!(n[0] * e[1] - n[1] * e[0] > 0.0);
+        }
+        for seed in 0..20 {
+            let n = 3 + seed as usize % 5;
+            let w = random_w(2, n, seed + 100);
+            let bounds = cdpr_tension::TensionBounds::uniform(n, 1.0, 50.0).unwrap();
+            let aws = crate::hyperplane_shifting::available_wrench_set(&w, &bounds).unwrap();
+            let (v, faces) = (aws.vertices().unwrap(), aws.faces().unwrap());
+            assert_eq!(faces.len(), v.len(), "seed {seed}");
+            assert_eq!(faces.len(), 2 * n, "seed {seed}: a zonogon of n generators");
         }
     }
 }

@@ -65,7 +65,7 @@ mod input;
 pub mod isotropic_force;
 pub mod krut_vertex_projection;
 
-pub use available_wrench_set::{AvailableWrenchSet, Facet};
+pub use available_wrench_set::{AvailableWrenchSet, Face, Facet};
 pub use capacity_margin::{
     CapacityMargin, CapacityMarginEvaluator, RequiredWrenchSet, capacity_margin, limiting_facet,
 };

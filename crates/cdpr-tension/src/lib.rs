@@ -75,6 +75,7 @@
 
 mod active_set;
 pub mod barycenter;
+pub mod binding;
 mod bounds;
 mod central_point;
 pub mod certificate;
@@ -108,6 +109,7 @@ pub mod vertex_centroid;
 mod vertex_enumeration;
 mod warm_point;
 
+pub use binding::{BindingBound, ClosestBalance, closest_balancing_tensions};
 pub use bounds::TensionBounds;
 pub use certificate::{Certificate, certify};
 pub use closed_form::{FeasibleInterval, feasible_interval};

@@ -191,7 +191,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
             range.slices
         );
         save_grid_plot(
-            robot,
+            &desc,
             &pose,
             ws,
             title,

@@ -6,6 +6,7 @@ use cdpr::api::{
     IsotropicMapReport, IsotropicMapRequest, IsotropicReport, IsotropicRequest, Robot,
 };
 use cdpr::kinematics::MotionPattern;
+use cdpr::nalgebra::DVector;
 use cdpr::plot::{ForcePolygonPlot, HeatMap};
 use cdpr::polytope::largest_inscribed_ellipse;
 use indicatif::ProgressBar;
@@ -30,7 +31,9 @@ use std::path::PathBuf;
 ///
 /// One pose: `cdpr isotropic ROBOT.toml --pose 0,0 [--ellipse] [--plot polygon.png] [--json]`;
 /// for point2 robots `--plot` draws the available force polygon with the largest centred circle
-/// and ellipse and the facet the circle touches (Krut, Company & Pierrot 2004, Fig. 4).
+/// and ellipse and the facet the circle touches (Krut, Company & Pierrot 2004, Fig. 4); for
+/// point3 robots `--plot polytope.html` writes a 3-D view of the force polytope with the
+/// largest ball centred at −w_ext (radius = the index).
 /// A map: `cdpr isotropic ROBOT.toml --grid 100 [--box ...] [--orientation PHI] [--z Z]
 /// [--plot map.png] [--json]` evaluates (M+1)² poses in parallel (Krut, Company & Pierrot 2004, Figs. 9–10; white
 /// where the index is negative).
@@ -39,8 +42,10 @@ use std::path::PathBuf;
 /// set itself (no load).
 ///
 /// JSON (pose): `isotropic_force` (N), `wrench_radius` (N and N·m combined), `external_wrench`
-/// (N, N·m), `definition`, `facets`, `vertices` (of the available wrench set, N, N·m; wrench
-/// spaces of dimension 2 and 3), `ellipse` (with --ellipse: `semi_axes` N, `angle` rad,
+/// (N, N·m), `definition`, `facets` (a count), `vertices` (of the available wrench set, N, N·m;
+/// wrench spaces of dimension 2 and 3), `faces` (lists of vertex indices, counter-clockwise seen
+/// from outside; edges in 2-D), `normals` (unit, outward) and `offsets` (N, N·m; n · w ≤ d) of
+/// the faces, `ellipse` (with --ellipse: `semi_axes` N, `angle` rad,
 /// `angle_deg`, `area` N²). JSON (grid): `grid` {`x`, `y` (m), `values` (N; rows along y, null
 /// where undefined)}, `stats` {`min`, `max` (N), `argmax` (m), `positive_fraction`,
 /// `undefined`, `centre` (N)}, `external_wrench`, `definition`.
@@ -88,7 +93,8 @@ pub struct Args {
     /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.
     /// Pose (point2 robots only): the available force polygon with the largest centred circle
     /// (radius = the index) and ellipse, the origin and the facet the circle touches
-    /// (Krut, Company & Pierrot 2004, Fig. 4).
+    /// (Krut, Company & Pierrot 2004, Fig. 4). Pose, point3 robots: a 3-D view of the force
+    /// polytope with the largest ball centred at −w_ext (.html).
     #[arg(long)]
     plot: Option<PathBuf>,
     /// Pose: also the largest-area centred ellipse inside the force polygon (Krut, Company & Pierrot 2004, §IV-C;
@@ -111,15 +117,62 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
+/// The HTML view of a point3 robot's force polytope with the largest ball centred at −w_ext.
+fn save_polytope_view(
+    robot: &RobotDescription,
+    q: &[f64],
+    aws: &cdpr::polytope::AvailableWrenchSet,
+    w_ext: &DVector<f64>,
+    force: f64,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let centre = [-w_ext[0], -w_ext[1], -w_ext[2]];
+    let mut scene = cdpr::plot::force_polytope_scene(aws, centre, force)
+        .ok_or("the force polytope is unbounded (an infinite t_max): nothing to draw")?;
+    scene.title = format!(
+        "{}: available force polytope {{W t}} at position ({}) m",
+        robot.name,
+        q.iter()
+            .map(|v| cdpr::plot::tick(*v))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    scene.legend = vec![
+        format!("maximum isotropic force on top of w_ext: {} N", num(force)),
+        format!(
+            "w_ext {} (the platform's weight and --wrench)",
+            wrench_text(w_ext.as_slice(), 3)
+        ),
+        format!("{} facets", aws.facets().len()),
+    ];
+    cdpr::plot::save_scene(&scene, path)?;
+    Ok(())
+}
+
 fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliError> {
     let motion = robot.robot.motion();
-    if args.plot.is_some() && motion != MotionPattern::Point2 {
+    if args.ellipse && motion != MotionPattern::Point2 {
         return Err(format!(
-            "--plot with --pose draws the 2-D force polygon and needs a point2 robot; this robot \
-             is {} (use --grid --plot for a map of the index)",
+            "--ellipse needs a 2-D force polygon (a point2 robot); this robot is {}",
             motion.name()
         )
         .into());
+    }
+    let html = args.plot.as_deref().is_some_and(super::region::is_html);
+    if args.plot.is_some()
+        && motion != MotionPattern::Point2
+        && !(html && motion == MotionPattern::Point3)
+    {
+        return Err(format!(
+            "--plot with --pose draws the 2-D force polygon (a point2 robot, .png or .svg) or the \
+             3-D force polytope (a point3 robot, .html); this robot is {} (use --grid --plot for a \
+             map of the index)",
+            motion.name()
+        )
+        .into());
+    }
+    if html && motion == MotionPattern::Point2 {
+        return Err("--plot: the force polygon of a point2 robot is drawn as .png or .svg".into());
     }
     let request = IsotropicRequest {
         robot: Robot::from_description(robot.clone()),
@@ -128,12 +181,17 @@ fn run_pose(args: &Args, robot: &RobotDescription, q: &[f64]) -> Result<(), CliE
         ellipse: args.ellipse,
     };
     request.validate()?;
-    if let Some(path) = &args.plot {
+    if let Some(path) = args.plot.as_ref().filter(|_| !html) {
         plot_polygon(&request, path)?;
     }
     let report = request.run()?;
     if args.json {
         return print_report(&report);
+    }
+    if let Some(path) = args.plot.as_ref().filter(|_| html) {
+        let w_ext = DVector::from_column_slice(&report.external_wrench);
+        let aws = request.wrench_set()?;
+        save_polytope_view(robot, q, &aws, &w_ext, report.isotropic_force, path)?;
     }
     print_pose_text(&report, motion, args);
     Ok(())
@@ -204,7 +262,12 @@ fn print_pose_text(r: &IsotropicReport, motion: MotionPattern, args: &Args) {
         None => {}
     }
     if let Some(p) = &args.plot {
-        println!("force polygon written to {}", p.display());
+        let what = if super::region::is_html(p) {
+            "force polytope view"
+        } else {
+            "force polygon"
+        };
+        println!("{what} written to {}", p.display());
     }
 }
 

@@ -458,6 +458,7 @@ pub fn save_scene_plot(
             "grid cells of the feasible points (m = {})",
             ws.grid.resolution
         ),
+        anchor_names: cdpr::plot::cable_names(&desc.cable_names),
         ..cdpr::plot::Scene::default()
     }
     .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
@@ -486,6 +487,7 @@ pub fn save_mesh_scene_plot(
             "boundary mesh (vertices on the boundary to {:.1e} m)",
             mesh.tolerance
         ),
+        anchor_names: cdpr::plot::cable_names(&desc.cable_names),
         ..cdpr::plot::Scene::default()
     }
     .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
@@ -593,20 +595,24 @@ pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvent
 
 /// The grid workspace figure: one chart for planar robots, z-slices for 3-D ones.
 pub fn save_grid_plot(
-    robot: &Robot,
+    desc: &RobotDescription,
     pose: &Pose,
     ws: &GridWorkspace,
     title: String,
     notes: Vec<String>,
     path: &Path,
 ) -> Result<(), CliError> {
+    let (robot, names) = (&desc.robot, cdpr::plot::cable_names(&desc.cable_names));
     if ws.dim == 3 {
-        save_plot(&workspace_slices(robot, pose, ws, title, notes), path)
+        let mut fig = workspace_slices(robot, pose, ws, title, notes);
+        for p in &mut fig.panels {
+            p.anchor_names.clone_from(&names);
+        }
+        save_plot(&fig, path)
     } else {
-        save_plot(
-            &workspace_plot(robot, pose, Some(ws), Vec::new(), title, notes),
-            path,
-        )
+        let mut fig = workspace_plot(robot, pose, Some(ws), Vec::new(), title, notes);
+        fig.anchor_names = names;
+        save_plot(&fig, path)
     }
 }
 

@@ -2,7 +2,7 @@
 
 use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_report};
 use cdpr::RobotDescription;
-use cdpr::api::{Robot, TensionReport, TensionRequest};
+use cdpr::api::{BindingReport, Robot, TensionReport, TensionRequest};
 use cdpr::tension::{Method, SotdaSettings};
 use std::path::PathBuf;
 
@@ -20,7 +20,11 @@ use std::path::PathBuf;
 /// "infeasible" comes with its reason and exit code 0.
 ///
 /// JSON fields: `feasible`, `tensions` (or null), `residual`, `method`, `reason` (or null);
-/// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda.
+/// `polygon` for barycenter and sotda; `displacement`, `nu` and `sotda_search` for sotda;
+/// `binding_cables` {`violation` (N), `cables` [{`cable`, `tension` (N), `bound` (N), `which`}]}
+/// when the feasible set is empty: the balancing tensions closest to the bounds and the cables
+/// that break them most there (text: "cable 3 would need 157 N, below its t_min of 200 N").
+/// --nu, --direction and --full are SOTDA's: refused with another method (exit 2).
 /// With `--cable-model elastic|catenary`: `tensions` at the platform end, `unstrained_lengths`,
 /// `frame_end_tensions` (and the other per-cable fields of `cdpr kinematics`), certified with the
 /// catenary forces and the bounds at both ends of every cable.
@@ -42,11 +46,13 @@ pub struct Args {
     #[arg(long, default_value = "l2", long_help = super::method_help())]
     method: Method,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    /// Refused with another method.
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
-    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
-    #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
-    nu: f64,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1);
+    /// default 1. Refused with another method.
+    #[arg(long, value_parser = super::unit_interval)]
+    nu: Option<f64>,
     /// SOTDA: which points of the feasible polygon are evaluated. corners: Picard, Caro, Plestan & Claveau's (2020) real-time
     /// variant, the vertices with a cable at t_max; vertices: every vertex; full: a grid over
     /// the whole polygon refined by a pattern search.
@@ -95,6 +101,58 @@ impl PeerOptions {
     }
 }
 
+/// The text lines of the binding cables.
+fn print_binding(c: &BindingReport) {
+    println!(
+        "binding cables (the balancing tensions closest to the bounds break them by {} N):",
+        super::num(c.violation)
+    );
+    for b in &c.cables {
+        let bound = cdpr::tension::BindingBound {
+            cable: b.cable - 1,
+            tension: b.tension,
+            bound: b.bound,
+        };
+        println!("  {bound}");
+    }
+}
+
+/// `--nu`, `--direction` and `--full` belong to SOTDA: with another method they would be
+/// ignored, so they are a usage error (exit 2) naming the method.
+pub fn refuse_sotda_options(
+    method: Method,
+    nu: Option<f64>,
+    direction: bool,
+    full: bool,
+) -> Result<(), CliError> {
+    if method == Method::Sotda {
+        return Ok(());
+    }
+    let given: Vec<&str> = [
+        ("--nu", nu.is_some()),
+        ("--direction", direction),
+        ("--full", full),
+    ]
+    .into_iter()
+    .filter_map(|(name, set)| set.then_some(name))
+    .collect();
+    match given.as_slice() {
+        [] => Ok(()),
+        names => Err(format!(
+            "{} {} of the sotda method only, and the method is {method} (add --method \
+             sotda, or leave {} out)",
+            names.join(", "),
+            if names.len() == 1 {
+                "is an option"
+            } else {
+                "are options"
+            },
+            if names.len() == 1 { "it" } else { "them" }
+        )
+        .into()),
+    }
+}
+
 /// `--sotda-search`: the points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum SotdaSearch {
@@ -134,6 +192,7 @@ pub fn sotda_settings(
 /// Runs the command: the request, its report, rendered as JSON or a table.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    refuse_sotda_options(args.method, args.nu, args.direction.is_some(), args.full)?;
     if let Some(cables) = args.cable_model.catenaries(&robot)? {
         return run_sagging(&args, &robot, &cables);
     }
@@ -143,7 +202,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         wrench: args.wrench.as_ref().map(|w| w.0.clone()),
         method: args.method,
         direction: args.direction.as_ref().map(|d| d.0.clone()),
-        nu: args.nu,
+        nu: args.nu.unwrap_or(1.0),
         sotda_search: SotdaSearch::from_args(args.sotda_search, args.full).to_api(),
         options: args.peer.to_api(),
     };
@@ -207,6 +266,9 @@ fn print_text(robot: &RobotDescription, r: &TensionReport) {
         }
         (_, t) => {
             println!("infeasible: {}", r.reason.as_deref().unwrap_or_default());
+            if let Some(c) = &r.binding_cables {
+                print_binding(c);
+            }
             if let Some(t) = t {
                 println!("the solution t = −W⁺ w_ext (balances the wrench, breaks the bounds):");
                 println!(

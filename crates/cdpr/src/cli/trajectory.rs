@@ -84,10 +84,12 @@ pub struct Args {
     /// Tension distribution method (see `cdpr tension --help` for the list).
     #[arg(long, default_value = "l2")]
     method: Method,
-    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1).
-    #[arg(long, default_value_t = 1.0, value_parser = super::unit_interval)]
-    nu: f64,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1);
+    /// default 1. Refused with another method.
+    #[arg(long, value_parser = super::unit_interval)]
+    nu: Option<f64>,
     /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    /// Refused with another method.
     #[arg(long, allow_hyphen_values = true)]
     direction: Option<Numbers>,
     /// SOTDA: which points of the feasible polygon are evaluated. corners: Picard, Caro, Plestan & Claveau's (2020) real-time
@@ -133,6 +135,12 @@ struct Waypoint {
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     check_method(&robot, args.method)?;
+    super::tension::refuse_sotda_options(
+        args.method,
+        args.nu,
+        args.direction.is_some(),
+        args.full,
+    )?;
     let motion = robot.robot.motion();
     let default_wrench = wrench(&robot, args.wrench.as_deref())?;
     let mut times: Option<Vec<f64>> = None;
@@ -197,7 +205,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         TensionSolver::sotda(sotda_settings(
             args.direction.as_deref(),
-            args.nu,
+            args.nu.unwrap_or(1.0),
             SotdaSearch::from_args(args.sotda_search, args.full),
         )?)
     } else {
@@ -252,7 +260,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let mut v = json!({
             "robot": robot.name,
             "method": args.method.name(),
-            "nu": (args.method == Method::Sotda).then_some(args.nu),
+            "nu": (args.method == Method::Sotda).then_some(args.nu.unwrap_or(1.0)),
             "s": profile.s,
             "poses": samples.iter().map(|p| p.pose.coordinates(motion)).collect::<Vec<_>>(),
             "tensions": profile.tensions.iter().map(|t| t.as_ref().map(|t| t.as_slice().to_vec())).collect::<Vec<_>>(),
@@ -368,7 +376,7 @@ pub fn profile_plot(
         reference_lines.push((hi[0], format!("t_max = {} N", cdpr::plot::tick(hi[0]))));
     }
     let nu = if args.method == Method::Sotda {
-        format!(", ν = {}", args.nu)
+        format!(", ν = {}", args.nu.unwrap_or(1.0))
     } else {
         String::new()
     };

@@ -399,7 +399,7 @@ fn save_chord_plot(
         c.w_ext,
         c.setup.method,
     );
-    let fig = workspace_plot(
+    let mut fig = workspace_plot(
         robot,
         pose,
         None,
@@ -415,6 +415,7 @@ fn save_chord_plot(
             ),
         ],
     );
+    fig.anchor_names = cdpr::plot::cable_names(&c.desc.cable_names);
     save_plot(&fig, path)
 }
 
@@ -542,7 +543,7 @@ fn save_grid_workspace_plot(
         c.setup.method,
     );
     save_grid_plot(
-        &desc.robot,
+        desc,
         pose,
         ws,
         title,

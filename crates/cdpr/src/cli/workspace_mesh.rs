@@ -424,6 +424,7 @@ pub fn run_section(r: &Context<'_>, section: Section, chord: f64) -> Result<(), 
         let (lo, hi) = (r.region.min, r.region.max);
         let fig = WorkspacePlot {
             title: format!("{}: workspace section {plane} m", desc.name),
+            anchor_names: cdpr::plot::cable_names(&desc.cable_names),
             boundaries: polys,
             fill_boundaries: true,
             frame: vec![

@@ -268,7 +268,9 @@ impl IsoFigure {
                 (p.0 as f64, p.1 as f64)
             })
             .collect();
-        let names: Vec<String> = (1..=pts.len()).map(|k| format!("A{k}")).collect();
+        let names: Vec<String> = (0..pts.len())
+            .map(|i| super::anchor_label(&self.scene.anchor_names, i))
+            .collect();
         let (w, h) = area.dim_in_pixel();
         for (p, corner, text) in place_labels(&pts, &names, 7.5, 14.0, (w as f64, h as f64)) {
             let p = (p.0 as i32, p.1 as i32);

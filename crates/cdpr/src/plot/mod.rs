@@ -9,6 +9,7 @@ pub mod iso;
 mod layout;
 mod lines;
 mod panels;
+mod polytope_view;
 mod pulley;
 pub mod replay;
 pub mod scene;
@@ -21,6 +22,7 @@ pub use heat_map::HeatMap;
 pub use iso::IsoFigure;
 pub use lines::{LinePlot, Series};
 pub use panels::Panels;
+pub use polytope_view::force_polytope_scene;
 pub use pulley::PulleyCablePlot;
 pub use replay::Replay;
 pub use scene::{Scene, grid_surface};
@@ -148,6 +150,24 @@ pub fn save_scene(scene: &Scene, path: impl AsRef<Path>) -> Result<(), PlotError
             path,
         )
     }
+}
+
+/// The label of frame anchor `i` (0-based) in every view (3-D, sections, plots): the cable's
+/// `name` from the robot file when `names` gives one, else `A` and its 1-based index.
+pub fn anchor_label(names: &[String], i: usize) -> String {
+    match names.get(i).filter(|n| !n.is_empty()) {
+        Some(n) => n.clone(),
+        None => format!("A{}", i + 1),
+    }
+}
+
+/// The anchor names of a robot file's cables (`name` keys; empty where none) for
+/// [`anchor_label`].
+pub fn cable_names(names: &[Option<String>]) -> Vec<String> {
+    names
+        .iter()
+        .map(|n| n.clone().unwrap_or_default())
+        .collect()
 }
 
 /// A colour map from 0 to 1 (viridis-like, perceptually ordered).

@@ -30,6 +30,17 @@ pub struct Scene {
     pub legend: Vec<String>,
     /// What the mesh is, for the legend (e.g. "boundary mesh (vertices to 1e-8)").
     pub mesh_label: String,
+    /// Unit of the three axes (empty: m). A force polytope's is N.
+    pub units: String,
+    /// A ball drawn inside the mesh: (centre, radius), e.g. the largest ball of the force
+    /// polytope centred at −w_ext.
+    pub ball: Option<([f64; 3], f64)>,
+    /// What the ball is, for the legend.
+    pub ball_label: String,
+    /// Anchor labels: the cables' `name` keys (empty: `A1`, `A2`, …; see [`super::anchor_label`]).
+    pub anchor_names: Vec<String>,
+    /// Whether to leave out the dashed box (`region` then only frames the view).
+    pub hide_box: bool,
 }
 
 fn arr(v: &Vector3<f64>) -> [f64; 3] {

@@ -114,7 +114,7 @@ var CdprViewer = (function () {
           S.anchors.forEach(function (p) { for (var k = 0; k < 3; k++) { alo[k] = Math.min(alo[k], p[k]); ahi[k] = Math.max(ahi[k], p[k]); } });
           boxEdges(alo, ahi, "#c8c8c8", 1);
         }
-        boxEdges(S.box[0], S.box[1], "#1f5fa0", 1, [5, 4]);
+        if (!S.hideBox) boxEdges(S.box[0], S.box[1], "#1f5fa0", 1, [5, 4]);
 
         // Workspace mesh, clipped by the cut plane, back to front.
         var light = [0.35, 0.45, 0.82];
@@ -144,8 +144,22 @@ var CdprViewer = (function () {
           var depth = pv.reduce(function (d, q) { return d + q[2]; }, 0) / pv.length;
           polys.push({ p: pv, depth: depth, shade: shade });
         }
+        // The ball: an orthographic sphere is a disc, drawn between the faces behind its centre
+        // and those in front.
+        if (S.ball && S.ball.centre[axis] <= cut) {
+          var bc = toView(S.ball.centre);
+          polys.push({ ball: true, p: [bc], depth: bc[2], shade: 1 });
+        }
         polys.sort(function (a, b) { return a.depth - b.depth; });
         polys.forEach(function (q) {
+          if (q.ball) {
+            var c = toScreen(q.p[0]), r = S.ball.radius * scale;
+            var g = ctx.createRadialGradient(c[0] - 0.35 * r, c[1] - 0.35 * r, 0.1 * r, c[0], c[1], r);
+            g.addColorStop(0, "rgba(250,200,140,0.95)"); g.addColorStop(1, "rgba(200,110,30,0.95)");
+            ctx.fillStyle = g; ctx.beginPath(); ctx.arc(c[0], c[1], Math.max(r, 0), 0, 2 * Math.PI); ctx.fill();
+            ctx.fillStyle = "#000"; ctx.fillRect(c[0] - 2, c[1] - 2, 4, 4);
+            return;
+          }
           var k = 0.45 + 0.55 * q.shade;
           ctx.fillStyle = "rgba(" + Math.round(70 * k) + "," + Math.round(130 * k) + "," + Math.round(180 * k + 40 * (1 - k)) + ",0.45)";
           ctx.beginPath();
@@ -174,7 +188,7 @@ var CdprViewer = (function () {
         f.v.forEach(function (v, i) { var s = toScreen(v); if (i) ctx.lineTo(s[0], s[1]); else ctx.moveTo(s[0], s[1]); });
         ctx.closePath(); ctx.fill(); ctx.stroke();
       });
-      if (!S.platform.length) {
+      if (!S.platform.length && S.anchors.length) {
         var pp = project(S.platformPosition);
         ctx.fillStyle = "#e8a33d"; ctx.beginPath(); ctx.arc(pp[0], pp[1], 4, 0, 2 * Math.PI); ctx.fill();
       }
@@ -184,7 +198,8 @@ var CdprViewer = (function () {
       S.anchors.forEach(function (a, i) {
         var p = project(a);
         var g = groups.find(function (q) { return Math.abs(q.x - p[0]) <= 2 && Math.abs(q.y - p[1]) <= 2; });
-        if (g) g.names.push("A" + (i + 1)); else groups.push({ x: p[0], y: p[1], names: ["A" + (i + 1)] });
+        var name = (S.anchorNames && S.anchorNames[i]) || "A" + (i + 1);
+        if (g) g.names.push(name); else groups.push({ x: p[0], y: p[1], names: [name] });
       });
       groups.forEach(function (g) {
         ctx.fillStyle = "#000"; ctx.fillRect(g.x - 3, g.y - 3, 6, 6);
@@ -195,7 +210,7 @@ var CdprViewer = (function () {
       ["x", "y", "z"].forEach(function (name, k) {
         var e = o.slice(); e[k] += len;
         line(o, e, ["#c0392b", "#27ae60", "#2e62c9"][k], 2);
-        var s = project(e); ctx.fillStyle = "#333"; ctx.fillText(name + " (m)", s[0] + 3, s[1] - 3);
+        var s = project(e); ctx.fillStyle = "#333"; ctx.fillText(name + " (" + (S.units || "m") + ")", s[0] + 3, s[1] - 3);
       });
       if (controls.onDraw) controls.onDraw(S.triangles.length);
     }
@@ -247,6 +262,15 @@ var CdprViewer = (function () {
         p.textContent = line;
         legend.appendChild(p);
       });
+      document.getElementById("cut-unit").textContent = S.units || "m";
+      if (!S.anchors.length) {
+        Array.prototype.forEach.call(document.querySelectorAll(".robot-key"), function (e) { e.style.display = "none"; });
+      }
+      if (S.hideBox) document.getElementById("key-box").style.display = "none";
+      if (S.ball) {
+        document.getElementById("key-ball").style.display = "";
+        document.getElementById("ball-label").textContent = S.ballLabel || "ball";
+      }
       create(document.getElementById("view"), S, {
         axis: document.getElementById("axis"),
         cut: document.getElementById("cut"),

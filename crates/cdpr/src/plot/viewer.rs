@@ -7,6 +7,10 @@
 //! zoom, a slider that cuts the workspace by a plane x, y or z = s (the part beyond is hidden,
 //! the section drawn in red), and a legend with the volume and the settings.
 //!
+//! The same page shows a force polytope (`cdpr isotropic --pose … --plot FILE.html`, point3
+//! robots): the mesh is then the polytope's faces in N, with the largest ball centred at −w_ext
+//! drawn inside ([`Scene::ball`]), and no robot.
+//!
 //! When the page has drawn, it writes `rendered N triangles` into the element
 //! `#cdpr-status` (`error: …` if a script error happened): the marker the browser test reads.
 
@@ -22,6 +26,9 @@ pub fn html(scene: &Scene) -> String {
     let data = json!({
         "title": scene.title,
         "anchors": scene.anchors,
+        "anchorNames": (0..scene.anchors.len())
+            .map(|i| super::anchor_label(&scene.anchor_names, i))
+            .collect::<Vec<_>>(),
         "cables": scene.cables.iter().map(|(a, b)| [a, b]).collect::<Vec<_>>(),
         "platform": scene.platform,
         "platformPosition": scene.platform_position,
@@ -30,6 +37,10 @@ pub fn html(scene: &Scene) -> String {
         "box": [scene.region.0, scene.region.1],
         "legend": scene.legend,
         "meshLabel": scene.mesh_label,
+        "units": if scene.units.is_empty() { "m" } else { scene.units.as_str() },
+        "ball": scene.ball.map(|(c, r)| json!({ "centre": c, "radius": r })),
+        "ballLabel": scene.ball_label,
+        "hideBox": scene.hide_box,
     });
     // `</` inside a script element would end it: JSON allows `<\/`.
     let data = data.to_string().replace("</", "<\\/");

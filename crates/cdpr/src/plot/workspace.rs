@@ -39,6 +39,8 @@ pub struct WorkspacePlot {
     /// Drawn in a box near the top of the chart, e.g. "no feasible pose in the box": an empty
     /// result says so instead of looking like a missing drawing.
     pub empty_message: Option<String>,
+    /// Anchor labels: the cables' `name` keys (empty: `A1`, `A2`, …; see [`super::anchor_label`]).
+    pub anchor_names: Vec<String>,
 }
 
 const FILL: RGBColor = RGBColor(158, 202, 225);
@@ -166,7 +168,7 @@ impl Figure for WorkspacePlot {
         )?;
         // Anchors that coincide in the drawing (e.g. the upper and lower anchors of a spatial
         // frame seen from above) share one label; labels sit outside, away from the centroid.
-        let labels = anchor_labels(&self.anchors, 0.01 * half);
+        let labels = anchor_labels(&self.anchors, &self.anchor_names, 0.01 * half);
         chart.draw_series(labels.into_iter().map(|((x, y), text, (ox, oy))| {
             let dx = (ox * 16.0) as i32 - if ox < -0.3 { 7 * text.len() as i32 } else { 0 };
             let dy = (-oy * 16.0) as i32 - 8;
@@ -199,9 +201,9 @@ impl Figure for WorkspacePlot {
 type AnchorLabel = ((f64, f64), String, (f64, f64));
 
 /// One label per drawn anchor position: anchors closer than `tolerance` share a label
-/// ("c1, c5"); each label comes with the unit direction from the anchors' centroid to the anchor
+/// ("A1, A5", or the cables' names); each label comes with the unit direction from the anchors' centroid to the anchor
 /// (where to put the text so that it points away from the frame's inside).
-fn anchor_labels(anchors: &[(f64, f64)], tolerance: f64) -> Vec<AnchorLabel> {
+fn anchor_labels(anchors: &[(f64, f64)], names: &[String], tolerance: f64) -> Vec<AnchorLabel> {
     let mut groups: Vec<((f64, f64), Vec<usize>)> = Vec::new();
     for (i, &p) in anchors.iter().enumerate() {
         match groups
@@ -220,7 +222,7 @@ fn anchor_labels(anchors: &[(f64, f64)], tolerance: f64) -> Vec<AnchorLabel> {
         .map(|(p, members)| {
             let text = members
                 .iter()
-                .map(|i| format!("c{}", i + 1))
+                .map(|&i| super::anchor_label(names, i))
                 .collect::<Vec<_>>()
                 .join(", ");
             let (dx, dy) = (p.0 - cx, p.1 - cy);
@@ -336,14 +338,16 @@ mod tests {
     fn coinciding_anchors_share_one_label() {
         let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)];
         let anchors: Vec<(f64, f64)> = corners.iter().chain(&corners).copied().collect();
-        let labels = anchor_labels(&anchors, 1e-3);
+        let labels = anchor_labels(&anchors, &[], 1e-3);
         assert_eq!(labels.len(), 4);
-        assert_eq!(labels[0].1, "c1, c5");
-        assert_eq!(labels[3].1, "c4, c8");
+        assert_eq!(labels[0].1, "A1, A5");
+        let names: Vec<String> = ["NE", "", "", "", "NE low"].map(String::from).to_vec();
+        assert_eq!(anchor_labels(&anchors, &names, 1e-3)[0].1, "NE, NE low");
+        assert_eq!(labels[3].1, "A4, A8");
         let s = 0.5f64.sqrt();
         assert!((labels[1].2.0 + s).abs() < 1e-12 && (labels[1].2.1 - s).abs() < 1e-12);
         // Distinct anchors keep their own labels.
-        assert_eq!(anchor_labels(&corners, 1e-3).len(), 4);
+        assert_eq!(anchor_labels(&corners, &[], 1e-3).len(), 4);
     }
 
     /// Dash 0.5, gap 0.2, dot 0.1 along a 1.25-long polyline with a corner at x = 0.6: drawn

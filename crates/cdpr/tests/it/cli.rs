@@ -717,3 +717,82 @@ fn peer_methods_and_their_options() {
         assert!(err.contains(wanted), "{args:?}: {err}");
     }
 }
+
+/// An empty feasible set names its binding cables. Krut-3 at the centre under a 1000 N load
+/// straight down, by hand: cables 1 and 2 (30°, 150°) carry τ, cable 3 (270°) t₃ with
+/// τ − t₃ = 1000 N; widening [50, 500] N by s: τ = 500 + s, t₃ = 50 − s gives s = 275 N,
+/// τ = 775 N, t₃ = −225 N.
+#[test]
+fn infeasible_answers_name_the_binding_cables() {
+    let k3 = robot("krut-3.toml");
+    let args = ["tension", &k3, "--pose", "0,0", "--wrench", "0,-1000"];
+    for method in ["l2", "linf", "l1", "barycenter", "vertex-centroid"] {
+        let out = cdpr()
+            .args(args)
+            .args(["--method", method])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        if !text.contains("empty feasible set") {
+            continue; // a method with another reason (e.g. not applicable at r = 1)
+        }
+        for line in [
+            "binding cables (the balancing tensions closest to the bounds break them by 275 N):",
+            "  cable 1 would need 775 N, above its t_max of 500 N",
+            "  cable 3 would need -225 N, below its t_min of 50 N",
+        ] {
+            assert!(text.contains(line), "{method}: {line}\n{text}");
+        }
+    }
+    let v = json(&[&args[..], &["--method", "linf", "--json"]].concat());
+    let b = &v["binding_cables"];
+    assert!((b["violation"].as_f64().unwrap() - 275.0).abs() < 1e-6);
+    assert_eq!(b["cables"][2]["cable"], 3);
+    assert_eq!(b["cables"][2]["which"], "t_min");
+    assert!((b["cables"][2]["tension"].as_f64().unwrap() + 225.0).abs() < 1e-6);
+    // Feasible answers carry none.
+    let v = json(&["tension", &k3, "--pose", "0,0", "--json"]);
+    assert!(v.get("binding_cables").is_none());
+}
+
+/// --nu, --direction and --full belong to SOTDA: with another method they are refused (exit
+/// 2) with a message naming the method, in `tension` and `trajectory`.
+#[test]
+fn sotda_options_with_another_method_are_refused() {
+    let k3 = robot("krut-3.toml");
+    let e = stderr_of_failure(&["tension", &k3, "--pose", "0,0", "--nu", "0.5"]);
+    assert!(
+        e.contains("--nu is an option of the sotda method only, and the method is l2"),
+        "{e}"
+    );
+    let e = stderr_of_failure(&[
+        "tension",
+        &k3,
+        "--pose",
+        "0,0",
+        "--method",
+        "linf",
+        "--direction",
+        "1,0",
+        "--full",
+    ]);
+    assert!(
+        e.contains("--direction, --full are options of the sotda method only"),
+        "{e}"
+    );
+    assert!(e.contains("linf"), "{e}");
+    let e = stderr_of_failure(&[
+        "trajectory",
+        &k3,
+        "--from",
+        "0,0",
+        "--to",
+        "0.1,0",
+        "--nu",
+        "0.3",
+    ]);
+    assert!(
+        e.contains("--nu is an option of the sotda method only"),
+        "{e}"
+    );
+}

@@ -282,3 +282,116 @@ fn grid_text_of_a_3d_robot_names_its_height() {
     let planar = text(&["isotropic", &robot("krut-4.toml"), "--grid", "2"]);
     assert!(!planar.contains("at z ="), "{planar}");
 }
+
+/// `faces`, `normals`, `offsets` of a point3 robot's force polytope (JSON): every vertex
+/// satisfies every face inequality n · v ≤ d, each face's vertices lie on it, faces turn
+/// counter-clockwise seen from outside, and V − E + F = 2. For the krut-3 hexagon the faces
+/// are its six edges.
+#[test]
+fn polytope_faces_normals_and_offsets_in_json() {
+    let v = json(&[
+        "isotropic",
+        &robot("hangprinter-v4.toml"),
+        "--pose",
+        "0,0,0.5",
+        "--json",
+    ]);
+    let pts: Vec<[f64; 3]> = v["vertices"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [0, 1, 2].map(|k| f(&p[k])))
+        .collect();
+    let faces = v["faces"].as_array().unwrap();
+    let (normals, offsets) = (
+        v["normals"].as_array().unwrap(),
+        v["offsets"].as_array().unwrap(),
+    );
+    assert_eq!((faces.len(), normals.len()), (offsets.len(), offsets.len()));
+    let tol = 1e-7 * 100.0;
+    let mut edges = 0;
+    for ((face, n), d) in faces.iter().zip(normals).zip(offsets) {
+        let n = [0, 1, 2].map(|k| f(&n[k]));
+        let d = f(d);
+        let dot = |p: &[f64; 3]| n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+        for p in &pts {
+            assert!(dot(p) <= d + tol);
+        }
+        let idx: Vec<usize> = face
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|i| i.as_u64().unwrap() as usize)
+            .collect();
+        edges += idx.len();
+        for i in &idx {
+            assert!((dot(&pts[*i]) - d).abs() <= tol);
+        }
+        let [a, b, c] = [0, 1, 2].map(|k| pts[idx[k]]);
+        let (u, w) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        let cross = [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ];
+        assert!(
+            dot(&cross) > 0.0,
+            "face {idx:?} is clockwise seen from outside"
+        );
+    }
+    assert_eq!(pts.len() as i64 - edges as i64 / 2 + faces.len() as i64, 2);
+    assert_eq!(faces.len(), 12); // 4 generators: a zonotope with 4·3 faces
+    let k3 = json(&[
+        "isotropic",
+        &robot("krut-3.toml"),
+        "--pose",
+        "0,0",
+        "--json",
+    ]);
+    assert_eq!(k3["faces"].as_array().unwrap().len(), 6);
+    assert_eq!(k3["faces"][0].as_array().unwrap().len(), 2);
+}
+
+/// `--plot X.html` with a point3 robot writes the polytope view (no robot, axes in N, the
+/// ball); a point2 robot asks for .png/.svg, a planar one is refused.
+#[test]
+fn polytope_view_of_a_point3_robot() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("poly.html");
+    let out = cdpr()
+        .args([
+            "isotropic",
+            &robot("hangprinter-v4.toml"),
+            "--pose",
+            "0,0,0.5",
+            "--plot",
+        ])
+        .arg(&page)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    for s in [
+        "\"units\":\"N\"",
+        "\"ball\":{\"centre\":[",
+        "\"hideBox\":true",
+        "\"anchors\":[]",
+    ] {
+        assert!(html.contains(s), "{s}");
+    }
+    for (r, pose) in [("krut-3.toml", "0,0"), ("tdpm-4.toml", "0,0,0")] {
+        let out = cdpr()
+            .args(["isotropic", &robot(r), "--pose", pose, "--plot"])
+            .arg(&page)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{r}");
+    }
+}

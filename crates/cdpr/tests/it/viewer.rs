@@ -218,3 +218,75 @@ fn cli_writes_the_viewer_and_the_iso_figure_for_spatial_robots() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("3-D"));
 }
+
+/// The force polytope view (a cube of forces with its inscribed ball, no robot) draws in a
+/// headless browser without a script error.
+#[test]
+fn force_polytope_page_draws_in_a_headless_browser() {
+    let aws = cdpr::polytope::hyperplane_shifting::available_wrench_set(
+        &nalgebra::DMatrix::identity(3, 3),
+        &cdpr::tension::TensionBounds::uniform(3, 0.0, 2.0).unwrap(),
+    )
+    .unwrap();
+    let scene = cdpr::plot::force_polytope_scene(&aws, [1.0; 3], 1.0).unwrap();
+    let html = cdpr::plot::viewer::html(&scene);
+    assert!(html.contains("\"ball\":{\"centre\":[1.0,1.0,1.0],\"radius\":1.0}"));
+    let Some(b) = browser() else {
+        println!("note: no Chromium found (set CDPR_CHROMIUM): the HTML viewer was not loaded");
+        return;
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let page = dir.path().join("polytope.html");
+    std::fs::write(&page, html).unwrap();
+    let dom = dump_dom(&b, &page);
+    assert!(
+        dom.contains("data-state=\"ok\">rendered 12 triangles"),
+        "{}",
+        dom.lines()
+            .filter(|l| l.contains("cdpr-status"))
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
+
+/// Anchors carry the cables' `name` keys (NE, NW, …) in the HTML viewer and in the isometric
+/// figure alike; robots without names get A1, A2, ….
+#[test]
+fn anchors_are_labelled_by_cable_name_in_every_3d_view() {
+    let dir = tempfile::tempdir().unwrap();
+    let (page, svg) = (dir.path().join("s.html"), dir.path().join("s.svg"));
+    for p in [&page, &svg] {
+        let out = cdpr()
+            .args([
+                "workspace",
+                &robot("spidercam-like-4.toml"),
+                "--grid",
+                "3",
+                "--plot",
+            ])
+            .arg(p)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.contains("\"anchorNames\":[\"NE\",\"NW\",\"SW\",\"SE\"]"),
+        "names in the viewer"
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    let labels: Vec<&str> = text.lines().map(str::trim).collect();
+    for name in ["NE", "NW", "SW", "SE"] {
+        assert!(
+            labels.iter().any(|l| l.split('/').any(|n| n == name)),
+            "{name} in the figure"
+        );
+    }
+    assert!(!labels.contains(&"A1"));
+    let html = cdpr::plot::viewer::html(&octahedron());
+    assert!(html.contains("\"anchorNames\":[\"A1\",\"A2\""));
+}

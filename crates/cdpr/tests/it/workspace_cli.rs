@@ -580,8 +580,8 @@ fn workspace_figures_say_what_they_show() {
         ],
     );
     assert_eq!(svg.matches("slice z = ").count(), 4, "four z-slices");
-    assert!(svg.contains("c1, c5"), "coinciding anchors share a label");
-    assert!(!svg.contains(">c5<"), "no label on top of another");
+    assert!(svg.contains("A1, A5"), "coinciding anchors share a label");
+    assert!(!svg.contains(">A5<"), "no label on top of another");
 }
 
 /// `--optimizer global`: from the start of the thesis' Table 6.6 run 4, whose published optimum
