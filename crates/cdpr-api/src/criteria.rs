@@ -32,9 +32,9 @@ use crate::inputs::{check_method, external_wrench, wrench};
 /// The criteria of a region analysis and their load, as the command line spells them.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, JsonSchema)]
 pub struct WorkspaceCriteria {
-    /// Comma list of criteria that must all hold: tension, length[:L] (m), det[:D],
-    /// wrench-closure, capacity[:M], isotropic:F (N), stiffness:KT,KR or stiffness:K,
-    /// interference[:D] (m), dynamic. Default: tension, plus length and det when the robot file
+    /// Comma list of criteria that must all hold: `tension`, `length[:L]` (m), `det[:D]`,
+    /// `wrench-closure`, `capacity[:M]`, `isotropic:F` (N), `stiffness:KT,KR` or `stiffness:K`,
+    /// `interference[:D]` (m), `dynamic`. Default: tension, plus length and det when the robot file
     /// gives their limits.
     #[serde(default)]
     pub criteria: Option<String>,

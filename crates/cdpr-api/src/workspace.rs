@@ -30,7 +30,7 @@ pub struct WorkspaceRequest {
     /// Platform orientation: φ (rad, planar), rx,ry,rz (rad, spatial); none for point robots.
     #[serde(default)]
     pub orientation: Option<Vec<f64>>,
-    /// XMIN,XMAX,YMIN,YMAX[,ZMIN,ZMAX] (m); default: the frame anchors' bounding box (extended
+    /// `XMIN,XMAX,YMIN,YMAX[,ZMIN,ZMAX]` (m); default: the frame anchors' bounding box (extended
     /// below anchors that span little height).
     #[serde(default, rename = "box")]
     pub area: Option<Vec<f64>>,
@@ -58,7 +58,7 @@ pub struct WorkspaceReport {
     pub criteria: Vec<String>,
     /// Tension method of the tension criterion.
     pub tension_method: String,
-    /// XMIN,XMAX,YMIN,YMAX[,ZMIN,ZMAX] (m).
+    /// `XMIN,XMAX,YMIN,YMAX[,ZMIN,ZMAX]` (m).
     #[serde(rename = "box")]
     pub area_box: Vec<f64>,
     /// M.
