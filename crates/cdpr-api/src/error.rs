@@ -7,10 +7,12 @@
 //! ## References
 //! - The `thiserror` conventions of the cdpr crates (docs/architecture.md).
 
+use cdpr_dynamics::DynamicsError;
 use cdpr_io::RobotFileError;
 use cdpr_kinematics::KinematicsError;
 use cdpr_polytope::PolytopeError;
 use cdpr_tension::TensionError;
+use cdpr_workspace::WorkspaceError;
 use cdpr_wrench::WrenchError;
 
 /// Why a request has no report.
@@ -36,6 +38,12 @@ pub enum ApiError {
     /// Available wrench sets, capacity margin, isotropic force.
     #[error(transparent)]
     Polytope(#[from] PolytopeError),
+    /// Platform dynamics (the `dynamic` criterion).
+    #[error(transparent)]
+    Dynamics(#[from] DynamicsError),
+    /// Regions, grids and pose evaluators.
+    #[error(transparent)]
+    Workspace(#[from] WorkspaceError),
 }
 
 impl ApiError {

@@ -17,6 +17,7 @@
 //! | [`CapacityRequest`] | [`CapacityReport`] | capacity margin of a required wrench set |
 //! | [`IsotropicRequest`] | [`IsotropicReport`] | isotropic force, force polytope, ellipse |
 //! | [`IsotropicMapRequest`] | [`IsotropicMapReport`] | isotropic force over a grid |
+//! | [`WorkspaceRequest`] | [`WorkspaceReport`] | constant-orientation workspace on a grid |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -41,18 +42,22 @@
 //! - docs/architecture.md, "Requests and reports".
 
 mod capacity;
+pub mod criteria;
 mod error;
 mod forward;
 pub mod inputs;
 mod isotropic;
 mod isotropic_map;
 mod kinematics;
+pub mod region;
 mod robot;
 pub mod schema;
 mod stiffness;
 mod tension;
+mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
+pub use criteria::{CriteriaSetup, WorkspaceCriteria, default_method};
 pub use error::ApiError;
 pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
 pub use isotropic::{EllipseReport, IsotropicReport, IsotropicRequest, definition};
@@ -68,6 +73,7 @@ pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
+pub use workspace::{PreparedWorkspace, WorkspaceReport, WorkspaceRequest};
 
 /// The nalgebra of the whole stack.
 pub use nalgebra;

@@ -32,6 +32,8 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<IsotropicReport>("isotropic", "report"),
         entry::<IsotropicMapRequest>("isotropic-map", "request"),
         entry::<IsotropicMapReport>("isotropic-map", "report"),
+        entry::<WorkspaceRequest>("workspace", "request"),
+        entry::<WorkspaceReport>("workspace", "report"),
     ]
 }
 

@@ -1,6 +1,6 @@
 //! `cdpr dextrous`: the dextrous workspace over a range of orientations (thesis eq. 6.28).
 
-use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
+use super::criteria::{CriteriaArgs, default_method};
 use super::region::{
     box_json, box_numbers, dextrous, draw_pose, load_text, measure_json, progress, region,
     resolution, rotation, save_grid_plot,
@@ -129,7 +129,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .criteria
         .method
         .unwrap_or_else(|| default_method(robot));
-    let setup = CriteriaSetup::from_args(&args.criteria, &desc, method)?;
+    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
     let (base, axis) = match motion {
         MotionPattern::Spatial => {
             let axis = match args.axis.as_deref() {

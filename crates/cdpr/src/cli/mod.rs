@@ -6,7 +6,6 @@ pub mod capacity;
 pub mod convert;
 pub mod criteria;
 pub mod dextrous;
-pub mod dynamic_workspace;
 pub mod forward;
 pub mod isotropic;
 pub mod kinematics;
@@ -20,6 +19,7 @@ pub mod tension;
 pub mod time_law;
 pub mod trajectory;
 pub mod workspace;
+pub mod workspace_grid;
 pub mod workspace_mesh;
 
 use cdpr::RobotDescription;

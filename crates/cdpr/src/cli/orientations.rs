@@ -172,7 +172,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .criteria
         .method
         .unwrap_or_else(|| default_method(&desc.robot));
-    let setup = CriteriaSetup::from_args(&args.criteria, &desc, method)?;
+    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
     let u = match args.position.0.as_slice() {
         [x, y, z] if [x, y, z].iter().all(|v| v.is_finite()) => Vector3::new(*x, *y, *z),
         p => {

@@ -19,102 +19,19 @@ use serde_json::{Value, json};
 use std::io::IsTerminal;
 use std::path::Path;
 
-/// The platform orientation from command-line numbers: φ (planar), rx,ry,rz (spatial), none
-/// (point robots; zeros are accepted).
+/// The platform orientation from command-line numbers (see [`cdpr::api::region::rotation`]).
 pub fn rotation(motion: MotionPattern, q: Option<&[f64]>) -> Result<Rotation3<f64>, CliError> {
-    let q = q.unwrap_or(&[]);
-    if let Some(v) = q.iter().find(|v| !v.is_finite()) {
-        return Err(format!("--orientation: {v} is not a finite number").into());
-    }
-    match motion {
-        MotionPattern::Point2 | MotionPattern::Point3 => {
-            if q.iter().any(|&v| v != 0.0) {
-                return Err(format!(
-                    "a `{}` robot has no orientation: omit --orientation",
-                    motion.name()
-                )
-                .into());
-            }
-            Ok(Rotation3::identity())
-        }
-        MotionPattern::Planar => match q {
-            [] => Ok(Rotation3::identity()),
-            [phi] => Ok(Rotation3::from_axis_angle(&Vector3::z_axis(), *phi)),
-            _ => Err(format!(
-                "--orientation needs 1 number (φ) for a planar robot, got {}",
-                q.len()
-            )
-            .into()),
-        },
-        MotionPattern::Spatial => match q {
-            [] => Ok(Rotation3::identity()),
-            [rx, ry, rz] => Ok(Pose::spatial(Vector3::zeros(), *rx, *ry, *rz).rotation),
-            _ => Err(format!(
-                "--orientation needs 3 numbers (rx,ry,rz) for a spatial robot, got {}",
-                q.len()
-            )
-            .into()),
-        },
-    }
+    Ok(cdpr::api::region::rotation(motion, q)?)
 }
 
-/// The search box: 4 numbers in the plane, 6 in space; default [`Region::default_for`] (the
-/// frame anchors' bounding box, extended below anchors that span little height).
+/// The search box (see [`cdpr::api::region::region`]).
 pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, CliError> {
-    let dim = robot.motion().space_dim();
-    let r = match q {
-        None => Region::default_for(robot),
-        Some(b) if dim == 2 && b.len() == 4 => Region::planar(b[0], b[1], b[2], b[3]),
-        Some(b) if dim == 3 && b.len() == 6 => Region::cuboid(
-            Vector3::new(b[0], b[2], b[4]),
-            Vector3::new(b[1], b[3], b[5]),
-        ),
-        Some(b) => {
-            return Err(format!(
-                "{option} needs {} numbers ({}) for a `{}` robot, got {}",
-                2 * dim,
-                if dim == 2 {
-                    "XMIN,XMAX,YMIN,YMAX"
-                } else {
-                    "XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX"
-                },
-                robot.motion().name(),
-                b.len()
-            )
-            .into());
-        }
-    };
-    if q.is_some() {
-        for (k, axis) in ["x", "y", "z"].iter().enumerate().take(dim) {
-            let (lo, hi) = (r.min[k], r.max[k]);
-            let (a, b) = (axis.to_uppercase(), axis.to_uppercase());
-            if !(lo.is_finite() && hi.is_finite()) {
-                return Err(format!(
-                    "{option}: the {axis} bounds {a}MIN = {lo}, {b}MAX = {hi} must be finite numbers (m)"
-                )
-                .into());
-            }
-            if lo >= hi {
-                return Err(format!(
-                    "{option}: along {axis}, {a}MIN = {lo} m must be less than {b}MAX = {hi} m"
-                )
-                .into());
-            }
-        }
-    }
-    r.validate(dim)?;
-    Ok(r)
+    Ok(cdpr::api::region::region(robot, q, option)?)
 }
 
-/// Grid resolution: default 50 in the plane (the thesis), 20 in space; bounded to keep the
-/// point count reasonable.
+/// Grid resolution (see [`cdpr::api::region::resolution`]).
 pub fn resolution(m: Option<usize>, dim: usize, default_2d: usize) -> Result<usize, CliError> {
-    let max = if dim == 2 { 4000 } else { 300 };
-    let m = m.unwrap_or(if dim == 2 { default_2d } else { 20 });
-    if !(1..=max).contains(&m) {
-        return Err(format!("--grid M must lie in [1, {max}] for a {dim}-D grid").into());
-    }
-    Ok(m)
+    Ok(cdpr::api::region::resolution(m, dim, default_2d)?)
 }
 
 /// A progress bar on stderr counting `len` chunks, hidden unless stderr is a terminal.
@@ -184,25 +101,6 @@ where
         )
         .collect();
     rows.into_iter().flatten().collect()
-}
-
-/// Algorithm 6.2 at a fixed orientation, with a progress bar (same verdicts as
-/// `cdpr::workspace::constant_orientation_workspace`).
-pub fn grid_workspace(
-    eval: &PoseEvaluator,
-    rotation: &Rotation3<f64>,
-    grid: &Grid,
-    bar: &ProgressBar,
-) -> Result<GridWorkspace, CliError> {
-    let dim = eval.robot().motion().space_dim();
-    grid.validate(dim)?;
-    eval.validate()?;
-    let r = *rotation;
-    let feasible = map_rows(eval, grid, dim, bar, |ev, u| {
-        ev.is_feasible(&Pose::new(u, r))
-    });
-    bar.finish_and_clear();
-    Ok(GridWorkspace::from_verdicts(*grid, dim, feasible))
 }
 
 /// A dextrous workspace on a grid (eq. 6.28) with the §6.5 check.

@@ -158,7 +158,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .criteria
         .method
         .unwrap_or_else(|| default_method(n, robot.dof()));
-    let setup = CriteriaSetup::from_args(&args.criteria, &desc, method)?;
+    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
     let platform: Vec<[f64; 2]> = robot
         .cables()
         .iter()

@@ -115,25 +115,9 @@ pub fn waypoint_times<W>(
     }
 }
 
-/// The platform's rigid body from the robot file (usage error if the file lacks what the
-/// motion pattern needs, or if the inertia is not symmetric positive definite).
+/// The platform's rigid body from the robot file (see [`cdpr::api::criteria::rigid_body`]).
 pub fn rigid_body(robot: &cdpr::RobotDescription) -> Result<RigidBody, CliError> {
-    let p = &robot.platform;
-    if !(p.mass.is_finite() && p.mass > 0.0) {
-        return Err(format!(
-            "[platform] mass = {} kg: dynamics needs a finite positive platform mass",
-            p.mass
-        )
-        .into());
-    }
-    if robot.robot.motion().has_orientation() {
-        let inertia = robot.inertia.ok_or(
-            "dynamics of a planar or spatial platform needs `[platform] inertia` (kg·m², about the centre of mass)",
-        )?;
-        RigidBody::new(p, inertia).map_err(|e| format!("[platform] inertia: {e}").into())
-    } else {
-        Ok(RigidBody::point_mass(p)?)
-    }
+    Ok(cdpr::api::criteria::rigid_body(robot)?)
 }
 
 /// Runs the timed trajectory.

@@ -5,17 +5,17 @@
 
 use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
 use super::region::{
-    at_orientation, box_json, box_numbers, draw_pose, grid_workspace, is_html, measure_json,
-    plot_title, progress, region, resolution, rotation, save_grid_plot, save_plot, save_scene_plot,
+    box_json, draw_pose, is_html, plot_title, region, resolution, rotation, save_plot,
     workspace_plot,
 };
 use super::workspace_mesh::Context;
-use super::{CliError, Numbers, load_robot, print_json};
+use super::{CliError, Numbers, load_robot, print_json, request_robot};
 use cdpr::RobotDescription;
+use cdpr::api::WorkspaceRequest;
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::workspace::{
-    ChordSettings, ChordWorkspace, Grid, GridWorkspace, OrientationSet, OrientationWorkspaceKind,
-    Region, VolumeConvention, chord_workspace,
+    ChordSettings, ChordWorkspace, OrientationSet, OrientationWorkspaceKind, Region,
+    VolumeConvention, chord_workspace,
 };
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -192,6 +192,9 @@ fn args_mesh_view(args: &Args) -> super::workspace_mesh::Options<'_> {
 
 /// Runs the command.
 pub fn run(args: Args) -> Result<(), CliError> {
+    if args.boundary == "grid" && args.section.is_none() && args.orientations.is_none() {
+        return run_grid(&args);
+    }
     let desc = load_robot(&args.robot)?;
     let robot = &desc.robot;
     let motion = robot.motion();
@@ -200,7 +203,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         .criteria
         .method
         .unwrap_or_else(|| default_method(robot));
-    let setup = CriteriaSetup::from_args(&args.criteria, &desc, method)?;
+    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
     let rot = rotation(motion, args.orientation.as_deref())?;
     let region = region(robot, args.area.as_deref(), "--box")?;
     let m = resolution(args.grid, dim, 50)?;
@@ -257,15 +260,46 @@ pub fn run(args: Args) -> Result<(), CliError> {
     } else {
         None
     };
-    if args.boundary == "chord" {
-        run_chord(&args, &context, pose.as_ref())?;
-    } else {
-        run_grid(&args, &context, pose.as_ref())?;
-    }
+    run_chord(&args, &context, pose.as_ref())?;
     if let (Some(p), false) = (&args.plot, args.json) {
         println!("plot written to {}", p.display());
     }
     Ok(())
+}
+
+/// `--boundary grid` (the default) at one orientation: parse → request → run → render
+/// (module `workspace_grid`).
+fn run_grid(args: &Args) -> Result<(), CliError> {
+    let robot = request_robot(&args.robot)?;
+    let motion = robot.robot.motion();
+    super::workspace_mesh::check_options(&args_mesh_view(args), motion)?;
+    if let Some(p) = &args.plot
+        && is_html(p)
+        && motion.space_dim() != 3
+    {
+        return Err(format!(
+            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
+                 use .svg or .png",
+            p.display()
+        )
+        .into());
+    }
+    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
+    let request = WorkspaceRequest {
+        robot,
+        criteria: args.criteria.to_request(),
+        orientation: numbers(&args.orientation),
+        area: numbers(&args.area),
+        grid: args.grid,
+        volume_convention: args.volume_convention,
+    };
+    let view = super::workspace_grid::View {
+        draw_pose: args.draw_pose.as_deref(),
+        plot: args.plot.as_deref(),
+        points: args.points.as_deref(),
+        json: args.json,
+    };
+    super::workspace_grid::run(&request, &view)
 }
 
 /// `--orientations`: the workspace over a set of orientations (module `orientations`).
@@ -453,145 +487,4 @@ fn print_chord(args: &Args, c: &Context<'_>, ws: &ChordWorkspace) {
             ws.abandoned
         );
     }
-}
-
-/// `--boundary grid` (the default): thesis Algorithm 6.2 on an m × m (× m) grid.
-fn run_grid(args: &Args, c: &Context<'_>, pose: Option<&Pose>) -> Result<(), CliError> {
-    let dim = c.desc.robot.motion().space_dim();
-    let grid = Grid::new(c.m, *c.region);
-    let bar = progress(grid.point_count(dim).div_ceil(grid.points_per_axis()));
-    let ws = grid_workspace(c.eval, c.rotation, &grid, &bar)?;
-    if let Some(path) = &args.points {
-        super::workspace_mesh::write_points(&ws, path)?;
-    }
-    if let (Some(path), Some(pose)) = (&args.plot, pose) {
-        save_grid_workspace_plot(c, pose, &ws, path)?;
-    }
-    if args.json {
-        let mut v = json!({
-            "robot": c.desc.name,
-            "method": "grid",
-            "orientation": c.orientation,
-            "external_wrench": c.w_ext,
-            "criteria": c.setup.labels(),
-            "tension_method": c.setup.method.name(),
-            "box": box_json(c.region, dim),
-            "resolution": c.m,
-            "dimension": dim,
-            "feasible_points": ws.feasible_points,
-            "total_points": ws.total_points,
-            "cell_area": ws.cell_area,
-        });
-        measure_json(&mut v, &ws, c.volume_convention);
-        return print_json(&v);
-    }
-    print_grid(c, &ws);
-    Ok(())
-}
-
-/// Area (2-D) or volume (3-D) and its unit.
-fn measure_name(dim: usize) -> (&'static str, &'static str) {
-    if dim == 2 {
-        ("area", "m²")
-    } else {
-        ("volume", "m³")
-    }
-}
-
-/// The plot of `--boundary grid`: the 3-D scene (SVG/PNG views or HTML) or the planar grid.
-fn save_grid_workspace_plot(
-    c: &Context<'_>,
-    pose: &Pose,
-    ws: &GridWorkspace,
-    path: &Path,
-) -> Result<(), CliError> {
-    let (desc, m, convention) = (c.desc, c.m, c.volume_convention);
-    let motion = desc.robot.motion();
-    if motion.space_dim() == 3 {
-        return save_scene_plot(
-            desc,
-            pose,
-            ws,
-            format!(
-                "{}: constant-orientation workspace{}",
-                desc.name,
-                at_orientation(c.orientation)
-            ),
-            vec![
-                format!(
-                    "volume {:.4} m³ ({} of {} points, m = {m}, {convention} convention)",
-                    ws.measure(convention),
-                    ws.feasible_points,
-                    ws.total_points,
-                ),
-                format!("criteria: {}", c.setup.labels().join(", ")),
-                format!(
-                    "draw pose ({:.3}, {:.3}, {:.3}) m",
-                    pose.position.x, pose.position.y, pose.position.z
-                ),
-            ],
-            path,
-        );
-    }
-    let (what, unit) = measure_name(2);
-    let (title, setting) = plot_title(
-        &desc.name,
-        "constant-orientation workspace (grid)",
-        motion,
-        c.orientation,
-        c.w_ext,
-        c.setup.method,
-    );
-    save_grid_plot(
-        desc,
-        pose,
-        ws,
-        title,
-        vec![
-            setting,
-            format!(
-                "{what} {:.4} {unit} ({} of {} points, m = {m}, {convention} convention); {}",
-                ws.measure(convention),
-                ws.feasible_points,
-                ws.total_points,
-                c.setup.labels().join(", ")
-            ),
-        ],
-        path,
-    )
-}
-
-/// The text answer of `--boundary grid`.
-fn print_grid(c: &Context<'_>, ws: &GridWorkspace) {
-    let motion = c.desc.robot.motion();
-    let dim = motion.space_dim();
-    let (what, unit) = measure_name(dim);
-    println!(
-        "robot {}: constant-orientation workspace at orientation {}, w_ext {}",
-        c.desc.name,
-        if c.orientation.is_empty() {
-            "(none: a point robot)".to_string()
-        } else {
-            format!("{} rad", super::nums(c.orientation))
-        },
-        super::wrench_text(c.w_ext, motion.translation_dof())
-    );
-    println!(
-        "criteria: {} (tensions: {})",
-        c.setup.labels().join(", "),
-        c.setup.method.name()
-    );
-    println!(
-        "grid m = {} over {} m: {} of {} points feasible, cell {what} {:.6e} {unit}",
-        c.m,
-        super::nums(&box_numbers(c.region, dim)),
-        ws.feasible_points,
-        ws.total_points,
-        ws.cell_area
-    );
-    println!(
-        "{what} {:.6} {unit} ({})",
-        ws.measure(c.volume_convention),
-        c.volume_convention.describe()
-    );
 }
