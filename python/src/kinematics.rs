@@ -6,7 +6,9 @@
 
 use crate::arrays::{Rows, batch_shape, out_array, to_numpy, writable, zeros};
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix, points3};
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::KinematicsRequest;
 use cdpr_kinematics::{Pose, PoseKinematics};
 use nalgebra::DMatrix;
 use numpy::PyArrayDyn;
@@ -59,6 +61,13 @@ pub fn inverse_kinematics(
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
+    if rows.single && out.is_none() {
+        let request = KinematicsRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+        };
+        return kinematics_at(py, &request);
+    }
     let widths = [n, 3 * n, dof * n, 3 * n];
     let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
     let shapes = [
@@ -155,6 +164,21 @@ pub fn inverse_kinematics(
             unit_vectors,
             wrench_matrix,
             attachment_points,
+        },
+    )
+}
+
+/// One pose without ``out=``: the `cdpr kinematics` request and its report.
+fn kinematics_at(py: Python<'_>, request: &KinematicsRequest) -> PyResult<Py<KinematicsResult>> {
+    let r = request.run().map_err(api_error)?;
+    let n = r.lengths.len();
+    Py::new(
+        py,
+        KinematicsResult {
+            lengths: to_numpy(py, &[n], r.lengths).unbind(),
+            unit_vectors: points3(py, &r.unit_vectors).unbind(),
+            wrench_matrix: matrix(py, &r.wrench_matrix, n).unbind(),
+            attachment_points: points3(py, &r.attachment_points).unbind(),
         },
     )
 }

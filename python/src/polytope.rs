@@ -6,16 +6,19 @@
 //! stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020 eqs. (3)–(4);
 //! `cdpr stiffness`).
 
-use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::arrays::{FloatArray, Rows, shape_string, to_numpy};
 use crate::kinematics::pose_at;
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix};
 use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::{CapacityRequest, IsotropicRequest, StiffnessRequest};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_polytope::hyperplane_shifting::available_wrench_set;
 use cdpr_polytope::{IsotropicForce, RequiredWrenchSet, limiting_facet};
 use nalgebra::{DMatrix, DVector};
 use numpy::PyArrayDyn;
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 
 /// Wraps a per-pose error with the pose index.
@@ -60,14 +63,10 @@ pub struct StiffnessResult {
     pub active: Py<PyArrayDyn<f64>>,
 }
 
-/// A scalar per pose: a Python float (one pose) or a (N,) array.
-fn per_pose<'py>(py: Python<'py>, single: bool, v: Vec<f64>) -> PyResult<Py<PyAny>> {
-    Ok(if single {
-        v[0].into_pyobject(py)?.into_any().unbind()
-    } else {
-        let n = v.len();
-        to_numpy(py, &[n], v).into_any().unbind()
-    })
+/// A scalar per pose of a batch: a (N,) array.
+fn per_pose(py: Python<'_>, v: Vec<f64>) -> Py<PyAny> {
+    let n = v.len();
+    to_numpy(py, &[n], v).into_any().unbind()
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -100,6 +99,26 @@ pub fn capacity_margin(
     }
     if wrench_box.is_some() && wrench_ball.is_some() {
         return Err(value_error("give wrench_box or wrench_ball, not both"));
+    }
+    if rows.single {
+        let request = CapacityRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+            wrench: Some(wr.at(0).to_vec()),
+            wrench_box,
+            wrench_ball,
+            force_radius: None,
+            moment_radius: None,
+        };
+        let r = request.run().map_err(api_error)?;
+        return Ok(CapacityResult {
+            capacity_margin: r.capacity_margin.unwrap_or(f64::INFINITY).into_py_any(py)?,
+            feasible: r.feasible.into_py_any(py)?,
+            limiting_facet: r
+                .limiting_facet
+                .map_or(-1, |f| f.index as i64)
+                .into_py_any(py)?,
+        });
     }
     let desc = &robot.desc;
     let widths = [1, 1];
@@ -142,35 +161,10 @@ pub fn capacity_margin(
     let feasible: Vec<bool> = margin.iter().map(|&m| m >= 0.0).collect();
     let facet: Vec<i64> = facet.iter().map(|&f| f as i64).collect();
     Ok(CapacityResult {
-        feasible: if rows.single {
-            feasible[0]
-                .into_pyobject(py)?
-                .to_owned()
-                .into_any()
-                .unbind()
-        } else {
-            to_numpy(py, &[count], feasible).into_any().unbind()
-        },
-        limiting_facet: if rows.single {
-            facet[0].into_pyobject(py)?.into_any().unbind()
-        } else {
-            to_numpy(py, &[count], facet).into_any().unbind()
-        },
-        capacity_margin: per_pose(py, rows.single, margin)?,
+        feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
+        limiting_facet: to_numpy(py, &[count], facet).into_any().unbind(),
+        capacity_margin: per_pose(py, margin),
     })
-}
-
-/// What the isotropic force means for a motion pattern (as `cdpr isotropic` says).
-fn definition(robot: &Robot) -> &'static str {
-    if robot.motion_pattern().has_orientation() {
-        "force at zero moment: radius of the largest force ball centred at -w_ext (the origin \
-         without load) inside the moment = 0 slice of the available wrench set \
-         {W t : t_min <= t <= t_max}; negative when -w_ext is outside"
-    } else {
-        "radius of the largest force ball centred at -w_ext (the origin without load) inside the \
-         available force polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, \
-         eq. 19); negative when -w_ext is outside"
-    }
 }
 
 pub fn isotropic(
@@ -190,6 +184,20 @@ pub fn isotropic(
         .map(|w| FloatArray::new(w, "wrenches"))
         .transpose()?;
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
+    if rows.single {
+        let request = IsotropicRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+            wrench: Some(wr.at(0).to_vec()),
+            ellipse: false,
+        };
+        let r = request.run().map_err(api_error)?;
+        return Ok(IsotropicResult {
+            isotropic_force: r.isotropic_force.into_py_any(py)?,
+            wrench_radius: r.wrench_radius.into_py_any(py)?,
+            definition: r.definition,
+        });
+    }
     let desc = &robot.desc;
     // One allocation-free evaluator per worker (hyperplane shifting on the fly, no facet list:
     // what `cdpr isotropic --grid` runs), its load set pose by pose.
@@ -225,9 +233,9 @@ pub fn isotropic(
     let radius = outs.pop().unwrap();
     let force = outs.pop().unwrap();
     Ok(IsotropicResult {
-        isotropic_force: per_pose(py, rows.single, force)?,
-        wrench_radius: per_pose(py, rows.single, radius)?,
-        definition: definition(robot).into(),
+        isotropic_force: per_pose(py, force),
+        wrench_radius: per_pose(py, radius),
+        definition: cdpr_api::definition(robot.motion_pattern()).into(),
     })
 }
 
@@ -289,6 +297,24 @@ pub fn stiffness(
             )
         })?,
     };
+    if rows.single {
+        let mut desc = (*robot.desc).clone();
+        desc.axial_stiffness = Some(es);
+        let request = StiffnessRequest {
+            robot: cdpr_api::Robot::from_description(desc),
+            pose: data.to_vec(),
+            tensions: Some(tdata.into_owned()),
+            method: None,
+            wrench: None,
+            axial_stiffness: None,
+        };
+        let r = request.run().map_err(api_error)?;
+        return Ok(StiffnessResult {
+            stiffness: matrix(py, &r.stiffness, dof).unbind(),
+            passive: matrix(py, &r.passive, dof).unbind(),
+            active: matrix(py, &r.active, dof).unbind(),
+        });
+    }
     let widths = [dof * dof; 3];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
@@ -322,7 +348,7 @@ pub fn stiffness(
         )
         .map_err(value_error)
     })?;
-    let shape = batch_shape(rows.single, count, &[dof, dof]);
+    let shape = [count, dof, dof];
     let mut outs = outs.into_iter();
     let mut next = || to_numpy(py, &shape, outs.next().unwrap()).unbind();
     Ok(StiffnessResult {

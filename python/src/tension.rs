@@ -8,13 +8,16 @@
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writable, zeros};
 use crate::kinematics::pose_at;
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot};
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::{ApiError, SotdaSearch, TensionRequest};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{
     Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant, StiffnessData,
     TensionProblem, TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Vector3};
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use std::borrow::Cow;
@@ -231,9 +234,13 @@ pub fn tensions(
     let (dof, n) = (geo.dof(), geo.cable_count());
     let method = parse_method(method)?;
     let options = peer.for_method(method)?;
-    let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?
-        .with_options(options)
-        .map_err(value_error)?;
+    let base_solver = solver(
+        robot,
+        method,
+        sotda_settings(direction.clone(), nu, sotda_search)?,
+    )?
+    .with_options(options)
+    .map_err(value_error)?;
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
@@ -241,9 +248,31 @@ pub fn tensions(
         .map(|w| FloatArray::new(w, "wrenches"))
         .transpose()?;
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
+    if rows.single {
+        let request = TensionRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+            wrench: Some(wr.at(0).to_vec()),
+            method,
+            direction,
+            nu,
+            sotda_search: match sotda_search {
+                "vertices" => SotdaSearch::Vertices,
+                "full" => SotdaSearch::Full,
+                _ => SotdaSearch::Corners,
+            },
+            options: cdpr_api::PeerOptions {
+                interior: peer.interior,
+                alternating: peer.alternating,
+                p: peer.p,
+                alpha: peer.alpha,
+            },
+        };
+        return tension_at(py, &request);
+    }
     let desc = &robot.desc;
     let widths = [n, 1, 1, dof];
-    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
+    let shape = |rest: &[usize]| batch_shape(false, count, rest);
     let mut arrays = [zeros(py, &shape(&[n])), zeros(py, &shape(&[dof]))];
     let (mut f, mut r) = (vec![0.0; count], vec![0.0; count]);
     let [t_arr, w_arr] = &mut arrays;
@@ -315,27 +344,58 @@ pub fn tensions(
     let feasible: Vec<bool> = f.iter().map(|&v| v == 1.0).collect();
     let [tensions, external_wrench] = arrays.map(|a| a.into_any().unbind());
     let method = method.name().to_string();
-    Ok(if rows.single {
-        TensionResult {
-            tensions,
-            feasible: feasible[0]
-                .into_pyobject(py)?
-                .to_owned()
-                .into_any()
-                .unbind(),
-            residual: r[0].into_pyobject(py)?.into_any().unbind(),
-            reason: reasons[0].clone().into_pyobject(py)?.into_any().unbind(),
-            external_wrench,
-            method,
+    Ok(TensionResult {
+        tensions,
+        feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
+        residual: to_numpy(py, &[count], r).into_any().unbind(),
+        reason: PyList::new(py, reasons)?.into_any().unbind(),
+        external_wrench,
+        method,
+    })
+}
+
+/// One pose: the `cdpr tension` request and its report. A pose where the cables' directions
+/// are undefined is an infeasible answer with its reason, as in a batch.
+fn tension_at(py: Python<'_>, request: &TensionRequest) -> PyResult<TensionResult> {
+    request.validate().map_err(api_error)?;
+    let n = request.robot.robot.cable_count();
+    let (tensions, feasible, residual, reason, w_ext) = match request.run() {
+        Ok(r) if r.feasible => (
+            r.tensions.unwrap_or_else(|| vec![f64::NAN; n]),
+            true,
+            r.residual.unwrap_or(f64::NAN),
+            None,
+            r.external_wrench,
+        ),
+        Ok(r) => (
+            vec![f64::NAN; n],
+            false,
+            f64::NAN,
+            r.reason,
+            r.external_wrench,
+        ),
+        Err(ApiError::Kinematics(e)) => {
+            let p = cdpr_api::inputs::pose(&request.robot, &request.pose).map_err(api_error)?;
+            let w =
+                cdpr_api::inputs::external_wrench(&request.robot, &p, request.wrench.as_deref())
+                    .map_err(api_error)?;
+            (
+                vec![f64::NAN; n],
+                false,
+                f64::NAN,
+                Some(e.to_string()),
+                w.as_slice().to_vec(),
+            )
         }
-    } else {
-        TensionResult {
-            tensions,
-            feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
-            residual: to_numpy(py, &[count], r).into_any().unbind(),
-            reason: PyList::new(py, reasons)?.into_any().unbind(),
-            external_wrench,
-            method,
-        }
+        Err(e) => return Err(api_error(e)),
+    };
+    let dof = w_ext.len();
+    Ok(TensionResult {
+        tensions: to_numpy(py, &[n], tensions).into_any().unbind(),
+        feasible: feasible.into_py_any(py)?,
+        residual: residual.into_py_any(py)?,
+        reason: reason.into_py_any(py)?,
+        external_wrench: to_numpy(py, &[dof], w_ext).into_any().unbind(),
+        method: request.method.name().to_string(),
     })
 }
