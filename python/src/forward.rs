@@ -8,9 +8,12 @@
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix};
 use crate::{map_poses, run_batch, value_error};
+use cdpr_api::ForwardRequest;
 use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, Pose};
 use numpy::PyArrayDyn;
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 
 /// Forward-kinematics answers.
@@ -95,6 +98,16 @@ pub fn forward_kinematics(
             Some((poses, per_row))
         }
     };
+    if rows.single && max_iterations == ForwardSettings::default().max_iterations {
+        let request = ForwardRequest {
+            robot: api_robot(robot),
+            lengths: data.to_vec(),
+            guess: garr.as_ref().map(|g| g.data().into_owned()),
+            tolerance,
+            length_sigma,
+        };
+        return forward_at(py, &request);
+    }
     let multistart = guesses.is_none();
     let widths: [usize; 0] = [];
     let answers: Vec<Vec<ForwardSolution>> = run_batch(py, count, || {
@@ -169,5 +182,28 @@ pub fn forward_kinematics(
                 .collect();
             to_numpy(py, &[answers[0].len(), dof], all).unbind()
         }),
+    })
+}
+
+/// One set of lengths with the request's iteration limit: the `cdpr forward` request and its
+/// report (``solutions``: every distinct pose of a multi-start, best first).
+fn forward_at(py: Python<'_>, request: &ForwardRequest) -> PyResult<ForwardResult> {
+    let r = request.run().map_err(api_error)?;
+    let best = r.best;
+    let dof = best.pose.len();
+    let solutions = request.guess.is_none().then(|| {
+        let rows: Vec<Vec<f64>> = r.solutions.iter().map(|s| s.pose.clone()).collect();
+        matrix(py, &rows, dof).unbind()
+    });
+    Ok(ForwardResult {
+        pose: to_numpy(py, &[dof], best.pose).unbind(),
+        residual: best.residual.into_py_any(py)?,
+        iterations: (best.iterations as i64).into_py_any(py)?,
+        converged: best.converged.into_py_any(py)?,
+        status: best.status.into_py_any(py)?,
+        min_singular_value: best.min_singular_value.into_py_any(py)?,
+        solutions,
+        residual_rms: best.residual_rms.into_py_any(py)?,
+        pose_std: to_numpy(py, &[dof], best.pose_std).unbind(),
     })
 }
