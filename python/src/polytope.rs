@@ -110,20 +110,12 @@ pub fn capacity_margin(
             force_radius: None,
             moment_radius: None,
         };
-        let r = request.run().map_err(api_error)?;
-        return Ok(CapacityResult {
-            capacity_margin: r.capacity_margin.unwrap_or(f64::INFINITY).into_py_any(py)?,
-            feasible: r.feasible.into_py_any(py)?,
-            limiting_facet: r
-                .limiting_facet
-                .map_or(-1, |f| f.index as i64)
-                .into_py_any(py)?,
-        });
+        return capacity_at(py, &request);
     }
-    let desc = &robot.desc;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
+    let required = (wrench_box.as_deref(), wrench_ball);
     run_batch(py, count, || {
         map_poses(
             count,
@@ -131,21 +123,8 @@ pub fn capacity_margin(
             slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
-                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                let centre = DVector::from_column_slice(wr.at(k))
-                    + desc
-                        .load_wrench(&pose)
-                        .map_err(|e| format!("poses[{k}]: {e}"))?;
-                let required = match (&wrench_box, wrench_ball) {
-                    (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
-                    (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
-                    (None, None) => RequiredWrenchSet::point(centre),
-                }
-                .map_err(|e| e.to_string())?;
-                geo.update_kinematics(&pose, kin).map_err(at(k))?;
-                let w = kin.wrench_matrix();
-                let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
-                let limit = limiting_facet(&aws, &required).map_err(at(k))?;
+                let q = &data[k * dof..(k + 1) * dof];
+                let limit = limit_at_pose(robot, kin, (q, wr.at(k)), required, k)?;
                 let [m, f] = blocks else {
                     unreachable!("two outputs")
                 };
@@ -164,6 +143,46 @@ pub fn capacity_margin(
         feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
         limiting_facet: to_numpy(py, &[count], facet).into_any().unbind(),
         capacity_margin: per_pose(py, margin),
+    })
+}
+
+/// The limiting facet and margin at pose k (coordinates `q`, wrench `we`) of the required set
+/// (box half-widths or ball radius; a point without either).
+fn limit_at_pose(
+    robot: &Robot,
+    kin: &mut PoseKinematics,
+    (q, we): (&[f64], &[f64]),
+    (wrench_box, wrench_ball): (Option<&[f64]>, Option<f64>),
+    k: usize,
+) -> Result<Option<(usize, f64)>, String> {
+    let desc = &robot.desc;
+    let pose = pose_at(robot, q, k)?;
+    let centre = DVector::from_column_slice(we) + desc.load_wrench(&pose).map_err(at(k))?;
+    let required = match (wrench_box, wrench_ball) {
+        (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
+        (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
+        (None, None) => RequiredWrenchSet::point(centre),
+    }
+    .map_err(|e| e.to_string())?;
+    robot
+        .geometry()
+        .update_kinematics(&pose, kin)
+        .map_err(at(k))?;
+    let w = kin.wrench_matrix();
+    let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
+    limiting_facet(&aws, &required).map_err(at(k))
+}
+
+/// One pose: the `cdpr capacity` request and its report.
+fn capacity_at(py: Python<'_>, request: &CapacityRequest) -> PyResult<CapacityResult> {
+    let r = request.run().map_err(api_error)?;
+    Ok(CapacityResult {
+        capacity_margin: r.capacity_margin.unwrap_or(f64::INFINITY).into_py_any(py)?,
+        feasible: r.feasible.into_py_any(py)?,
+        limiting_facet: r
+            .limiting_facet
+            .map_or(-1, |f| f.index as i64)
+            .into_py_any(py)?,
     })
 }
 
@@ -269,51 +288,9 @@ pub fn stiffness(
     };
     t.check_finite("tensions")?;
     let tdata = t.data();
-    let es: Vec<f64> = match axial_stiffness {
-        Some(obj) => {
-            let v = if let Ok(x) = obj.extract::<f64>() {
-                vec![x; n]
-            } else {
-                let a = FloatArray::new(obj, "axial_stiffness")?;
-                if a.shape() != [n] {
-                    return Err(value_error(format!(
-                        "axial_stiffness: expected a number or shape ({n},), got {}",
-                        shape_string(a.shape())
-                    )));
-                }
-                a.data().into_owned()
-            };
-            if let Some(x) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
-                return Err(value_error(format!(
-                    "axial_stiffness: {x} must be a finite number > 0"
-                )));
-            }
-            v
-        }
-        None => robot.desc.axial_stiffness.clone().ok_or_else(|| {
-            value_error(
-                "no axial stiffness: give `axial_stiffness` on every cable of the robot file, \
-                 or axial_stiffness=",
-            )
-        })?,
-    };
+    let es = axial_stiffness_arg(robot, axial_stiffness)?;
     if rows.single {
-        let mut desc = (*robot.desc).clone();
-        desc.axial_stiffness = Some(es);
-        let request = StiffnessRequest {
-            robot: cdpr_api::Robot::from_description(desc),
-            pose: data.to_vec(),
-            tensions: Some(tdata.into_owned()),
-            method: None,
-            wrench: None,
-            axial_stiffness: None,
-        };
-        let r = request.run().map_err(api_error)?;
-        return Ok(StiffnessResult {
-            stiffness: matrix(py, &r.stiffness, dof).unbind(),
-            passive: matrix(py, &r.passive, dof).unbind(),
-            active: matrix(py, &r.active, dof).unbind(),
-        });
+        return stiffness_at(py, robot, data.to_vec(), tdata.into_owned(), es);
     }
     let widths = [dof * dof; 3];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
@@ -355,5 +332,69 @@ pub fn stiffness(
         stiffness: next(),
         passive: next(),
         active: next(),
+    })
+}
+
+/// E·S per cable (N): ``axial_stiffness`` (a number or ``(n,)``) or the robot's.
+fn axial_stiffness_arg(
+    robot: &Robot,
+    axial_stiffness: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<f64>> {
+    let n = robot.geometry().cable_count();
+    Ok(match axial_stiffness {
+        Some(obj) => {
+            let v = if let Ok(x) = obj.extract::<f64>() {
+                vec![x; n]
+            } else {
+                let a = FloatArray::new(obj, "axial_stiffness")?;
+                if a.shape() != [n] {
+                    return Err(value_error(format!(
+                        "axial_stiffness: expected a number or shape ({n},), got {}",
+                        shape_string(a.shape())
+                    )));
+                }
+                a.data().into_owned()
+            };
+            if let Some(x) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+                return Err(value_error(format!(
+                    "axial_stiffness: {x} must be a finite number > 0"
+                )));
+            }
+            v
+        }
+        None => robot.desc.axial_stiffness.clone().ok_or_else(|| {
+            value_error(
+                "no axial stiffness: give `axial_stiffness` on every cable of the robot file, \
+                 or axial_stiffness=",
+            )
+        })?,
+    })
+}
+
+/// One pose: the `cdpr stiffness` request (tensions given; `es` replaces the robot's E·S) and
+/// its report.
+fn stiffness_at(
+    py: Python<'_>,
+    robot: &Robot,
+    pose: Vec<f64>,
+    tensions: Vec<f64>,
+    es: Vec<f64>,
+) -> PyResult<StiffnessResult> {
+    let dof = robot.geometry().dof();
+    let mut desc = (*robot.desc).clone();
+    desc.axial_stiffness = Some(es);
+    let request = StiffnessRequest {
+        robot: cdpr_api::Robot::from_description(desc),
+        pose,
+        tensions: Some(tensions),
+        method: None,
+        wrench: None,
+        axial_stiffness: None,
+    };
+    let r = request.run().map_err(api_error)?;
+    Ok(StiffnessResult {
+        stiffness: matrix(py, &r.stiffness, dof).unbind(),
+        passive: matrix(py, &r.passive, dof).unbind(),
+        active: matrix(py, &r.active, dof).unbind(),
     })
 }
