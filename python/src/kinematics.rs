@@ -83,59 +83,15 @@ pub fn inverse_kinematics(
                 &widths,
                 outs,
                 || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, n)),
-                |(kin, w), k, j, blocks| {
-                    let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                    geo.update_kinematics(&pose, kin)
-                        .map_err(|e| format!("poses[{k}]: {e}"))?;
-                    kin.write_wrench_matrix(w);
-                    let [l, u, wm, a] = blocks else {
-                        unreachable!("four outputs")
-                    };
-                    let (l, u) = (row(l, j, n), row(u, j, 3 * n));
-                    for (i, c) in kin.cables().iter().enumerate() {
-                        l[i] = c.length;
-                        u[3 * i..3 * i + 3].copy_from_slice(c.unit.as_slice());
-                    }
-                    let a = row(a, j, 3 * n);
-                    for (i, c) in kin.cables().iter().enumerate() {
-                        a[3 * i..3 * i + 3].copy_from_slice(c.attachment_point.as_slice());
-                    }
-                    let wm = row(wm, j, dof * n);
-                    for r in 0..dof {
-                        for c in 0..n {
-                            wm[r * n + c] = w[(r, c)];
-                        }
-                    }
-                    Ok::<(), String>(())
+                |state, k, j, blocks| {
+                    ik_pose(robot, state, &data[k * dof..(k + 1) * dof], (k, j), blocks)
                 },
             )
             .map_err(value_error)
         })
     };
     if let Some(out) = out {
-        let result = out.get();
-        let names = [
-            "lengths",
-            "unit_vectors",
-            "wrench_matrix",
-            "attachment_points",
-        ];
-        let arrays = [
-            result.lengths.bind(py),
-            result.unit_vectors.bind(py),
-            result.wrench_matrix.bind(py),
-            result.attachment_points.bind(py),
-        ];
-        let mut borrowed = Vec::with_capacity(4);
-        for ((a, s), name) in arrays.iter().zip(&shapes).zip(names) {
-            borrowed.push(out_array(a, s, name)?);
-        }
-        let outs = borrowed
-            .iter_mut()
-            .map(|b| b.as_slice_mut().expect("checked C-contiguous"))
-            .collect();
-        fill(outs)?;
-        drop(borrowed);
+        fill_out(py, &out, &shapes, fill)?;
         return Ok(out.unbind());
     }
     // Large outputs: Rust buffers handed to numpy without a copy, rather than `numpy.zeros`.
@@ -166,6 +122,76 @@ pub fn inverse_kinematics(
             attachment_points,
         },
     )
+}
+
+/// Inverse kinematics of pose k (coordinates `q`) into row j of the four outputs (lengths, unit
+/// vectors, wrench matrix, attachment points).
+fn ik_pose(
+    robot: &Robot,
+    (kin, w): &mut (PoseKinematics, DMatrix<f64>),
+    q: &[f64],
+    (k, j): (usize, usize),
+    blocks: &mut [&mut [f64]],
+) -> Result<(), String> {
+    let (dof, n) = (robot.geometry().dof(), robot.geometry().cable_count());
+    let pose = pose_at(robot, q, k)?;
+    robot
+        .geometry()
+        .update_kinematics(&pose, kin)
+        .map_err(|e| format!("poses[{k}]: {e}"))?;
+    kin.write_wrench_matrix(w);
+    let [l, u, wm, a] = blocks else {
+        unreachable!("four outputs")
+    };
+    let (l, u) = (row(l, j, n), row(u, j, 3 * n));
+    for (i, c) in kin.cables().iter().enumerate() {
+        l[i] = c.length;
+        u[3 * i..3 * i + 3].copy_from_slice(c.unit.as_slice());
+    }
+    let a = row(a, j, 3 * n);
+    for (i, c) in kin.cables().iter().enumerate() {
+        a[3 * i..3 * i + 3].copy_from_slice(c.attachment_point.as_slice());
+    }
+    let wm = row(wm, j, dof * n);
+    for r in 0..dof {
+        for c in 0..n {
+            wm[r * n + c] = w[(r, c)];
+        }
+    }
+    Ok(())
+}
+
+/// Runs `fill` on the arrays of an earlier result (``out=``), checked against `shapes`.
+fn fill_out<R>(
+    py: Python<'_>,
+    out: &Bound<'_, KinematicsResult>,
+    shapes: &[Vec<usize>; 4],
+    fill: impl FnOnce(Vec<&mut [f64]>) -> PyResult<R>,
+) -> PyResult<()> {
+    let result = out.get();
+    let names = [
+        "lengths",
+        "unit_vectors",
+        "wrench_matrix",
+        "attachment_points",
+    ];
+    let arrays = [
+        result.lengths.bind(py),
+        result.unit_vectors.bind(py),
+        result.wrench_matrix.bind(py),
+        result.attachment_points.bind(py),
+    ];
+    let mut borrowed = Vec::with_capacity(4);
+    for ((a, s), name) in arrays.iter().zip(shapes).zip(names) {
+        borrowed.push(out_array(a, s, name)?);
+    }
+    let outs = borrowed
+        .iter_mut()
+        .map(|b| b.as_slice_mut().expect("checked C-contiguous"))
+        .collect();
+    fill(outs)?;
+    drop(borrowed);
+    Ok(())
 }
 
 /// One pose without ``out=``: the `cdpr kinematics` request and its report.
