@@ -8,9 +8,12 @@
 
 use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix};
 use crate::{map_poses, run_batch, value_error};
-use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, Pose};
+use cdpr_api::ForwardRequest;
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, ForwardSolution, MotionPattern, Pose};
 use numpy::PyArrayDyn;
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 
 /// Forward-kinematics answers.
@@ -59,7 +62,7 @@ pub fn forward_kinematics(
 ) -> PyResult<ForwardResult> {
     let geo = robot.geometry();
     let motion = geo.motion();
-    let (dof, n) = (geo.dof(), geo.cable_count());
+    let n = geo.cable_count();
     let settings = ForwardSettings {
         tolerance,
         max_iterations,
@@ -71,30 +74,17 @@ pub fn forward_kinematics(
     let count = rows.count;
     let data = rows.array.data();
     let garr = guess.map(|g| FloatArray::new(g, "guess")).transpose()?;
-    let guesses: Option<(Vec<Pose>, bool)> = match &garr {
-        None => None,
-        Some(a) => {
-            let per_row = match a.shape() {
-                [d] if *d == dof => false,
-                [c, d] if *d == dof && *c == count && !rows.single => true,
-                s => {
-                    return Err(value_error(format!(
-                        "guess: expected shape ({dof},) or ({count}, {dof}) ({}), got {}",
-                        robot.pose_hint(),
-                        shape_string(s)
-                    )));
-                }
-            };
-            a.check_finite("guess")?;
-            let poses = a
-                .data()
-                .chunks(dof)
-                .map(|q| Pose::from_coordinates(motion, q))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(|e| value_error(format!("guess: {e}")))?;
-            Some((poses, per_row))
-        }
-    };
+    let guesses = read_guesses(robot, garr.as_ref(), count, rows.single)?;
+    if rows.single && max_iterations == ForwardSettings::default().max_iterations {
+        let request = ForwardRequest {
+            robot: api_robot(robot),
+            lengths: data.to_vec(),
+            guess: garr.as_ref().map(|g| g.data().into_owned()),
+            tolerance,
+            length_sigma,
+        };
+        return forward_at(py, &request);
+    }
     let multistart = guesses.is_none();
     let widths: [usize; 0] = [];
     let answers: Vec<Vec<ForwardSolution>> = run_batch(py, count, || {
@@ -117,13 +107,83 @@ pub fn forward_kinematics(
         )
         .map_err(value_error)
     })?;
+    batch_result(py, motion, (rows.single, multistart), &answers)
+}
+
+/// One set of lengths with the request's iteration limit: the `cdpr forward` request and its
+/// report (``solutions``: every distinct pose of a multi-start, best first).
+fn forward_at(py: Python<'_>, request: &ForwardRequest) -> PyResult<ForwardResult> {
+    let r = request.run().map_err(api_error)?;
+    let best = r.best;
+    let dof = best.pose.len();
+    let solutions = request.guess.is_none().then(|| {
+        let rows: Vec<Vec<f64>> = r.solutions.iter().map(|s| s.pose.clone()).collect();
+        matrix(py, &rows, dof).unbind()
+    });
+    Ok(ForwardResult {
+        pose: to_numpy(py, &[dof], best.pose).unbind(),
+        residual: best.residual.into_py_any(py)?,
+        iterations: (best.iterations as i64).into_py_any(py)?,
+        converged: best.converged.into_py_any(py)?,
+        status: best.status.into_py_any(py)?,
+        min_singular_value: best.min_singular_value.into_py_any(py)?,
+        solutions,
+        residual_rms: best.residual_rms.into_py_any(py)?,
+        pose_std: to_numpy(py, &[dof], best.pose_std).unbind(),
+    })
+}
+
+/// The guesses (``(DOF,)`` for every row or one per row) as poses, and whether one per row.
+fn read_guesses(
+    robot: &Robot,
+    garr: Option<&FloatArray<'_>>,
+    count: usize,
+    single: bool,
+) -> PyResult<Option<(Vec<Pose>, bool)>> {
+    let (motion, dof) = (robot.motion_pattern(), robot.geometry().dof());
+    Ok(match garr {
+        None => None,
+        Some(a) => {
+            let per_row = match a.shape() {
+                [d] if *d == dof => false,
+                [c, d] if *d == dof && *c == count && !single => true,
+                s => {
+                    return Err(value_error(format!(
+                        "guess: expected shape ({dof},) or ({count}, {dof}) ({}), got {}",
+                        robot.pose_hint(),
+                        shape_string(s)
+                    )));
+                }
+            };
+            a.check_finite("guess")?;
+            let poses = a
+                .data()
+                .chunks(dof)
+                .map(|q| Pose::from_coordinates(motion, q))
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(|e| value_error(format!("guess: {e}")))?;
+            Some((poses, per_row))
+        }
+    })
+}
+
+/// The result of a batch (or of one set of lengths with another iteration limit than the
+/// request's): the best answer of each row; one set of lengths without a guess also gives every
+/// answer (`solutions`).
+fn batch_result(
+    py: Python<'_>,
+    motion: MotionPattern,
+    (single, multistart): (bool, bool),
+    answers: &[Vec<ForwardSolution>],
+) -> PyResult<ForwardResult> {
+    let (dof, count) = (motion.dof(), answers.len());
     let best: Vec<&ForwardSolution> = answers.iter().map(|a| &a[0]).collect();
     let poses: Vec<f64> = best
         .iter()
         .flat_map(|s| s.pose.coordinates(motion))
         .collect();
     let scalar = |v: Vec<f64>| -> PyResult<Py<PyAny>> {
-        Ok(if rows.single {
+        Ok(if single {
             v[0].into_pyobject(py)?.into_any().unbind()
         } else {
             to_numpy(py, &[count], v).into_any().unbind()
@@ -133,22 +193,22 @@ pub fn forward_kinematics(
     let converged: Vec<bool> = best.iter().map(|s| s.converged).collect();
     let status: Vec<&str> = best.iter().map(|s| s.status.name()).collect();
     Ok(ForwardResult {
-        pose: to_numpy(py, &batch_shape(rows.single, count, &[dof]), poses).unbind(),
+        pose: to_numpy(py, &batch_shape(single, count, &[dof]), poses).unbind(),
         residual: scalar(best.iter().map(|s| s.residual).collect())?,
         residual_rms: scalar(best.iter().map(|s| s.residual_rms).collect())?,
         pose_std: to_numpy(
             py,
-            &batch_shape(rows.single, count, &[dof]),
+            &batch_shape(single, count, &[dof]),
             best.iter().flat_map(|s| s.pose_std(dof).to_vec()).collect(),
         )
         .unbind(),
         min_singular_value: scalar(best.iter().map(|s| s.min_singular_value).collect())?,
-        iterations: if rows.single {
+        iterations: if single {
             iterations[0].into_pyobject(py)?.into_any().unbind()
         } else {
             to_numpy(py, &[count], iterations).into_any().unbind()
         },
-        converged: if rows.single {
+        converged: if single {
             converged[0]
                 .into_pyobject(py)?
                 .to_owned()
@@ -157,12 +217,12 @@ pub fn forward_kinematics(
         } else {
             to_numpy(py, &[count], converged).into_any().unbind()
         },
-        status: if rows.single {
+        status: if single {
             status[0].into_pyobject(py)?.into_any().unbind()
         } else {
             status.into_pyobject(py)?.into_any().unbind()
         },
-        solutions: (rows.single && multistart).then(|| {
+        solutions: (single && multistart).then(|| {
             let all: Vec<f64> = answers[0]
                 .iter()
                 .flat_map(|s| s.pose.coordinates(motion))

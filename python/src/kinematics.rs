@@ -6,7 +6,9 @@
 
 use crate::arrays::{Rows, batch_shape, out_array, to_numpy, writable, zeros};
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix, points3};
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::KinematicsRequest;
 use cdpr_kinematics::{Pose, PoseKinematics};
 use nalgebra::DMatrix;
 use numpy::PyArrayDyn;
@@ -59,6 +61,13 @@ pub fn inverse_kinematics(
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
     let count = rows.count;
     let data = rows.array.data();
+    if rows.single && out.is_none() {
+        let request = KinematicsRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+        };
+        return kinematics_at(py, &request);
+    }
     let widths = [n, 3 * n, dof * n, 3 * n];
     let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
     let shapes = [
@@ -74,59 +83,15 @@ pub fn inverse_kinematics(
                 &widths,
                 outs,
                 || (PoseKinematics::for_robot(geo), DMatrix::zeros(dof, n)),
-                |(kin, w), k, j, blocks| {
-                    let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                    geo.update_kinematics(&pose, kin)
-                        .map_err(|e| format!("poses[{k}]: {e}"))?;
-                    kin.write_wrench_matrix(w);
-                    let [l, u, wm, a] = blocks else {
-                        unreachable!("four outputs")
-                    };
-                    let (l, u) = (row(l, j, n), row(u, j, 3 * n));
-                    for (i, c) in kin.cables().iter().enumerate() {
-                        l[i] = c.length;
-                        u[3 * i..3 * i + 3].copy_from_slice(c.unit.as_slice());
-                    }
-                    let a = row(a, j, 3 * n);
-                    for (i, c) in kin.cables().iter().enumerate() {
-                        a[3 * i..3 * i + 3].copy_from_slice(c.attachment_point.as_slice());
-                    }
-                    let wm = row(wm, j, dof * n);
-                    for r in 0..dof {
-                        for c in 0..n {
-                            wm[r * n + c] = w[(r, c)];
-                        }
-                    }
-                    Ok::<(), String>(())
+                |state, k, j, blocks| {
+                    ik_pose(robot, state, &data[k * dof..(k + 1) * dof], (k, j), blocks)
                 },
             )
             .map_err(value_error)
         })
     };
     if let Some(out) = out {
-        let result = out.get();
-        let names = [
-            "lengths",
-            "unit_vectors",
-            "wrench_matrix",
-            "attachment_points",
-        ];
-        let arrays = [
-            result.lengths.bind(py),
-            result.unit_vectors.bind(py),
-            result.wrench_matrix.bind(py),
-            result.attachment_points.bind(py),
-        ];
-        let mut borrowed = Vec::with_capacity(4);
-        for ((a, s), name) in arrays.iter().zip(&shapes).zip(names) {
-            borrowed.push(out_array(a, s, name)?);
-        }
-        let outs = borrowed
-            .iter_mut()
-            .map(|b| b.as_slice_mut().expect("checked C-contiguous"))
-            .collect();
-        fill(outs)?;
-        drop(borrowed);
+        fill_out(py, &out, &shapes, fill)?;
         return Ok(out.unbind());
     }
     // Large outputs: Rust buffers handed to numpy without a copy, rather than `numpy.zeros`.
@@ -155,6 +120,91 @@ pub fn inverse_kinematics(
             unit_vectors,
             wrench_matrix,
             attachment_points,
+        },
+    )
+}
+
+/// Inverse kinematics of pose k (coordinates `q`) into row j of the four outputs (lengths, unit
+/// vectors, wrench matrix, attachment points).
+fn ik_pose(
+    robot: &Robot,
+    (kin, w): &mut (PoseKinematics, DMatrix<f64>),
+    q: &[f64],
+    (k, j): (usize, usize),
+    blocks: &mut [&mut [f64]],
+) -> Result<(), String> {
+    let (dof, n) = (robot.geometry().dof(), robot.geometry().cable_count());
+    let pose = pose_at(robot, q, k)?;
+    robot
+        .geometry()
+        .update_kinematics(&pose, kin)
+        .map_err(|e| format!("poses[{k}]: {e}"))?;
+    kin.write_wrench_matrix(w);
+    let [l, u, wm, a] = blocks else {
+        unreachable!("four outputs")
+    };
+    let (l, u) = (row(l, j, n), row(u, j, 3 * n));
+    for (i, c) in kin.cables().iter().enumerate() {
+        l[i] = c.length;
+        u[3 * i..3 * i + 3].copy_from_slice(c.unit.as_slice());
+    }
+    let a = row(a, j, 3 * n);
+    for (i, c) in kin.cables().iter().enumerate() {
+        a[3 * i..3 * i + 3].copy_from_slice(c.attachment_point.as_slice());
+    }
+    let wm = row(wm, j, dof * n);
+    for r in 0..dof {
+        for c in 0..n {
+            wm[r * n + c] = w[(r, c)];
+        }
+    }
+    Ok(())
+}
+
+/// Runs `fill` on the arrays of an earlier result (``out=``), checked against `shapes`.
+fn fill_out<R>(
+    py: Python<'_>,
+    out: &Bound<'_, KinematicsResult>,
+    shapes: &[Vec<usize>; 4],
+    fill: impl FnOnce(Vec<&mut [f64]>) -> PyResult<R>,
+) -> PyResult<()> {
+    let result = out.get();
+    let names = [
+        "lengths",
+        "unit_vectors",
+        "wrench_matrix",
+        "attachment_points",
+    ];
+    let arrays = [
+        result.lengths.bind(py),
+        result.unit_vectors.bind(py),
+        result.wrench_matrix.bind(py),
+        result.attachment_points.bind(py),
+    ];
+    let mut borrowed = Vec::with_capacity(4);
+    for ((a, s), name) in arrays.iter().zip(shapes).zip(names) {
+        borrowed.push(out_array(a, s, name)?);
+    }
+    let outs = borrowed
+        .iter_mut()
+        .map(|b| b.as_slice_mut().expect("checked C-contiguous"))
+        .collect();
+    fill(outs)?;
+    drop(borrowed);
+    Ok(())
+}
+
+/// One pose without ``out=``: the `cdpr kinematics` request and its report.
+fn kinematics_at(py: Python<'_>, request: &KinematicsRequest) -> PyResult<Py<KinematicsResult>> {
+    let r = request.run().map_err(api_error)?;
+    let n = r.lengths.len();
+    Py::new(
+        py,
+        KinematicsResult {
+            lengths: to_numpy(py, &[n], r.lengths).unbind(),
+            unit_vectors: points3(py, &r.unit_vectors).unbind(),
+            wrench_matrix: matrix(py, &r.wrench_matrix, n).unbind(),
+            attachment_points: points3(py, &r.attachment_points).unbind(),
         },
     )
 }

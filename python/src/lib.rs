@@ -15,6 +15,7 @@ mod forward;
 mod kinematics;
 mod model;
 mod polytope;
+mod requests;
 mod robot;
 mod tension;
 mod trajectory;

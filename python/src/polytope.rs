@@ -6,16 +6,19 @@
 //! stiffness matrix K = Kp + Ka (Picard, Caro, Plestan & Claveau 2020 eqs. (3)–(4);
 //! `cdpr stiffness`).
 
-use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy};
+use crate::arrays::{FloatArray, Rows, shape_string, to_numpy};
 use crate::kinematics::pose_at;
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot, matrix};
 use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::{CapacityRequest, IsotropicRequest, StiffnessRequest};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_polytope::hyperplane_shifting::available_wrench_set;
 use cdpr_polytope::{IsotropicForce, RequiredWrenchSet, limiting_facet};
 use nalgebra::{DMatrix, DVector};
 use numpy::PyArrayDyn;
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 
 /// Wraps a per-pose error with the pose index.
@@ -60,14 +63,10 @@ pub struct StiffnessResult {
     pub active: Py<PyArrayDyn<f64>>,
 }
 
-/// A scalar per pose: a Python float (one pose) or a (N,) array.
-fn per_pose<'py>(py: Python<'py>, single: bool, v: Vec<f64>) -> PyResult<Py<PyAny>> {
-    Ok(if single {
-        v[0].into_pyobject(py)?.into_any().unbind()
-    } else {
-        let n = v.len();
-        to_numpy(py, &[n], v).into_any().unbind()
-    })
+/// A scalar per pose of a batch: a (N,) array.
+fn per_pose(py: Python<'_>, v: Vec<f64>) -> Py<PyAny> {
+    let n = v.len();
+    to_numpy(py, &[n], v).into_any().unbind()
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -101,10 +100,22 @@ pub fn capacity_margin(
     if wrench_box.is_some() && wrench_ball.is_some() {
         return Err(value_error("give wrench_box or wrench_ball, not both"));
     }
-    let desc = &robot.desc;
+    if rows.single {
+        let request = CapacityRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+            wrench: Some(wr.at(0).to_vec()),
+            wrench_box,
+            wrench_ball,
+            force_radius: None,
+            moment_radius: None,
+        };
+        return capacity_at(py, &request);
+    }
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
+    let required = (wrench_box.as_deref(), wrench_ball);
     run_batch(py, count, || {
         map_poses(
             count,
@@ -112,21 +123,8 @@ pub fn capacity_margin(
             slices,
             || PoseKinematics::for_robot(geo),
             |kin, k, j, blocks| {
-                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                let centre = DVector::from_column_slice(wr.at(k))
-                    + desc
-                        .load_wrench(&pose)
-                        .map_err(|e| format!("poses[{k}]: {e}"))?;
-                let required = match (&wrench_box, wrench_ball) {
-                    (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
-                    (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
-                    (None, None) => RequiredWrenchSet::point(centre),
-                }
-                .map_err(|e| e.to_string())?;
-                geo.update_kinematics(&pose, kin).map_err(at(k))?;
-                let w = kin.wrench_matrix();
-                let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
-                let limit = limiting_facet(&aws, &required).map_err(at(k))?;
+                let q = &data[k * dof..(k + 1) * dof];
+                let limit = limit_at_pose(robot, kin, (q, wr.at(k)), required, k)?;
                 let [m, f] = blocks else {
                     unreachable!("two outputs")
                 };
@@ -142,35 +140,50 @@ pub fn capacity_margin(
     let feasible: Vec<bool> = margin.iter().map(|&m| m >= 0.0).collect();
     let facet: Vec<i64> = facet.iter().map(|&f| f as i64).collect();
     Ok(CapacityResult {
-        feasible: if rows.single {
-            feasible[0]
-                .into_pyobject(py)?
-                .to_owned()
-                .into_any()
-                .unbind()
-        } else {
-            to_numpy(py, &[count], feasible).into_any().unbind()
-        },
-        limiting_facet: if rows.single {
-            facet[0].into_pyobject(py)?.into_any().unbind()
-        } else {
-            to_numpy(py, &[count], facet).into_any().unbind()
-        },
-        capacity_margin: per_pose(py, rows.single, margin)?,
+        feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
+        limiting_facet: to_numpy(py, &[count], facet).into_any().unbind(),
+        capacity_margin: per_pose(py, margin),
     })
 }
 
-/// What the isotropic force means for a motion pattern (as `cdpr isotropic` says).
-fn definition(robot: &Robot) -> &'static str {
-    if robot.motion_pattern().has_orientation() {
-        "force at zero moment: radius of the largest force ball centred at -w_ext (the origin \
-         without load) inside the moment = 0 slice of the available wrench set \
-         {W t : t_min <= t <= t_max}; negative when -w_ext is outside"
-    } else {
-        "radius of the largest force ball centred at -w_ext (the origin without load) inside the \
-         available force polytope {W t : t_min <= t <= t_max} (Krut, Company & Pierrot 2004, \
-         eq. 19); negative when -w_ext is outside"
+/// The limiting facet and margin at pose k (coordinates `q`, wrench `we`) of the required set
+/// (box half-widths or ball radius; a point without either).
+fn limit_at_pose(
+    robot: &Robot,
+    kin: &mut PoseKinematics,
+    (q, we): (&[f64], &[f64]),
+    (wrench_box, wrench_ball): (Option<&[f64]>, Option<f64>),
+    k: usize,
+) -> Result<Option<(usize, f64)>, String> {
+    let desc = &robot.desc;
+    let pose = pose_at(robot, q, k)?;
+    let centre = DVector::from_column_slice(we) + desc.load_wrench(&pose).map_err(at(k))?;
+    let required = match (wrench_box, wrench_ball) {
+        (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
+        (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
+        (None, None) => RequiredWrenchSet::point(centre),
     }
+    .map_err(|e| e.to_string())?;
+    robot
+        .geometry()
+        .update_kinematics(&pose, kin)
+        .map_err(at(k))?;
+    let w = kin.wrench_matrix();
+    let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
+    limiting_facet(&aws, &required).map_err(at(k))
+}
+
+/// One pose: the `cdpr capacity` request and its report.
+fn capacity_at(py: Python<'_>, request: &CapacityRequest) -> PyResult<CapacityResult> {
+    let r = request.run().map_err(api_error)?;
+    Ok(CapacityResult {
+        capacity_margin: r.capacity_margin.unwrap_or(f64::INFINITY).into_py_any(py)?,
+        feasible: r.feasible.into_py_any(py)?,
+        limiting_facet: r
+            .limiting_facet
+            .map_or(-1, |f| f.index as i64)
+            .into_py_any(py)?,
+    })
 }
 
 pub fn isotropic(
@@ -190,6 +203,20 @@ pub fn isotropic(
         .map(|w| FloatArray::new(w, "wrenches"))
         .transpose()?;
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
+    if rows.single {
+        let request = IsotropicRequest {
+            robot: api_robot(robot),
+            pose: data.to_vec(),
+            wrench: Some(wr.at(0).to_vec()),
+            ellipse: false,
+        };
+        let r = request.run().map_err(api_error)?;
+        return Ok(IsotropicResult {
+            isotropic_force: r.isotropic_force.into_py_any(py)?,
+            wrench_radius: r.wrench_radius.into_py_any(py)?,
+            definition: r.definition,
+        });
+    }
     let desc = &robot.desc;
     // One allocation-free evaluator per worker (hyperplane shifting on the fly, no facet list:
     // what `cdpr isotropic --grid` runs), its load set pose by pose.
@@ -225,9 +252,9 @@ pub fn isotropic(
     let radius = outs.pop().unwrap();
     let force = outs.pop().unwrap();
     Ok(IsotropicResult {
-        isotropic_force: per_pose(py, rows.single, force)?,
-        wrench_radius: per_pose(py, rows.single, radius)?,
-        definition: definition(robot).into(),
+        isotropic_force: per_pose(py, force),
+        wrench_radius: per_pose(py, radius),
+        definition: cdpr_api::definition(robot.motion_pattern()).into(),
     })
 }
 
@@ -261,34 +288,10 @@ pub fn stiffness(
     };
     t.check_finite("tensions")?;
     let tdata = t.data();
-    let es: Vec<f64> = match axial_stiffness {
-        Some(obj) => {
-            let v = if let Ok(x) = obj.extract::<f64>() {
-                vec![x; n]
-            } else {
-                let a = FloatArray::new(obj, "axial_stiffness")?;
-                if a.shape() != [n] {
-                    return Err(value_error(format!(
-                        "axial_stiffness: expected a number or shape ({n},), got {}",
-                        shape_string(a.shape())
-                    )));
-                }
-                a.data().into_owned()
-            };
-            if let Some(x) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
-                return Err(value_error(format!(
-                    "axial_stiffness: {x} must be a finite number > 0"
-                )));
-            }
-            v
-        }
-        None => robot.desc.axial_stiffness.clone().ok_or_else(|| {
-            value_error(
-                "no axial stiffness: give `axial_stiffness` on every cable of the robot file, \
-                 or axial_stiffness=",
-            )
-        })?,
-    };
+    let es = axial_stiffness_arg(robot, axial_stiffness)?;
+    if rows.single {
+        return stiffness_at(py, robot, data.to_vec(), tdata.into_owned(), es);
+    }
     let widths = [dof * dof; 3];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
@@ -322,12 +325,76 @@ pub fn stiffness(
         )
         .map_err(value_error)
     })?;
-    let shape = batch_shape(rows.single, count, &[dof, dof]);
+    let shape = [count, dof, dof];
     let mut outs = outs.into_iter();
     let mut next = || to_numpy(py, &shape, outs.next().unwrap()).unbind();
     Ok(StiffnessResult {
         stiffness: next(),
         passive: next(),
         active: next(),
+    })
+}
+
+/// E·S per cable (N): ``axial_stiffness`` (a number or ``(n,)``) or the robot's.
+fn axial_stiffness_arg(
+    robot: &Robot,
+    axial_stiffness: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Vec<f64>> {
+    let n = robot.geometry().cable_count();
+    Ok(match axial_stiffness {
+        Some(obj) => {
+            let v = if let Ok(x) = obj.extract::<f64>() {
+                vec![x; n]
+            } else {
+                let a = FloatArray::new(obj, "axial_stiffness")?;
+                if a.shape() != [n] {
+                    return Err(value_error(format!(
+                        "axial_stiffness: expected a number or shape ({n},), got {}",
+                        shape_string(a.shape())
+                    )));
+                }
+                a.data().into_owned()
+            };
+            if let Some(x) = v.iter().find(|x| !(x.is_finite() && **x > 0.0)) {
+                return Err(value_error(format!(
+                    "axial_stiffness: {x} must be a finite number > 0"
+                )));
+            }
+            v
+        }
+        None => robot.desc.axial_stiffness.clone().ok_or_else(|| {
+            value_error(
+                "no axial stiffness: give `axial_stiffness` on every cable of the robot file, \
+                 or axial_stiffness=",
+            )
+        })?,
+    })
+}
+
+/// One pose: the `cdpr stiffness` request (tensions given; `es` replaces the robot's E·S) and
+/// its report.
+fn stiffness_at(
+    py: Python<'_>,
+    robot: &Robot,
+    pose: Vec<f64>,
+    tensions: Vec<f64>,
+    es: Vec<f64>,
+) -> PyResult<StiffnessResult> {
+    let dof = robot.geometry().dof();
+    let mut desc = (*robot.desc).clone();
+    desc.axial_stiffness = Some(es);
+    let request = StiffnessRequest {
+        robot: cdpr_api::Robot::from_description(desc),
+        pose,
+        tensions: Some(tensions),
+        method: None,
+        wrench: None,
+        axial_stiffness: None,
+    };
+    let r = request.run().map_err(api_error)?;
+    Ok(StiffnessResult {
+        stiffness: matrix(py, &r.stiffness, dof).unbind(),
+        passive: matrix(py, &r.passive, dof).unbind(),
+        active: matrix(py, &r.active, dof).unbind(),
     })
 }

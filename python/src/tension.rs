@@ -5,16 +5,19 @@
 //! platform's gravity at that pose (Picard, Caro, Plestan & Claveau 2020, eq. (1)). Every feasible answer is certified by
 //! the crate; an infeasible one comes with its reason.
 
-use crate::arrays::{FloatArray, Rows, batch_shape, shape_string, to_numpy, writable, zeros};
+use crate::arrays::{FloatArray, Rows, shape_string, to_numpy, writable, zeros};
 use crate::kinematics::pose_at;
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot};
 use crate::{map_poses, row, run_batch, value_error};
+use cdpr_api::{ApiError, SotdaSearch, TensionRequest};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{
     Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant, StiffnessData,
     TensionProblem, TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Vector3};
+use pyo3::IntoPyObjectExt;
 use pyo3::prelude::*;
 use pyo3::types::PyList;
 use std::borrow::Cow;
@@ -215,6 +218,78 @@ struct Buffers {
     solver: TensionSolver,
 }
 
+impl Buffers {
+    fn new(robot: &Robot, solver: &TensionSolver) -> Self {
+        let geo = robot.geometry();
+        let (dof, n) = (geo.dof(), geo.cable_count());
+        Self {
+            kin: PoseKinematics::for_robot(geo),
+            w: DMatrix::zeros(dof, n),
+            w_ext: DVector::zeros(dof),
+            t: DVector::zeros(n),
+            solver: solver.clone(),
+        }
+    }
+
+    /// Pose k (coordinates `q`, external wrench `we`) into row j of the four outputs
+    /// (tensions, feasible, residual, w_ext); the reason when infeasible.
+    fn solve(
+        &mut self,
+        robot: &Robot,
+        (q, we): (&[f64], &[f64]),
+        (k, j): (usize, usize),
+        blocks: &mut [&mut [f64]],
+    ) -> Result<Option<String>, String> {
+        let (desc, geo) = (&robot.desc, robot.geometry());
+        let (dof, n) = (geo.dof(), geo.cable_count());
+        let [t_out, feas, res, wext] = blocks else {
+            unreachable!("four outputs")
+        };
+        let pose = pose_at(robot, q, k)?;
+        let g = desc
+            .load_wrench(&pose)
+            .map_err(|e| format!("poses[{k}]: {e}"))?;
+        for (o, (a, g)) in self.w_ext.iter_mut().zip(we.iter().zip(g.iter())) {
+            *o = a + g;
+        }
+        row(wext, j, dof).copy_from_slice(self.w_ext.as_slice());
+        let infeasible = |t_out: &mut [f64], feas: &mut [f64], res: &mut [f64]| {
+            row(t_out, j, n).fill(f64::NAN);
+            feas[j] = 0.0;
+            res[j] = f64::NAN;
+        };
+        if let Err(e) = geo.update_kinematics(&pose, &mut self.kin) {
+            infeasible(t_out, feas, res);
+            return Ok(Some(e.to_string()));
+        }
+        self.kin.write_wrench_matrix(&mut self.w);
+        let mut problem = TensionProblem::new(&self.w, &self.w_ext, &desc.bounds);
+        if let Some(es) = &desc.axial_stiffness {
+            problem.stiffness = Some(StiffnessData {
+                kinematics: &self.kin,
+                axial_stiffness: es,
+            });
+        }
+        match self
+            .solver
+            .solve_into(&problem, &mut self.t)
+            .map_err(|e| format!("poses[{k}]: {e}"))?
+        {
+            Ok(residual) => {
+                row(t_out, j, n).copy_from_slice(self.t.as_slice());
+                feas[j] = 1.0;
+                res[j] = residual;
+                Ok(None)
+            }
+            Err(reason) => {
+                infeasible(t_out, feas, res);
+                Ok(Some(reason.to_string()))
+            }
+        }
+    }
+}
+
+/// Tension distributions at one pose (through the request) or a batch (the pose loop).
 #[allow(clippy::too_many_arguments)]
 pub fn tensions(
     robot: &Robot,
@@ -227,24 +302,56 @@ pub fn tensions(
     sotda_search: &str,
     peer: PeerOptions,
 ) -> PyResult<TensionResult> {
-    let geo = robot.geometry();
-    let (dof, n) = (geo.dof(), geo.cable_count());
+    let dof = robot.geometry().dof();
     let method = parse_method(method)?;
     let options = peer.for_method(method)?;
-    let base_solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?
+    let sotda = sotda_settings(direction.clone(), nu, sotda_search)?;
+    let base_solver = solver(robot, method, sotda)?
         .with_options(options)
         .map_err(value_error)?;
     let rows = Rows::new(poses, dof, "poses", robot.pose_hint())?;
-    let count = rows.count;
     let data = rows.array.data();
     let warr = wrenches
         .map(|w| FloatArray::new(w, "wrenches"))
         .transpose()?;
-    let wr = read_wrenches(&warr, count, rows.single, dof)?;
-    let desc = &robot.desc;
+    let wr = read_wrenches(&warr, rows.count, rows.single, dof)?;
+    if !rows.single {
+        return tension_batch(robot, py, &data, &wr, &base_solver);
+    }
+    let request = TensionRequest {
+        robot: api_robot(robot),
+        pose: data.to_vec(),
+        wrench: Some(wr.at(0).to_vec()),
+        method,
+        direction,
+        nu,
+        sotda_search: match sotda_search {
+            "vertices" => SotdaSearch::Vertices,
+            "full" => SotdaSearch::Full,
+            _ => SotdaSearch::Corners,
+        },
+        options: cdpr_api::PeerOptions {
+            interior: peer.interior,
+            alternating: peer.alternating,
+            p: peer.p,
+            alpha: peer.alpha,
+        },
+    };
+    tension_at(py, &request)
+}
+
+/// A batch of poses (`data`: N rows of DOF coordinates), in parallel.
+fn tension_batch(
+    robot: &Robot,
+    py: Python<'_>,
+    data: &[f64],
+    wr: &Wrenches<'_>,
+    base_solver: &TensionSolver,
+) -> PyResult<TensionResult> {
+    let (dof, n) = (robot.geometry().dof(), robot.geometry().cable_count());
+    let count = data.len() / dof;
     let widths = [n, 1, 1, dof];
-    let shape = |rest: &[usize]| batch_shape(rows.single, count, rest);
-    let mut arrays = [zeros(py, &shape(&[n])), zeros(py, &shape(&[dof]))];
+    let mut arrays = [zeros(py, &[count, n]), zeros(py, &[count, dof])];
     let (mut f, mut r) = (vec![0.0; count], vec![0.0; count]);
     let [t_arr, w_arr] = &mut arrays;
     let mut outs = writable(std::slice::from_mut(t_arr));
@@ -256,86 +363,68 @@ pub fn tensions(
             count,
             &widths,
             outs,
-            || Buffers {
-                kin: PoseKinematics::for_robot(geo),
-                w: DMatrix::zeros(dof, n),
-                w_ext: DVector::zeros(dof),
-                t: DVector::zeros(n),
-                solver: base_solver.clone(),
-            },
+            || Buffers::new(robot, base_solver),
             |b, k, j, blocks| {
-                let [t_out, feas, res, wext] = blocks else {
-                    unreachable!("four outputs")
-                };
-                let pose = pose_at(robot, &data[k * dof..(k + 1) * dof], k)?;
-                let g = desc
-                    .load_wrench(&pose)
-                    .map_err(|e| format!("poses[{k}]: {e}"))?;
-                for (o, (a, g)) in b.w_ext.iter_mut().zip(wr.at(k).iter().zip(g.iter())) {
-                    *o = a + g;
-                }
-                row(wext, j, dof).copy_from_slice(b.w_ext.as_slice());
-                let infeasible = |t_out: &mut [f64], feas: &mut [f64], res: &mut [f64]| {
-                    row(t_out, j, n).fill(f64::NAN);
-                    feas[j] = 0.0;
-                    res[j] = f64::NAN;
-                };
-                if let Err(e) = geo.update_kinematics(&pose, &mut b.kin) {
-                    infeasible(t_out, feas, res);
-                    return Ok(Some(e.to_string()));
-                }
-                b.kin.write_wrench_matrix(&mut b.w);
-                let mut problem = TensionProblem::new(&b.w, &b.w_ext, &desc.bounds);
-                if let Some(es) = &desc.axial_stiffness {
-                    problem.stiffness = Some(StiffnessData {
-                        kinematics: &b.kin,
-                        axial_stiffness: es,
-                    });
-                }
-                match b
-                    .solver
-                    .solve_into(&problem, &mut b.t)
-                    .map_err(|e| format!("poses[{k}]: {e}"))?
-                {
-                    Ok(residual) => {
-                        row(t_out, j, n).copy_from_slice(b.t.as_slice());
-                        feas[j] = 1.0;
-                        res[j] = residual;
-                        Ok(None)
-                    }
-                    Err(reason) => {
-                        infeasible(t_out, feas, res);
-                        Ok(Some(reason.to_string()))
-                    }
-                }
+                let q = &data[k * dof..(k + 1) * dof];
+                b.solve(robot, (q, wr.at(k)), (k, j), blocks)
             },
         )
         .map_err(|e: String| value_error(e))
     })?;
     let feasible: Vec<bool> = f.iter().map(|&v| v == 1.0).collect();
     let [tensions, external_wrench] = arrays.map(|a| a.into_any().unbind());
-    let method = method.name().to_string();
-    Ok(if rows.single {
-        TensionResult {
-            tensions,
-            feasible: feasible[0]
-                .into_pyobject(py)?
-                .to_owned()
-                .into_any()
-                .unbind(),
-            residual: r[0].into_pyobject(py)?.into_any().unbind(),
-            reason: reasons[0].clone().into_pyobject(py)?.into_any().unbind(),
-            external_wrench,
-            method,
+    Ok(TensionResult {
+        tensions,
+        feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
+        residual: to_numpy(py, &[count], r).into_any().unbind(),
+        reason: PyList::new(py, reasons)?.into_any().unbind(),
+        external_wrench,
+        method: base_solver.method().name().to_string(),
+    })
+}
+
+/// One pose: the `cdpr tension` request and its report. A pose where the cables' directions
+/// are undefined is an infeasible answer with its reason, as in a batch.
+fn tension_at(py: Python<'_>, request: &TensionRequest) -> PyResult<TensionResult> {
+    request.validate().map_err(api_error)?;
+    let n = request.robot.robot.cable_count();
+    let (tensions, feasible, residual, reason, w_ext) = match request.run() {
+        Ok(r) if r.feasible => (
+            r.tensions.unwrap_or_else(|| vec![f64::NAN; n]),
+            true,
+            r.residual.unwrap_or(f64::NAN),
+            None,
+            r.external_wrench,
+        ),
+        Ok(r) => (
+            vec![f64::NAN; n],
+            false,
+            f64::NAN,
+            r.reason,
+            r.external_wrench,
+        ),
+        Err(ApiError::Kinematics(e)) => {
+            let p = cdpr_api::inputs::pose(&request.robot, &request.pose).map_err(api_error)?;
+            let w =
+                cdpr_api::inputs::external_wrench(&request.robot, &p, request.wrench.as_deref())
+                    .map_err(api_error)?;
+            (
+                vec![f64::NAN; n],
+                false,
+                f64::NAN,
+                Some(e.to_string()),
+                w.as_slice().to_vec(),
+            )
         }
-    } else {
-        TensionResult {
-            tensions,
-            feasible: to_numpy(py, &[count], feasible).into_any().unbind(),
-            residual: to_numpy(py, &[count], r).into_any().unbind(),
-            reason: PyList::new(py, reasons)?.into_any().unbind(),
-            external_wrench,
-            method,
-        }
+        Err(e) => return Err(api_error(e)),
+    };
+    let dof = w_ext.len();
+    Ok(TensionResult {
+        tensions: to_numpy(py, &[n], tensions).into_any().unbind(),
+        feasible: feasible.into_py_any(py)?,
+        residual: residual.into_py_any(py)?,
+        reason: reason.into_py_any(py)?,
+        external_wrench: to_numpy(py, &[dof], w_ext).into_any().unbind(),
+        method: request.method.name().to_string(),
     })
 }
