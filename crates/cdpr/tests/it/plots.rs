@@ -128,3 +128,51 @@ fn pulley_cable_figure_renders_the_library_geometry() {
     save(&plot, &path).unwrap();
     assert!(std::fs::metadata(&path).unwrap().len() > 5000);
 }
+
+/// A tension profile of 50–153 N under a 5 000 N limit (issue 25): the chart keeps the curves'
+/// scale (no tick of 1 000 N or more; the limit is a legend note), the equal curves t1 and t3
+/// are named as coinciding, and t_min and t_max are drawn in different dash patterns.
+#[test]
+fn trajectory_plot_fits_its_curves_and_shows_equal_curves_and_both_limits() {
+    let curve = |f: fn(f64) -> f64| {
+        (0..=10)
+            .map(|k| k as f64 / 10.0)
+            .map(|s| (s, f(s)))
+            .collect()
+    };
+    let lines = LinePlot {
+        title: "profile".into(),
+        labels: ("s".into(), "t (N)".into()),
+        series: vec![
+            Series {
+                label: "t1".into(),
+                points: curve(|s| 50.0 + 103.0 * s),
+            },
+            Series {
+                label: "t2".into(),
+                points: curve(|s| 153.0 - 103.0 * s),
+            },
+            Series {
+                label: "t3".into(),
+                points: curve(|s| 50.0 + 103.0 * s),
+            },
+        ],
+        reference_lines: vec![
+            (10.0, "t_min = 10 N".into()),
+            (5000.0, "t_max = 5000 N".into()),
+        ],
+        gap_label: None,
+    };
+    assert_eq!(lines.coincident(), vec![None, None, Some(0)]);
+    let dir = tempfile::tempdir().unwrap();
+    save(&lines, dir.path().join("lines.svg")).unwrap();
+    save(&lines, dir.path().join("lines.png")).unwrap();
+    let svg = std::fs::read_to_string(dir.path().join("lines.svg")).unwrap();
+    for big in [">1000<", ">2000<", ">4000<", ">5000<"] {
+        assert!(!svg.contains(big), "tick {big} on a 50–153 N chart");
+    }
+    assert!(svg.contains("t_max = 5000 N (above the chart)"));
+    assert!(svg.contains("t3 (coincides with t1)"));
+    assert!(svg.contains("t_min = 10 N<"), "t_min is drawn on the chart");
+    assert!(svg.contains("stroke-dasharray") || svg.matches("<polyline").count() > 20);
+}
