@@ -20,7 +20,7 @@ mod workspace;
 pub use force_polygon::{ForcePolygonPlot, Segment};
 pub use heat_map::HeatMap;
 pub use iso::IsoFigure;
-pub use lines::{LinePlot, Series};
+pub use lines::{LinePlot, Placement, Series};
 pub use panels::Panels;
 pub use polytope_view::force_polytope_scene;
 pub use pulley::PulleyCablePlot;
