@@ -21,6 +21,7 @@
 //! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
 //! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
 //! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
+//! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -47,6 +48,7 @@
 mod capacity;
 mod chord;
 pub mod criteria;
+mod dextrous;
 mod error;
 mod forward;
 pub mod inputs;
@@ -56,6 +58,7 @@ mod kinematics;
 mod mesh;
 pub mod region;
 mod robot;
+pub mod rows;
 pub mod schema;
 mod section;
 mod stiffness;
@@ -65,6 +68,9 @@ mod workspace;
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
 pub use chord::{ChordReport, ChordRequest, CurvesReport, DEFAULT_CHORD, chord_settings};
 pub use criteria::{CriteriaSetup, WorkspaceCriteria, default_method};
+pub use dextrous::{
+    CentralCheckReport, Dextrous, DextrousReport, DextrousRequest, RangeReport, dextrous,
+};
 pub use error::ApiError;
 pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
 pub use isotropic::{EllipseReport, IsotropicReport, IsotropicRequest, definition};

@@ -40,6 +40,8 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<SectionReport>("section", "report"),
         entry::<ChordRequest>("chord", "request"),
         entry::<ChordReport>("chord", "report"),
+        entry::<DextrousRequest>("dextrous", "request"),
+        entry::<DextrousReport>("dextrous", "report"),
     ]
 }
 
