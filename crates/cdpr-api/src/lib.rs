@@ -21,6 +21,7 @@
 //! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
 //! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
 //! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
+//! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
@@ -56,6 +57,7 @@ mod isotropic;
 mod isotropic_map;
 mod kinematics;
 mod mesh;
+mod orientation_set;
 pub mod region;
 mod robot;
 pub mod rows;
@@ -81,6 +83,10 @@ pub use kinematics::{
     KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
 };
 pub use mesh::{BoxFacesReport, MeshReport, MeshRequest, ShellReport};
+pub use orientation_set::{
+    LimitingCountReport, LimitingReport, LimitingVerticesReport, OrientationMeshReport,
+    OrientationWorkspaceReport, OrientationWorkspaceRequest, degrees, orientation_test,
+};
 pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
 pub use section::{Axis, SectionPlane, SectionPlaneReport, SectionReport, SectionRequest};
 pub use stiffness::{StiffnessReport, StiffnessRequest};

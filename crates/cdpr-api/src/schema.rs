@@ -42,6 +42,9 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<ChordReport>("chord", "report"),
         entry::<DextrousRequest>("dextrous", "request"),
         entry::<DextrousReport>("dextrous", "report"),
+        entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
+        entry::<OrientationWorkspaceReport>("orientation-workspace", "report"),
+        entry::<OrientationMeshReport>("orientation-mesh", "report"),
     ]
 }
 

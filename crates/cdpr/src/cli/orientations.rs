@@ -3,13 +3,13 @@
 //! workspaces behind `cdpr workspace --orientations … --kind total|maximal`.
 
 use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
-use super::{CliError, Numbers, load_robot, print_json};
+use super::region::{draw_pose, save_mesh_scene_plot, save_scene_plot};
+use super::{CliError, Numbers, load_robot, print_json, print_report};
 use cdpr::RobotDescription;
-use cdpr::kinematics::MotionPattern;
+use cdpr::api::{OrientationWorkspaceReport, OrientationWorkspaceRequest, degrees};
 use cdpr::plot::HeatMap;
 use cdpr::workspace::{
-    Grid, MeshSettings, OrientationSet, OrientationTest, OrientationWorkspaceKind, Region,
-    SampledOrientation, VolumeConvention, orientation_boundary_mesh, orientation_workspace,
+    OrientationSet, OrientationTest, OrientationWorkspaceKind, SampledOrientation,
 };
 use nalgebra::{Rotation3, Vector3};
 use serde_json::{Value, json};
@@ -68,33 +68,14 @@ pub struct Args {
     json: bool,
 }
 
-/// The orientation test of a robot file: one evaluator per sampled orientation.
+/// The orientation test of a robot file (see [`cdpr::api::orientation_test`]).
 pub fn orientation_test(
     desc: &RobotDescription,
     setup: &CriteriaSetup,
     set: &OrientationSet,
     kind: OrientationWorkspaceKind,
 ) -> Result<(OrientationTest, Vec<SampledOrientation>), CliError> {
-    let motion = desc.robot.motion();
-    if motion != MotionPattern::Spatial {
-        return Err(format!(
-            "--orientations samples platform orientations in space: `spatial` robots only, this \
-             one is `{motion}` (planar robots: `cdpr dextrous`)"
-        )
-        .into());
-    }
-    let samples = set.orientations()?;
-    let evals = samples
-        .iter()
-        .map(|o| setup.evaluator(desc, desc.robot.clone(), &o.rotation))
-        .collect::<Result<Vec<_>, _>>()?;
-    let test = OrientationTest::new(kind, samples.iter().map(|o| o.rotation).collect(), evals)?;
-    Ok((test, samples))
-}
-
-/// Angles in degrees.
-pub fn degrees(o: &SampledOrientation) -> [f64; 3] {
-    o.angles.map(f64::to_degrees)
+    Ok(cdpr::api::orientation_test(desc, setup, set, kind)?)
 }
 
 /// The map of fractions feasible: axes (x, y) = angle indices, fraction over the others.
@@ -270,122 +251,80 @@ pub fn run(args: Args) -> Result<(), CliError> {
     Ok(())
 }
 
-/// How often each of `count` sampled orientations is the limiting one: `(orientation, times)`
-/// for those that are, most frequent first (ties by index).
-fn rank_limiting(limiting: impl Iterator<Item = usize>, count: usize) -> Vec<(usize, usize)> {
-    let mut per = vec![0usize; count];
-    for k in limiting {
-        per[k] += 1;
-    }
-    let mut ranked: Vec<(usize, usize)> = per
-        .into_iter()
-        .enumerate()
-        .filter(|&(_, n)| n > 0)
-        .collect();
-    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
-    ranked
+/// The `--orientations` value: a valid orientation set, kept as written (the request parses it).
+pub fn set_spec(s: &str) -> Result<String, String> {
+    s.parse::<OrientationSet>().map_err(|e| e.to_string())?;
+    Ok(s.to_string())
+}
+
+/// How a workspace over an orientation set is shown.
+pub struct View<'a> {
+    /// The figure (.svg, .png or .html).
+    pub plot: Option<&'a Path>,
+    /// Pose at which the robot is drawn.
+    pub draw_pose: Option<&'a [f64]>,
+    /// One JSON object on stdout.
+    pub json: bool,
+}
+
+/// "ROBOT: total workspace over SET (N orientations)".
+fn set_title(robot: &str, kind: &str, set: &str, count: usize) -> String {
+    format!("{robot}: {kind} workspace over {set} ({count} orientations)")
 }
 
 /// `cdpr workspace --orientations SET [--kind total|maximal] --boundary mesh`: the certified
 /// boundary mesh of the total-orientation or maximal workspace, with the limiting orientation at
 /// every boundary vertex of a total-orientation workspace.
-#[allow(clippy::too_many_arguments)]
 pub fn run_workspace_mesh(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-    region: &Region,
-    m: usize,
-    plot: Option<&Path>,
-    draw_pose: Option<&[f64]>,
-    json_out: bool,
+    request: &OrientationWorkspaceRequest,
+    view: &View<'_>,
 ) -> Result<(), CliError> {
-    let grid = Grid::new(m, *region);
-    let (test, samples) = orientation_test(desc, setup, set, kind)?;
-    let om = orientation_boundary_mesh(&test, &grid, &MeshSettings::default())?;
-    let mesh = &om.mesh;
-    let ranked = rank_limiting(om.limiting.iter().flatten().copied(), samples.len());
-    let title = format!(
-        "{}: {} workspace over {set} ({} orientations)",
-        desc.name,
-        kind.name(),
-        samples.len()
-    );
-    let watertight = mesh.edge_defects() == 0;
-    let summary = format!(
-        "volume {} m³ (boundary mesh, m = {m}); {}",
-        super::num(mesh.volume),
-        setup.labels().join(", ")
-    );
-    if let Some(path) = plot {
-        let pose =
-            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::region::save_mesh_scene_plot(
-            desc,
-            &pose,
-            mesh,
-            title.clone(),
-            vec![summary.clone()],
-            path,
-        )?;
+    let r = request.run_mesh()?;
+    let title = set_title(&r.robot, &r.kind, &r.orientation_set, r.orientation_count);
+    if let Some(path) = view.plot {
+        let desc = request.robot.description();
+        let region = &r.mesh.grid.grid.region;
+        let pose = draw_pose(&desc.robot, view.draw_pose, region, &Rotation3::identity())?;
+        let summary = format!(
+            "volume {} m³ (boundary mesh, m = {}); {}",
+            super::num(r.volume),
+            r.resolution,
+            r.criteria.join(", ")
+        );
+        save_mesh_scene_plot(desc, &pose, &r.mesh, title.clone(), vec![summary], path)?;
     }
-    if json_out {
-        return print_json(&json!({
-            "robot": desc.name,
-            "method": "mesh",
-            "kind": kind.name(),
-            "orientation_set": set.to_string(),
-            "orientation_count": samples.len(),
-            "angle_names": set.angle_names(),
-            "criteria": setup.labels(),
-            "tension_method": setup.method.name(),
-            "box": super::region::box_json(region, 3),
-            "resolution": m,
-            "dimension": 3,
-            "volume": mesh.volume,
-            "surface_area": mesh.surface_area,
-            "components": mesh.components,
-            "vertices": mesh.vertices.len(),
-            "triangles": mesh.triangles.len(),
-            "tolerance": mesh.tolerance,
-            "watertight": watertight,
-            "feasible_points": mesh.grid.feasible_points,
-            "total_points": mesh.grid.total_points,
-            "limiting_summary": ranked.iter().map(|&(k, n)| json!({
-                "angles_deg": degrees(&samples[k]),
-                "boundary_vertices": n,
-            })).collect::<Vec<_>>(),
-        }));
+    if view.json {
+        return print_report(&r);
     }
     println!("{title}");
     println!(
         "criteria: {} (tensions: {})",
-        setup.labels().join(", "),
-        setup.method.name()
+        r.criteria.join(", "),
+        r.tension_method
     );
     println!(
-        "boundary mesh from a grid of m = {m}: volume {} m³, surface {} m², {} component(s), \
+        "boundary mesh from a grid of m = {}: volume {} m³, surface {} m², {} component(s), \
          {} vertices, {} triangles{}",
-        super::num(mesh.volume),
-        super::num(mesh.surface_area),
-        mesh.components,
-        mesh.vertices.len(),
-        mesh.triangles.len(),
-        if watertight {
+        r.resolution,
+        super::num(r.volume),
+        super::num(r.surface_area),
+        r.components,
+        r.vertices,
+        r.triangles,
+        if r.watertight {
             ", closed"
         } else {
             ", NOT closed (please report)"
         }
     );
-    for &(k, n) in ranked.iter().take(5) {
-        let a = degrees(&samples[k]);
+    for l in r.limiting_summary.iter().take(5) {
+        let a = l.angles_deg;
         println!(
-            "  limiting ({:.2}, {:.2}, {:.2})° at {n} vertices",
-            a[0], a[1], a[2]
+            "  limiting ({:.2}, {:.2}, {:.2})° at {} vertices",
+            a[0], a[1], a[2], l.boundary_vertices
         );
     }
-    if let Some(p) = plot {
+    if let Some(p) = view.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
@@ -393,101 +332,77 @@ pub fn run_workspace_mesh(
 
 /// `cdpr workspace --orientations SET [--kind total|maximal]`: the grid workspace of the
 /// set, with the limiting orientations of a total-orientation workspace.
-#[allow(clippy::too_many_arguments)]
 pub fn run_workspace(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-    region: &Region,
-    m: usize,
-    plot: Option<&Path>,
-    draw_pose: Option<&[f64]>,
-    json_out: bool,
-    convention: VolumeConvention,
+    request: &OrientationWorkspaceRequest,
+    view: &View<'_>,
 ) -> Result<(), CliError> {
-    let grid = Grid::new(m, *region);
-    let (test, samples) = orientation_test(desc, setup, set, kind)?;
-    let ws = orientation_workspace(&test, &grid)?;
-    let names = set.angle_names();
-    let ranked = rank_limiting(ws.limiting.iter().map(|l| l.orientation), samples.len());
-    let w = &ws.workspace;
-    let title = format!(
-        "{}: {} workspace over {set} ({} orientations)",
-        desc.name,
-        kind.name(),
-        samples.len()
-    );
-    let volume = w.measure(convention);
-    let summary = format!(
-        "volume {:.4} m³ ({} of {} points, m = {m}, {} convention); {}",
-        volume,
-        w.feasible_points,
-        w.total_points,
-        convention,
-        setup.labels().join(", ")
-    );
-    if let Some(path) = plot {
-        let pose =
-            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::region::save_scene_plot(desc, &pose, w, title.clone(), vec![summary.clone()], path)?;
-    }
-    if json_out {
-        let mut v = json!({
-            "robot": desc.name,
-            "method": "grid",
-            "kind": kind.name(),
-            "orientation_set": set.to_string(),
-            "orientation_count": samples.len(),
-            "angle_names": names,
-            "criteria": setup.labels(),
-            "tension_method": setup.method.name(),
-            "box": super::region::box_json(region, 3),
-            "resolution": m,
-            "dimension": 3,
-            "feasible_points": w.feasible_points,
-            "total_points": w.total_points,
-            "cell_area": w.cell_area,
-            "limiting_orientations": ws.limiting.iter().map(|l| json!({
-                "point": [l.boundary_point.x, l.boundary_point.y, l.boundary_point.z],
-                "angles_deg": degrees(&samples[l.orientation]),
-            })).collect::<Vec<_>>(),
-            "limiting_summary": ranked.iter().map(|&(k, n)| json!({
-                "angles_deg": degrees(&samples[k]),
-                "boundary_points": n,
-            })).collect::<Vec<_>>(),
-        });
-        super::region::measure_json(&mut v, w, convention);
-        return print_json(&v);
-    }
-    println!("{title}");
-    println!(
-        "criteria: {} (tensions: {})",
-        setup.labels().join(", "),
-        setup.method.name()
-    );
-    println!(
-        "grid m = {m} over {}: {} of {} points in the {} workspace, cell volume {:.6e} m³",
-        super::region::box_json(region, 3),
-        w.feasible_points,
-        w.total_points,
-        kind.name(),
-        w.cell_area
-    );
-    println!("volume {volume:.6} m³ ({convention} convention)");
-    if !ranked.is_empty() {
-        println!(
-            "limiting orientations at {} boundary grid points ({}, degrees):",
-            ws.limiting.len(),
-            names.join(", ")
+    let r = request.run()?;
+    let title = set_title(&r.robot, &r.kind, &r.orientation_set, r.orientation_count);
+    if let Some(path) = view.plot {
+        let desc = request.robot.description();
+        let region = &r.workspace.grid.region;
+        let pose = draw_pose(&desc.robot, view.draw_pose, region, &Rotation3::identity())?;
+        let summary = format!(
+            "volume {:.4} m³ ({} of {} points, m = {}, {} convention); {}",
+            r.area,
+            r.feasible_points,
+            r.total_points,
+            r.resolution,
+            r.volume_convention,
+            r.criteria.join(", ")
         );
-        for &(k, n) in ranked.iter().take(5) {
-            let a = degrees(&samples[k]);
-            println!("  ({:.2}, {:.2}, {:.2}) at {n} point(s)", a[0], a[1], a[2]);
-        }
+        save_scene_plot(
+            desc,
+            &pose,
+            &r.workspace,
+            title.clone(),
+            vec![summary],
+            path,
+        )?;
     }
-    if let Some(p) = plot {
+    if view.json {
+        return print_report(&r);
+    }
+    print_workspace(&title, &r);
+    if let Some(p) = view.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
+}
+
+/// The text answer of the grid workspace over a set.
+fn print_workspace(title: &str, r: &OrientationWorkspaceReport) {
+    println!("{title}");
+    println!(
+        "criteria: {} (tensions: {})",
+        r.criteria.join(", "),
+        r.tension_method
+    );
+    println!(
+        "grid m = {} over {}: {} of {} points in the {} workspace, cell volume {:.6e} m³",
+        r.resolution,
+        json!(r.area_box),
+        r.feasible_points,
+        r.total_points,
+        r.kind,
+        r.cell_area
+    );
+    println!(
+        "volume {:.6} m³ ({} convention)",
+        r.area, r.volume_convention
+    );
+    if !r.limiting_summary.is_empty() {
+        println!(
+            "limiting orientations at {} boundary grid points ({}, degrees):",
+            r.limiting_orientations.len(),
+            r.angle_names.join(", ")
+        );
+        for l in r.limiting_summary.iter().take(5) {
+            let a = l.angles_deg;
+            println!(
+                "  ({:.2}, {:.2}, {:.2}) at {} point(s)",
+                a[0], a[1], a[2], l.boundary_points
+            );
+        }
+    }
 }

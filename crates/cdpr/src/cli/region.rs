@@ -6,7 +6,7 @@ use super::CliError;
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose, Robot};
 use cdpr::plot::{Figure, Panels, WorkspacePlot};
-use cdpr::workspace::{GridWorkspace, Region, VolumeConvention};
+use cdpr::workspace::{GridWorkspace, Region};
 use indicatif::ProgressBar;
 use nalgebra::{Rotation3, Vector3};
 use serde_json::{Value, json};
@@ -285,18 +285,6 @@ pub fn workspace_slices(
 pub fn save_plot(fig: &impl Figure, path: &Path) -> Result<(), CliError> {
     cdpr::plot::save(fig, path)?;
     Ok(())
-}
-
-/// The grid's area (volume) fields: `area` in `convention`, both conventions, and its name.
-pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvention) {
-    let a = ws.measure(convention);
-    v["area"] = json!(a);
-    v["area_cells"] = json!(ws.clipped_area);
-    v["area_points"] = json!(ws.area);
-    v["volume_convention"] = json!(convention.name());
-    if ws.dim == 3 {
-        v["volume"] = json!(a);
-    }
 }
 
 /// The grid workspace figure: one chart for planar robots, z-slices for 3-D ones.

@@ -3,11 +3,13 @@
 //! `criteria` (criteria from the command line) and `region` (boxes, grids with a progress bar,
 //! plots).
 
-use super::criteria::{CriteriaArgs, default_method};
-use super::region::{is_html, region, resolution, rotation};
-use super::{CliError, Numbers, load_robot, request_robot};
-use cdpr::api::{ChordRequest, MeshRequest, SectionRequest, WorkspaceRequest};
-use cdpr::workspace::{OrientationSet, OrientationWorkspaceKind, VolumeConvention};
+use super::criteria::CriteriaArgs;
+use super::region::is_html;
+use super::{CliError, Numbers, request_robot};
+use cdpr::api::{
+    ChordRequest, MeshRequest, OrientationWorkspaceRequest, SectionRequest, WorkspaceRequest,
+};
+use cdpr::workspace::VolumeConvention;
 use std::path::PathBuf;
 
 /// The long help of the command (`--help`), also its documentation.
@@ -160,8 +162,8 @@ pub struct Args {
     /// Spatial robots: a sampled orientation set (degrees), e.g.
     /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` or `tilt:20,torsion=-30..30,n=5`; the
     /// workspace is then the total-orientation or maximal one (--kind).
-    #[arg(long, conflicts_with = "orientation")]
-    orientations: Option<OrientationSet>,
+    #[arg(long, conflicts_with = "orientation", value_parser = super::orientations::set_spec)]
+    orientations: Option<String>,
     /// With --orientations: `total` (every orientation feasible; default) or `maximal` (some).
     #[arg(long, value_parser = ["total", "maximal"], requires = "orientations")]
     kind: Option<String>,
@@ -259,19 +261,9 @@ pub fn run(args: Args) -> Result<(), CliError> {
     }
 }
 
-/// `--orientations`: the workspace over a set of orientations (module `orientations`).
-fn run_orientations(args: &Args, set: &OrientationSet) -> Result<(), CliError> {
-    let desc = &load_robot(&args.robot)?;
-    let robot = &desc.robot;
-    let dim = robot.motion().space_dim();
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(robot));
-    let setup = &super::criteria::setup(&args.criteria, desc, method)?;
-    rotation(robot.motion(), args.orientation.as_deref())?;
-    let region = &region(robot, args.area.as_deref(), "--box")?;
-    let m = resolution(args.grid, dim, 50)?;
+/// `--orientations`: the workspace over a set of orientations (an
+/// `OrientationWorkspaceRequest`, rendered by module `orientations`).
+fn run_orientations(args: &Args, set: &str) -> Result<(), CliError> {
     if args.boundary == "chord" {
         return Err(
             "--orientations runs on the grid or the boundary mesh (--boundary grid|mesh)".into(),
@@ -282,33 +274,18 @@ fn run_orientations(args: &Args, set: &OrientationSet) -> Result<(), CliError> {
             "--section, --points and --mesh apply to one orientation, not --orientations".into(),
         );
     }
-    let kind = match args.kind.as_deref() {
-        Some("maximal") => OrientationWorkspaceKind::Maximal,
-        _ => OrientationWorkspaceKind::Total,
+    let robot = request_robot(&args.robot)?;
+    let mut request = OrientationWorkspaceRequest::new(robot, set);
+    request.criteria = args.criteria.to_request();
+    (request.kind, request.area) = (args.kind.clone(), args.area.as_ref().map(|n| n.0.clone()));
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+    let view = super::orientations::View {
+        plot: args.plot.as_deref(),
+        draw_pose: args.draw_pose.as_deref(),
+        json: args.json,
     };
     if args.boundary == "mesh" {
-        return super::orientations::run_workspace_mesh(
-            desc,
-            setup,
-            set,
-            kind,
-            region,
-            m,
-            args.plot.as_deref(),
-            args.draw_pose.as_deref(),
-            args.json,
-        );
+        return super::orientations::run_workspace_mesh(&request, &view);
     }
-    super::orientations::run_workspace(
-        desc,
-        setup,
-        set,
-        kind,
-        region,
-        m,
-        args.plot.as_deref(),
-        args.draw_pose.as_deref(),
-        args.json,
-        args.volume_convention,
-    )
+    super::orientations::run_workspace(&request, &view)
 }
