@@ -21,6 +21,7 @@
 //! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
 //! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
 //! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
+//! | [`OrientationsRequest`] | [`OrientationsReport`] | feasible orientations of a set at one position |
 //! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
 //!
@@ -57,6 +58,7 @@ mod isotropic;
 mod isotropic_map;
 mod kinematics;
 mod mesh;
+mod orientation_map;
 mod orientation_set;
 pub mod region;
 mod robot;
@@ -83,6 +85,9 @@ pub use kinematics::{
     KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
 };
 pub use mesh::{BoxFacesReport, MeshReport, MeshRequest, ShellReport};
+pub use orientation_map::{
+    FractionMapReport, OrientationsReport, OrientationsRequest, SampleReport,
+};
 pub use orientation_set::{
     LimitingCountReport, LimitingReport, LimitingVerticesReport, OrientationMeshReport,
     OrientationWorkspaceReport, OrientationWorkspaceRequest, degrees, orientation_test,

@@ -42,6 +42,8 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<ChordReport>("chord", "report"),
         entry::<DextrousRequest>("dextrous", "request"),
         entry::<DextrousReport>("dextrous", "report"),
+        entry::<OrientationsRequest>("orientations", "request"),
+        entry::<OrientationsReport>("orientations", "report"),
         entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
         entry::<OrientationWorkspaceReport>("orientation-workspace", "report"),
         entry::<OrientationMeshReport>("orientation-mesh", "report"),

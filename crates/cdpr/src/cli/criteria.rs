@@ -6,8 +6,8 @@
 
 use super::{CliError, Numbers};
 use cdpr::RobotDescription;
+pub use cdpr::api::CriteriaSetup;
 use cdpr::api::WorkspaceCriteria;
-pub use cdpr::api::{CriteriaSetup, default_method};
 use cdpr::tension::Method;
 
 /// Workspace criteria and load, shared by `workspace`, `dextrous` and `synthesize`.

@@ -2,17 +2,17 @@
 //! sampled set, as a tilt/torsion map and JSON); and the total-orientation and maximal
 //! workspaces behind `cdpr workspace --orientations … --kind total|maximal`.
 
-use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
+use super::criteria::CriteriaArgs;
 use super::region::{draw_pose, save_mesh_scene_plot, save_scene_plot};
-use super::{CliError, Numbers, load_robot, print_json, print_report};
-use cdpr::RobotDescription;
-use cdpr::api::{OrientationWorkspaceReport, OrientationWorkspaceRequest, degrees};
-use cdpr::plot::HeatMap;
-use cdpr::workspace::{
-    OrientationSet, OrientationTest, OrientationWorkspaceKind, SampledOrientation,
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{
+    OrientationWorkspaceReport, OrientationWorkspaceRequest, OrientationsReport,
+    OrientationsRequest,
 };
-use nalgebra::{Rotation3, Vector3};
-use serde_json::{Value, json};
+use cdpr::plot::HeatMap;
+use cdpr::workspace::OrientationSet;
+use nalgebra::Rotation3;
+use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// The `--orientations` syntax, shared by the help texts.
@@ -56,8 +56,8 @@ pub struct Args {
     position: Numbers,
     /// The orientation set, e.g. `tilt:20,torsion=-30..30,n=5` or
     /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` (degrees; see below).
-    #[arg(long)]
-    orientations: OrientationSet,
+    #[arg(long, value_parser = set_spec)]
+    orientations: String,
     #[command(flatten)]
     criteria: CriteriaArgs,
     /// Write the tilt/torsion map (.svg or .png).
@@ -68,187 +68,97 @@ pub struct Args {
     json: bool,
 }
 
-/// The orientation test of a robot file (see [`cdpr::api::orientation_test`]).
-pub fn orientation_test(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-) -> Result<(OrientationTest, Vec<SampledOrientation>), CliError> {
-    Ok(cdpr::api::orientation_test(desc, setup, set, kind)?)
-}
-
-/// The map of fractions feasible: axes (x, y) = angle indices, fraction over the others.
-pub struct FractionMap {
-    /// Angle index along x and y.
-    pub axes: (usize, usize),
-    /// Sample values along x and y (degrees).
-    pub xs: Vec<f64>,
-    /// Sample values along y (degrees).
-    pub ys: Vec<f64>,
-    /// Fraction feasible, row-major, x fastest.
-    pub fraction: Vec<f64>,
-}
-
-/// Sorted distinct values.
-fn distinct(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs().max(1.0));
-    v
-}
-
-/// The tilt/torsion map of a set's verdicts.
-pub fn fraction_map(
-    set: &OrientationSet,
-    samples: &[SampledOrientation],
-    feasible: &[bool],
-) -> FractionMap {
-    let axes = match set {
-        OrientationSet::TiltTorsion { .. } => (2, 0),
-        OrientationSet::EulerBox { min, max, .. } => {
-            let ranged: Vec<usize> = (0..3).filter(|&k| min[k] < max[k]).collect();
-            match ranged.as_slice() {
-                [] => (0, 1),
-                [a] => (*a, if *a == 0 { 1 } else { 0 }),
-                [a, b, ..] => (*a, *b),
-            }
-        }
-    };
-    let deg = |o: &SampledOrientation, k: usize| o.angles[k].to_degrees();
-    let xs = distinct(samples.iter().map(|o| deg(o, axes.0)).collect());
-    let ys = distinct(samples.iter().map(|o| deg(o, axes.1)).collect());
-    let find = |v: &[f64], x: f64| {
-        v.iter()
-            .position(|a| (a - x).abs() <= 1e-12 * x.abs().max(1.0))
-            .unwrap_or(0)
-    };
-    let mut count = vec![(0usize, 0usize); xs.len() * ys.len()];
-    for (o, &ok) in samples.iter().zip(feasible) {
-        let cell = find(&ys, deg(o, axes.1)) * xs.len() + find(&xs, deg(o, axes.0));
-        count[cell].1 += 1;
-        count[cell].0 += ok as usize;
-    }
-    let fraction = count
-        .iter()
-        .map(|&(a, n)| {
-            if n == 0 {
-                f64::NAN
-            } else {
-                a as f64 / n as f64
-            }
-        })
-        .collect();
-    FractionMap {
-        axes,
-        xs,
-        ys,
-        fraction,
-    }
-}
-
-/// Runs `cdpr orientations`.
+/// Runs `cdpr orientations`: parse → request → run → render.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let desc = load_robot(&args.robot)?;
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(&desc.robot));
-    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
-    let u = match args.position.0.as_slice() {
-        [x, y, z] if [x, y, z].iter().all(|v| v.is_finite()) => Vector3::new(*x, *y, *z),
-        p => {
-            return Err(format!("--position needs 3 finite numbers x,y,z (m), got {p:?}").into());
-        }
+    let request = OrientationsRequest {
+        robot: request_robot(&args.robot)?,
+        criteria: args.criteria.to_request(),
+        position: args.position.0.clone(),
+        orientations: args.orientations.clone(),
     };
-    let set = &args.orientations;
-    let (mut test, samples) =
-        orientation_test(&desc, &setup, set, OrientationWorkspaceKind::Total)?;
-    let feasible = test.feasible_orientations(u);
-    let count = feasible.iter().filter(|&&f| f).count();
-    let names = set.angle_names();
-    let map = fraction_map(set, &samples, &feasible);
-    let spec = set.to_string();
+    let r = request.run()?;
     if let Some(path) = &args.plot {
-        let (nx, ny) = (map.xs.len(), map.ys.len());
-        let over = names[3 - map.axes.0 - map.axes.1];
-        let fig = HeatMap {
-            title: format!(
-                "{}: feasible orientations at ({}, {}, {}) m",
-                desc.name, u.x, u.y, u.z
-            ),
-            labels: (
-                format!("{} (°)", names[map.axes.0]),
-                format!("{} (°)", names[map.axes.1]),
-            ),
-            value_label: format!("fraction of {over} samples feasible"),
-            x_range: (map.xs[0], map.xs[nx - 1]),
-            y_range: (map.ys[0], map.ys[ny - 1]),
-            shape: (nx, ny),
-            values: map.fraction.clone(),
-            blank_below: f64::NEG_INFINITY,
-            markers: Vec::new(),
-            outlines: Vec::new(),
-            highlight: Vec::new(),
-        };
-        cdpr::plot::save(&fig, path)?;
+        save_map(&r, path)?;
     }
     if args.json {
-        return print_json(&json!({
-            "robot": desc.name,
-            "position": [u.x, u.y, u.z],
-            "orientation_set": spec,
-            "angle_names": names,
-            "criteria": setup.labels(),
-            "count": samples.len(),
-            "feasible_count": count,
-            "orientations": samples.iter().zip(&feasible).map(|(o, f)| json!({
-                "angles_deg": degrees(o),
-                "feasible": f,
-            })).collect::<Vec<_>>(),
-            "map": {
-                "x": names[map.axes.0],
-                "y": names[map.axes.1],
-                "x_deg": map.xs,
-                "y_deg": map.ys,
-                "fraction": map.fraction.chunks(map.xs.len().max(1)).map(|r| r.iter().map(|v| if v.is_finite() { json!(v) } else { Value::Null }).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            },
-        }));
+        return print_report(&r);
     }
+    print_orientations(&r);
+    if let Some(p) = &args.plot {
+        println!("plot written to {}", p.display());
+    }
+    Ok(())
+}
+
+/// The name of the angle the map folds over.
+fn folded(r: &OrientationsReport) -> &str {
+    &r.angle_names[3 - r.map_axes.0 - r.map_axes.1]
+}
+
+/// The tilt/torsion (or Euler) map as a heat map.
+fn save_map(r: &OrientationsReport, path: &Path) -> Result<(), CliError> {
+    let m = &r.map;
+    let (nx, ny) = (m.x_deg.len(), m.y_deg.len());
+    let [x, y, z] = r.position;
+    let fig = HeatMap {
+        title: format!("{}: feasible orientations at ({x}, {y}, {z}) m", r.robot),
+        labels: (format!("{} (°)", m.x), format!("{} (°)", m.y)),
+        value_label: format!("fraction of {} samples feasible", folded(r)),
+        x_range: (m.x_deg[0], m.x_deg[nx - 1]),
+        y_range: (m.y_deg[0], m.y_deg[ny - 1]),
+        shape: (nx, ny),
+        values: m
+            .fraction
+            .iter()
+            .flatten()
+            .map(|v| v.unwrap_or(f64::NAN))
+            .collect(),
+        blank_below: f64::NEG_INFINITY,
+        markers: Vec::new(),
+        outlines: Vec::new(),
+        highlight: Vec::new(),
+    };
+    cdpr::plot::save(&fig, path)?;
+    Ok(())
+}
+
+/// The text answer: counts and the map as a table.
+fn print_orientations(r: &OrientationsReport) {
+    let [x, y, z] = r.position;
     println!(
-        "robot {}: orientation workspace at ({}, {}, {}) m over {spec}",
-        desc.name, u.x, u.y, u.z
+        "robot {}: orientation workspace at ({x}, {y}, {z}) m over {}",
+        r.robot, r.orientation_set
     );
-    println!("criteria: {}", setup.labels().join(", "));
+    println!("criteria: {}", r.criteria.join(", "));
     println!(
-        "{count} of {} sampled orientations feasible ({:.1} %)",
-        samples.len(),
-        100.0 * count as f64 / samples.len() as f64
+        "{} of {} sampled orientations feasible ({:.1} %)",
+        r.feasible_count,
+        r.count,
+        100.0 * r.feasible_count as f64 / r.count as f64
     );
+    let m = &r.map;
     println!(
         "map: {} (rows) × {} (columns), fraction feasible over {}",
-        names[map.axes.1],
-        names[map.axes.0],
-        names[3 - map.axes.0 - map.axes.1]
+        m.y,
+        m.x,
+        folded(r)
     );
-    let header: Vec<String> = map.xs.iter().map(|x| format!("{x:>7.1}")).collect();
+    let header: Vec<String> = m.x_deg.iter().map(|x| format!("{x:>7.1}")).collect();
     println!(
         "{:>9} {}",
-        format!("{}\\{}", names[map.axes.1], names[map.axes.0])
+        format!("{}\\{}", m.y, m.x)
             .chars()
             .take(9)
             .collect::<String>(),
         header.join("")
     );
-    for (j, y) in map.ys.iter().enumerate() {
-        let row: Vec<String> = (0..map.xs.len())
-            .map(|i| format!("{:>7.2}", map.fraction[j * map.xs.len() + i]))
+    for (y, row) in m.y_deg.iter().zip(&m.fraction) {
+        let cells: Vec<String> = row
+            .iter()
+            .map(|v| format!("{:>7.2}", v.unwrap_or(f64::NAN)))
             .collect();
-        println!("{y:>8.1}° {}", row.join(""));
+        println!("{y:>8.1}° {}", cells.join(""));
     }
-    if let Some(p) = &args.plot {
-        println!("plot written to {}", p.display());
-    }
-    Ok(())
 }
 
 /// The `--orientations` value: a valid orientation set, kept as written (the request parses it).

@@ -7,7 +7,8 @@ use super::criteria::CriteriaArgs;
 use super::region::is_html;
 use super::{CliError, Numbers, request_robot};
 use cdpr::api::{
-    ChordRequest, MeshRequest, OrientationWorkspaceRequest, SectionRequest, WorkspaceRequest,
+    ChordRequest, MeshRequest, OrientationWorkspaceRequest, SectionRequest, WorkspaceCriteria,
+    WorkspaceRequest,
 };
 use cdpr::workspace::VolumeConvention;
 use std::path::PathBuf;
@@ -185,31 +186,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
         return run_orientations(&args, set);
     }
     let robot = request_robot(&args.robot)?;
-    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
-    let (orientation, area) = (numbers(&args.orientation), numbers(&args.area));
-    let criteria = args.criteria.to_request();
     let (draw_pose, plot, json) = (args.draw_pose.as_deref(), args.plot.as_deref(), args.json);
+    let chord_view = super::workspace_chord::View {
+        draw_pose,
+        plot,
+        json,
+    };
     if let Some(section) = &args.section {
-        let request = SectionRequest {
-            robot,
-            criteria,
-            orientation,
-            area,
-            grid: args.grid,
-            section: section.parse()?,
-            chord: args.chord,
-        };
-        let view = super::workspace_chord::View {
-            draw_pose,
-            plot,
-            json,
-        };
-        return super::workspace_chord::run_section(&request, &view);
+        let mut request = SectionRequest::new(robot, section.parse()?);
+        (request.criteria, request.orientation, request.area) = common(&args);
+        (request.grid, request.chord) = (args.grid, args.chord);
+        return super::workspace_chord::run_section(&request, &chord_view);
     }
     match args.boundary.as_str() {
         "mesh" => {
             let mut request = MeshRequest::new(robot);
-            (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
+            (request.criteria, request.orientation, request.area) = common(&args);
             (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
             let view = super::workspace_mesh::View {
                 draw_pose,
@@ -222,43 +214,46 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         "chord" => {
             let mut request = ChordRequest::new(robot);
-            (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
+            (request.criteria, request.orientation, request.area) = common(&args);
             (request.grid, request.chord) = (args.grid, args.chord);
-            let view = super::workspace_chord::View {
-                draw_pose,
-                plot,
-                json,
-            };
-            super::workspace_chord::run_chord(&request, &view)
+            super::workspace_chord::run_chord(&request, &chord_view)
         }
-        _ => {
-            if let Some(p) = plot.filter(|p| is_html(p))
-                && robot.robot.motion().space_dim() != 3
-            {
-                return Err(format!(
-                    "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the \
-                     grid; use .svg or .png",
-                    p.display()
-                )
-                .into());
-            }
-            let request = WorkspaceRequest {
-                robot,
-                criteria,
-                orientation,
-                area,
-                grid: args.grid,
-                volume_convention: args.volume_convention,
-            };
-            let view = super::workspace_grid::View {
-                draw_pose,
-                plot,
-                points: args.points.as_deref(),
-                json,
-            };
-            super::workspace_grid::run(&request, &view)
-        }
+        _ => run_grid(&args, robot),
     }
+}
+
+/// The criteria, orientation and box of every request of the command.
+fn common(args: &Args) -> (WorkspaceCriteria, Option<Vec<f64>>, Option<Vec<f64>>) {
+    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
+    (
+        args.criteria.to_request(),
+        numbers(&args.orientation),
+        numbers(&args.area),
+    )
+}
+
+/// `--boundary grid` (the default) at one orientation (module `workspace_grid`).
+fn run_grid(args: &Args, robot: cdpr::api::Robot) -> Result<(), CliError> {
+    if let Some(p) = args.plot.as_deref().filter(|p| is_html(p))
+        && robot.robot.motion().space_dim() != 3
+    {
+        return Err(format!(
+            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; use \
+             .svg or .png",
+            p.display()
+        )
+        .into());
+    }
+    let mut request = WorkspaceRequest::new(robot);
+    (request.criteria, request.orientation, request.area) = common(args);
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+    let view = super::workspace_grid::View {
+        draw_pose: args.draw_pose.as_deref(),
+        plot: args.plot.as_deref(),
+        points: args.points.as_deref(),
+        json: args.json,
+    };
+    super::workspace_grid::run(&request, &view)
 }
 
 /// `--orientations`: the workspace over a set of orientations (an
@@ -277,7 +272,7 @@ fn run_orientations(args: &Args, set: &str) -> Result<(), CliError> {
     let robot = request_robot(&args.robot)?;
     let mut request = OrientationWorkspaceRequest::new(robot, set);
     request.criteria = args.criteria.to_request();
-    (request.kind, request.area) = (args.kind.clone(), args.area.as_ref().map(|n| n.0.clone()));
+    (request.kind, request.area) = (args.kind.clone(), common(args).2);
     (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
     let view = super::orientations::View {
         plot: args.plot.as_deref(),
