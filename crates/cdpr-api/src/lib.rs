@@ -21,6 +21,7 @@
 //! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
 //! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
 //! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
+//! | [`StiffnessMapRequest`] | [`StiffnessMapReport`] | displacement over the feasible polygon (SOTDA study) |
 //! | [`OrientationsRequest`] | [`OrientationsReport`] | feasible orientations of a set at one position |
 //! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
@@ -66,6 +67,7 @@ pub mod rows;
 pub mod schema;
 mod section;
 mod stiffness;
+mod stiffness_map;
 mod tension;
 mod workspace;
 
@@ -95,6 +97,9 @@ pub use orientation_set::{
 pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
 pub use section::{Axis, SectionPlane, SectionPlaneReport, SectionReport, SectionRequest};
 pub use stiffness::{StiffnessReport, StiffnessRequest};
+pub use stiffness_map::{
+    DISPLACEMENT_UNIT, LambdaGridReport, MapReport, StiffnessMapReport, StiffnessMapRequest,
+};
 pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,

@@ -42,6 +42,8 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<ChordReport>("chord", "report"),
         entry::<DextrousRequest>("dextrous", "request"),
         entry::<DextrousReport>("dextrous", "report"),
+        entry::<StiffnessMapRequest>("stiffness-map", "request"),
+        entry::<StiffnessMapReport>("stiffness-map", "report"),
         entry::<OrientationsRequest>("orientations", "request"),
         entry::<OrientationsReport>("orientations", "report"),
         entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
