@@ -717,13 +717,14 @@ impl ElasticCatenary {
                 (sin0.asin(), l0)
             }
         };
+        // The forward map at (θ, L0), with sin θ and cos θ (reused by the step that follows).
         let eval = |theta: f64, l0: f64| {
             let (s, co) = theta.sin_cos();
             let f = self.forward(l0, t * co, t * s);
-            (f, Vector2::new(f.x, f.z) - target)
+            (f, Vector2::new(f.x, f.z) - target, (s, co))
         };
         let tol = Self::tolerance(chord);
-        let (mut f, mut r) = eval(theta, l0);
+        let (mut f, mut r, mut sc) = eval(theta, l0);
         let mut norm = r.norm();
         let unreachable = CatenaryError::Unreachable {
             horizontal: x,
@@ -731,7 +732,7 @@ impl ElasticCatenary {
             reason: "the platform-end tension is too small to hold the cable across the span",
         };
         for it in 0..100 {
-            let (s, co) = theta.sin_cos();
+            let (s, co) = sc;
             if norm <= tol {
                 return Ok(self.solution(l0, t * co, t * s, it));
             }
@@ -754,10 +755,10 @@ impl ElasticCatenary {
             for _ in 0..40 {
                 let (nth, nl0) = (theta - alpha * d_theta, l0 - alpha * d_l0);
                 if nl0 > 0.0 && nth.abs() < std::f64::consts::FRAC_PI_2 {
-                    let (nf, nr) = eval(nth, nl0);
+                    let (nf, nr, nsc) = eval(nth, nl0);
                     let nn = nr.norm();
                     if nn.is_finite() && nn < norm {
-                        (theta, l0, f, r, norm) = (nth, nl0, nf, nr, nn);
+                        (theta, l0, f, r, norm, sc) = (nth, nl0, nf, nr, nn, nsc);
                         accepted = true;
                         break;
                     }
@@ -789,7 +790,11 @@ impl ElasticCatenary {
     /// cable's tangent at B and the chord (rad). The deepest point is where the tangent is
     /// parallel to the chord: V(s) = F_x z_B/x_B, s = (F_x z_B/x_B − V_A)/w.
     pub fn sag(&self, sol: &CatenarySolution, x: f64, z: f64) -> (f64, f64) {
-        let chord = x.hypot(z);
+        self.sag_with_chord(sol, x, z, x.hypot(z))
+    }
+
+    /// [`ElasticCatenary::sag`] with the chord √(x² + z²) (m) already known.
+    fn sag_with_chord(&self, sol: &CatenarySolution, x: f64, z: f64, chord: f64) -> (f64, f64) {
         let (fx, fz) = (sol.horizontal_force, sol.vertical_force);
         let angle = (fx * z - fz * x).abs().atan2(fx * x + fz * z);
         if self.weight == 0.0 || x == 0.0 || chord == 0.0 {
@@ -878,7 +883,21 @@ impl SaggingCable {
         horizontal: &Vector3<f64>,
         up: &Vector3<f64>,
     ) -> Self {
-        let (max_sag, angle_to_chord) = model.sag(sol, x, z);
+        let mut cable = Self::forces_from_solution(model, sol, x, z, horizontal, up);
+        cable.fill_sag(model, x, z);
+        cable
+    }
+
+    /// [`SaggingCable::from_solution`] without the sag: `max_sag` and `angle_to_chord` NaN.
+    fn forces_from_solution(
+        model: &ElasticCatenary,
+        sol: &CatenarySolution,
+        x: f64,
+        z: f64,
+        horizontal: &Vector3<f64>,
+        up: &Vector3<f64>,
+    ) -> Self {
+        let chord_length = x.hypot(z);
         let t = sol.platform_end_tension;
         let v_a = sol.vertical_force - model.weight() * sol.unstrained_length;
         let lowest_tension = if v_a < 0.0 && sol.vertical_force > 0.0 {
@@ -890,19 +909,25 @@ impl SaggingCable {
             -(horizontal * sol.horizontal_force + up * sol.vertical_force) / t
         } else {
             // No force: the chord's direction (towards A) keeps W's column defined.
-            -(horizontal * x + up * z) / x.hypot(z)
+            -(horizontal * x + up * z) / chord_length
         };
         Self {
             unstrained_length: sol.unstrained_length,
-            chord_length: x.hypot(z),
+            chord_length,
             frame_end_tension: sol.frame_end_tension,
             platform_end_tension: t,
             lowest_tension,
-            max_sag,
-            angle_to_chord,
+            max_sag: f64::NAN,
+            angle_to_chord: f64::NAN,
             unit,
             solution: *sol,
         }
+    }
+
+    /// `max_sag` and `angle_to_chord` from the solution and the plane span (x, z).
+    fn fill_sag(&mut self, model: &ElasticCatenary, x: f64, z: f64) {
+        (self.max_sag, self.angle_to_chord) =
+            model.sag_with_chord(&self.solution, x, z, self.chord_length);
     }
 }
 
@@ -1095,17 +1120,53 @@ impl RobotCatenaries {
         previous: &[SaggingCable],
         out: &mut Vec<SaggingCable>,
     ) -> Result<(), crate::KinematicsError> {
+        self.forces_with_tensions_from(kin, tensions, previous, out)?;
+        self.fill_sag(kin, out);
+        Ok(())
+    }
+
+    /// [`RobotCatenaries::with_tensions_from`] without the sag, for the iterations of a fixed
+    /// point that only need the end forces: `max_sag` and `angle_to_chord` are NaN until
+    /// [`RobotCatenaries::fill_sag`] (the other fields are those of `with_tensions_from`, bit
+    /// for bit).
+    pub fn forces_with_tensions_from(
+        &self,
+        kin: &crate::PoseKinematics,
+        tensions: &[f64],
+        previous: &[SaggingCable],
+        out: &mut Vec<SaggingCable>,
+    ) -> Result<(), crate::KinematicsError> {
         self.check_count(kin, tensions.len())?;
         let warm = previous.len() == tensions.len();
         out.clear();
         for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
             let (a, b) = Self::ends(kin, i);
             let start = warm.then(|| &previous[i].solution);
-            let s = SaggingCable::with_tension_from(model, &a, &b, &self.up, t, start)
+            let (x, z, horizontal) = plane_span(&a, &b, &self.up);
+            let sol = model
+                .solve_for_tension_from(x, z, t, start)
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
-            out.push(s);
+            out.push(SaggingCable::forces_from_solution(
+                model,
+                &sol,
+                x,
+                z,
+                &horizontal,
+                &self.up,
+            ));
         }
         Ok(())
+    }
+
+    /// Fills `max_sag` and `angle_to_chord` of `cables`, the catenaries of the cables of this
+    /// model at the pose of `kin` (as [`RobotCatenaries::forces_with_tensions_from`] leaves
+    /// them).
+    pub fn fill_sag(&self, kin: &crate::PoseKinematics, cables: &mut [SaggingCable]) {
+        for (i, (model, cable)) in self.cables.iter().zip(cables.iter_mut()).enumerate() {
+            let (a, b) = Self::ends(kin, i);
+            let (x, z, _) = plane_span(&a, &b, &self.up);
+            cable.fill_sag(model, x, z);
+        }
     }
 
     /// Each cable's catenary at the pose of `kin` with unstrained lengths `lengths` (m).
