@@ -562,10 +562,16 @@ impl ElasticCatenary {
             return self.vertical_for_tension(x, z, tension);
         }
         let warm = start
-            .filter(|s| s.horizontal_force > 0.0 && s.unstrained_length > 0.0)
+            .filter(|s| {
+                s.horizontal_force > 0.0
+                    && s.unstrained_length > 0.0
+                    && s.platform_end_tension.is_finite()
+            })
             .map(|s| {
+                // T_B = √(F_x² + F_z²) of that solution: its direction (cos θ, sin θ).
+                let norm = s.platform_end_tension;
                 (
-                    s.vertical_force.atan2(s.horizontal_force),
+                    (s.horizontal_force / norm, s.vertical_force / norm),
                     s.unstrained_length,
                 )
             });
@@ -697,34 +703,35 @@ impl ElasticCatenary {
         Err(SearchEnd::Fold(least))
     }
 
-    /// Newton's method on (θ, L0) from the straight cable (the fast path).
+    /// Newton's method on (θ, L0) from the straight cable (the fast path). The angle θ of
+    /// F = T_B (cos θ, sin θ) is carried as (cos θ, sin θ); a step δ along θ moves it to
+    /// (cos θ − δ sin θ, sin θ + δ cos θ)/√(1 + δ²), the angle θ + atan δ (= θ + δ + O(δ³):
+    /// Newton's quadratic convergence is kept, without a sine, cosine or arctangent per step).
     fn tension_newton(
         &self,
         x: f64,
         z: f64,
         tension: f64,
         chord: f64,
-        start: Option<(f64, f64)>,
+        start: Option<((f64, f64), f64)>,
     ) -> Result<CatenarySolution, CatenaryError> {
         let (w, c, t) = (self.weight, self.compliance, tension);
         let target = Vector2::new(x, z);
-        let (mut theta, mut l0) = match start {
+        let ((mut co, mut s), mut l0) = match start {
             Some(s) => s,
             None => {
                 // The straight cable, its end force tilted by half the weight.
                 let l0 = chord / (1.0 + c * t);
                 let sin0 = (z / chord + 0.5 * w * l0 / t).clamp(-0.999, 0.999);
-                (sin0.asin(), l0)
+                (((1.0 - sin0 * sin0).sqrt(), sin0), l0)
             }
         };
-        // The forward map at (θ, L0), with sin θ and cos θ (reused by the step that follows).
-        let eval = |theta: f64, l0: f64| {
-            let (s, co) = theta.sin_cos();
+        let eval = |co: f64, s: f64, l0: f64| {
             let f = self.forward(l0, t * co, t * s);
-            (f, Vector2::new(f.x, f.z) - target, (s, co))
+            (f, Vector2::new(f.x, f.z) - target)
         };
         let tol = Self::tolerance(chord);
-        let (mut f, mut r, mut sc) = eval(theta, l0);
+        let (mut f, mut r) = eval(co, s, l0);
         let mut norm = r.norm();
         let unreachable = CatenaryError::Unreachable {
             horizontal: x,
@@ -732,7 +739,6 @@ impl ElasticCatenary {
             reason: "the platform-end tension is too small to hold the cable across the span",
         };
         for it in 0..100 {
-            let (s, co) = sc;
             if norm <= tol {
                 return Ok(self.solution(l0, t * co, t * s, it));
             }
@@ -753,12 +759,16 @@ impl ElasticCatenary {
             let mut alpha = 1.0;
             let mut accepted = false;
             for _ in 0..40 {
-                let (nth, nl0) = (theta - alpha * d_theta, l0 - alpha * d_l0);
-                if nl0 > 0.0 && nth.abs() < std::f64::consts::FRAC_PI_2 {
-                    let (nf, nr, nsc) = eval(nth, nl0);
+                let delta = -alpha * d_theta;
+                let scale = 1.0 / (1.0 + delta * delta).sqrt();
+                let (nco, ns) = ((co - delta * s) * scale, (s + delta * co) * scale);
+                let nl0 = l0 - alpha * d_l0;
+                // |θ| < π/2: the force keeps pointing away from A horizontally.
+                if nl0 > 0.0 && nco > 0.0 {
+                    let (nf, nr) = eval(nco, ns, nl0);
                     let nn = nr.norm();
                     if nn.is_finite() && nn < norm {
-                        (theta, l0, f, r, norm, sc) = (nth, nl0, nf, nr, nn, nsc);
+                        (co, s, l0, f, r, norm) = (nco, ns, nl0, nf, nr, nn);
                         accepted = true;
                         break;
                     }
