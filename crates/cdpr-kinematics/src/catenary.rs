@@ -540,6 +540,19 @@ impl ElasticCatenary {
         start: Option<&CatenarySolution>,
     ) -> Result<CatenarySolution, CatenaryError> {
         let chord = Self::check_span(x, z)?;
+        self.solve_for_tension_checked(x, z, chord, tension, start)
+    }
+
+    /// [`ElasticCatenary::solve_for_tension_from`] on a span checked by `check_span`, whose
+    /// chord (m) it was given.
+    fn solve_for_tension_checked(
+        &self,
+        x: f64,
+        z: f64,
+        chord: f64,
+        tension: f64,
+        start: Option<&CatenarySolution>,
+    ) -> Result<CatenarySolution, CatenaryError> {
         if !(tension.is_finite() && tension >= 0.0) {
             return Err(CatenaryError::InvalidInput {
                 what: "platform-end tension (N, ≥ 0)",
@@ -907,7 +920,19 @@ impl SaggingCable {
         horizontal: &Vector3<f64>,
         up: &Vector3<f64>,
     ) -> Self {
-        let chord_length = x.hypot(z);
+        Self::forces_with_chord(model, sol, x, z, x.hypot(z), horizontal, up)
+    }
+
+    /// [`SaggingCable::forces_from_solution`] with the chord √(x² + z²) (m) known.
+    fn forces_with_chord(
+        model: &ElasticCatenary,
+        sol: &CatenarySolution,
+        x: f64,
+        z: f64,
+        chord_length: f64,
+        horizontal: &Vector3<f64>,
+        up: &Vector3<f64>,
+    ) -> Self {
         let t = sol.platform_end_tension;
         let v_a = sol.vertical_force - model.weight() * sol.unstrained_length;
         let lowest_tension = if v_a < 0.0 && sol.vertical_force > 0.0 {
@@ -1153,17 +1178,21 @@ impl RobotCatenaries {
             let (a, b) = Self::ends(kin, i);
             let start = warm.then(|| &previous[i].solution);
             let (x, z, horizontal) = plane_span(&a, &b, &self.up);
-            let sol = model
-                .solve_for_tension_from(x, z, t, start)
+            let sol = ElasticCatenary::check_span(x, z)
+                .and_then(|chord| {
+                    let sol = model.solve_for_tension_checked(x, z, chord, t, start)?;
+                    Ok(SaggingCable::forces_with_chord(
+                        model,
+                        &sol,
+                        x,
+                        z,
+                        chord,
+                        &horizontal,
+                        &self.up,
+                    ))
+                })
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
-            out.push(SaggingCable::forces_from_solution(
-                model,
-                &sol,
-                x,
-                z,
-                &horizontal,
-                &self.up,
-            ));
+            out.push(sol);
         }
         Ok(())
     }

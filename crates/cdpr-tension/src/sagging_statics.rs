@@ -209,7 +209,10 @@ impl SaggingStatics {
                 return Ok(self.certified(t.clone(), w_ext, bounds, it));
             }
             // Platform-end bounds that keep the whole cable within [t_min, t_max].
-            let (mut lo, mut hi) = (bounds.min().clone(), bounds.max().clone());
+            let (mut lo, mut hi) = (
+                bounds.min().as_slice().to_vec(),
+                bounds.max().as_slice().to_vec(),
+            );
             for (i, c) in self.cables.iter().enumerate() {
                 let (lowest, highest) = tension_range(c);
                 lo[i] += c.platform_end_tension - lowest;
@@ -219,7 +222,7 @@ impl SaggingStatics {
                     return Ok(SaggingOutcome::Infeasible(Infeasibility::NoFeasibleTension));
                 }
             }
-            effective = TensionBounds::new(lo.as_slice().to_vec(), hi.as_slice().to_vec())?;
+            effective = TensionBounds::new(lo, hi)?;
             std::mem::swap(&mut self.previous, &mut self.cables);
         }
         Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {
