@@ -55,12 +55,14 @@ const PROJECTIONS: usize = 8;
 /// Binding normals kept per thread for the quick infeasibility test.
 const NORMALS: usize = 4;
 
+/// Recent binding normals with their dimension, most recent first.
+type Normals = [Option<(usize, [f64; 6])>; NORMALS];
+
 thread_local! {
     /// The normals of the binding half-spaces of the last infeasible poses tested on this
     /// thread, most recent first (any unit normal proves infeasibility when its margin is
     /// negative: hints, not results), with their dimension.
-    static LAST_NORMALS: std::cell::Cell<[Option<(usize, [f64; 6])>; NORMALS]> =
-        const { std::cell::Cell::new([None; NORMALS]) };
+    static LAST_NORMALS: std::cell::Cell<Normals> = const { std::cell::Cell::new([None; NORMALS]) };
 }
 
 /// Margins and tension slacks closer to zero than this, relative to the problem's scale, are
@@ -264,12 +266,10 @@ impl DynamicFeasibility {
         let trace: f64 = (0..dof).map(|i| l[i][i]).sum();
         for i in 0..dof {
             for k in 0..=i {
-                let mut s = l[i][k];
-                for p in 0..k {
-                    s -= l[i][p] * l[k][p];
-                }
+                let dot: f64 = l[i][..k].iter().zip(&l[k][..k]).map(|(a, b)| a * b).sum();
+                let s = l[i][k] - dot;
                 if i == k {
-                    if !(s > 1e-8 * trace) {
+                    if s.is_nan() || s <= 1e-8 * trace {
                         return false;
                     }
                     l[i][i] = s.sqrt();
@@ -305,8 +305,8 @@ impl DynamicFeasibility {
         solve(&mut y);
         let mut x = [[0.0f64; 6]; 6]; // x[col] = G⁻¹ M e_col
         for (col, xc) in x.iter_mut().enumerate().take(dof) {
-            for i in 0..dof {
-                xc[i] = t.m[i][col];
+            for (i, xi) in xc.iter_mut().enumerate().take(dof) {
+                *xi = t.m[i][col];
             }
             solve(xc);
         }
@@ -323,7 +323,7 @@ impl DynamicFeasibility {
             }
             let slack = QUICK_TOLERANCE * self.tmax[j].abs().max(self.tmin[j].abs()).max(1.0);
             (lo[j], hi[j]) = (self.tmin[j] + spread + slack, self.tmax[j] - spread - slack);
-            if !(lo[j] <= hi[j]) {
+            if lo[j].is_nan() || hi[j].is_nan() || lo[j] > hi[j] {
                 return false;
             }
             t0[j] =
