@@ -906,24 +906,13 @@ impl SaggingCable {
         horizontal: &Vector3<f64>,
         up: &Vector3<f64>,
     ) -> Self {
-        let mut cable = Self::forces_from_solution(model, sol, x, z, horizontal, up);
+        let mut cable = Self::forces_with_chord(model, sol, x, z, x.hypot(z), horizontal, up);
         cable.fill_sag(model, x, z);
         cable
     }
 
-    /// [`SaggingCable::from_solution`] without the sag: `max_sag` and `angle_to_chord` NaN.
-    fn forces_from_solution(
-        model: &ElasticCatenary,
-        sol: &CatenarySolution,
-        x: f64,
-        z: f64,
-        horizontal: &Vector3<f64>,
-        up: &Vector3<f64>,
-    ) -> Self {
-        Self::forces_with_chord(model, sol, x, z, x.hypot(z), horizontal, up)
-    }
-
-    /// [`SaggingCable::forces_from_solution`] with the chord √(x² + z²) (m) known.
+    /// [`SaggingCable::from_solution`] without the sag (`max_sag` and `angle_to_chord` NaN),
+    /// the chord √(x² + z²) (m) known.
     fn forces_with_chord(
         model: &ElasticCatenary,
         sol: &CatenarySolution,
