@@ -743,6 +743,15 @@ impl ElasticCatenary {
             let f = self.forward(l0, t * co, t * s);
             (f, Vector2::new(f.x, f.z) - target)
         };
+        // The solution at (θ, L0): T_B is the tension given, T_A the forward map's.
+        let solved = |l0: f64, co: f64, s: f64, f: &Forward, iterations| CatenarySolution {
+            unstrained_length: l0,
+            horizontal_force: t * co,
+            vertical_force: t * s,
+            frame_end_tension: f.ta,
+            platform_end_tension: t,
+            iterations,
+        };
         let tol = Self::tolerance(chord);
         let (mut f, mut r) = eval(co, s, l0);
         let mut norm = r.norm();
@@ -753,7 +762,7 @@ impl ElasticCatenary {
         };
         for it in 0..100 {
             if norm <= tol {
-                return Ok(self.solution(l0, t * co, t * s, it));
+                return Ok(solved(l0, co, s, &f, it));
             }
             let jf = self.jacobian_at(l0, t * co, t * s, &f);
             let dth = Vector2::new(
@@ -790,7 +799,7 @@ impl ElasticCatenary {
             }
             if !accepted {
                 if norm <= 1e3 * tol {
-                    return Ok(self.solution(l0, t * co, t * s, it));
+                    return Ok(solved(l0, co, s, &f, it));
                 }
                 // Newton stalls against the fold when the tension is too low.
                 return Err(if w > 0.0 {
