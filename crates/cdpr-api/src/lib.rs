@@ -41,6 +41,7 @@
 //! ## References
 //! - docs/architecture.md, "Requests and reports".
 
+pub mod cable_model;
 mod capacity;
 pub mod criteria;
 mod error;
@@ -54,6 +55,8 @@ mod robot;
 pub mod schema;
 mod stiffness;
 mod tension;
+pub mod timed;
+pub mod trajectory;
 mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
@@ -73,6 +76,7 @@ pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
+pub use tension::{MethodSettings, refuse_sotda_options};
 pub use workspace::{PreparedWorkspace, WorkspaceReport, WorkspaceRequest};
 
 /// The nalgebra of the whole stack.
