@@ -44,6 +44,7 @@
 //! ## References
 //! - docs/architecture.md, "Requests and reports".
 
+pub mod cable_model;
 mod capacity;
 mod chord;
 pub mod criteria;
@@ -60,6 +61,8 @@ pub mod schema;
 mod section;
 mod stiffness;
 mod tension;
+pub mod timed;
+pub mod trajectory;
 mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
@@ -82,6 +85,7 @@ pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
+pub use tension::{MethodSettings, refuse_sotda_options};
 pub use workspace::{
     PreparedWorkspace, WorkspaceReport, WorkspaceRequest, box_numbers, orientation_or_default,
 };
