@@ -13,6 +13,8 @@
 //!   the same numbers as `cdpr kinematics` and `cdpr tension --json`;
 //! - [`Studio::scene`]: anchors, cables and platform faces at a pose, for the 3-D view;
 //! - [`Studio::edit`], [`Studio::to_toml`], [`Studio::to_wcrfx`]: the robot table and downloads;
+//! - [`Studio::workspace_grid`]: the constant-orientation workspace on a grid (cdpr-api's
+//!   workspace request, `cdpr workspace --json`) and its feasible points;
 //! - [`Studio::workspace_mesh`]: the boundary mesh of the constant-orientation workspace, its
 //!   volume, STL file.
 //!
@@ -41,6 +43,7 @@
 mod bindings;
 mod error;
 mod files;
+mod grid;
 mod mesh;
 mod robot_table;
 mod scene;
@@ -48,6 +51,7 @@ mod state;
 
 pub use error::StudioError;
 pub use files::RobotFileText;
+pub use grid::GridReport;
 pub use mesh::MeshReport;
 pub use robot_table::RobotTable;
 pub use scene::SceneData;
