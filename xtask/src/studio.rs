@@ -162,8 +162,8 @@ fn build(root: &Path, out: &Path) -> Result<(), String> {
             .map_err(|e| format!("{} → {}: {e}", from.display(), to.display()))
     };
     let web = root.join("crates/cdpr-studio/web");
-    for f in ["index.html", "studio.js", "studio.css"] {
-        copy(web.join(f), out.join(f))?;
+    for f in web_files(&web)? {
+        copy(web.join(&f), out.join(&f))?;
     }
     copy(
         root.join("crates/cdpr/src/plot/viewer.js"),
@@ -187,20 +187,27 @@ fn build(root: &Path, out: &Path) -> Result<(), String> {
         serde_json::to_string(&names).expect("names serialise"),
     )
     .map_err(|e| e.to_string())?;
-    report_size(out);
+    report_size(out, &web);
     Ok(())
 }
 
-/// Prints the first-load size (page, glue, wasm; gzip -9 as a static host would serve them).
-fn report_size(out: &Path) {
-    let files = [
-        "index.html",
-        "studio.js",
-        "studio.css",
-        "viewer.js",
-        "cdpr_studio.js",
-        "cdpr_studio_bg.wasm",
-    ];
+/// The page's files (`crates/cdpr-studio/web/`: the HTML, the style and the ES modules).
+fn web_files(web: &Path) -> Result<Vec<String>, String> {
+    let mut names: Vec<String> = std::fs::read_dir(web)
+        .map_err(|e| format!("{}: {e}", web.display()))?
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| [".html", ".js", ".css"].iter().any(|x| n.ends_with(x)))
+        .collect();
+    names.sort();
+    Ok(names)
+}
+
+/// Prints the first-load size (page, modules, glue, wasm; gzip -9 as a static host would serve
+/// them).
+fn report_size(out: &Path, web: &Path) {
+    let mut files = web_files(web).unwrap_or_default();
+    files.extend(["viewer.js", "cdpr_studio.js", "cdpr_studio_bg.wasm"].map(String::from));
     let (mut raw, mut gz) = (0u64, 0u64);
     for f in files {
         let p = out.join(f);

@@ -10,9 +10,8 @@
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators, Algorithm 6.2 and eq. (6.23).
 
-use crate::state::parse_method;
 use crate::{Studio, StudioError};
-use cdpr_api::{Robot, WorkspaceCriteria, WorkspaceReport, WorkspaceRequest};
+use cdpr_api::WorkspaceReport;
 use serde::Serialize;
 
 /// The workspace grid for the page: `cdpr workspace --json`'s report and the feasible points.
@@ -40,17 +39,7 @@ impl Studio {
         method: &str,
         wrench: Option<&[f64]>,
     ) -> Result<GridReport, StudioError> {
-        let method = parse_method(method)?;
-        let dim = self.desc.robot.motion().space_dim();
-        let mut request = WorkspaceRequest::new(Robot::from_description(self.desc.clone()));
-        request.criteria = WorkspaceCriteria {
-            method: Some(method),
-            wrench: wrench.map(<[f64]>::to_vec),
-            ..WorkspaceCriteria::default()
-        };
-        request.orientation = Some(orientation_of(q, dim));
-        request.grid = Some(grid);
-        let report = request.run()?;
+        let report = self.workspace_request(q, grid, method, wrench)?.run()?;
         let points = report
             .workspace
             .feasible_positions()

@@ -16,7 +16,8 @@
 //! - [`Studio::workspace_grid`]: the constant-orientation workspace on a grid (cdpr-api's
 //!   workspace request, `cdpr workspace --json`) and its feasible points;
 //! - [`Studio::workspace_mesh`]: the boundary mesh of the constant-orientation workspace, its
-//!   volume, STL file.
+//!   volume, STL file;
+//! - [`Studio::workspace_section`]: a plane section of that workspace by the chord method.
 //!
 //! The JavaScript bindings (`wasm-bindgen`) are compiled only for `wasm32`; natively the crate is
 //! the plain session logic, tested with `cargo test -p cdpr-studio`.
@@ -47,6 +48,7 @@ mod grid;
 mod mesh;
 mod robot_table;
 mod scene;
+mod section;
 mod state;
 
 pub use error::StudioError;
@@ -55,6 +57,7 @@ pub use grid::GridReport;
 pub use mesh::MeshReport;
 pub use robot_table::RobotTable;
 pub use scene::SceneData;
+pub use section::{SectionReport, SectionSettings};
 pub use state::State;
 
 use cdpr_io::RobotDescription;

@@ -3,7 +3,8 @@
 //! The boundary mesh of the constant-orientation workspace (thesis eq. (6.23), Algorithm 6.2
 //! grid verdicts, marching cubes with vertices bisected onto the boundary) at the orientation of
 //! the pose shown, over the default search box (the anchors' box), with the default criteria of
-//! `cdpr workspace`: tensions in bounds for the load (6.21) by the chosen method, plus l_i ≥ l_min
+//! `cdpr workspace` (cdpr-api's workspace request builds them, one copy for every front end):
+//! tensions in bounds for the load (6.21) by the chosen method, plus l_i ≥ l_min
 //! (6.22) and |det J| ≥ D_min (6.24) when the robot file gives these limits. Single-threaded
 //! in the browser (cdpr-workspace without its `parallel` feature): same verdicts, same mesh.
 //!
@@ -11,13 +12,11 @@
 //! - The thesis chapter on planar tendon-driven manipulators, eqs. (6.21)–(6.24), Algorithm 6.2.
 //! - Lorensen & Cline 1987 (marching cubes).
 
+use crate::grid::orientation_of;
 use crate::state::parse_method;
 use crate::{Studio, StudioError};
-use cdpr_kinematics::Pose;
-use cdpr_workspace::{
-    Criterion, Grid, MeshSettings, PoseEvaluator, Region, VolumeConvention, boundary_mesh,
-};
-use nalgebra::DVector;
+use cdpr_api::{Robot, WorkspaceCriteria, WorkspaceRequest};
+use cdpr_workspace::{MeshSettings, VolumeConvention, boundary_mesh};
 use serde::Serialize;
 
 /// The workspace mesh for the page (and its downloads).
@@ -48,6 +47,29 @@ pub struct MeshReport {
 }
 
 impl Studio {
+    /// cdpr-api's workspace request for this robot at the orientation of pose `q` (the default
+    /// criteria and box of `cdpr workspace`), for the tension `method` and the external wrench
+    /// `wrench` (the robot file's load added), on `grid` intervals per side.
+    pub(crate) fn workspace_request(
+        &self,
+        q: &[f64],
+        grid: usize,
+        method: &str,
+        wrench: Option<&[f64]>,
+    ) -> Result<WorkspaceRequest, StudioError> {
+        let method = parse_method(method)?;
+        let dim = self.desc.robot.motion().space_dim();
+        let mut request = WorkspaceRequest::new(Robot::from_description(self.desc.clone()));
+        request.criteria = WorkspaceCriteria {
+            method: Some(method),
+            wrench: wrench.map(<[f64]>::to_vec),
+            ..WorkspaceCriteria::default()
+        };
+        request.orientation = Some(orientation_of(q, dim));
+        request.grid = Some(grid);
+        Ok(request)
+    }
+
     /// The boundary mesh at grid resolution `grid` for the orientation of pose `q`, the tension
     /// `method` and the external wrench `wrench` (gravity added). Robots moving in space only.
     pub fn workspace_mesh(
@@ -57,8 +79,7 @@ impl Studio {
         method: &str,
         wrench: Option<&[f64]>,
     ) -> Result<MeshReport, StudioError> {
-        let d = &self.desc;
-        let motion = d.robot.motion();
+        let motion = self.desc.robot.motion();
         if motion.space_dim() != 3 {
             return Err(StudioError::NotApplicable {
                 what: "the boundary mesh",
@@ -66,40 +87,16 @@ impl Studio {
                 motion: motion.name(),
             });
         }
-        let method = parse_method(method)?;
-        let pose = Pose::from_coordinates(motion, q)?;
-        let given = match wrench {
-            Some(w) => cdpr_wrench::wrench_from_slice(motion, w)?,
-            None => DVector::zeros(motion.dof()),
-        };
-        d.require_no_passive_springs("the workspace")
-            .map_err(StudioError::Files)?;
-        let w_ext = given + d.load_wrench(&Pose::new(Default::default(), pose.rotation))?;
-        let mut criteria = vec![Criterion::TensionFeasible {
-            method,
-            wrench: w_ext,
-        }];
-        let mut labels = vec!["tension".to_string()];
-        if let Some(l) = d.limits.min_cable_length {
-            criteria.push(Criterion::MinCableLength(l));
-            labels.push(format!("length:{l}"));
-        }
-        if let Some(dmin) = d.limits.min_jacobian_det {
-            criteria.push(Criterion::MinJacobianDeterminant(dmin));
-            labels.push(format!("det:{dmin}"));
-        }
-        let eval = PoseEvaluator::new(d.robot.clone(), d.bounds.clone(), criteria)?;
-        let region = Region::default_for(&d.robot);
-        let g = Grid::new(grid, region);
-        let mesh = boundary_mesh(&eval, &pose.rotation, &g, &MeshSettings::default())?;
+        let p = self.workspace_request(q, grid, method, wrench)?.prepare()?;
+        let mesh = boundary_mesh(&p.evaluator, &p.rotation, &p.grid, &MeshSettings::default())?;
         let mut stl = Vec::new();
         mesh.write_stl(&mut stl)
             .expect("writing into a Vec cannot fail");
-        let r = &g.region;
+        let r = &p.grid.region;
         Ok(MeshReport {
             grid,
-            method: method.name(),
-            criteria: labels,
+            method: p.setup.method.name(),
+            criteria: p.setup.labels(),
             volume: mesh.volume,
             grid_volume: mesh.grid.measure(VolumeConvention::Cells),
             search_box: [[r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]],
