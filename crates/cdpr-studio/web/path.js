@@ -71,9 +71,14 @@ export function plotPath() {
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, W, H);
   const L = 52, R = 10, T = 10, B = 34, n = tr.states.length - 1;
-  const all = tr.states.flatMap((s) => s.tensions || []).concat(tr.states[0].t_min, tr.states[0].t_max.filter((t) => t !== null));
-  let lo = Math.min(0, ...all), hi = Math.max(...all);
+  // The y range: the tensions and t_min; t_max too unless it would flatten the curves (> 3× the
+  // largest tension: then it is written above the plot).
+  const data = tr.states.flatMap((s) => s.tensions || []).concat(tr.states[0].t_min);
+  const top = Math.max(...data), maxes = tr.states[0].t_max.filter((t) => t !== null);
+  const shown = maxes.filter((t) => t <= 3 * Math.max(top, 1e-12));
+  let lo = Math.min(0, ...data), hi = Math.max(top, ...shown) * 1.05;
   if (!(hi > lo)) hi = lo + 1;
+  const hidden = maxes.filter((t) => !shown.includes(t));
   const X = (k) => L + ((W - L - R) * k) / Math.max(n, 1), Y = (t) => H - B - ((H - T - B) * (t - lo)) / (hi - lo);
   tr.states.forEach((s, k) => {
     if (s.feasible) return;
@@ -81,7 +86,8 @@ export function plotPath() {
     ctx.fillRect(X(Math.max(0, k - 0.5)), T, X(Math.min(n, k + 0.5)) - X(Math.max(0, k - 0.5)), H - T - B);
   });
   plotAxes(ctx, { L, R, T, B, W, H, lo, hi, Y });
-  const bounds = new Set(tr.states[0].t_min.concat(tr.states[0].t_max.filter((t) => t !== null)));
+  const bounds = new Set(tr.states[0].t_min.concat(shown));
+  if (hidden.length) { ctx.fillStyle = "#555"; ctx.textAlign = "right"; ctx.fillText(`t_max = ${[...new Set(hidden)].map((t) => fmt(t)).join(", ")} N (above)`, W - R - 4, T + 8); }
   ctx.setLineDash([5, 4]); ctx.strokeStyle = "#888"; ctx.lineWidth = 1;
   bounds.forEach((t) => { ctx.beginPath(); ctx.moveTo(L, Y(t)); ctx.lineTo(W - R, Y(t)); ctx.stroke(); });
   ctx.setLineDash([]); ctx.lineWidth = 1.6;
