@@ -48,6 +48,7 @@
 //! ## References
 //! - docs/architecture.md, "Requests and reports".
 
+pub mod cable_model;
 mod capacity;
 mod chord;
 pub mod criteria;
@@ -69,6 +70,8 @@ mod section;
 mod stiffness;
 mod stiffness_map;
 mod tension;
+pub mod timed;
+pub mod trajectory;
 mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
@@ -104,6 +107,7 @@ pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
+pub use tension::{MethodSettings, refuse_sotda_options};
 pub use workspace::{
     PreparedWorkspace, WorkspaceReport, WorkspaceRequest, box_numbers, orientation_or_default,
 };
