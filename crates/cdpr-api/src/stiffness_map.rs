@@ -66,7 +66,7 @@ pub struct LambdaGridReport {
     pub lambda1: Vec<f64>,
     /// λ2 of the rows (N).
     pub lambda2: Vec<f64>,
-    /// `values[j][i]` at (lambda1[i], lambda2[j]) (mm); null outside the polygon.
+    /// `values[j][i]` at (`lambda1[i]`, `lambda2[j]`) (mm); null outside the polygon.
     pub values: Vec<Vec<Option<f64>>>,
 }
 
