@@ -256,3 +256,60 @@ fn sagging_cables_shrink_cogiros_tension_feasible_set() {
         assert!(dz > 0.0 && ta > tb);
     }
 }
+
+#[test]
+fn sagging_criteria_never_panic_or_err_over_random_cogiro_poses() {
+    use cdpr_api::nalgebra::Vector3;
+    use cdpr_kinematics::{Pose, PoseKinematics};
+    use cdpr_tension::{SaggingOutcome, SaggingSettings, SaggingStatics, TensionSolver};
+    // 300 poses (SplitMix64, seed 29) over the frame's box, tilted by up to 0.3 rad: every
+    // verdict is a verdict (no error, no panic), feasible tensions are finite, and an
+    // infeasible sagging solve says why.
+    let robot = cogiro(None, None);
+    let c = cdpr_api::WorkspaceCriteria {
+        criteria: Some("tension,capacity:0".into()),
+        wrench_box: Some(vec![5.0, 5.0, 5.0, 1.0, 1.0, 1.0]),
+        cable_model: Some("catenary".into()),
+        ..Default::default()
+    };
+    let setup = cdpr_api::CriteriaSetup::new(&c, &robot, cdpr_api::Method::L2).unwrap();
+    let model = setup.catenaries.clone().unwrap();
+    let mut state = 29u64;
+    let mut uniform = move || {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut kin = PoseKinematics::for_robot(&robot.robot);
+    let mut statics = SaggingStatics::new(SaggingSettings::default());
+    let mut solver = TensionSolver::new(cdpr_api::Method::L2);
+    let mut feasible = 0;
+    for _ in 0..300 {
+        let mut u = |a: f64, b: f64| a + (b - a) * uniform();
+        let position = Vector3::new(u(-7.0, 7.0), u(-5.0, 5.0), u(0.0, 5.0));
+        let rotation = Rotation3::from_euler_angles(u(-0.3, 0.3), u(-0.3, 0.3), u(-0.3, 0.3));
+        let pose = Pose::new(position, rotation);
+        let mut eval = setup
+            .evaluator(&robot, robot.robot.clone(), &rotation)
+            .unwrap();
+        eval.check(&pose).unwrap();
+        if robot.robot.update_kinematics(&pose, &mut kin).is_err() {
+            continue;
+        }
+        let w_ext = setup.external_wrench(&robot, &rotation).unwrap();
+        match statics
+            .solve(&mut solver, &kin, &model, &w_ext, &robot.bounds)
+            .unwrap()
+        {
+            SaggingOutcome::Feasible(s) => {
+                feasible += 1;
+                assert!(s.tensions.iter().all(|t| t.is_finite()));
+                assert!(s.cables.iter().all(|c| c.unstrained_length.is_finite()));
+            }
+            SaggingOutcome::Infeasible(r) => assert!(!r.to_string().is_empty()),
+        }
+    }
+    assert!(feasible > 0, "some random poses are feasible");
+}
