@@ -25,6 +25,7 @@ function samples(from, to, n) {
 // Computes the states along the path to the target pose of the "path-to" field.
 export async function computePath(target, steps) {
   if (target !== undefined) $("path-to").value = target;
+  if (steps) $("path-steps").value = steps;
   const text = $("path-to").value;
   const to = text.split(",").map((x) => (x.trim() === "" ? NaN : Number(x)));
   const n = steps || Number($("path-steps").value);
