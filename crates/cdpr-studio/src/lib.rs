@@ -81,3 +81,21 @@ impl Studio {
         &self.desc
     }
 }
+
+#[cfg(test)]
+mod test_support {
+    use crate::{RobotFileText, Studio};
+
+    /// A shipped example robot (`examples/robots/NAME`), opened as the page opens a file.
+    pub fn open(name: &str) -> Studio {
+        let path = format!(
+            "{}/../../examples/robots/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        Studio::open(&[RobotFileText {
+            name: name.into(),
+            text: std::fs::read_to_string(path).unwrap(),
+        }])
+        .unwrap()
+    }
+}
