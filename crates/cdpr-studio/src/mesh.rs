@@ -3,10 +3,10 @@
 //! The boundary mesh of the constant-orientation workspace (thesis eq. (6.23), Algorithm 6.2
 //! grid verdicts, marching cubes with vertices bisected onto the boundary) at the orientation of
 //! the pose shown, over the default search box (the anchors' box), with the default criteria of
-//! `cdpr workspace` (cdpr-api's workspace request builds them, one copy for every front end):
-//! tensions in bounds for the load (6.21) by the chosen method, plus l_i ≥ l_min
-//! (6.22) and |det J| ≥ D_min (6.24) when the robot file gives these limits. Single-threaded
-//! in the browser (cdpr-workspace without its `parallel` feature): same verdicts, same mesh.
+//! `cdpr workspace`: tensions in bounds for the load (6.21) by the chosen method, plus l_i ≥ l_min
+//! (6.22) and |det J| ≥ D_min (6.24) when the robot file gives these limits. It is the
+//! `MeshRequest` of `cdpr-api` (the request behind `cdpr workspace --boundary mesh`), run
+//! single-threaded in the browser (without the `parallel` feature): same verdicts, same mesh.
 //!
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators, eqs. (6.21)–(6.24), Algorithm 6.2.
@@ -15,8 +15,8 @@
 use crate::grid::orientation_of;
 use crate::state::parse_method;
 use crate::{Studio, StudioError};
-use cdpr_api::{Robot, WorkspaceCriteria, WorkspaceRequest};
-use cdpr_workspace::{MeshSettings, VolumeConvention, boundary_mesh};
+use cdpr_api::{MeshRequest, Robot, WorkspaceCriteria, WorkspaceRequest};
+use cdpr_kinematics::{MotionPattern, Pose};
 use serde::Serialize;
 
 /// The workspace mesh for the page (and its downloads).
@@ -25,7 +25,7 @@ pub struct MeshReport {
     /// Grid resolution m (m + 1 points per axis).
     pub grid: usize,
     /// Tension method of the tension criterion.
-    pub method: &'static str,
+    pub method: String,
     /// Criteria (as `cdpr workspace --criteria` writes them).
     pub criteria: Vec<String>,
     /// Enclosed volume (m³), by the divergence theorem.
@@ -87,23 +87,30 @@ impl Studio {
                 motion: motion.name(),
             });
         }
-        let p = self.workspace_request(q, grid, method, wrench)?.prepare()?;
-        let mesh = boundary_mesh(&p.evaluator, &p.rotation, &p.grid, &MeshSettings::default())?;
+        let method = parse_method(method)?;
+        Pose::from_coordinates(motion, q)?;
+        let mut request = MeshRequest::new(Robot::from_description(self.desc.clone()));
+        request.criteria.method = Some(method);
+        request.criteria.wrench = wrench.map(<[f64]>::to_vec);
+        request.orientation = (motion == MotionPattern::Spatial).then(|| q[3..6].to_vec());
+        request.grid = Some(grid);
+        let r = request.run()?;
         let mut stl = Vec::new();
-        mesh.write_stl(&mut stl)
+        r.mesh
+            .write_stl(&mut stl)
             .expect("writing into a Vec cannot fail");
-        let r = &p.grid.region;
+        let b = &r.area_box;
         Ok(MeshReport {
-            grid,
-            method: p.setup.method.name(),
-            criteria: p.setup.labels(),
-            volume: mesh.volume,
-            grid_volume: mesh.grid.measure(VolumeConvention::Cells),
-            search_box: [[r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]],
-            evaluations: mesh.evaluations,
+            grid: r.resolution,
+            method: r.tension_method,
+            criteria: r.criteria,
+            volume: r.volume,
+            grid_volume: r.area_cells,
+            search_box: [[b[0], b[2], b[4]], [b[1], b[3], b[5]]],
+            evaluations: r.evaluations,
             stl,
-            vertices: mesh.vertices,
-            triangles: mesh.triangles,
+            vertices: r.vertices,
+            triangles: r.triangles,
         })
     }
 }
