@@ -665,14 +665,51 @@ fn check_section(c: &Case) -> Result<(), String> {
     Ok(())
 }
 
-/// A path of 20 steps: its poses are the straight line's, its tensions `cdpr tension`'s.
-fn check_path(c: &Case) -> Result<(), String> {
-    let page = c.page("path=0.5,0.4,1.2,0,0,0&steps=20")?;
-    let path = &page["path"];
+/// Every sample's poses and tensions (N), and the motor torques (N·m), page against CLI.
+fn same_samples(what: &str, path: &Value, cli: &Value) -> Result<usize, String> {
     let poses = path["poses"].as_array().cloned().unwrap_or_default();
-    if poses.len() != 21 {
-        return Err(format!("path: {} poses, expected 21", poses.len()));
+    let cli_poses = cli["poses"].as_array().cloned().unwrap_or_default();
+    if poses.len() != cli_poses.len() || poses.is_empty() {
+        return Err(format!(
+            "{what}: {} samples, CLI {}",
+            poses.len(),
+            cli_poses.len()
+        ));
     }
+    for k in 0..poses.len() {
+        close(&format!("{what}: pose {k}"), &poses[k], &cli_poses[k])?;
+        let (a, b) = (&path["tensions"][k], &cli["tensions"][k]);
+        if a.is_null() != b.is_null() {
+            return Err(format!("{what}: sample {k}: page {a}, CLI {b}"));
+        }
+        if !a.is_null() {
+            close(&format!("{what}: tensions at sample {k} (N)"), a, b)?;
+        }
+    }
+    let torques = &cli["drive_train"]["motor_torques"];
+    if path["motor_torques"].is_null() != torques.is_null() {
+        return Err(format!("{what}: motor torques on one side only"));
+    }
+    Ok(poses.len())
+}
+
+/// A path of 20 steps and a quintic trajectory of 2 s: the page's samples are `cdpr
+/// trajectory`'s; the untimed path's positions are the straight line's and its tensions `cdpr
+/// tension`'s at three of them.
+fn check_path(c: &Case) -> Result<(), String> {
+    let to = "0.5,0.4,1.2,0,0,0";
+    let page = c.page(&format!("path={to}&steps=20"))?;
+    let path = &page["path"];
+    let segment = [
+        format!("--from={CASE_POSE}"),
+        format!("--to={to}"),
+        "--method=l2".into(),
+    ];
+    let mut args = segment.to_vec();
+    args.push("--samples=21".into());
+    let cli = cli_json(c.root, CASE_ROBOT, "trajectory", &args)?;
+    same_samples("path", path, &cli)?;
+    let poses = path["poses"].as_array().cloned().unwrap_or_default();
     for k in [0, 7, 20] {
         let args = [
             "--method=l2".to_string(),
@@ -686,17 +723,36 @@ fn check_path(c: &Case) -> Result<(), String> {
             &ten["tensions"],
         )?;
     }
-    // The straight path: pose k = from + (to − from) k / 20.
-    let (from, to) = (numbers(&path["from"]), numbers(&path["to"]));
-    let expect: Vec<f64> = from
-        .iter()
-        .zip(&to)
-        .map(|(a, b)| a + (b - a) * 7.0 / 20.0)
+    // The segment: the position moves on the straight line, p_k = p_0 + (p_1 − p_0) k / 20
+    // (the orientation along the shortest rotation, slerp).
+    let (from, end) = (numbers(&path["from"]), numbers(&path["to"]));
+    let expect: Vec<f64> = (0..3)
+        .map(|i| from[i] + (end[i] - from[i]) * 7.0 / 20.0)
         .collect();
-    close("path: pose 7", &poses[7], &serde_json::json!(expect))?;
+    let position = Value::from(numbers(&poses[7])[..3].to_vec());
+    close(
+        "path: position 7 (m)",
+        &position,
+        &serde_json::json!(expect),
+    )?;
+    let page = c.page(&format!("path={to}&law=quintic&duration=2&dt=0.1"))?;
+    let mut args = segment.to_vec();
+    args.extend(
+        [
+            "--time-law=quintic",
+            "--duration=2",
+            "--dt=0.1",
+            "--dynamics",
+        ]
+        .map(String::from),
+    );
+    let cli = cli_json(c.root, CASE_ROBOT, "trajectory", &args)?;
+    let n = same_samples("trajectory", &page["path"], &cli)?;
+    close("trajectory: t (s)", &page["path"]["x"], &cli["t"])?;
     println!(
-        "studio check: {CASE_ROBOT}: a path of 21 poses; its tensions at poses 0, 7, 20 equal \
-         `cdpr tension`'s"
+        "studio check: {CASE_ROBOT}: a path of 21 poses and a quintic trajectory of {n} samples \
+         (2 s, inertia balanced) equal `cdpr trajectory`'s; the path's tensions at poses 0, 7, 20 \
+         equal `cdpr tension`'s"
     );
     Ok(())
 }
