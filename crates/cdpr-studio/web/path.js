@@ -83,8 +83,8 @@ export function plotPath() {
   const tr = page.trajectory;
   if (!tr) return;
   const xLabel = tr.timed ? "time t (s)" : "path parameter s (start 0 → target 1)";
-  plotSeries($("path-plot"), tr, tr.tensions, { xLabel, yLabel: "tension t (N); dashed: t_min, t_max", bounds: true });
-  if (tr.torques) plotSeries($("torque-plot"), tr, tr.torques, { xLabel, yLabel: "motor torque τ (N·m)", bounds: false });
+  plotSeries($("path-plot"), tr, tr.tensions, { xLabel, yLabel: "tension (N)", bounds: true });
+  if (tr.torques) plotSeries($("torque-plot"), tr, tr.torques, { xLabel, yLabel: "torque (N·m)", bounds: false });
   legend();
 }
 
