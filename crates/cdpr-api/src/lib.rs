@@ -53,6 +53,7 @@ mod kinematics;
 pub mod region;
 mod robot;
 pub mod schema;
+pub mod simulate;
 mod stiffness;
 mod tension;
 pub mod timed;
