@@ -18,6 +18,9 @@
 //! | [`IsotropicRequest`] | [`IsotropicReport`] | isotropic force, force polytope, ellipse |
 //! | [`IsotropicMapRequest`] | [`IsotropicMapReport`] | isotropic force over a grid |
 //! | [`WorkspaceRequest`] | [`WorkspaceReport`] | constant-orientation workspace on a grid |
+//! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
+//! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
+//! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -41,7 +44,9 @@
 //! ## References
 //! - docs/architecture.md, "Requests and reports".
 
+pub mod cable_model;
 mod capacity;
+mod chord;
 pub mod criteria;
 mod error;
 mod forward;
@@ -49,14 +54,19 @@ pub mod inputs;
 mod isotropic;
 mod isotropic_map;
 mod kinematics;
+mod mesh;
 pub mod region;
 mod robot;
 pub mod schema;
+mod section;
 mod stiffness;
 mod tension;
+pub mod timed;
+pub mod trajectory;
 mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
+pub use chord::{ChordReport, ChordRequest, CurvesReport, DEFAULT_CHORD, chord_settings};
 pub use criteria::{CriteriaSetup, WorkspaceCriteria, default_method};
 pub use error::ApiError;
 pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
@@ -67,13 +77,18 @@ pub use isotropic_map::{
 pub use kinematics::{
     KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
 };
+pub use mesh::{BoxFacesReport, MeshReport, MeshRequest, ShellReport};
 pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
+pub use section::{Axis, SectionPlane, SectionPlaneReport, SectionReport, SectionRequest};
 pub use stiffness::{StiffnessReport, StiffnessRequest};
 pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
-pub use workspace::{PreparedWorkspace, WorkspaceReport, WorkspaceRequest};
+pub use tension::{MethodSettings, refuse_sotda_options};
+pub use workspace::{
+    PreparedWorkspace, WorkspaceReport, WorkspaceRequest, box_numbers, orientation_or_default,
+};
 
 /// The nalgebra of the whole stack.
 pub use nalgebra;

@@ -34,6 +34,12 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<IsotropicMapReport>("isotropic-map", "report"),
         entry::<WorkspaceRequest>("workspace", "request"),
         entry::<WorkspaceReport>("workspace", "report"),
+        entry::<MeshRequest>("mesh", "request"),
+        entry::<MeshReport>("mesh", "report"),
+        entry::<SectionRequest>("section", "request"),
+        entry::<SectionReport>("section", "report"),
+        entry::<ChordRequest>("chord", "request"),
+        entry::<ChordReport>("chord", "report"),
     ]
 }
 

@@ -176,7 +176,7 @@ pub fn run(args: Args) -> Result<(), CliError> {
         let pose = draw_pose(robot, args.draw_pose.as_deref(), &region, &central)?;
         let w_ext = setup.external_wrench(&desc, &central)?;
         let title = format!("{}: dextrous workspace (grid)", desc.name);
-        let load = load_text(motion, w_ext.as_slice(), method);
+        let load = load_text(motion, w_ext.as_slice(), method.name());
         let about = match motion {
             MotionPattern::Spatial => format!(" about the axis [{}]", {
                 let a = axis.into_inner();

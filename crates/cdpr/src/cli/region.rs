@@ -7,7 +7,6 @@ use super::criteria::CriteriaSetup;
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose, Robot};
 use cdpr::plot::{Figure, Panels, WorkspacePlot};
-use cdpr::tension::Method;
 use cdpr::workspace::{
     CentralCheck, Grid, GridWorkspace, LeanScratch, OrientationRange, PlanarSlice, PoseEvaluator,
     Region, VolumeConvention, dextrous_verdicts_lean,
@@ -257,7 +256,7 @@ pub fn plot_title(
     motion: MotionPattern,
     orientation: &[f64],
     w_ext: &[f64],
-    method: Method,
+    method: &str,
 ) -> (String, String) {
     let orientation = match motion {
         MotionPattern::Planar => format!(
@@ -274,7 +273,7 @@ pub fn plot_title(
 }
 
 /// "load w_ext = [0, -10, 0] (N, N, N·m); tensions l2".
-pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String {
+pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: &str) -> String {
     let units = match motion {
         MotionPattern::Planar => "N, N, N·m",
         MotionPattern::Spatial => "forces N, moments N·m",
@@ -283,7 +282,7 @@ pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String
     format!(
         "load w_ext = [{}] ({units}); tensions {}",
         tick_list(w_ext),
-        method.name()
+        method
     )
 }
 
@@ -382,8 +381,8 @@ pub fn save_mesh_scene_plot(
         region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
         legend,
         mesh_label: format!(
-            "boundary mesh (vertices on the boundary to {:.1e} m)",
-            mesh.tolerance
+            "boundary mesh ({})",
+            super::workspace_mesh::vertex_placement(mesh.tolerance)
         ),
         anchor_names: cdpr::plot::cable_names(&desc.cable_names),
         ..cdpr::plot::Scene::default()
@@ -531,6 +530,37 @@ pub fn at_orientation(orientation: &[f64]) -> String {
     } else {
         format!(" at orientation {}", super::pose_text(orientation, 0))
     }
+}
+
+/// The box of a report's numbers XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
+pub fn box_region(b: &[f64]) -> Region {
+    match b {
+        [x0, x1, y0, y1] => Region::planar(*x0, *x1, *y0, *y1),
+        _ => Region::cuboid(
+            Vector3::new(b[0], b[2], b[4]),
+            Vector3::new(b[1], b[3], b[5]),
+        ),
+    }
+}
+
+/// The two header lines of a region answer: "robot R: WHAT at orientation (…), w_ext […]" (no
+/// orientation for a point robot) and "criteria: … (tensions: METHOD)"; `forces` is the number
+/// of force components of the wrench (the rest are moments).
+pub fn print_header(
+    robot: &str,
+    what: &str,
+    orientation: &[f64],
+    w_ext: &[f64],
+    forces: usize,
+    criteria: &[String],
+    method: &str,
+) {
+    println!(
+        "robot {robot}: {what}{}, w_ext {}",
+        at_orientation(orientation),
+        super::wrench_text(w_ext, forces)
+    );
+    println!("criteria: {} (tensions: {method})", criteria.join(", "));
 }
 
 /// Box as JSON numbers.
