@@ -562,59 +562,74 @@ fn check_drag(
     );
     Ok(())
 }
-/// The workspace on demand (the boundary mesh at grid 12, grid points at resolution 10, the section z = 1.1 m seeded by a
-/// grid of 20, chord 0.02 m) and a path of 20 steps for the 8-cable robot, against `cdpr
-/// workspace --boundary mesh`, `--grid`, `--section` and `cdpr tension` at the path's poses.
-fn check_workspace_and_path(root: &Path, browser: &str, port: u16) -> Result<(), String> {
-    let robot = "ipanema-like-8.toml";
-    let (pose, orientation) = ("0.3,0.2,1.1,0.05,-0.03,0.1", "--orientation=0.05,-0.03,0.1");
-    let load = Load {
-        method: "l2",
-        wrench: "",
-    };
-    let base = format!("robot=robots/{robot}&pose={pose}&method=l2");
-    let page = page_state(browser, port, &format!("{base}&grid=10"))?;
-    let mut args = load.args();
-    args.extend([orientation.to_string(), "--grid=10".into()]);
-    let cli = cli_json(root, robot, "workspace", &args)?;
+/// Where the workspace and path checks run (the 8-cable robot at [`CASE_POSE`], l2, no load):
+/// the repository, the browser and the page's server.
+struct Case<'a> {
+    root: &'a Path,
+    browser: &'a str,
+    port: u16,
+}
+
+const CASE_ROBOT: &str = "ipanema-like-8.toml";
+const CASE_POSE: &str = "0.3,0.2,1.1,0.05,-0.03,0.1";
+
+impl Case<'_> {
+    /// The page at the case's pose (l2, no extra load) with `extra` in the query.
+    fn page(&self, extra: &str) -> Result<Value, String> {
+        let query = format!("robot=robots/{CASE_ROBOT}&pose={CASE_POSE}&method=l2&{extra}");
+        page_state(self.browser, self.port, &query)
+    }
+
+    /// `cdpr workspace` at the case's orientation and method with `extra` arguments.
+    fn workspace(&self, extra: &[&str]) -> Result<Value, String> {
+        let mut args = vec![
+            "--method=l2".to_string(),
+            "--orientation=0.05,-0.03,0.1".into(),
+        ];
+        args.extend(extra.iter().map(|a| a.to_string()));
+        cli_json(self.root, CASE_ROBOT, "workspace", &args)
+    }
+}
+
+/// Two scalars agree to 1e-9 relative.
+fn close_scalar(what: &str, page: &Value, cli: &Value) -> Result<(), String> {
+    close(what, &json_list(page), &json_list(cli))
+}
+
+/// The grid points at resolution 10 against `cdpr workspace --grid 10`.
+fn check_grid(c: &Case) -> Result<(), String> {
+    let page = c.page("grid=10")?;
+    let cli = c.workspace(&["--grid=10"])?;
     let g = &page["grid"];
     for key in ["feasible_points", "total_points", "criteria", "dimension"] {
         if g[key] != cli[key] {
             return Err(format!("grid: {key}: page {}, CLI {}", g[key], cli[key]));
         }
     }
-    close(
-        "grid: area (m³)",
-        &json_list(&g["area"]),
-        &json_list(&cli["area"]),
-    )?;
-    close(
+    close_scalar("grid: area (m³)", &g["area"], &cli["area"])?;
+    close_scalar(
         "grid: points measure (m³)",
-        &json_list(&g["area_points"]),
-        &json_list(&cli["area_points"]),
+        &g["area_points"],
+        &cli["area_points"],
     )?;
     println!(
-        "studio check: {robot} grid 10: {} of {} points feasible, {} m³, as `cdpr workspace --grid 10`",
+        "studio check: {CASE_ROBOT} grid 10: {} of {} points feasible, {} m³, as `cdpr \
+         workspace --grid 10`",
         g["feasible_points"], g["total_points"], g["area"]
     );
-    let page = page_state(browser, port, &format!("{base}&mesh=12"))?;
-    let mut args = load.args();
-    args.extend([
-        orientation.into(),
-        "--grid=12".into(),
-        "--boundary=mesh".into(),
-    ]);
-    let cli = cli_json(root, robot, "workspace", &args)?;
+    Ok(())
+}
+
+/// The boundary mesh at grid 12 against `cdpr workspace --boundary mesh --grid 12`.
+fn check_mesh(c: &Case) -> Result<(), String> {
+    let page = c.page("mesh=12")?;
+    let cli = c.workspace(&["--grid=12", "--boundary=mesh"])?;
     let m = &page["workspace"];
-    close(
-        "mesh: volume (m³)",
-        &json_list(&m["volume_m3"]),
-        &json_list(&cli["volume"]),
-    )?;
-    close(
+    close_scalar("mesh: volume (m³)", &m["volume_m3"], &cli["volume"])?;
+    close_scalar(
         "mesh: grid volume (m³)",
-        &json_list(&m["grid_volume_m3"]),
-        &json_list(&cli["grid_volume"]),
+        &m["grid_volume_m3"],
+        &cli["grid_volume"],
     )?;
     let triangles = cli["triangles"].as_array().map_or(0, Vec::len);
     if m["triangles"] != triangles || m["criteria"] != cli["criteria"] {
@@ -624,47 +639,83 @@ fn check_workspace_and_path(root: &Path, browser: &str, port: u16) -> Result<(),
         ));
     }
     println!(
-        "studio check: {robot} mesh grid 12: volume {} m³, {} triangles, as `cdpr workspace --boundary mesh --grid 12`",
+        "studio check: {CASE_ROBOT} mesh grid 12: volume {} m³, {} triangles, as `cdpr \
+         workspace --boundary mesh --grid 12`",
         m["volume_m3"], m["triangles"]
     );
-    let page = page_state(browser, port, &format!("{base}&section=z=1.1&chord=0.02"))?;
-    let mut args = load.args();
-    args.extend([
-        orientation.into(),
-        "--grid=20".into(),
-        "--section=z=1.1".into(),
-        "--chord=0.02".into(),
-    ]);
-    let cli = cli_json(root, robot, "workspace", &args)?;
+    Ok(())
+}
+
+/// The section z = 1.1 m (seeds: grid 20, chord 0.02 m) against `cdpr workspace --section`.
+fn check_section(c: &Case) -> Result<(), String> {
+    let page = c.page("section=z=1.1&chord=0.02")?;
+    let cli = c.workspace(&["--grid=20", "--section=z=1.1", "--chord=0.02"])?;
     let sec = &page["section"];
-    close(
-        "section: area (m²)",
-        &json_list(&sec["area"]),
-        &json_list(&cli["area"]),
-    )?;
+    close_scalar("section: area (m²)", &sec["area"], &cli["area"])?;
     close(
         "section: signed areas (m²)",
         &sec["signed_areas"],
         &cli["signed_areas"],
     )?;
     println!(
-        "studio check: {robot} section z = 1.1 m: area {} m², {} boundary polygon(s), as `cdpr workspace --section z=1.1`",
+        "studio check: {CASE_ROBOT} section z = 1.1 m: area {} m², {} boundary polygon(s), as \
+         `cdpr workspace --section z=1.1`",
         sec["area"], sec["loops"]
     );
-    let page = page_state(
-        browser,
-        port,
-        &format!("{base}&path=0.5,0.4,1.2,0,0,0&steps=20"),
-    )?;
-    let path = &page["path"];
+    Ok(())
+}
+
+/// Every sample's poses and tensions (N), and the motor torques (N·m), page against CLI.
+fn same_samples(what: &str, path: &Value, cli: &Value) -> Result<usize, String> {
     let poses = path["poses"].as_array().cloned().unwrap_or_default();
-    if poses.len() != 21 {
-        return Err(format!("path: {} poses, expected 21", poses.len()));
+    let cli_poses = cli["poses"].as_array().cloned().unwrap_or_default();
+    if poses.len() != cli_poses.len() || poses.is_empty() {
+        return Err(format!(
+            "{what}: {} samples, CLI {}",
+            poses.len(),
+            cli_poses.len()
+        ));
     }
+    for k in 0..poses.len() {
+        close(&format!("{what}: pose {k}"), &poses[k], &cli_poses[k])?;
+        let (a, b) = (&path["tensions"][k], &cli["tensions"][k]);
+        if a.is_null() != b.is_null() {
+            return Err(format!("{what}: sample {k}: page {a}, CLI {b}"));
+        }
+        if !a.is_null() {
+            close(&format!("{what}: tensions at sample {k} (N)"), a, b)?;
+        }
+    }
+    let torques = &cli["drive_train"]["motor_torques"];
+    if path["motor_torques"].is_null() != torques.is_null() {
+        return Err(format!("{what}: motor torques on one side only"));
+    }
+    Ok(poses.len())
+}
+
+/// A path of 20 steps and a quintic trajectory of 2 s: the page's samples are `cdpr
+/// trajectory`'s; the untimed path's positions are the straight line's and its tensions `cdpr
+/// tension`'s at three of them.
+fn check_path(c: &Case) -> Result<(), String> {
+    let to = "0.5,0.4,1.2,0,0,0";
+    let page = c.page(&format!("path={to}&steps=20"))?;
+    let path = &page["path"];
+    let segment = [
+        format!("--from={CASE_POSE}"),
+        format!("--to={to}"),
+        "--method=l2".into(),
+    ];
+    let mut args = segment.to_vec();
+    args.push("--samples=21".into());
+    let cli = cli_json(c.root, CASE_ROBOT, "trajectory", &args)?;
+    same_samples("path", path, &cli)?;
+    let poses = path["poses"].as_array().cloned().unwrap_or_default();
     for k in [0, 7, 20] {
-        let mut args = load.args();
-        args.push(format!("--pose={}", csv(&poses[k])));
-        let ten = cli_json(root, robot, "tension", &args)?;
+        let args = [
+            "--method=l2".to_string(),
+            format!("--pose={}", csv(&poses[k])),
+        ];
+        let ten = cli_json(c.root, CASE_ROBOT, "tension", &args)?;
         close(&format!("path: pose {k}"), &poses[k], &ten["pose"])?;
         close(
             &format!("path: tensions at pose {k} (N)"),
@@ -672,22 +723,88 @@ fn check_workspace_and_path(root: &Path, browser: &str, port: u16) -> Result<(),
             &ten["tensions"],
         )?;
     }
-    // The straight path: pose k = from + (to − from) k / 20.
-    let (from, to) = (numbers(&path["from"]), numbers(&path["to"]));
-    let expect: Vec<f64> = from
-        .iter()
-        .zip(&to)
-        .map(|(a, b)| a + (b - a) * 7.0 / 20.0)
+    // The segment: the position moves on the straight line, p_k = p_0 + (p_1 − p_0) k / 20
+    // (the orientation along the shortest rotation, slerp).
+    let (from, end) = (numbers(&path["from"]), numbers(&path["to"]));
+    let expect: Vec<f64> = (0..3)
+        .map(|i| from[i] + (end[i] - from[i]) * 7.0 / 20.0)
         .collect();
-    close("path: pose 7", &poses[7], &serde_json::json!(expect))?;
+    let position = Value::from(numbers(&poses[7])[..3].to_vec());
+    close(
+        "path: position 7 (m)",
+        &position,
+        &serde_json::json!(expect),
+    )?;
+    let page = c.page(&format!("path={to}&law=quintic&duration=2&dt=0.1"))?;
+    let mut args = segment.to_vec();
+    args.extend(
+        [
+            "--time-law=quintic",
+            "--duration=2",
+            "--dt=0.1",
+            "--dynamics",
+        ]
+        .map(String::from),
+    );
+    let cli = cli_json(c.root, CASE_ROBOT, "trajectory", &args)?;
+    let n = same_samples("trajectory", &page["path"], &cli)?;
+    close("trajectory: t (s)", &page["path"]["x"], &cli["t"])?;
     println!(
-        "studio check: {robot}: a path of 21 poses; its tensions at poses 0, 7, 20 equal `cdpr tension`'s"
+        "studio check: {CASE_ROBOT}: a path of 21 poses and a quintic trajectory of {n} samples \
+         (2 s, inertia balanced) equal `cdpr trajectory`'s; the path's tensions at poses 0, 7, 20 \
+         equal `cdpr tension`'s"
     );
     Ok(())
 }
 
 fn json_list(v: &Value) -> Value {
     Value::Array(vec![v.clone()])
+}
+
+/// A bad pose is a message for the user, not a script error.
+fn check_bad_pose(browser: &str, port: u16) -> Result<(), String> {
+    let url = format!("http://127.0.0.1:{port}/index.html?robot=robots/tdpm-4.toml&pose=0,0");
+    let dom = headless(browser, &url, &["--dump-dom"])?;
+    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
+        .map_err(|e| format!("bad-pose page: {e}"))?;
+    let message = state["error"].as_str().unwrap_or_default();
+    if !message.contains('3') || !output(&dom, "cdpr-errors").unwrap_or_default().is_empty() {
+        return Err(format!(
+            "bad pose: expected a message naming 3 coordinates, got {state}"
+        ));
+    }
+    println!("studio check: a 2-number pose for a planar robot says: {message}");
+    Ok(())
+}
+
+/// The screenshot: the 8-cable robot with its workspace mesh (grid 30), a section and a path.
+fn screenshot(browser: &str, port: u16, out: &Path) -> Result<(), String> {
+    let shot = out.join("screenshot.png");
+    let url = format!(
+        "http://127.0.0.1:{port}/index.html?robot=robots/ipanema-like-8.toml&method=l2&mesh=30\
+         &section=z=1.1&path=0.5,0.4,1.2,0,0,0&steps=40"
+    );
+    let dom = headless(browser, &url, &["--dump-dom"])?;
+    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
+        .map_err(|e| format!("mesh page: {e}"))?;
+    println!(
+        "studio check: workspace mesh grid 30 in the page: {:.0} ms, volume {} m³; first state {:.0} ms",
+        state["timing_ms"]["mesh"].as_f64().unwrap_or(f64::NAN),
+        state["workspace"]["volume_m3"],
+        state["timing_ms"]["first_state"]
+            .as_f64()
+            .unwrap_or(f64::NAN)
+    );
+    headless(
+        browser,
+        &url,
+        &[&format!("--screenshot={}", shot.display())],
+    )?;
+    if !std::fs::read(&shot).is_ok_and(|b| b.starts_with(b"\x89PNG")) {
+        return Err(format!("{}: no screenshot", shot.display()));
+    }
+    println!("studio check: screenshot {}", shot.display());
+    Ok(())
 }
 
 fn check(root: &Path, out: &Path) -> Result<(), String> {
@@ -727,58 +844,25 @@ fn check(root: &Path, out: &Path) -> Result<(), String> {
         (start, 10.0, -30.0, "z"),
         &l2,
     )?;
-    let l2_planar = Load {
-        method: "l2",
-        wrench: "",
-    };
     check_drag(
         root,
         &browser,
         port,
         planar,
         ("0.1,-0.05,0.2", 30.0, 10.0, ""),
-        &l2_planar,
+        &l2,
     )?;
-    check_workspace_and_path(root, &browser, port)?;
-    // A bad pose is a message for the user, not a script error.
-    let url = format!("http://127.0.0.1:{port}/index.html?robot=robots/tdpm-4.toml&pose=0,0");
-    let dom = headless(&browser, &url, &["--dump-dom"])?;
-    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
-        .map_err(|e| format!("bad-pose page: {e}"))?;
-    let message = state["error"].as_str().unwrap_or_default();
-    if !message.contains('3') || !output(&dom, "cdpr-errors").unwrap_or_default().is_empty() {
-        return Err(format!(
-            "bad pose: expected a message naming 3 coordinates, got {state}"
-        ));
-    }
-    println!("studio check: a 2-number pose for a planar robot says: {message}");
-    // The screenshot: the 8-cable robot with its workspace mesh (grid 30), timed.
-    let shot = out.join("screenshot.png");
-    let url = format!(
-        "http://127.0.0.1:{port}/index.html?robot=robots/ipanema-like-8.toml&method=l2&mesh=30\
-         &section=z=1.1&path=0.5,0.4,1.2,0,0,0&steps=40"
-    );
-    let dom = headless(&browser, &url, &["--dump-dom"])?;
-    let state: Value = serde_json::from_str(&output(&dom, "cdpr-state").unwrap_or_default())
-        .map_err(|e| format!("mesh page: {e}"))?;
-    println!(
-        "studio check: workspace mesh grid 30 in the page: {:.0} ms, volume {} m³; first state {:.0} ms",
-        state["timing_ms"]["mesh"].as_f64().unwrap_or(f64::NAN),
-        state["workspace"]["volume_m3"],
-        state["timing_ms"]["first_state"]
-            .as_f64()
-            .unwrap_or(f64::NAN)
-    );
-    headless(
-        &browser,
-        &url,
-        &[&format!("--screenshot={}", shot.display())],
-    )?;
-    if !std::fs::read(&shot).is_ok_and(|b| b.starts_with(b"\x89PNG")) {
-        return Err(format!("{}: no screenshot", shot.display()));
-    }
-    println!("studio check: screenshot {}", shot.display());
-    Ok(())
+    let case = Case {
+        root,
+        browser: &browser,
+        port,
+    };
+    check_grid(&case)?;
+    check_mesh(&case)?;
+    check_section(&case)?;
+    check_path(&case)?;
+    check_bad_pose(&browser, port)?;
+    screenshot(&browser, port, out)
 }
 
 #[cfg(test)]

@@ -67,6 +67,7 @@ mod robot;
 pub mod rows;
 pub mod schema;
 mod section;
+pub mod simulate;
 mod stiffness;
 mod stiffness_map;
 mod tension;

@@ -3,7 +3,7 @@
 //! The page's interface (wasm-bindgen): JSON strings in, JSON strings out, errors as the
 //! message of a thrown `Error`. Compiled for `wasm32` only.
 
-use crate::{RobotFileText, RobotTable, SectionSettings, Studio, StudioError};
+use crate::{PathSettings, RobotFileText, RobotTable, SectionSettings, Studio, StudioError};
 use wasm_bindgen::prelude::*;
 
 fn js(e: StudioError) -> JsError {
@@ -133,6 +133,13 @@ impl StudioSession {
             .workspace_section(&q, s, method, w.as_deref())
             .map(|r| json(&r))
             .map_err(js)
+    }
+
+    /// A path or timed trajectory (JSON settings: `from`, `to`, `samples`, `method`, `wrench`,
+    /// `time_law`, `duration`, `dt`, `dynamics`); the JSON of `cdpr trajectory --json`.
+    pub fn trajectory(&self, settings_json: &str) -> Result<String, JsError> {
+        let s: PathSettings = serde_json::from_str(settings_json).map_err(|e| js(e.into()))?;
+        self.0.trajectory(&s).map(|r| json(&r)).map_err(js)
     }
 
     /// The binary STL file of the last workspace mesh (empty before the first).

@@ -51,19 +51,7 @@ impl Studio {
 
 #[cfg(test)]
 mod tests {
-    use crate::{RobotFileText, Studio};
-
-    fn open(name: &str) -> Studio {
-        let path = format!(
-            "{}/../../examples/robots/{name}",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        Studio::open(&[RobotFileText {
-            name: name.into(),
-            text: std::fs::read_to_string(path).unwrap(),
-        }])
-        .unwrap()
-    }
+    use crate::test_support::open;
 
     /// The points drawn are the grid points whose state is feasible with every cable at least
     /// `min_cable_length` = 0.1 m long (tdpm-4's limit): all 81 verdicts are checked against

@@ -117,21 +117,10 @@ impl Studio {
 
 #[cfg(test)]
 mod tests {
-    use crate::{RobotFileText, Studio};
+    use crate::test_support::open;
 
     #[test]
     fn mesh_of_the_8_cable_robot_is_closed_and_planar_robots_are_refused() {
-        let open = |name: &str| {
-            let path = format!(
-                "{}/../../examples/robots/{name}",
-                env!("CARGO_MANIFEST_DIR")
-            );
-            Studio::open(&[RobotFileText {
-                name: name.into(),
-                text: std::fs::read_to_string(path).unwrap(),
-            }])
-            .unwrap()
-        };
         let s = open("ipanema-like-8.toml");
         let q = s.table().start_pose;
         let m = s.workspace_mesh(&q, 6, "l2", None).unwrap();

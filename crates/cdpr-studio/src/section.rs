@@ -3,14 +3,16 @@
 //! The exact boundary of the constant-orientation workspace in a plane `axis = value` by the
 //! chord method (thesis §6.4.3, Algorithm 6.3: closed polygons with vertices bisected onto the
 //! boundary, a chord length d apart, seeded by a coarse grid), with the criteria, box and load of
-//! cdpr-api's workspace request: the section `cdpr workspace --section AXIS=VALUE --json` maps.
+//! cdpr-api's section request, the one `cdpr workspace --section AXIS=VALUE --json` runs.
 //! Robots moving in space only.
 //!
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators, §6.4.3 and Algorithm 6.3.
 
 use crate::{Studio, StudioError};
-use cdpr_workspace::{ChordSettings, Section, chord_section};
+use cdpr_api::{Axis, SectionPlane, SectionRequest};
+use cdpr_workspace::{Section, WorkspaceError};
+use nalgebra::Vector2;
 use serde::Serialize;
 
 /// A plane section for the page.
@@ -56,43 +58,46 @@ impl Studio {
         method: &str,
         wrench: Option<&[f64]>,
     ) -> Result<SectionReport, StudioError> {
-        let p = self
-            .workspace_request(q, s.grid, method, wrench)?
-            .prepare()?;
-        let settings = ChordSettings {
-            chord: s.chord,
-            seed_resolution: s.grid,
-            ..ChordSettings::default()
+        let axis = *[Axis::X, Axis::Y, Axis::Z]
+            .get(s.axis)
+            .ok_or(StudioError::Workspace(WorkspaceError::InvalidSetting {
+                what: "section axis",
+                value: s.axis as f64,
+                expected: "0 (x), 1 (y) or 2 (z)",
+            }))?;
+        let w = self.workspace_request(q, s.grid, method, wrench)?;
+        let plane = SectionPlane {
+            axis,
+            value: s.value,
         };
+        let mut request = SectionRequest::new(w.robot, plane);
+        request.criteria = w.criteria;
+        request.orientation = w.orientation;
+        request.grid = w.grid;
+        request.chord = s.chord;
+        let r = request.run()?;
         let section = Section {
             axis: s.axis,
             value: s.value,
         };
-        let ws = chord_section(
-            &p.evaluator,
-            &p.rotation,
-            section,
-            &p.grid.region,
-            &settings,
-        )?;
-        let loops = ws
+        let loops = r
+            .curves
             .boundaries
             .iter()
             .map(|b| {
-                b.vertices
-                    .iter()
-                    .map(|v| section.embed(nalgebra::Vector2::new(v[0], v[1])).into())
+                b.iter()
+                    .map(|v| section.embed(Vector2::new(v[0], v[1])).into())
                     .collect()
             })
             .collect();
         Ok(SectionReport {
             axis: s.axis,
             value: s.value,
-            area: ws.area,
+            area: r.curves.area,
             chord: s.chord,
             loops,
-            signed_areas: ws.boundaries.iter().map(|b| b.signed_area()).collect(),
-            evaluations: ws.evaluations,
+            signed_areas: r.curves.signed_areas,
+            evaluations: r.curves.evaluations,
         })
     }
 }

@@ -10,7 +10,8 @@
 // in ms); <output id="cdpr-errors"> collects script errors (it stays empty on a healthy page).
 // Query: ?robot=URL&pose=…&method=…&wrench=… (numbers comma-separated; a CASPR model by its
 // NAME_cables.xml URL), and on demand &mesh=GRID, &grid=M (grid points), &section=AXIS=VALUE
-// (with &chord=D, seeded by &grid or 20), &path=POSE&steps=N (a path to POSE), &drag=DX,DY[,MODE]
+// (with &chord=D, seeded by &grid or 20), &path=POSE&steps=N (a path to POSE; timed with
+// &law=NAME&duration=T&dt=DT[&dynamics=0]), &drag=DX,DY[,MODE]
 // (a mouse drag of the platform by DX, DY px; MODE shift, x, y or z).
 // With &timing=N the page loads synchronously and times N pose changes in real time (headless
 // Chromium's --virtual-time-budget freezes performance.now(); --dump-dom without it dumps at the
@@ -93,7 +94,12 @@ async function onDemand(q) {
     if (q.get("chord")) $("chord").value = q.get("chord");
     await computeSection();
   }
-  if (q.get("path")) await computePath(q.get("path"), Number(q.get("steps")) || 40);
+  if (q.get("path")) {
+    $("time-law").value = q.get("law") || "";
+    ["duration", "dt"].forEach((k) => { if (q.get(k)) $(k).value = q.get(k); });
+    $("dynamics").checked = q.get("dynamics") !== "0";
+    await computePath(q.get("path"), Number(q.get("steps")) || 40);
+  }
   const drag = (q.get("drag") || "").split(",");
   if (drag.length >= 2) simulateDrag(Number(drag[0]), Number(drag[1]), drag[2] || null, 10);
 }

@@ -189,10 +189,7 @@ pub fn save_mesh_scene_plot(
         triangles: mesh.triangles.clone(),
         region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
         legend,
-        mesh_label: format!(
-            "boundary mesh ({})",
-            super::workspace_mesh::vertex_placement(mesh.tolerance)
-        ),
+        mesh_label: format!("boundary mesh ({})", vertex_placement(mesh.tolerance)),
         anchor_names: cdpr::plot::cable_names(&desc.cable_names),
         ..cdpr::plot::Scene::default()
     }
@@ -363,4 +360,10 @@ pub fn print_header(
 /// Box as JSON numbers.
 pub fn box_json(r: &Region, dim: usize) -> Value {
     json!(box_numbers(r, dim))
+}
+
+/// "vertices within 2.0e-8 m of the boundary": the placement of a mesh's vertices (ε/2 along
+/// their grid edge), as the text, the figures and the HTML legend say it.
+pub fn vertex_placement(tolerance: f64) -> String {
+    format!("vertices within {:.1e} m of the boundary", 0.5 * tolerance)
 }
