@@ -540,11 +540,9 @@ impl Robot {
                 Err(_) => c.extract::<Vec<String>>(),
             })
             .transpose()?;
-        crate::workspace::workspace(
-            self,
-            py,
+        let args = crate::workspace::WorkspaceArgs {
             resolution,
-            r#box,
+            region_box: r#box,
             orientation,
             criteria,
             method,
@@ -553,7 +551,8 @@ impl Robot {
             boundary,
             chord,
             volume_convention,
-        )
+        };
+        crate::workspace::workspace(self, py, &args)
     }
 
     /// Tensions along a path (the ``cdpr trajectory`` command, through its request):

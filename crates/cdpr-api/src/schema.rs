@@ -38,6 +38,21 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<IsotropicMapReport>("isotropic-map", "report"),
         entry::<WorkspaceRequest>("workspace", "request"),
         entry::<WorkspaceReport>("workspace", "report"),
+        entry::<MeshRequest>("mesh", "request"),
+        entry::<MeshReport>("mesh", "report"),
+        entry::<SectionRequest>("section", "request"),
+        entry::<SectionReport>("section", "report"),
+        entry::<ChordRequest>("chord", "request"),
+        entry::<ChordReport>("chord", "report"),
+        entry::<DextrousRequest>("dextrous", "request"),
+        entry::<DextrousReport>("dextrous", "report"),
+        entry::<StiffnessMapRequest>("stiffness-map", "request"),
+        entry::<StiffnessMapReport>("stiffness-map", "report"),
+        entry::<OrientationsRequest>("orientations", "request"),
+        entry::<OrientationsReport>("orientations", "report"),
+        entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
+        entry::<OrientationWorkspaceReport>("orientation-workspace", "report"),
+        entry::<OrientationMeshReport>("orientation-mesh", "report"),
     ]
 }
 
