@@ -582,11 +582,9 @@ impl Robot {
                 Err(_) => c.extract::<Vec<String>>(),
             })
             .transpose()?;
-        crate::workspace::workspace(
-            self,
-            py,
+        let args = crate::workspace::WorkspaceArgs {
             resolution,
-            r#box,
+            region_box: r#box,
             orientation,
             criteria,
             method,
@@ -595,17 +593,26 @@ impl Robot {
             boundary,
             chord,
             volume_convention,
-        )
+        };
+        crate::workspace::workspace(self, py, &args)
     }
 
-    /// Tensions along a path (the ``cdpr trajectory`` command): ``waypoints`` (K ≥ 2, DOF) is a
-    /// polyline sampled by ``samples`` (evenly in s; default 101) or ``step`` (largest pose
-    /// distance between samples); ``wrenches``: w_e, ``(DOF,)`` or one per waypoint
-    /// ``(K, DOF)`` interpolated linearly in s (gravity is added); ``method`` and the SOTDA
-    /// options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity when its jump
-    /// exceeds this many median jumps.
+    /// Tensions along a path (the ``cdpr trajectory`` command, through its request):
+    /// ``waypoints`` (K ≥ 2, DOF) is a polyline sampled by ``samples`` (evenly in s; default
+    /// 101) or ``step`` (largest pose distance between samples); ``wrenches``: w_e, ``(DOF,)``
+    /// or one per waypoint ``(K, DOF)`` interpolated linearly (gravity is added); ``method``
+    /// and the SOTDA options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity
+    /// when its jump exceeds this many median jumps.
+    ///
+    /// With ``time_law`` (``linear``, ``cubic``, ``quintic``, ``trapezoid``,
+    /// ``parabolic-blend``) the path is timed: ``duration`` (s) or ``times`` (one per waypoint,
+    /// s), sampled every ``dt`` s (default 0.01), ``max_velocity`` (m/s), ``max_acceleration``
+    /// (m/s²), ``blend_time`` (s); ``dynamics=True`` balances the inertial wrench M ẍ + b too.
+    /// Returns a :class:`TimedTrajectoryResult` then, else a :class:`TrajectoryResult`.
     #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
-        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0))]
+        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0, time_law=None,
+        duration=None, dt=None, times=None, max_velocity=None, max_acceleration=None,
+        blend_time=None, dynamics=false))]
     #[allow(clippy::too_many_arguments)]
     fn trajectory(
         &self,
@@ -619,21 +626,98 @@ impl Robot {
         nu: f64,
         sotda_search: &str,
         jump_ratio: f64,
-    ) -> PyResult<crate::trajectory::TrajectoryResult> {
-        let samples = samples.map(|k| count(k, "samples")).transpose()?;
-        crate::trajectory::trajectory(
-            self,
-            py,
+        time_law: Option<&str>,
+        duration: Option<f64>,
+        dt: Option<f64>,
+        times: Option<Vec<f64>>,
+        max_velocity: Option<f64>,
+        max_acceleration: Option<f64>,
+        blend_time: Option<f64>,
+        dynamics: bool,
+    ) -> PyResult<Py<PyAny>> {
+        use crate::trajectory::{MethodArgs, PathArgs};
+        let time_law = time_law
+            .map(|l| l.parse().map_err(crate::value_error))
+            .transpose()?;
+        let timing = cdpr_api::timed::TimedSettings {
+            time_law,
+            duration,
+            dt,
+            max_velocity,
+            max_acceleration,
+            blend_time,
+            dynamics,
+        };
+        let path = PathArgs {
             waypoints,
-            samples,
-            step,
             wrenches,
-            method,
+            times,
+            samples: samples.map(|k| count(k, "samples")).transpose()?,
+            step,
+            jump_ratio,
+        };
+        let method = MethodArgs {
+            method: method.into(),
             direction,
             nu,
-            sotda_search,
-            jump_ratio,
-        )
+            sotda_search: sotda_search.into(),
+        };
+        crate::trajectory::trajectory(self, py, path, method, timing)
+    }
+
+    /// Forward dynamics (the ``cdpr simulate`` command, through its request): the motion from
+    /// ``start`` (a pose) with twist ``velocity`` (default rest) over ``duration`` s, output
+    /// every ``dt`` s, driven by exactly one of ``tensions`` (N, held constant),
+    /// ``tension_profile`` (``(times, tensions)``: (S,) s and (S, n) N, interpolated linearly;
+    /// e.g. a timed trajectory's ``t`` and ``tensions``) or ``unstrained_lengths`` (m, elastic
+    /// cables with ``axial_stiffness``, ``damping`` in N·s/m); ``integrator`` ``"rk4"`` (fixed
+    /// step) or ``"rk45"`` (adaptive, ``tolerance``); ``wrench``: w_e held constant.
+    #[pyo3(signature = (start, duration, dt, *, velocity=None, tensions=None,
+        tension_profile=None, unstrained_lengths=None, damping=0.0, integrator="rk4",
+        tolerance=1e-9, wrench=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        start: Vec<f64>,
+        duration: f64,
+        dt: f64,
+        velocity: Option<Vec<f64>>,
+        tensions: Option<Vec<f64>>,
+        tension_profile: Option<(Vec<f64>, Vec<Vec<f64>>)>,
+        unstrained_lengths: Option<Vec<f64>>,
+        damping: f64,
+        integrator: &str,
+        tolerance: f64,
+        wrench: Option<Vec<f64>>,
+    ) -> PyResult<crate::dynamics::SimulationResult> {
+        let run = crate::dynamics::RunArgs {
+            start,
+            velocity,
+            duration,
+            dt,
+            integrator: integrator.into(),
+            tolerance,
+            wrench,
+        };
+        let drive = crate::dynamics::DriveArgs {
+            tensions,
+            profile: tension_profile,
+            unstrained_lengths,
+            damping,
+        };
+        crate::dynamics::simulate(self, py, run, drive)
+    }
+
+    /// The platform's mass matrix M(x) (kg, kg·m, kg·m²) in the motion pattern's twist
+    /// coordinates: ``(DOF, DOF)`` for one pose, ``(N, DOF, DOF)`` for ``(N, DOF)`` poses
+    /// (needs ``[platform] mass``, and ``inertia`` for planar and spatial platforms).
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        poses: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArrayDyn<f64>>> {
+        crate::dynamics::mass_matrix(self, py, poses)
     }
 
     fn __repr__(&self) -> String {

@@ -22,6 +22,10 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<KinematicsReport>("kinematics", "report"),
         entry::<ForwardRequest>("forward", "request"),
         entry::<ForwardReport>("forward", "report"),
+        entry::<trajectory::TrajectoryRequest>("trajectory", "request"),
+        entry::<trajectory::TrajectoryReport>("trajectory", "report"),
+        entry::<simulate::SimulateRequest>("simulate", "request"),
+        entry::<simulate::SimulateReport>("simulate", "report"),
         entry::<TensionRequest>("tension", "request"),
         entry::<TensionReport>("tension", "report"),
         entry::<StiffnessRequest>("stiffness", "request"),
@@ -40,6 +44,15 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<SectionReport>("section", "report"),
         entry::<ChordRequest>("chord", "request"),
         entry::<ChordReport>("chord", "report"),
+        entry::<DextrousRequest>("dextrous", "request"),
+        entry::<DextrousReport>("dextrous", "report"),
+        entry::<StiffnessMapRequest>("stiffness-map", "request"),
+        entry::<StiffnessMapReport>("stiffness-map", "report"),
+        entry::<OrientationsRequest>("orientations", "request"),
+        entry::<OrientationsReport>("orientations", "report"),
+        entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
+        entry::<OrientationWorkspaceReport>("orientation-workspace", "report"),
+        entry::<OrientationMeshReport>("orientation-mesh", "report"),
     ]
 }
 

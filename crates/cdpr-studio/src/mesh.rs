@@ -12,9 +12,10 @@
 //! - The thesis chapter on planar tendon-driven manipulators, eqs. (6.21)–(6.24), Algorithm 6.2.
 //! - Lorensen & Cline 1987 (marching cubes).
 
+use crate::grid::orientation_of;
 use crate::state::parse_method;
 use crate::{Studio, StudioError};
-use cdpr_api::{MeshRequest, Robot};
+use cdpr_api::{MeshRequest, Robot, WorkspaceCriteria, WorkspaceRequest};
 use cdpr_kinematics::{MotionPattern, Pose};
 use serde::Serialize;
 
@@ -46,6 +47,29 @@ pub struct MeshReport {
 }
 
 impl Studio {
+    /// cdpr-api's workspace request for this robot at the orientation of pose `q` (the default
+    /// criteria and box of `cdpr workspace`), for the tension `method` and the external wrench
+    /// `wrench` (the robot file's load added), on `grid` intervals per side.
+    pub(crate) fn workspace_request(
+        &self,
+        q: &[f64],
+        grid: usize,
+        method: &str,
+        wrench: Option<&[f64]>,
+    ) -> Result<WorkspaceRequest, StudioError> {
+        let method = parse_method(method)?;
+        let dim = self.desc.robot.motion().space_dim();
+        let mut request = WorkspaceRequest::new(Robot::from_description(self.desc.clone()));
+        request.criteria = WorkspaceCriteria {
+            method: Some(method),
+            wrench: wrench.map(<[f64]>::to_vec),
+            ..WorkspaceCriteria::default()
+        };
+        request.orientation = Some(orientation_of(q, dim));
+        request.grid = Some(grid);
+        Ok(request)
+    }
+
     /// The boundary mesh at grid resolution `grid` for the orientation of pose `q`, the tension
     /// `method` and the external wrench `wrench` (gravity added). Robots moving in space only.
     pub fn workspace_mesh(
@@ -93,21 +117,10 @@ impl Studio {
 
 #[cfg(test)]
 mod tests {
-    use crate::{RobotFileText, Studio};
+    use crate::test_support::open;
 
     #[test]
     fn mesh_of_the_8_cable_robot_is_closed_and_planar_robots_are_refused() {
-        let open = |name: &str| {
-            let path = format!(
-                "{}/../../examples/robots/{name}",
-                env!("CARGO_MANIFEST_DIR")
-            );
-            Studio::open(&[RobotFileText {
-                name: name.into(),
-                text: std::fs::read_to_string(path).unwrap(),
-            }])
-            .unwrap()
-        };
         let s = open("ipanema-like-8.toml");
         let q = s.table().start_pose;
         let m = s.workspace_mesh(&q, 6, "l2", None).unwrap();

@@ -3,7 +3,7 @@
 use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_report};
 use cdpr::RobotDescription;
 use cdpr::api::{BindingReport, Robot, TensionReport, TensionRequest};
-use cdpr::tension::{Method, SotdaSettings};
+use cdpr::tension::Method;
 use std::path::PathBuf;
 
 /// Cable tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max at one pose.
@@ -178,15 +178,6 @@ impl SotdaSearch {
             SotdaSearch::Full => cdpr::api::SotdaSearch::Full,
         }
     }
-}
-
-/// SOTDA settings from the command line (shared with the trajectory command).
-pub fn sotda_settings(
-    direction: Option<&[f64]>,
-    nu: f64,
-    search: SotdaSearch,
-) -> Result<SotdaSettings, CliError> {
-    Ok(cdpr::api::sotda_settings(direction, nu, search.to_api())?)
 }
 
 /// Runs the command: the request, its report, rendered as JSON or a table.

@@ -3,11 +3,14 @@
 //! `criteria` (criteria from the command line) and `region` (boxes, grids with a progress bar,
 //! plots).
 
-use super::criteria::{CriteriaArgs, default_method};
-use super::region::{is_html, region, resolution, rotation};
-use super::{CliError, Numbers, load_robot, request_robot};
-use cdpr::api::{ChordRequest, MeshRequest, SectionRequest, WorkspaceRequest};
-use cdpr::workspace::{OrientationSet, OrientationWorkspaceKind, VolumeConvention};
+use super::criteria::CriteriaArgs;
+use super::region::is_html;
+use super::{CliError, Numbers, request_robot};
+use cdpr::api::{
+    ChordRequest, MeshRequest, OrientationWorkspaceRequest, SectionRequest, WorkspaceCriteria,
+    WorkspaceRequest,
+};
+use cdpr::workspace::VolumeConvention;
 use std::path::PathBuf;
 
 /// The long help of the command (`--help`), also its documentation.
@@ -160,8 +163,8 @@ pub struct Args {
     /// Spatial robots: a sampled orientation set (degrees), e.g.
     /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` or `tilt:20,torsion=-30..30,n=5`; the
     /// workspace is then the total-orientation or maximal one (--kind).
-    #[arg(long, conflicts_with = "orientation")]
-    orientations: Option<OrientationSet>,
+    #[arg(long, conflicts_with = "orientation", value_parser = super::orientations::set_spec)]
+    orientations: Option<String>,
     /// With --orientations: `total` (every orientation feasible; default) or `maximal` (some).
     #[arg(long, value_parser = ["total", "maximal"], requires = "orientations")]
     kind: Option<String>,
@@ -183,31 +186,22 @@ pub fn run(args: Args) -> Result<(), CliError> {
         return run_orientations(&args, set);
     }
     let robot = request_robot(&args.robot)?;
-    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
-    let (orientation, area) = (numbers(&args.orientation), numbers(&args.area));
-    let criteria = args.criteria.to_request();
     let (draw_pose, plot, json) = (args.draw_pose.as_deref(), args.plot.as_deref(), args.json);
+    let chord_view = super::workspace_chord::View {
+        draw_pose,
+        plot,
+        json,
+    };
     if let Some(section) = &args.section {
-        let request = SectionRequest {
-            robot,
-            criteria,
-            orientation,
-            area,
-            grid: args.grid,
-            section: section.parse()?,
-            chord: args.chord,
-        };
-        let view = super::workspace_chord::View {
-            draw_pose,
-            plot,
-            json,
-        };
-        return super::workspace_chord::run_section(&request, &view);
+        let mut request = SectionRequest::new(robot, section.parse()?);
+        (request.criteria, request.orientation, request.area) = common(&args);
+        (request.grid, request.chord) = (args.grid, args.chord);
+        return super::workspace_chord::run_section(&request, &chord_view);
     }
     match args.boundary.as_str() {
         "mesh" => {
             let mut request = MeshRequest::new(robot);
-            (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
+            (request.criteria, request.orientation, request.area) = common(&args);
             (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
             let view = super::workspace_mesh::View {
                 draw_pose,
@@ -220,58 +214,51 @@ pub fn run(args: Args) -> Result<(), CliError> {
         }
         "chord" => {
             let mut request = ChordRequest::new(robot);
-            (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
+            (request.criteria, request.orientation, request.area) = common(&args);
             (request.grid, request.chord) = (args.grid, args.chord);
-            let view = super::workspace_chord::View {
-                draw_pose,
-                plot,
-                json,
-            };
-            super::workspace_chord::run_chord(&request, &view)
+            super::workspace_chord::run_chord(&request, &chord_view)
         }
-        _ => {
-            if let Some(p) = plot.filter(|p| is_html(p))
-                && robot.robot.motion().space_dim() != 3
-            {
-                return Err(format!(
-                    "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the \
-                     grid; use .svg or .png",
-                    p.display()
-                )
-                .into());
-            }
-            let request = WorkspaceRequest {
-                robot,
-                criteria,
-                orientation,
-                area,
-                grid: args.grid,
-                volume_convention: args.volume_convention,
-            };
-            let view = super::workspace_grid::View {
-                draw_pose,
-                plot,
-                points: args.points.as_deref(),
-                json,
-            };
-            super::workspace_grid::run(&request, &view)
-        }
+        _ => run_grid(&args, robot),
     }
 }
 
-/// `--orientations`: the workspace over a set of orientations (module `orientations`).
-fn run_orientations(args: &Args, set: &OrientationSet) -> Result<(), CliError> {
-    let desc = &load_robot(&args.robot)?;
-    let robot = &desc.robot;
-    let dim = robot.motion().space_dim();
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(robot));
-    let setup = &super::criteria::setup(&args.criteria, desc, method)?;
-    rotation(robot.motion(), args.orientation.as_deref())?;
-    let region = &region(robot, args.area.as_deref(), "--box")?;
-    let m = resolution(args.grid, dim, 50)?;
+/// The criteria, orientation and box of every request of the command.
+fn common(args: &Args) -> (WorkspaceCriteria, Option<Vec<f64>>, Option<Vec<f64>>) {
+    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
+    (
+        args.criteria.to_request(),
+        numbers(&args.orientation),
+        numbers(&args.area),
+    )
+}
+
+/// `--boundary grid` (the default) at one orientation (module `workspace_grid`).
+fn run_grid(args: &Args, robot: cdpr::api::Robot) -> Result<(), CliError> {
+    if let Some(p) = args.plot.as_deref().filter(|p| is_html(p))
+        && robot.robot.motion().space_dim() != 3
+    {
+        return Err(format!(
+            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; use \
+             .svg or .png",
+            p.display()
+        )
+        .into());
+    }
+    let mut request = WorkspaceRequest::new(robot);
+    (request.criteria, request.orientation, request.area) = common(args);
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+    let view = super::workspace_grid::View {
+        draw_pose: args.draw_pose.as_deref(),
+        plot: args.plot.as_deref(),
+        points: args.points.as_deref(),
+        json: args.json,
+    };
+    super::workspace_grid::run(&request, &view)
+}
+
+/// `--orientations`: the workspace over a set of orientations (an
+/// `OrientationWorkspaceRequest`, rendered by module `orientations`).
+fn run_orientations(args: &Args, set: &str) -> Result<(), CliError> {
     if args.boundary == "chord" {
         return Err(
             "--orientations runs on the grid or the boundary mesh (--boundary grid|mesh)".into(),
@@ -282,33 +269,18 @@ fn run_orientations(args: &Args, set: &OrientationSet) -> Result<(), CliError> {
             "--section, --points and --mesh apply to one orientation, not --orientations".into(),
         );
     }
-    let kind = match args.kind.as_deref() {
-        Some("maximal") => OrientationWorkspaceKind::Maximal,
-        _ => OrientationWorkspaceKind::Total,
+    let robot = request_robot(&args.robot)?;
+    let mut request = OrientationWorkspaceRequest::new(robot, set);
+    request.criteria = args.criteria.to_request();
+    (request.kind, request.area) = (args.kind.clone(), common(args).2);
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+    let view = super::orientations::View {
+        plot: args.plot.as_deref(),
+        draw_pose: args.draw_pose.as_deref(),
+        json: args.json,
     };
     if args.boundary == "mesh" {
-        return super::orientations::run_workspace_mesh(
-            desc,
-            setup,
-            set,
-            kind,
-            region,
-            m,
-            args.plot.as_deref(),
-            args.draw_pose.as_deref(),
-            args.json,
-        );
+        return super::orientations::run_workspace_mesh(&request, &view);
     }
-    super::orientations::run_workspace(
-        desc,
-        setup,
-        set,
-        kind,
-        region,
-        m,
-        args.plot.as_deref(),
-        args.draw_pose.as_deref(),
-        args.json,
-        args.volume_convention,
-    )
+    super::orientations::run_workspace(&request, &view)
 }

@@ -100,12 +100,6 @@ fn write_mesh(mesh: &BoundaryMesh, path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-/// "vertices within 2.0e-8 m of the boundary": the placement of a mesh's vertices (ε/2 along
-/// their grid edge), as the text, the figures and the HTML legend say it.
-pub fn vertex_placement(tolerance: f64) -> String {
-    format!("vertices within {:.1e} m of the boundary", 0.5 * tolerance)
-}
-
 /// Runs the request (timed: JSON `seconds`) and renders its report.
 pub fn run(request: &MeshRequest, view: &View<'_>) -> Result<(), CliError> {
     let start = Instant::now();
@@ -202,7 +196,7 @@ fn print_mesh(r: &MeshReport) {
     println!(
         "volume {:.6} m³ (enclosed by the mesh; {})",
         r.volume,
-        vertex_placement(r.tolerance)
+        super::region::vertex_placement(r.tolerance)
     );
     println!(
         "surface {:.6} m² (of which {:.6} m² on the box faces); {} component(s): {} region(s), \
