@@ -60,6 +60,10 @@ class IsotropicResult:
     isotropic_force: Union[FloatArray, float]
     wrench_radius: Union[FloatArray, float]
     definition: str
+    vertices: Optional[FloatArray]
+    faces: Optional[List[IntArray]]
+    normals: Optional[FloatArray]
+    offsets: Optional[FloatArray]
 
 class StiffnessResult:
     stiffness: FloatArray

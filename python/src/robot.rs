@@ -71,6 +71,113 @@ fn anchors(obj: &Bound<'_, PyAny>, dim: usize, what: &str) -> PyResult<(usize, V
     }
 }
 
+/// The cables of `from_anchors`: frame anchors and platform attachments (zero for point
+/// robots, required otherwise), (n, dim) each.
+fn geometry(
+    motion: MotionPattern,
+    frame: &Bound<'_, PyAny>,
+    platform: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Geometry> {
+    let dim = motion.space_dim();
+    let (n, frame) = anchors(frame, dim, "frame")?;
+    let platform = match platform {
+        Some(p) => {
+            let (m, p) = anchors(p, dim, "platform")?;
+            if m != n {
+                return Err(value_error(format!(
+                    "platform: {m} attachments for {n} frame anchors"
+                )));
+            }
+            p
+        }
+        None if motion.has_orientation() => {
+            return Err(value_error(format!(
+                "platform: a `{motion}` robot needs the platform attachment of every cable"
+            )));
+        }
+        None => vec![0.0; n * dim],
+    };
+    let cables = (0..n)
+        .map(|i| {
+            let (f, p) = (
+                &frame[i * dim..(i + 1) * dim],
+                &platform[i * dim..(i + 1) * dim],
+            );
+            Cable::from_slices(motion, i, f, p)
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(value_error)?;
+    Geometry::new(motion, cables).map_err(value_error)
+}
+
+/// Tension bounds of `from_anchors` (N; default 0 and infinity): a negative bound is an error,
+/// as in a robot file (a cable can only pull).
+fn tension_bounds(
+    t_min: Option<&Bound<'_, PyAny>>,
+    t_max: Option<&Bound<'_, PyAny>>,
+    n: usize,
+) -> PyResult<TensionBounds> {
+    let t_min = t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?;
+    let t_max = t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?;
+    for (what, bound) in [("t_min", &t_min), ("t_max", &t_max)] {
+        if let Some((i, v)) = bound.iter().enumerate().find(|(_, v)| **v < 0.0) {
+            return Err(value_error(format!(
+                "{what}[{i}] = {v} N is negative: a cable can only pull ({what} ≥ 0)"
+            )));
+        }
+    }
+    TensionBounds::new(t_min, t_max).map_err(value_error)
+}
+
+/// The limits of `from_anchors`: l_min (m) and D_min, each a finite number ≥ 0.
+fn limits_of(min_cable_length: Option<f64>, min_jacobian_det: Option<f64>) -> PyResult<Limits> {
+    for (what, v) in [
+        ("min_cable_length", min_cable_length),
+        ("min_jacobian_det", min_jacobian_det),
+    ] {
+        if let Some(v) = v
+            && !(v.is_finite() && v >= 0.0)
+        {
+            return Err(value_error(format!(
+                "{what}: {v} must be a finite number ≥ 0"
+            )));
+        }
+    }
+    Ok(Limits {
+        min_cable_length,
+        min_jacobian_det,
+    })
+}
+
+/// The platform of `from_anchors`: mass (kg), centre of mass (m) and gravity (m/s², default
+/// −z in space, −y in the plane).
+fn platform_of(
+    mass: f64,
+    centre_of_mass: Option<&Bound<'_, PyAny>>,
+    gravity: Option<&Bound<'_, PyAny>>,
+    dim: usize,
+) -> PyResult<Platform> {
+    if !(mass.is_finite() && mass >= 0.0) {
+        return Err(value_error(format!(
+            "mass: {mass} must be a finite number ≥ 0"
+        )));
+    }
+    let mut platform = Platform {
+        mass,
+        ..Platform::default()
+    };
+    if dim == 2 {
+        platform.gravity = Vector3::new(0.0, -STANDARD_GRAVITY.z.abs(), 0.0);
+    }
+    if let Some(c) = space_vector(centre_of_mass, dim, "centre_of_mass")? {
+        platform.centre_of_mass = c;
+    }
+    if let Some(g) = space_vector(gravity, dim, "gravity")? {
+        platform.gravity = g;
+    }
+    Ok(platform)
+}
+
 #[pymethods]
 impl Robot {
     /// Loads a robot file in any format ``cdpr-io`` reads, told apart by the extension: cdpr
@@ -121,63 +228,10 @@ impl Robot {
         name: String,
     ) -> PyResult<Self> {
         let motion: MotionPattern = motion.parse().map_err(value_error)?;
-        let dim = motion.space_dim();
-        let (n, frame) = anchors(frame, dim, "frame")?;
-        let platform = match platform {
-            Some(p) => {
-                let (m, p) = anchors(p, dim, "platform")?;
-                if m != n {
-                    return Err(value_error(format!(
-                        "platform: {m} attachments for {n} frame anchors"
-                    )));
-                }
-                p
-            }
-            None if motion.has_orientation() => {
-                return Err(value_error(format!(
-                    "platform: a `{motion}` robot needs the platform attachment of every cable"
-                )));
-            }
-            None => vec![0.0; n * dim],
-        };
-        let cables = (0..n)
-            .map(|i| {
-                Cable::from_slices(
-                    motion,
-                    i,
-                    &frame[i * dim..(i + 1) * dim],
-                    &platform[i * dim..(i + 1) * dim],
-                )
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(value_error)?;
-        let robot = Geometry::new(motion, cables).map_err(value_error)?;
-        let t_min = t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?;
-        if let Some((i, v)) = t_min.iter().enumerate().find(|(_, v)| **v < 0.0) {
-            return Err(value_error(format!(
-                "t_min[{i}] = {v} N is negative: a cable can only pull (t_min ≥ 0)"
-            )));
-        }
-        let t_max = t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?;
-        let bounds = TensionBounds::new(t_min, t_max).map_err(value_error)?;
-        if !(mass.is_finite() && mass >= 0.0) {
-            return Err(value_error(format!(
-                "mass: {mass} must be a finite number ≥ 0"
-            )));
-        }
-        let mut plat = Platform {
-            mass,
-            ..Platform::default()
-        };
-        if dim == 2 {
-            plat.gravity = Vector3::new(0.0, -STANDARD_GRAVITY.z.abs(), 0.0);
-        }
-        if let Some(c) = space_vector(centre_of_mass, dim, "centre_of_mass")? {
-            plat.centre_of_mass = c;
-        }
-        if let Some(g) = space_vector(gravity, dim, "gravity")? {
-            plat.gravity = g;
-        }
+        let robot = geometry(motion, frame, platform)?;
+        let n = robot.cable_count();
+        let bounds = tension_bounds(t_min, t_max, n)?;
+        let platform = platform_of(mass, centre_of_mass, gravity, motion.space_dim())?;
         let axial_stiffness = axial_stiffness
             .map(|es| per_cable(es, n, "axial_stiffness"))
             .transpose()?;
@@ -188,36 +242,24 @@ impl Robot {
                 "axial_stiffness: {v} must be a finite number > 0"
             )));
         }
-        for (what, v) in [
-            ("min_cable_length", min_cable_length),
-            ("min_jacobian_det", min_jacobian_det),
-        ] {
-            if let Some(v) = v
-                && !(v.is_finite() && v >= 0.0)
-            {
-                return Err(value_error(format!(
-                    "{what}: {v} must be a finite number ≥ 0"
-                )));
-            }
-        }
-        let mut warnings = Vec::new();
-        for (i, j) in robot.duplicate_cables() {
-            warnings.push(format!(
-                "cables {} and {} are exact duplicates (same anchor and attachment)",
-                i + 1,
-                j + 1
-            ));
-        }
+        let warnings = robot
+            .duplicate_cables()
+            .into_iter()
+            .map(|(i, j)| {
+                format!(
+                    "cables {} and {} are exact duplicates (same anchor and attachment)",
+                    i + 1,
+                    j + 1
+                )
+            })
+            .collect();
         Ok(Self {
             desc: Arc::new(RobotDescription {
                 name,
                 robot,
                 bounds,
-                limits: Limits {
-                    min_cable_length,
-                    min_jacobian_det,
-                },
-                platform: plat,
+                limits: limits_of(min_cable_length, min_jacobian_det)?,
+                platform,
                 axial_stiffness,
                 linear_density: None,
                 platform_shape: None,
