@@ -123,7 +123,11 @@ fn error(e: cdpr_api::ApiError) -> PyErr {
 /// The constant-orientation workspace: the `WorkspaceRequest` (grid), `MeshRequest` or
 /// `ChordRequest` of `cdpr-api` that `cdpr workspace --boundary grid|mesh|chord` runs, run in
 /// parallel with the GIL released, its report turned into the Python result.
-pub fn workspace(robot: &Robot, py: Python<'_>, a: &WorkspaceArgs<'_>) -> PyResult<WorkspaceResult> {
+pub fn workspace(
+    robot: &Robot,
+    py: Python<'_>,
+    a: &WorkspaceArgs<'_>,
+) -> PyResult<WorkspaceResult> {
     let convention: VolumeConvention = a
         .volume_convention
         .parse()
@@ -141,7 +145,13 @@ pub fn workspace(robot: &Robot, py: Python<'_>, a: &WorkspaceArgs<'_>) -> PyResu
                 volume_convention: convention,
             };
             let r = crate::parallel(py, || request.run().map_err(error))?;
-            let mut out = result(py, &r.external_wrench, r.criteria, r.tension_method, r.area_box);
+            let mut out = result(
+                py,
+                &r.external_wrench,
+                r.criteria,
+                r.tension_method,
+                r.area_box,
+            );
             fill_grid(py, &mut out, &r.workspace, convention);
             Ok(out)
         }
@@ -150,7 +160,13 @@ pub fn workspace(robot: &Robot, py: Python<'_>, a: &WorkspaceArgs<'_>) -> PyResu
             (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
             (request.grid, request.volume_convention) = (grid, convention);
             let r = crate::parallel(py, || request.run().map_err(error))?;
-            let mut out = result(py, &r.external_wrench, r.criteria, r.tension_method, r.area_box);
+            let mut out = result(
+                py,
+                &r.external_wrench,
+                r.criteria,
+                r.tension_method,
+                r.area_box,
+            );
             fill_grid(py, &mut out, &r.mesh.grid, convention);
             fill_mesh(py, &mut out, &r.mesh);
             Ok(out)
@@ -160,7 +176,13 @@ pub fn workspace(robot: &Robot, py: Python<'_>, a: &WorkspaceArgs<'_>) -> PyResu
             (request.criteria, request.orientation, request.area) = (criteria, orientation, area);
             (request.grid, request.chord) = (grid, a.chord);
             let r = crate::parallel(py, || request.run().map_err(error))?;
-            let mut out = result(py, &r.external_wrench, r.criteria, r.tension_method, r.area_box);
+            let mut out = result(
+                py,
+                &r.external_wrench,
+                r.criteria,
+                r.tension_method,
+                r.area_box,
+            );
             out.area = r.curves.area;
             out.boundaries = Some(
                 r.curves
