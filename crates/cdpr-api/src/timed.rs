@@ -1,6 +1,6 @@
 //! # Timed trajectories and their inverse dynamics
 //!
-//! The path of a [`TrajectoryRequest`] run with a time law of `cdpr_dynamics::time_law`
+//! The path of a [`TrajectoryRequest`](crate::trajectory::TrajectoryRequest) run with a time law of `cdpr_dynamics::time_law`
 //! (linear, cubic, quintic, trapezoid, parabolic blend), sampled every `dt` s. At every sample
 //! the tensions balance w_e + w_g (+ passive springs), and with `dynamics` also the inertial
 //! wrench: W t + w_e + w_g = M ẍ + b (`cdpr_dynamics::inverse_dynamics`). With a `winch` on every
