@@ -1,11 +1,10 @@
 //! Inverse kinematics and wrench matrix (cdpr-kinematics).
 
+use cdpr_benches::goals::{CatenarySolve, ElasticForward, Goal, NoisyForward, forward_problems};
 use cdpr_benches::{ipanema_like_8, ipanema_like_8_pulleys, spatial_poses};
-use cdpr_kinematics::{
-    ForwardKinematics, ForwardSettings, MotionPattern, Pose, PoseKinematics, Robot,
-};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, MotionPattern, Pose, PoseKinematics};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use nalgebra::{DMatrix, Rotation3, Vector3};
+use nalgebra::DMatrix;
 use std::hint::black_box;
 
 fn inverse_kinematics(c: &mut Criterion) {
@@ -42,19 +41,6 @@ fn inverse_kinematics(c: &mut Criterion) {
     g.finish();
 }
 
-/// Lengths of every pose and a guess 2 cm and 0.02 rad away from it.
-fn forward_problems(robot: &Robot, poses: &[Pose]) -> Vec<(Vec<f64>, Pose)> {
-    let dp = Vector3::new(1.0, -1.0, 1.0).normalize() * 0.02;
-    let dr = Rotation3::new(Vector3::new(-1.0, 1.0, 1.0).normalize() * 0.02);
-    poses
-        .iter()
-        .map(|p| {
-            let l = robot.inverse_kinematics(p).unwrap().lengths().collect();
-            (l, Pose::new(p.position + dp, dr * p.rotation))
-        })
-        .collect()
-}
-
 fn forward_kinematics(c: &mut Criterion) {
     let poses = spatial_poses(1000);
     let mut g = c.benchmark_group("kinematics");
@@ -76,22 +62,8 @@ fn forward_kinematics(c: &mut Criterion) {
     }
     // Issue 27: measured lengths (noise of about 0.1 mm, deterministic): the least-squares pose
     // with its `fitted` test, residual_rms and pose standard deviations (budget 5 µs).
-    let robot = ipanema_like_8();
-    let mut problems = forward_problems(&robot, &poses);
-    for (j, (l, _)) in problems.iter_mut().enumerate() {
-        for (i, v) in l.iter_mut().enumerate() {
-            *v += 1e-4 * (((7 * j + 3 * i) % 11) as f64 / 5.0 - 1.0);
-        }
-    }
-    let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
-    let mut k = 0;
-    g.bench_function("fk_8_spatial_noisy", |b| {
-        b.iter(|| {
-            k = (k + 1) % problems.len();
-            let (l, guess) = &problems[k];
-            black_box(fk.solve(black_box(l), guess).unwrap().residual_rms)
-        })
-    });
+    let mut noisy = NoisyForward::new();
+    g.bench_function("fk_8_spatial_noisy", |b| b.iter(|| black_box(noisy.run())));
     g.finish();
 }
 
@@ -178,87 +150,29 @@ fn interference(c: &mut Criterion) {
     g.finish();
 }
 
-/// Issue 29 budget: one catenary solve (span, platform-end tension → L0 and forces) ≤ 1 µs.
-/// The issue's example cable (w = 0.5 N/m, EA = 10⁶ N) at 100 spans around its span.
+/// Issue 29 budget: one catenary solve (span, platform-end tension → L0 and forces) ≤ 1 µs
+/// ([`CatenarySolve`]: the issue's example cable at 100 spans around its span).
 fn elastic_catenary(c: &mut Criterion) {
-    let cable = cdpr_kinematics::ElasticCatenary::new(0.5, 1e6).unwrap();
-    let spans: Vec<(f64, f64)> = (0..100)
-        .map(|k| {
-            let s = k as f64 / 100.0;
-            (9.730114663 + s, -5.131623707 + 2.0 * s)
-        })
-        .collect();
+    let mut goal = CatenarySolve::new();
     let mut g = c.benchmark_group("elastic_catenary");
-    g.throughput(Throughput::Elements(spans.len() as u64));
-    g.bench_function("solve_for_tension", |b| {
-        b.iter(|| {
-            let mut l = 0.0;
-            for &(x, z) in &spans {
-                l += cable
-                    .solve_for_tension(black_box(x), z, 111.8)
-                    .unwrap()
-                    .unstrained_length;
-            }
-            black_box(l)
-        })
-    });
+    g.throughput(Throughput::Elements(CatenarySolve::UNITS));
+    g.bench_function("solve_for_tension", |b| b.iter(|| black_box(goal.run())));
     g.bench_function("solve_for_length", |b| {
-        b.iter(|| {
-            let mut f = 0.0;
-            for &(x, z) in &spans {
-                f += cable
-                    .solve_for_length(black_box(x), z, 11.0)
-                    .unwrap()
-                    .horizontal_force;
-            }
-            black_box(f)
-        })
+        b.iter(|| black_box(goal.run_for_length()))
     });
     g.finish();
 }
 
-/// Issue 29 budget: elastic forward kinematics ≤ 10 µs. IPAnema-like 8-cable robot, 100 poses
-/// of `spatial_poses`, platform-end tensions 100 N (the wrench they balance is the load), each
-/// solve started 1 mm and 1 mrad from the pose (tracking a moving platform); E·S = 60 kN,
-/// weightless (`elastic`) and 0.02 kg/m (`catenary`).
+/// Issue 29 budget: elastic forward kinematics ≤ 10 µs ([`ElasticForward`]: 100 poses,
+/// weightless `elastic` and 0.02 kg/m `catenary` cables).
 fn elasto_geometric_forward(c: &mut Criterion) {
-    use cdpr_kinematics::catenary::write_sagging_wrench_matrix;
-    use cdpr_kinematics::{ElastoGeometricForward, RobotCatenaries};
-    let robot = ipanema_like_8();
-    let poses = spatial_poses(100);
     let mut g = c.benchmark_group("elasto_geometric_forward");
-    g.throughput(Throughput::Elements(poses.len() as u64));
-    for (name, rho) in [("elastic_spatial_8", 0.0), ("catenary_spatial_8", 0.02)] {
-        let model =
-            RobotCatenaries::new(&[rho; 8], &[6e4; 8], &Vector3::new(0.0, 0.0, -9.81)).unwrap();
-        let mut cases = Vec::new();
-        let mut cables = Vec::new();
-        let mut w = DMatrix::zeros(0, 0);
-        for p in &poses {
-            let kin = robot.inverse_kinematics(p).unwrap();
-            model.with_tensions(&kin, &[100.0; 8], &mut cables).unwrap();
-            write_sagging_wrench_matrix(&kin, &cables, &mut w);
-            let w_ext: Vec<f64> = (0..6).map(|r| -100.0 * w.row(r).sum()).collect();
-            let l0: Vec<f64> = cables.iter().map(|c| c.unstrained_length).collect();
-            let start = Pose::new(
-                p.position + Vector3::new(1e-3, -1e-3, 1e-3),
-                Rotation3::new(Vector3::new(1e-3, 0.0, -1e-3)) * p.rotation,
-            );
-            cases.push((l0, w_ext, start));
-        }
-        let mut fk = ElastoGeometricForward::new(&robot, &model, Default::default()).unwrap();
-        g.bench_function(name, |b| {
-            b.iter(|| {
-                let mut ok = 0;
-                for (l0, w_ext, start) in &cases {
-                    let s = fk.solve(black_box(l0), w_ext, start).unwrap();
-                    ok +=
-                        (s.status == cdpr_kinematics::ElastoGeometricStatus::Equilibrium) as usize;
-                }
-                assert_eq!(ok, cases.len());
-                black_box(ok)
-            })
-        });
+    g.throughput(Throughput::Elements(ElasticForward::UNITS));
+    for (name, mut goal) in [
+        ("elastic_spatial_8", ElasticForward::elastic()),
+        ("catenary_spatial_8", ElasticForward::catenary()),
+    ] {
+        g.bench_function(name, |b| b.iter(|| black_box(goal.run())));
     }
     g.finish();
 }

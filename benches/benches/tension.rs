@@ -5,7 +5,8 @@
 //! active-set path (redundancy 5) against Clarabel on an 8-cable planar robot. Each iteration
 //! solves all poses; criterion's throughput gives the per-pose cost.
 
-use cdpr_benches::{ipanema_like_8, spatial_poses, twelve_cable_spatial};
+use cdpr_benches::goals::{Goal, SaggingStatics, feasible_poses};
+use cdpr_benches::{ipanema_like_8, twelve_cable_spatial};
 use cdpr_kinematics::reference_robots::thesis_four_cable;
 use cdpr_kinematics::{Cable, MotionPattern, Pose, PoseKinematics, Robot};
 use cdpr_tension::{
@@ -16,35 +17,14 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use nalgebra::{DMatrix, DVector, Vector3};
 use std::hint::black_box;
 
-struct FeasiblePose {
-    kin: PoseKinematics,
-    w: DMatrix<f64>,
-}
+type Feasible = (
+    Vec<(PoseKinematics, DMatrix<f64>)>,
+    DVector<f64>,
+    TensionBounds,
+    Vec<f64>,
+);
 
-/// The first `count` poses of `spatial_poses` where `robot` holds a 10 kg platform under
-/// gravity with tensions in [1, 1000] N (l2 feasible): their kinematics and W.
-fn feasible_poses(robot: &Robot, count: usize) -> (Vec<FeasiblePose>, DVector<f64>, TensionBounds) {
-    let we = DVector::from_vec(vec![0.0, 0.0, -9.80665 * 10.0, 0.0, 0.0, 0.0]);
-    let b = TensionBounds::uniform(robot.cable_count(), 1.0, 1000.0).unwrap();
-    let mut l2 = TensionSolver::new(Method::L2);
-    let mut out = Vec::new();
-    for pose in spatial_poses(20 * count) {
-        let Ok(kin) = robot.inverse_kinematics(&pose) else {
-            continue;
-        };
-        let w = kin.wrench_matrix();
-        if l2.is_feasible(&TensionProblem::new(&w, &we, &b)).unwrap() {
-            out.push(FeasiblePose { kin, w });
-            if out.len() == count {
-                break;
-            }
-        }
-    }
-    assert_eq!(out.len(), count, "not enough feasible poses");
-    (out, we, b)
-}
-
-fn feasible_spatial(count: usize) -> (Vec<FeasiblePose>, DVector<f64>, TensionBounds, Vec<f64>) {
+fn feasible_spatial(count: usize) -> Feasible {
     let (out, we, b) = feasible_poses(&ipanema_like_8(), count);
     (out, we, b, vec![80e9 * 0.75e-6; 8])
 }
@@ -62,10 +42,10 @@ fn bench_spatial(c: &mut Criterion) {
                 for p in &poses {
                     let problem = TensionProblem {
                         stiffness: stiff.then_some(StiffnessData {
-                            kinematics: &p.kin,
+                            kinematics: &p.0,
                             axial_stiffness: &es,
                         }),
-                        ..TensionProblem::new(&p.w, &we, &b)
+                        ..TensionProblem::new(&p.1, &we, &b)
                     };
                     ok += solver.solve_into(&problem, &mut t).unwrap().is_ok() as usize;
                 }
@@ -238,7 +218,7 @@ fn bench_planar_redundant(c: &mut Criterion) {
 fn bench_twelve_cable_l2_max(c: &mut Criterion) {
     const N: usize = 100;
     let (poses, we, b) = feasible_poses(&twelve_cable_spatial(), N);
-    let ws: Vec<DMatrix<f64>> = poses.into_iter().map(|p| p.w).collect();
+    let ws: Vec<DMatrix<f64>> = poses.into_iter().map(|p| p.1).collect();
     let mut g = c.benchmark_group("tension_12_cable");
     g.throughput(Throughput::Elements(N as u64));
     let mut solver = TensionSolver::new(Method::L2Max);
@@ -256,28 +236,13 @@ fn bench_twelve_cable_l2_max(c: &mut Criterion) {
     g.finish();
 }
 
-/// Statics with sagging cables (issue 29 budget: ≤ 20 µs per pose): the fixed point of
-/// `sagging_statics` with l2 on 100 of the feasible poses above, cables of 0.02 kg/m and
-/// E·S = 60 kN (the IPAnema-like cables) under 9.80665 m/s².
+/// Statics with sagging cables (issue 29 budget: ≤ 20 µs per pose): [`SaggingStatics`], the
+/// fixed point with l2 on 100 of the feasible poses above, cables of 0.02 kg/m and E·S = 60 kN.
 fn bench_sagging_statics(c: &mut Criterion) {
-    const N: usize = 100;
-    let (poses, we, b, es) = feasible_spatial(N);
-    let g0 = Vector3::new(0.0, 0.0, -9.80665);
-    let model = cdpr_kinematics::RobotCatenaries::new(&[0.02; 8], &es, &g0).unwrap();
-    let mut statics = cdpr_tension::SaggingStatics::default();
-    let mut solver = TensionSolver::new(Method::L2);
+    let mut goal = SaggingStatics::new();
     let mut g = c.benchmark_group("sagging_statics");
-    g.throughput(Throughput::Elements(N as u64));
-    g.bench_function("l2_spatial_8", |bch| {
-        bch.iter(|| {
-            let mut feasible = 0;
-            for p in &poses {
-                let o = statics.solve(&mut solver, &p.kin, &model, &we, &b).unwrap();
-                feasible += matches!(o, cdpr_tension::SaggingOutcome::Feasible(_)) as usize;
-            }
-            black_box(feasible)
-        })
-    });
+    g.throughput(Throughput::Elements(SaggingStatics::UNITS));
+    g.bench_function("l2_spatial_8", |b| b.iter(|| black_box(goal.run())));
     g.finish();
 }
 

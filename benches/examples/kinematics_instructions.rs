@@ -9,9 +9,10 @@
 //! Instructions per call = (total with N calls − total with 0 calls) / N. The problems are those
 //! of `benches/kinematics.rs` (same robots, poses and guesses).
 
+use cdpr_benches::goals::forward_problems;
 use cdpr_benches::{ipanema_like_8, ipanema_like_8_pulleys, spatial_poses};
-use cdpr_kinematics::{ForwardKinematics, ForwardSettings, Pose, PoseKinematics};
-use nalgebra::{DMatrix, Rotation3, Vector3};
+use cdpr_kinematics::{ForwardKinematics, ForwardSettings, PoseKinematics};
+use nalgebra::DMatrix;
 use std::hint::black_box;
 
 fn main() {
@@ -43,15 +44,7 @@ fn main() {
             sum += black_box(w[(5, 7)]);
         }
     } else {
-        let dp = Vector3::new(1.0, -1.0, 1.0).normalize() * 0.02;
-        let dr = Rotation3::new(Vector3::new(-1.0, 1.0, 1.0).normalize() * 0.02);
-        let problems: Vec<(Vec<f64>, Pose)> = poses
-            .iter()
-            .map(|p| {
-                let l = robot.inverse_kinematics(p).unwrap().lengths().collect();
-                (l, Pose::new(p.position + dp, dr * p.rotation))
-            })
-            .collect();
+        let problems = forward_problems(&robot, &poses);
         let mut fk = ForwardKinematics::new(&robot, ForwardSettings::default()).unwrap();
         let mut iterations = 0;
         for k in 0..calls {

@@ -1,6 +1,8 @@
 //! Shared fixtures for the criterion benchmarks in `benches/`: every benchmark draws its robots and
 //! poses from here, so that the numbers in the notes refer to the same problems.
 
+pub mod goals;
+
 use cdpr_kinematics::{Cable, MotionPattern, Pose, Robot};
 use nalgebra::Vector3;
 

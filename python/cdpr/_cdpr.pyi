@@ -60,6 +60,10 @@ class IsotropicResult:
     isotropic_force: Union[FloatArray, float]
     wrench_radius: Union[FloatArray, float]
     definition: str
+    vertices: Optional[FloatArray]
+    faces: Optional[List[IntArray]]
+    normals: Optional[FloatArray]
+    offsets: Optional[FloatArray]
 
 class StiffnessResult:
     stiffness: FloatArray
@@ -99,6 +103,41 @@ class TrajectoryResult:
     discontinuities: List[int]
     feasible_count: int
     method: str
+
+class TimedTrajectoryResult:
+    t: FloatArray
+    poses: FloatArray
+    velocity: FloatArray
+    acceleration: FloatArray
+    cable_lengths: FloatArray
+    cable_speeds: FloatArray
+    cable_accelerations: FloatArray
+    tensions: FloatArray
+    feasible: BoolArray
+    reason: List[Optional[str]]
+    feasible_count: int
+    inertial_wrench: Optional[FloatArray]
+    motor_speeds: Optional[FloatArray]
+    motor_torques: Optional[FloatArray]
+    motor_powers: Optional[FloatArray]
+    motors_within_limits: Optional[bool]
+    motor_limit_violations: Optional[List[str]]
+    waypoint_times: List[float]
+    duration: float
+    dt: float
+    time_law: str
+    method: str
+    dynamics: bool
+
+class SimulationResult:
+    t: FloatArray
+    poses: FloatArray
+    velocities: FloatArray
+    accelerations: FloatArray
+    tensions: FloatArray
+    steps: int
+    rejected_steps: int
+    integrator: str
 
 class Robot:
     @staticmethod
@@ -215,4 +254,30 @@ class Robot:
         nu: float = 1.0,
         sotda_search: Literal["corners", "vertices", "full"] = "corners",
         jump_ratio: float = 20.0,
-    ) -> TrajectoryResult: ...
+        time_law: Optional[
+            Literal["linear", "cubic", "quintic", "trapezoid", "parabolic-blend"]
+        ] = None,
+        duration: Optional[float] = None,
+        dt: Optional[float] = None,
+        times: Optional[Sequence[float]] = None,
+        max_velocity: Optional[float] = None,
+        max_acceleration: Optional[float] = None,
+        blend_time: Optional[float] = None,
+        dynamics: bool = False,
+    ) -> Union[TrajectoryResult, TimedTrajectoryResult]: ...
+    def simulate(
+        self,
+        start: Sequence[float],
+        duration: float,
+        dt: float,
+        *,
+        velocity: Optional[Sequence[float]] = None,
+        tensions: Optional[Sequence[float]] = None,
+        tension_profile: Optional[Tuple[ArrayLike, ArrayLike]] = None,
+        unstrained_lengths: Optional[Sequence[float]] = None,
+        damping: float = 0.0,
+        integrator: Literal["rk4", "rk45"] = "rk4",
+        tolerance: float = 1e-9,
+        wrench: Optional[Sequence[float]] = None,
+    ) -> SimulationResult: ...
+    def mass_matrix(self, poses: ArrayLike) -> FloatArray: ...

@@ -75,13 +75,14 @@ pub fn forward_kinematics(
     let data = rows.array.data();
     let garr = guess.map(|g| FloatArray::new(g, "guess")).transpose()?;
     let guesses = read_guesses(robot, garr.as_ref(), count, rows.single)?;
-    if rows.single && max_iterations == ForwardSettings::default().max_iterations {
+    if rows.single {
         let request = ForwardRequest {
             robot: api_robot(robot),
             lengths: data.to_vec(),
             guess: garr.as_ref().map(|g| g.data().into_owned()),
             tolerance,
             length_sigma,
+            max_iterations,
         };
         return forward_at(py, &request);
     }

@@ -11,6 +11,7 @@
 
 mod arrays;
 mod calibration;
+mod dynamics;
 mod forward;
 mod kinematics;
 mod model;
@@ -194,6 +195,8 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<polytope::StiffnessResult>()?;
     m.add_class::<workspace::WorkspaceResult>()?;
     m.add_class::<trajectory::TrajectoryResult>()?;
+    m.add_class::<trajectory::TimedTrajectoryResult>()?;
+    m.add_class::<dynamics::SimulationResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;
     m.add_function(wrap_pyfunction!(calibration::calibrate, m)?)?;
     m.add_function(wrap_pyfunction!(kinematics::_ik_reference_loop, m)?)?;

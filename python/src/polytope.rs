@@ -47,11 +47,21 @@ pub struct CapacityResult {
 /// zero added moment; negative when the external wrench itself cannot be held.
 /// ``wrench_radius`` (N,): the same ball in the full wrench space (N and N·m combined).
 /// ``definition``: what the index means for this motion pattern.
+///
+/// One pose in (and a wrench space of dimension 2 or 3: point2, point3 or planar robots) also
+/// gives the available wrench set {W t : t_min ≤ t ≤ t_max} (no load) as ``cdpr isotropic
+/// --json`` does: ``vertices`` (V, DOF) (N, N·m), ``faces`` a list of int arrays of vertex
+/// indices, counter-clockwise seen from outside (DOF 2: the edges), ``normals`` (F, DOF) their
+/// outward unit normals and ``offsets`` (F,) (n · w ≤ d; N or N·m). ``None`` otherwise.
 #[pyclass(module = "cdpr", frozen, get_all)]
 pub struct IsotropicResult {
     pub isotropic_force: Py<PyAny>,
     pub wrench_radius: Py<PyAny>,
     pub definition: String,
+    pub vertices: Option<Py<PyAny>>,
+    pub faces: Option<Vec<Py<PyAny>>>,
+    pub normals: Option<Py<PyAny>>,
+    pub offsets: Option<Py<PyAny>>,
 }
 
 /// Stiffness matrices of a batch: ``stiffness`` K = Kp + Ka, ``passive`` Kp (cable elasticity,
@@ -210,12 +220,7 @@ pub fn isotropic(
             wrench: Some(wr.at(0).to_vec()),
             ellipse: false,
         };
-        let r = request.run().map_err(api_error)?;
-        return Ok(IsotropicResult {
-            isotropic_force: r.isotropic_force.into_py_any(py)?,
-            wrench_radius: r.wrench_radius.into_py_any(py)?,
-            definition: r.definition,
-        });
+        return isotropic_at(py, &request, dof);
     }
     let desc = &robot.desc;
     // One allocation-free evaluator per worker (hyperplane shifting on the fly, no facet list:
@@ -255,6 +260,36 @@ pub fn isotropic(
         isotropic_force: per_pose(py, force),
         wrench_radius: per_pose(py, radius),
         definition: cdpr_api::definition(robot.motion_pattern()).into(),
+        vertices: None,
+        faces: None,
+        normals: None,
+        offsets: None,
+    })
+}
+
+/// One pose: the `cdpr isotropic` request and its report, the polytope's faces included.
+fn isotropic_at(
+    py: Python<'_>,
+    request: &IsotropicRequest,
+    dof: usize,
+) -> PyResult<IsotropicResult> {
+    let r = request.run().map_err(api_error)?;
+    let faces = r.faces.map(|fs| {
+        fs.into_iter()
+            .map(|f| {
+                let ids: Vec<i64> = f.into_iter().map(|i| i as i64).collect();
+                to_numpy(py, &[ids.len()], ids).into_any().unbind()
+            })
+            .collect()
+    });
+    Ok(IsotropicResult {
+        isotropic_force: r.isotropic_force.into_py_any(py)?,
+        wrench_radius: r.wrench_radius.into_py_any(py)?,
+        definition: r.definition,
+        vertices: r.vertices.map(|v| matrix(py, &v, dof).into_any().unbind()),
+        faces,
+        normals: r.normals.map(|n| matrix(py, &n, dof).into_any().unbind()),
+        offsets: r.offsets.map(|d| per_pose(py, d)),
     })
 }
 

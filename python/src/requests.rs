@@ -39,3 +39,14 @@ pub fn points3<'py>(py: Python<'py>, points: &[Vec<f64>]) -> Bound<'py, PyArrayD
 pub fn api_error(e: cdpr_api::ApiError) -> PyErr {
     value_error(e)
 }
+
+/// A request's error with the command line's option names (`--box`, `--grid M`, …) spelled as
+/// the keyword arguments of the Python call (`names`: pairs of option and keyword, longer options
+/// first where one begins another).
+pub fn keyword_error(e: cdpr_api::ApiError, names: &[(&str, &str)]) -> PyErr {
+    let mut message = e.to_string();
+    for (option, keyword) in names {
+        message = message.replace(option, keyword);
+    }
+    value_error(message)
+}

@@ -71,6 +71,113 @@ fn anchors(obj: &Bound<'_, PyAny>, dim: usize, what: &str) -> PyResult<(usize, V
     }
 }
 
+/// The cables of `from_anchors`: frame anchors and platform attachments (zero for point
+/// robots, required otherwise), (n, dim) each.
+fn geometry(
+    motion: MotionPattern,
+    frame: &Bound<'_, PyAny>,
+    platform: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Geometry> {
+    let dim = motion.space_dim();
+    let (n, frame) = anchors(frame, dim, "frame")?;
+    let platform = match platform {
+        Some(p) => {
+            let (m, p) = anchors(p, dim, "platform")?;
+            if m != n {
+                return Err(value_error(format!(
+                    "platform: {m} attachments for {n} frame anchors"
+                )));
+            }
+            p
+        }
+        None if motion.has_orientation() => {
+            return Err(value_error(format!(
+                "platform: a `{motion}` robot needs the platform attachment of every cable"
+            )));
+        }
+        None => vec![0.0; n * dim],
+    };
+    let cables = (0..n)
+        .map(|i| {
+            let (f, p) = (
+                &frame[i * dim..(i + 1) * dim],
+                &platform[i * dim..(i + 1) * dim],
+            );
+            Cable::from_slices(motion, i, f, p)
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(value_error)?;
+    Geometry::new(motion, cables).map_err(value_error)
+}
+
+/// Tension bounds of `from_anchors` (N; default 0 and infinity): a negative bound is an error,
+/// as in a robot file (a cable can only pull).
+fn tension_bounds(
+    t_min: Option<&Bound<'_, PyAny>>,
+    t_max: Option<&Bound<'_, PyAny>>,
+    n: usize,
+) -> PyResult<TensionBounds> {
+    let t_min = t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?;
+    let t_max = t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?;
+    for (what, bound) in [("t_min", &t_min), ("t_max", &t_max)] {
+        if let Some((i, v)) = bound.iter().enumerate().find(|(_, v)| **v < 0.0) {
+            return Err(value_error(format!(
+                "{what}[{i}] = {v} N is negative: a cable can only pull ({what} ≥ 0)"
+            )));
+        }
+    }
+    TensionBounds::new(t_min, t_max).map_err(value_error)
+}
+
+/// The limits of `from_anchors`: l_min (m) and D_min, each a finite number ≥ 0.
+fn limits_of(min_cable_length: Option<f64>, min_jacobian_det: Option<f64>) -> PyResult<Limits> {
+    for (what, v) in [
+        ("min_cable_length", min_cable_length),
+        ("min_jacobian_det", min_jacobian_det),
+    ] {
+        if let Some(v) = v
+            && !(v.is_finite() && v >= 0.0)
+        {
+            return Err(value_error(format!(
+                "{what}: {v} must be a finite number ≥ 0"
+            )));
+        }
+    }
+    Ok(Limits {
+        min_cable_length,
+        min_jacobian_det,
+    })
+}
+
+/// The platform of `from_anchors`: mass (kg), centre of mass (m) and gravity (m/s², default
+/// −z in space, −y in the plane).
+fn platform_of(
+    mass: f64,
+    centre_of_mass: Option<&Bound<'_, PyAny>>,
+    gravity: Option<&Bound<'_, PyAny>>,
+    dim: usize,
+) -> PyResult<Platform> {
+    if !(mass.is_finite() && mass >= 0.0) {
+        return Err(value_error(format!(
+            "mass: {mass} must be a finite number ≥ 0"
+        )));
+    }
+    let mut platform = Platform {
+        mass,
+        ..Platform::default()
+    };
+    if dim == 2 {
+        platform.gravity = Vector3::new(0.0, -STANDARD_GRAVITY.z.abs(), 0.0);
+    }
+    if let Some(c) = space_vector(centre_of_mass, dim, "centre_of_mass")? {
+        platform.centre_of_mass = c;
+    }
+    if let Some(g) = space_vector(gravity, dim, "gravity")? {
+        platform.gravity = g;
+    }
+    Ok(platform)
+}
+
 #[pymethods]
 impl Robot {
     /// Loads a robot file in any format ``cdpr-io`` reads, told apart by the extension: cdpr
@@ -121,63 +228,10 @@ impl Robot {
         name: String,
     ) -> PyResult<Self> {
         let motion: MotionPattern = motion.parse().map_err(value_error)?;
-        let dim = motion.space_dim();
-        let (n, frame) = anchors(frame, dim, "frame")?;
-        let platform = match platform {
-            Some(p) => {
-                let (m, p) = anchors(p, dim, "platform")?;
-                if m != n {
-                    return Err(value_error(format!(
-                        "platform: {m} attachments for {n} frame anchors"
-                    )));
-                }
-                p
-            }
-            None if motion.has_orientation() => {
-                return Err(value_error(format!(
-                    "platform: a `{motion}` robot needs the platform attachment of every cable"
-                )));
-            }
-            None => vec![0.0; n * dim],
-        };
-        let cables = (0..n)
-            .map(|i| {
-                Cable::from_slices(
-                    motion,
-                    i,
-                    &frame[i * dim..(i + 1) * dim],
-                    &platform[i * dim..(i + 1) * dim],
-                )
-            })
-            .collect::<Result<Vec<_>, _>>()
-            .map_err(value_error)?;
-        let robot = Geometry::new(motion, cables).map_err(value_error)?;
-        let t_min = t_min.map_or(Ok(vec![0.0; n]), |t| per_cable(t, n, "t_min"))?;
-        if let Some((i, v)) = t_min.iter().enumerate().find(|(_, v)| **v < 0.0) {
-            return Err(value_error(format!(
-                "t_min[{i}] = {v} N is negative: a cable can only pull (t_min ≥ 0)"
-            )));
-        }
-        let t_max = t_max.map_or(Ok(vec![f64::INFINITY; n]), |t| per_cable(t, n, "t_max"))?;
-        let bounds = TensionBounds::new(t_min, t_max).map_err(value_error)?;
-        if !(mass.is_finite() && mass >= 0.0) {
-            return Err(value_error(format!(
-                "mass: {mass} must be a finite number ≥ 0"
-            )));
-        }
-        let mut plat = Platform {
-            mass,
-            ..Platform::default()
-        };
-        if dim == 2 {
-            plat.gravity = Vector3::new(0.0, -STANDARD_GRAVITY.z.abs(), 0.0);
-        }
-        if let Some(c) = space_vector(centre_of_mass, dim, "centre_of_mass")? {
-            plat.centre_of_mass = c;
-        }
-        if let Some(g) = space_vector(gravity, dim, "gravity")? {
-            plat.gravity = g;
-        }
+        let robot = geometry(motion, frame, platform)?;
+        let n = robot.cable_count();
+        let bounds = tension_bounds(t_min, t_max, n)?;
+        let platform = platform_of(mass, centre_of_mass, gravity, motion.space_dim())?;
         let axial_stiffness = axial_stiffness
             .map(|es| per_cable(es, n, "axial_stiffness"))
             .transpose()?;
@@ -188,36 +242,24 @@ impl Robot {
                 "axial_stiffness: {v} must be a finite number > 0"
             )));
         }
-        for (what, v) in [
-            ("min_cable_length", min_cable_length),
-            ("min_jacobian_det", min_jacobian_det),
-        ] {
-            if let Some(v) = v
-                && !(v.is_finite() && v >= 0.0)
-            {
-                return Err(value_error(format!(
-                    "{what}: {v} must be a finite number ≥ 0"
-                )));
-            }
-        }
-        let mut warnings = Vec::new();
-        for (i, j) in robot.duplicate_cables() {
-            warnings.push(format!(
-                "cables {} and {} are exact duplicates (same anchor and attachment)",
-                i + 1,
-                j + 1
-            ));
-        }
+        let warnings = robot
+            .duplicate_cables()
+            .into_iter()
+            .map(|(i, j)| {
+                format!(
+                    "cables {} and {} are exact duplicates (same anchor and attachment)",
+                    i + 1,
+                    j + 1
+                )
+            })
+            .collect();
         Ok(Self {
             desc: Arc::new(RobotDescription {
                 name,
                 robot,
                 bounds,
-                limits: Limits {
-                    min_cable_length,
-                    min_jacobian_det,
-                },
-                platform: plat,
+                limits: limits_of(min_cable_length, min_jacobian_det)?,
+                platform,
                 axial_stiffness,
                 linear_density: None,
                 platform_shape: None,
@@ -540,11 +582,9 @@ impl Robot {
                 Err(_) => c.extract::<Vec<String>>(),
             })
             .transpose()?;
-        crate::workspace::workspace(
-            self,
-            py,
+        let args = crate::workspace::WorkspaceArgs {
             resolution,
-            r#box,
+            region_box: r#box,
             orientation,
             criteria,
             method,
@@ -553,17 +593,26 @@ impl Robot {
             boundary,
             chord,
             volume_convention,
-        )
+        };
+        crate::workspace::workspace(self, py, &args)
     }
 
-    /// Tensions along a path (the ``cdpr trajectory`` command): ``waypoints`` (K ≥ 2, DOF) is a
-    /// polyline sampled by ``samples`` (evenly in s; default 101) or ``step`` (largest pose
-    /// distance between samples); ``wrenches``: w_e, ``(DOF,)`` or one per waypoint
-    /// ``(K, DOF)`` interpolated linearly in s (gravity is added); ``method`` and the SOTDA
-    /// options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity when its jump
-    /// exceeds this many median jumps.
+    /// Tensions along a path (the ``cdpr trajectory`` command, through its request):
+    /// ``waypoints`` (K ≥ 2, DOF) is a polyline sampled by ``samples`` (evenly in s; default
+    /// 101) or ``step`` (largest pose distance between samples); ``wrenches``: w_e, ``(DOF,)``
+    /// or one per waypoint ``(K, DOF)`` interpolated linearly (gravity is added); ``method``
+    /// and the SOTDA options as in :meth:`tensions`; ``jump_ratio``: a step is a discontinuity
+    /// when its jump exceeds this many median jumps.
+    ///
+    /// With ``time_law`` (``linear``, ``cubic``, ``quintic``, ``trapezoid``,
+    /// ``parabolic-blend``) the path is timed: ``duration`` (s) or ``times`` (one per waypoint,
+    /// s), sampled every ``dt`` s (default 0.01), ``max_velocity`` (m/s), ``max_acceleration``
+    /// (m/s²), ``blend_time`` (s); ``dynamics=True`` balances the inertial wrench M ẍ + b too.
+    /// Returns a :class:`TimedTrajectoryResult` then, else a :class:`TrajectoryResult`.
     #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
-        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0))]
+        direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0, time_law=None,
+        duration=None, dt=None, times=None, max_velocity=None, max_acceleration=None,
+        blend_time=None, dynamics=false))]
     #[allow(clippy::too_many_arguments)]
     fn trajectory(
         &self,
@@ -577,21 +626,98 @@ impl Robot {
         nu: f64,
         sotda_search: &str,
         jump_ratio: f64,
-    ) -> PyResult<crate::trajectory::TrajectoryResult> {
-        let samples = samples.map(|k| count(k, "samples")).transpose()?;
-        crate::trajectory::trajectory(
-            self,
-            py,
+        time_law: Option<&str>,
+        duration: Option<f64>,
+        dt: Option<f64>,
+        times: Option<Vec<f64>>,
+        max_velocity: Option<f64>,
+        max_acceleration: Option<f64>,
+        blend_time: Option<f64>,
+        dynamics: bool,
+    ) -> PyResult<Py<PyAny>> {
+        use crate::trajectory::{MethodArgs, PathArgs};
+        let time_law = time_law
+            .map(|l| l.parse().map_err(crate::value_error))
+            .transpose()?;
+        let timing = cdpr_api::timed::TimedSettings {
+            time_law,
+            duration,
+            dt,
+            max_velocity,
+            max_acceleration,
+            blend_time,
+            dynamics,
+        };
+        let path = PathArgs {
             waypoints,
-            samples,
-            step,
             wrenches,
-            method,
+            times,
+            samples: samples.map(|k| count(k, "samples")).transpose()?,
+            step,
+            jump_ratio,
+        };
+        let method = MethodArgs {
+            method: method.into(),
             direction,
             nu,
-            sotda_search,
-            jump_ratio,
-        )
+            sotda_search: sotda_search.into(),
+        };
+        crate::trajectory::trajectory(self, py, path, method, timing)
+    }
+
+    /// Forward dynamics (the ``cdpr simulate`` command, through its request): the motion from
+    /// ``start`` (a pose) with twist ``velocity`` (default rest) over ``duration`` s, output
+    /// every ``dt`` s, driven by exactly one of ``tensions`` (N, held constant),
+    /// ``tension_profile`` (``(times, tensions)``: (S,) s and (S, n) N, interpolated linearly;
+    /// e.g. a timed trajectory's ``t`` and ``tensions``) or ``unstrained_lengths`` (m, elastic
+    /// cables with ``axial_stiffness``, ``damping`` in N·s/m); ``integrator`` ``"rk4"`` (fixed
+    /// step) or ``"rk45"`` (adaptive, ``tolerance``); ``wrench``: w_e held constant.
+    #[pyo3(signature = (start, duration, dt, *, velocity=None, tensions=None,
+        tension_profile=None, unstrained_lengths=None, damping=0.0, integrator="rk4",
+        tolerance=1e-9, wrench=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn simulate(
+        &self,
+        py: Python<'_>,
+        start: Vec<f64>,
+        duration: f64,
+        dt: f64,
+        velocity: Option<Vec<f64>>,
+        tensions: Option<Vec<f64>>,
+        tension_profile: Option<(Vec<f64>, Vec<Vec<f64>>)>,
+        unstrained_lengths: Option<Vec<f64>>,
+        damping: f64,
+        integrator: &str,
+        tolerance: f64,
+        wrench: Option<Vec<f64>>,
+    ) -> PyResult<crate::dynamics::SimulationResult> {
+        let run = crate::dynamics::RunArgs {
+            start,
+            velocity,
+            duration,
+            dt,
+            integrator: integrator.into(),
+            tolerance,
+            wrench,
+        };
+        let drive = crate::dynamics::DriveArgs {
+            tensions,
+            profile: tension_profile,
+            unstrained_lengths,
+            damping,
+        };
+        crate::dynamics::simulate(self, py, run, drive)
+    }
+
+    /// The platform's mass matrix M(x) (kg, kg·m, kg·m²) in the motion pattern's twist
+    /// coordinates: ``(DOF, DOF)`` for one pose, ``(N, DOF, DOF)`` for ``(N, DOF)`` poses
+    /// (needs ``[platform] mass``, and ``inertia`` for planar and spatial platforms).
+    fn mass_matrix<'py>(
+        &self,
+        py: Python<'py>,
+        poses: &Bound<'py, PyAny>,
+    ) -> PyResult<Bound<'py, numpy::PyArrayDyn<f64>>> {
+        crate::dynamics::mass_matrix(self, py, poses)
     }
 
     fn __repr__(&self) -> String {

@@ -1,18 +1,23 @@
-//! # Tension profiles along a path
+//! # Tension profiles along a path, timed trajectories, forward dynamics
 //!
-//! The `cdpr trajectory` command from Python: a polyline of waypoints sampled evenly in the path
-//! parameter s (∝ the pose distance √(‖Δp‖² + θ²)), tensions at every sample
-//! ([`cdpr_tension::profile::tension_profile`]) under the external wrench interpolated linearly
-//! in s between waypoints plus the platform's gravity, and the continuity report (largest jump
-//! per cable, flagged discontinuities).
+//! The `cdpr trajectory` and `cdpr simulate` commands from Python, through their requests
+//! (`cdpr_api::trajectory::TrajectoryRequest`, `cdpr_api::simulate::SimulateRequest`): a
+//! polyline of waypoints sampled evenly in the path parameter s, or timed by a time law and
+//! sampled every `dt` s (with inverse dynamics and the drive train), and the platform's motion
+//! under given tensions. The answers are the command line's JSON, as numpy arrays.
+//!
+//! ## References
+//! - docs/architecture.md, "Requests and reports" (issue 25); docs/algorithms.md (issue 28).
 
 use crate::arrays::{FloatArray, Rows, shape_string, to_numpy};
 use crate::model::Robot;
-use crate::tension::{parse_method, solver, sotda_settings};
+use crate::requests::{api_error, api_robot, matrix};
+use crate::tension::{parse_method, sotda_settings};
 use crate::value_error;
-use cdpr_kinematics::{Path, PathSample, Pose, Sampling};
-use cdpr_tension::profile::{WaypointWrenches, tension_profile};
-use nalgebra::DVector;
+use cdpr_api::MethodSettings;
+use cdpr_api::timed::{TimedReport, TimedSettings};
+use cdpr_api::trajectory::{PathReport, TrajectoryReport, TrajectoryRequest, Waypoint};
+use cdpr_tension::Method;
 use numpy::PyArrayDyn;
 use pyo3::prelude::*;
 
@@ -49,50 +54,156 @@ impl TrajectoryResult {
     }
 }
 
-#[allow(clippy::too_many_arguments)]
+/// A timed trajectory (``time_law=``), the JSON of ``cdpr trajectory --time-law … --json``.
+///
+/// ``t`` (S,) in s; ``poses`` (S, DOF); ``velocity``, ``acceleration`` (S, DOF): the twist
+/// [v (m/s); ω (rad/s)] and its rate; ``cable_lengths`` (m), ``cable_speeds`` (l̇ = −Wᵀẋ, m/s),
+/// ``cable_accelerations`` (m/s²), ``tensions`` (N, NaN where infeasible), all (S, n);
+/// ``feasible``, ``reason``, ``feasible_count``; ``inertial_wrench`` (S, DOF; M ẍ + b in N and
+/// N·m) with ``dynamics``, else None; with a winch on every cable ``motor_speeds`` (rad/s),
+/// ``motor_torques`` (N·m, NaN where infeasible), ``motor_powers`` (W), all (S, n),
+/// ``motors_within_limits`` and ``motor_limit_violations``, else None; ``waypoint_times`` (s),
+/// ``duration`` (s), ``dt`` (s), ``time_law``, ``method``, ``dynamics``.
+#[pyclass(module = "cdpr", frozen, get_all)]
+pub struct TimedTrajectoryResult {
+    pub t: Py<PyArrayDyn<f64>>,
+    pub poses: Py<PyArrayDyn<f64>>,
+    pub velocity: Py<PyArrayDyn<f64>>,
+    pub acceleration: Py<PyArrayDyn<f64>>,
+    pub cable_lengths: Py<PyArrayDyn<f64>>,
+    pub cable_speeds: Py<PyArrayDyn<f64>>,
+    pub cable_accelerations: Py<PyArrayDyn<f64>>,
+    pub tensions: Py<PyArrayDyn<f64>>,
+    pub feasible: Py<PyArrayDyn<bool>>,
+    pub reason: Vec<Option<String>>,
+    pub feasible_count: usize,
+    pub inertial_wrench: Option<Py<PyArrayDyn<f64>>>,
+    pub motor_speeds: Option<Py<PyArrayDyn<f64>>>,
+    pub motor_torques: Option<Py<PyArrayDyn<f64>>>,
+    pub motor_powers: Option<Py<PyArrayDyn<f64>>>,
+    pub motors_within_limits: Option<bool>,
+    pub motor_limit_violations: Option<Vec<String>>,
+    pub waypoint_times: Vec<f64>,
+    pub duration: f64,
+    pub dt: f64,
+    pub time_law: String,
+    pub method: String,
+    pub dynamics: bool,
+}
+
+#[pymethods]
+impl TimedTrajectoryResult {
+    fn __repr__(&self) -> String {
+        format!(
+            "TimedTrajectoryResult(time_law={:?}, method={:?}, dynamics={}, samples={}, \
+             feasible_count={}, duration={})",
+            self.time_law,
+            self.method,
+            self.dynamics,
+            self.reason.len(),
+            self.feasible_count,
+            self.duration
+        )
+    }
+}
+
+/// The options of a tension method along a path (``method=`` and SOTDA's).
+pub struct MethodArgs {
+    /// The method's name.
+    pub method: String,
+    /// SOTDA's direction.
+    pub direction: Option<Vec<f64>>,
+    /// SOTDA's ν.
+    pub nu: f64,
+    /// SOTDA's search.
+    pub sotda_search: String,
+}
+
+/// The path of ``trajectory``: waypoints, their wrenches (and times), the sampling.
+pub struct PathArgs<'a, 'py> {
+    /// (K ≥ 2, DOF) waypoints.
+    pub waypoints: &'a Bound<'py, PyAny>,
+    /// (DOF,) or (K, DOF) external wrenches.
+    pub wrenches: Option<&'a Bound<'py, PyAny>>,
+    /// (K,) waypoint times (s).
+    pub times: Option<Vec<f64>>,
+    /// Samples evenly in s.
+    pub samples: Option<usize>,
+    /// Largest pose distance between samples.
+    pub step: Option<f64>,
+    /// The discontinuity threshold.
+    pub jump_ratio: f64,
+}
+
+/// Runs `cdpr trajectory`'s request: a [`TrajectoryResult`] without a time law, else a
+/// [`TimedTrajectoryResult`].
 pub fn trajectory(
     robot: &Robot,
     py: Python<'_>,
-    waypoints: &Bound<'_, PyAny>,
-    samples: Option<usize>,
-    step: Option<f64>,
-    wrenches: Option<&Bound<'_, PyAny>>,
-    method: &str,
-    direction: Option<Vec<f64>>,
-    nu: f64,
-    sotda_search: &str,
-    jump_ratio: f64,
-) -> PyResult<TrajectoryResult> {
-    let geo = robot.geometry();
-    let motion = geo.motion();
-    let (dof, n) = (geo.dof(), geo.cable_count());
-    let rows = Rows::new(waypoints, dof, "waypoints", robot.pose_hint())?;
+    path: PathArgs,
+    method: MethodArgs,
+    timing: TimedSettings,
+) -> PyResult<Py<PyAny>> {
+    let mut request = TrajectoryRequest::segment(api_robot(robot), Vec::new(), Vec::new());
+    request.from = None;
+    request.to = None;
+    request.waypoints = Some(waypoint_list(robot, &path)?);
+    request.samples = path.samples;
+    request.step = path.step;
+    request.jump_ratio = path.jump_ratio;
+    request.method = parse_method(&method.method)?;
+    request.options = method_settings(request.method, method)?;
+    request.timing = timing;
+    if let (Some(_), Some(_)) = (path.samples, path.step) {
+        return Err(value_error("give samples or step, not both"));
+    }
+    if !(path.jump_ratio.is_finite() && path.jump_ratio > 1.0) {
+        return Err(value_error("jump_ratio must be a finite number > 1"));
+    }
+    let n = robot.geometry().cable_count();
+    let report = crate::parallel(py, || request.run().map_err(api_error))?;
+    Ok(match report {
+        TrajectoryReport::Path(r) => Py::new(py, path_result(py, &r, n))?.into_any(),
+        TrajectoryReport::Timed(r) => Py::new(py, timed_result(py, &r, n))?.into_any(),
+    })
+}
+
+/// SOTDA's options, checked as :meth:`tensions` checks them, kept only for SOTDA (the other
+/// methods ignore them, as before the request).
+fn method_settings(method: Method, args: MethodArgs) -> PyResult<MethodSettings> {
+    sotda_settings(args.direction.clone(), args.nu, &args.sotda_search)?;
+    let sotda = method == Method::Sotda;
+    Ok(MethodSettings {
+        direction: args.direction.filter(|_| sotda),
+        nu: sotda.then_some(args.nu),
+        sotda_search: match args.sotda_search.as_str() {
+            "vertices" => cdpr_api::SotdaSearch::Vertices,
+            "full" => cdpr_api::SotdaSearch::Full,
+            _ => cdpr_api::SotdaSearch::Corners,
+        },
+        peer: Default::default(),
+    })
+}
+
+/// The waypoints of the request: poses, per-waypoint wrenches and times.
+fn waypoint_list(robot: &Robot, path: &PathArgs) -> PyResult<Vec<Waypoint>> {
+    let dof = robot.geometry().dof();
+    let rows = Rows::new(path.waypoints, dof, "waypoints", robot.pose_hint())?;
     if rows.single || rows.count < 2 {
         return Err(value_error(format!(
             "waypoints: a path needs at least two poses, shape (K ≥ 2, {dof})"
         )));
     }
     let k_way = rows.count;
-    let data = rows.array.data();
-    let poses = data
-        .chunks(dof)
-        .enumerate()
-        .map(|(k, q)| {
-            Pose::from_coordinates(motion, q)
-                .map_err(|e| value_error(format!("waypoints[{k}]: {e}")))
-        })
-        .collect::<PyResult<Vec<_>>>()?;
-    let wrench_rows: Vec<DVector<f64>> = match wrenches {
-        None => vec![DVector::zeros(dof); k_way],
+    let wrenches: Vec<Vec<f64>> = match path.wrenches {
+        None => vec![vec![0.0; dof]; k_way],
         Some(obj) => {
             let a = FloatArray::new(obj, "wrenches")?;
             a.check_finite("wrenches")?;
             let d = a.data();
             match a.shape() {
-                [m] if *m == dof => vec![DVector::from_column_slice(&d); k_way],
-                [k, m] if *m == dof && *k == k_way => {
-                    d.chunks(dof).map(DVector::from_column_slice).collect()
-                }
+                [m] if *m == dof => vec![d.to_vec(); k_way],
+                [k, m] if *m == dof && *k == k_way => d.chunks(dof).map(<[f64]>::to_vec).collect(),
                 s => {
                     return Err(value_error(format!(
                         "wrenches: expected shape ({dof},) or ({k_way}, {dof}) (one external \
@@ -103,71 +214,93 @@ pub fn trajectory(
             }
         }
     };
-    let sampling = match (samples, step) {
-        (Some(_), Some(_)) => return Err(value_error("give samples or step, not both")),
-        (Some(c), None) if c > 10_000_000 => {
-            return Err(value_error("samples: at most 10 000 000"));
-        }
-        (Some(c), None) => Sampling::Count(c),
-        (None, Some(h)) => Sampling::Step(h),
-        (None, None) => Sampling::Count(101),
-    };
-    if !(jump_ratio.is_finite() && jump_ratio > 1.0) {
-        return Err(value_error("jump_ratio must be a finite number > 1"));
+    if let Some(t) = &path.times
+        && t.len() != k_way
+    {
+        return Err(value_error(format!(
+            "times: {} numbers for {k_way} waypoints (one time per waypoint, s)",
+            t.len()
+        )));
     }
-    let method = parse_method(method)?;
-    let mut solver = solver(robot, method, sotda_settings(direction, nu, sotda_search)?)?;
-    let desc = &robot.desc;
-    let (samples, profile) = crate::parallel(py, || {
-        let path = Path::new(motion, poses.clone()).map_err(value_error)?;
-        let samples = path.sample(sampling).map_err(value_error)?;
-        let way =
-            WaypointWrenches::new(motion, &poses, wrench_rows.clone()).map_err(value_error)?;
-        // Weight and passive springs at each sample, checked before the profile (a spring of
-        // zero length is an error naming the sample).
-        for sample in &samples {
-            desc.load_wrench(&sample.pose)
-                .map_err(|e| value_error(format!("at s = {}: {e}", sample.s)))?;
-        }
-        let profile = tension_profile(
-            geo,
-            &samples,
-            &desc.bounds,
-            &mut solver,
-            desc.axial_stiffness.as_deref(),
-            |sample: &PathSample| {
-                way.at(sample.s)
-                    + desc
-                        .load_wrench(&sample.pose)
-                        .expect("checked at every sample above")
-            },
-        )
-        .map_err(value_error)?;
-        Ok((samples, profile))
-    })?;
-    let count = samples.len();
-    let q: Vec<f64> = samples
-        .iter()
-        .flat_map(|p| p.pose.coordinates(motion))
-        .collect();
-    let t: Vec<f64> = profile
-        .tensions
-        .iter()
-        .flat_map(|t| match t {
-            Some(t) => t.as_slice().to_vec(),
-            None => vec![f64::NAN; n],
+    Ok(rows
+        .array
+        .data()
+        .chunks(dof)
+        .zip(wrenches)
+        .enumerate()
+        .map(|(k, (q, w))| Waypoint {
+            pose: q.to_vec(),
+            wrench: Some(w),
+            time: path.times.as_ref().map(|t| t[k]),
         })
-        .collect();
-    let feasible: Vec<bool> = profile.tensions.iter().map(Option::is_some).collect();
-    Ok(TrajectoryResult {
-        discontinuities: profile.discontinuities(jump_ratio),
-        feasible_count: profile.feasible_count(),
-        s: to_numpy(py, &[count], profile.s).unbind(),
-        poses: to_numpy(py, &[count, dof], q).unbind(),
-        tensions: to_numpy(py, &[count, n], t).unbind(),
-        feasible: to_numpy(py, &[count], feasible).unbind(),
-        reason: profile.reasons,
-        max_jump: to_numpy(py, &[n], profile.max_jump).unbind(),
-        method: method.name().into(),
-    })
+        .collect())
+}
+
+/// Rows with a NaN row where a sample has none.
+fn nan_rows(rows: &[Option<Vec<f64>>], width: usize) -> Vec<f64> {
+    rows.iter()
+        .flat_map(|r| r.clone().unwrap_or_else(|| vec![f64::NAN; width]))
+        .collect()
+}
+
+fn nan_matrix<'py>(
+    py: Python<'py>,
+    rows: &[Option<Vec<f64>>],
+    width: usize,
+) -> Py<PyArrayDyn<f64>> {
+    to_numpy(py, &[rows.len(), width], nan_rows(rows, width)).unbind()
+}
+
+fn path_result(py: Python<'_>, r: &PathReport, n: usize) -> TrajectoryResult {
+    let count = r.s.len();
+    let dof = r.poses.first().map_or(0, Vec::len);
+    TrajectoryResult {
+        s: to_numpy(py, &[count], r.s.clone()).unbind(),
+        poses: matrix(py, &r.poses, dof).unbind(),
+        tensions: nan_matrix(py, &r.tensions, n),
+        feasible: feasible(py, &r.tensions),
+        reason: r.reasons.clone(),
+        max_jump: to_numpy(py, &[n], r.max_jump.clone()).unbind(),
+        discontinuities: r.discontinuities.clone(),
+        feasible_count: r.feasible_count,
+        method: r.method.clone(),
+    }
+}
+
+fn feasible(py: Python<'_>, tensions: &[Option<Vec<f64>>]) -> Py<PyArrayDyn<bool>> {
+    let f: Vec<bool> = tensions.iter().map(Option::is_some).collect();
+    to_numpy(py, &[f.len()], f).unbind()
+}
+
+fn timed_result(py: Python<'_>, r: &TimedReport, n: usize) -> TimedTrajectoryResult {
+    let dof = r.poses.first().map_or(0, Vec::len);
+    let d = r.drive_train.as_ref();
+    TimedTrajectoryResult {
+        t: to_numpy(py, &[r.t.len()], r.t.clone()).unbind(),
+        poses: matrix(py, &r.poses, dof).unbind(),
+        velocity: matrix(py, &r.velocity, dof).unbind(),
+        acceleration: matrix(py, &r.acceleration, dof).unbind(),
+        cable_lengths: matrix(py, &r.cable_lengths, n).unbind(),
+        cable_speeds: matrix(py, &r.cable_speeds, n).unbind(),
+        cable_accelerations: matrix(py, &r.cable_accelerations, n).unbind(),
+        tensions: nan_matrix(py, &r.tensions, n),
+        feasible: feasible(py, &r.tensions),
+        reason: r.reasons.clone(),
+        feasible_count: r.feasible_count,
+        inertial_wrench: r
+            .inertial_wrench
+            .as_ref()
+            .map(|w| matrix(py, w, dof).unbind()),
+        motor_speeds: d.map(|d| matrix(py, &d.motor_speeds, n).unbind()),
+        motor_torques: d.map(|d| nan_matrix(py, &d.motor_torques, n)),
+        motor_powers: d.map(|d| nan_matrix(py, &d.motor_powers, n)),
+        motors_within_limits: d.and_then(|d| d.motors_within_limits),
+        motor_limit_violations: d.map(|d| d.motor_limit_violations.clone()),
+        waypoint_times: r.waypoint_times.clone(),
+        duration: r.duration,
+        dt: r.dt,
+        time_law: r.time_law.clone(),
+        method: r.method.clone(),
+        dynamics: r.dynamics,
+    }
 }

@@ -62,6 +62,47 @@ def test_isotropic_force_of_krut_robot_is_the_published_value(robot_path):
     assert robot.isotropic_force([0.0, 0.0]).isotropic_force == pytest.approx(225 * 3**0.5, rel=1e-9)
 
 
+def test_isotropic_force_gives_the_faces_of_a_hand_derived_square():
+    # A point between four cables along ±x and ±y, 0 ≤ t ≤ 10 N: W t = (t1 − t2, t3 − t4), so
+    # the available force set is the square [−10, 10]² N, four edges with normals ±e_x, ±e_y
+    # and offsets 10 N, counter-clockwise seen from outside (the normal on the right of each
+    # edge's direction in the plane).
+    frame = [[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]]
+    robot = cdpr.Robot.from_anchors("point2", frame, t_min=0.0, t_max=10.0)
+    res = robot.isotropic_force([0.0, 0.0])
+    assert res.isotropic_force == pytest.approx(10.0, abs=1e-12)
+    corners = {tuple(v) for v in np.round(res.vertices, 12)}
+    assert corners == {(10.0, 10.0), (10.0, -10.0), (-10.0, 10.0), (-10.0, -10.0)}
+    assert len(res.faces) == 4 and res.normals.shape == (4, 2) and res.offsets.shape == (4,)
+    assert {tuple(n) for n in np.round(res.normals, 12)} == {(1, 0), (-1, 0), (0, 1), (0, -1)}
+    np.testing.assert_allclose(res.offsets, 10.0, atol=1e-12)
+    for face, n in zip(res.faces, res.normals):
+        a, b = res.vertices[face[0]], res.vertices[face[1]]
+        np.testing.assert_allclose([n @ a, n @ b], 10.0, atol=1e-12)
+        edge = b - a
+        assert edge[0] * n[1] - edge[1] * n[0] < 0  # counter-clockwise: n points right of the edge
+    # Batches give the index only.
+    batch = robot.isotropic_force([[0.0, 0.0], [0.1, 0.0]])
+    assert batch.faces is None and batch.vertices is None
+
+
+@pytest.mark.parametrize("name,pose", [("krut-4", [0.1, -0.2]), ("spidercam-like-4", [5.0, 3.0, 20.0])])
+def test_isotropic_force_faces_match_cli(cli, robot_path, name, pose):
+    robot = cdpr.Robot.load(robot_path(name))
+    res = robot.isotropic_force(pose)
+    ref = cli("isotropic", robot_path(name), pose=pose)
+    np.testing.assert_array_equal(res.vertices, np.array(ref["vertices"]))
+    assert [f.tolist() for f in res.faces] == ref["faces"]
+    np.testing.assert_array_equal(res.normals, np.array(ref["normals"]))
+    np.testing.assert_array_equal(res.offsets, np.array(ref["offsets"]))
+    for face, n, d in zip(res.faces, res.normals, res.offsets):
+        np.testing.assert_allclose(res.vertices[face] @ n, d, rtol=1e-9, atol=1e-9)
+        assert np.all(res.vertices @ n <= d + 1e-9 * max(1.0, abs(d)))
+        if res.vertices.shape[1] == 3:  # counter-clockwise seen from outside
+            p0, p1, p2 = res.vertices[face[:3]]
+            assert np.cross(p1 - p0, p2 - p0) @ n > 0
+
+
 def test_stiffness_matches_cli(cli, robot_path):
     path = robot_path("ipanema-like-8")
     robot = cdpr.Robot.load(path)

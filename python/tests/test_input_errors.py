@@ -37,6 +37,7 @@ def test_negative_counts_are_value_errors(call, name):
     [
         ({"t_min": -5, "t_max": -1}, r"t_min\[0\] = -5 N is negative"),
         ({"t_min": [1, -2, 1], "t_max": 50}, r"t_min\[1\] = -2 N is negative"),
+        ({"t_max": -1}, r"t_max\[0\] = -1 N is negative"),
         ({"t_min": 5, "t_max": 1}, "t_min"),
     ],
 )

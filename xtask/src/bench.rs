@@ -41,7 +41,7 @@ const NS: f64 = 1e-9;
 const US: f64 = 1e-6;
 const MS: f64 = 1e-3;
 
-/// Benchmark ids → targets (issues 1–6). Ids not listed have no target.
+/// Benchmark ids → targets (issues 1–6, 27–29). Ids not listed have no target.
 pub const TARGETS: &[Target] = &[
     Target {
         id: "kinematics/ik_and_wrench_matrix/spatial_8",
@@ -144,6 +144,42 @@ pub const TARGETS: &[Target] = &[
         limit: 5.0 * US,
         per: Per::Iteration,
         what: "FK on noisy lengths, 8 cables",
+    },
+    Target {
+        id: "inverse_dynamics/l2_10000_samples",
+        limit: 10.0 * MS,
+        per: Per::Iteration,
+        what: "inverse dynamics, l2, 10 000 samples",
+    },
+    Target {
+        id: "forward_dynamics/rk4_tension_driven",
+        limit: 2.0 * US,
+        per: Per::Element,
+        what: "RK4 step, tension-driven (≥ 500 000 steps/s)",
+    },
+    Target {
+        id: "dynamic_grid/eight_cable_15625",
+        limit: 50.0 * MS,
+        per: Per::Iteration,
+        what: "dynamic-feasible grid, 15 625 poses, 2 cores",
+    },
+    Target {
+        id: "elastic_catenary/solve_for_tension",
+        limit: 1.0 * US,
+        per: Per::Element,
+        what: "one catenary solve (span, tension → L0)",
+    },
+    Target {
+        id: "sagging_statics/l2_spatial_8",
+        limit: 20.0 * US,
+        per: Per::Element,
+        what: "l2 statics with sagging cables, 8 cables",
+    },
+    Target {
+        id: "elasto_geometric_forward/elastic_spatial_8",
+        limit: 10.0 * US,
+        per: Per::Element,
+        what: "elastic forward kinematics, 8 cables",
     },
 ];
 

@@ -18,7 +18,7 @@ use std::sync::Arc;
 
 use cdpr_dynamics::{DynamicFeasibility, RigidBody};
 use cdpr_io::RobotDescription;
-use cdpr_kinematics::{Pose, Robot};
+use cdpr_kinematics::{CableModel, Pose, Robot, RobotCatenaries};
 use cdpr_polytope::RequiredWrenchSet;
 use cdpr_tension::Method;
 use cdpr_workspace::{Criterion, CriterionSpec as Spec, PoseEvaluator};
@@ -54,6 +54,12 @@ pub struct WorkspaceCriteria {
     /// The twist ẋ of the `dynamic` criterion (m/s, rad/s; default 0).
     #[serde(default)]
     pub velocity: Option<Vec<f64>>,
+    /// `straight` (default), `elastic` (needs `axial_stiffness`) or `catenary` (also
+    /// `linear_density`): the `tension` criterion solves the equilibrium with the catenaries' end
+    /// forces, bounds holding along each whole cable; `capacity` measures the sag-aware wrench set
+    /// at that equilibrium.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cable_model: Option<String>,
 }
 
 /// Default tension method of the workspace analyses: exact when n = DOF, else constrained ℓ2.
@@ -85,7 +91,44 @@ pub struct CriteriaSetup {
     pub wrench: Option<Vec<f64>>,
     /// Half-widths of the capacity box.
     pub wrench_box: Option<Vec<f64>>,
+    /// The cables' models, `None` for straight cables.
+    pub catenaries: Option<RobotCatenaries>,
     dynamic: Option<DynamicSetup>,
+}
+
+/// The robot's cables under the cable model named `name` (`straight`, `elastic`, `catenary`):
+/// `None` for straight cables; an error naming the missing robot-file key, and for pulleys.
+pub fn catenaries(
+    desc: &RobotDescription,
+    name: Option<&str>,
+) -> Result<Option<RobotCatenaries>, ApiError> {
+    let model: CableModel = name
+        .unwrap_or("straight")
+        .parse()
+        .map_err(|e| ApiError::invalid(format!("--cable-model: {e}")))?;
+    if model == CableModel::Straight {
+        return Ok(None);
+    }
+    let name = model.name();
+    if desc.robot.has_pulleys() {
+        return Err(ApiError::invalid(format!(
+            "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
+        )));
+    }
+    let es = desc.axial_stiffness.as_ref().ok_or_else(|| {
+        ApiError::invalid(format!(
+            "--cable-model {name} needs `axial_stiffness` (E·S, N) on every cable of the robot file"
+        ))
+    })?;
+    Ok(Some(match model {
+        CableModel::Elastic => RobotCatenaries::elastic(es)?,
+        _ => {
+            let rho = desc.linear_density.as_ref().ok_or(ApiError::invalid(
+                "--cable-model catenary needs `linear_density` (kg/m) on every cable of the robot file",
+            ))?;
+            RobotCatenaries::new(rho, es, &desc.platform.gravity)?
+        }
+    }))
 }
 
 /// The platform's rigid body from the robot file (an error if the file lacks what the motion
@@ -213,11 +256,18 @@ impl CriteriaSetup {
             ));
         }
         let dynamic = dynamic_setup(c, desc, &specs)?;
+        let catenaries = catenaries(desc, c.cable_model.as_deref())?;
+        if catenaries.is_some() && dynamic.is_some() {
+            return Err(ApiError::invalid(
+                "the dynamic criterion has no version with elastic or sagging cables (use --cable-model straight)",
+            ));
+        }
         Ok(Self {
             specs,
             method,
             wrench: c.wrench.clone(),
             wrench_box,
+            catenaries,
             dynamic,
         })
     }
@@ -313,6 +363,9 @@ impl CriteriaSetup {
         let mut eval = PoseEvaluator::new(robot, desc.bounds.clone(), criteria)?;
         if let Some(es) = &desc.axial_stiffness {
             eval = eval.with_axial_stiffness(es.clone())?;
+        }
+        if let Some(model) = &self.catenaries {
+            eval = eval.with_cable_model(model.clone())?;
         }
         eval.validate()?;
         Ok(eval)

@@ -22,6 +22,10 @@ fn default_length_sigma() -> f64 {
     ForwardSettings::default().length_sigma
 }
 
+fn default_max_iterations() -> usize {
+    ForwardSettings::default().max_iterations
+}
+
 /// The pose from measured cable lengths (`cdpr forward`).
 #[derive(Clone, Debug, Serialize, Deserialize, JsonSchema)]
 pub struct ForwardRequest {
@@ -38,6 +42,9 @@ pub struct ForwardRequest {
     /// Standard deviation σ of the measured lengths (m; default 1e-4).
     #[serde(default = "default_length_sigma")]
     pub length_sigma: f64,
+    /// Iteration limit of each Gauss–Newton / Levenberg–Marquardt solve (≥ 1; default 100).
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
 }
 
 /// One solution of the forward kinematics.
@@ -100,7 +107,7 @@ impl ForwardRequest {
         ForwardSettings {
             tolerance: self.tolerance,
             length_sigma: self.length_sigma,
-            ..ForwardSettings::default()
+            max_iterations: self.max_iterations,
         }
     }
 

@@ -18,6 +18,13 @@
 //! | [`IsotropicRequest`] | [`IsotropicReport`] | isotropic force, force polytope, ellipse |
 //! | [`IsotropicMapRequest`] | [`IsotropicMapReport`] | isotropic force over a grid |
 //! | [`WorkspaceRequest`] | [`WorkspaceReport`] | constant-orientation workspace on a grid |
+//! | [`MeshRequest`] | [`MeshReport`] | boundary mesh of a 3-D workspace and its volume |
+//! | [`SectionRequest`] | [`SectionReport`] | plane section of a 3-D workspace (chord method) |
+//! | [`ChordRequest`] | [`ChordReport`] | boundary curves of a planar workspace (chord method) |
+//! | [`StiffnessMapRequest`] | [`StiffnessMapReport`] | displacement over the feasible polygon (SOTDA study) |
+//! | [`OrientationsRequest`] | [`OrientationsReport`] | feasible orientations of a set at one position |
+//! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
+//! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -41,23 +48,39 @@
 //! ## References
 //! - docs/architecture.md, "Requests and reports".
 
+pub mod cable_model;
 mod capacity;
+mod chord;
 pub mod criteria;
+mod dextrous;
 mod error;
 mod forward;
 pub mod inputs;
 mod isotropic;
 mod isotropic_map;
 mod kinematics;
+mod mesh;
+mod orientation_map;
+mod orientation_set;
 pub mod region;
 mod robot;
+pub mod rows;
 pub mod schema;
+mod section;
+pub mod simulate;
 mod stiffness;
+mod stiffness_map;
 mod tension;
+pub mod timed;
+pub mod trajectory;
 mod workspace;
 
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
+pub use chord::{ChordReport, ChordRequest, CurvesReport, DEFAULT_CHORD, chord_settings};
 pub use criteria::{CriteriaSetup, WorkspaceCriteria, default_method};
+pub use dextrous::{
+    CentralCheckReport, Dextrous, DextrousReport, DextrousRequest, RangeReport, dextrous,
+};
 pub use error::ApiError;
 pub use forward::{ForwardReport, ForwardRequest, ForwardSolutionReport};
 pub use isotropic::{EllipseReport, IsotropicReport, IsotropicRequest, definition};
@@ -67,13 +90,28 @@ pub use isotropic_map::{
 pub use kinematics::{
     KinematicsReport, KinematicsRequest, PassiveSpringsReport, PlatformInterferenceReport,
 };
+pub use mesh::{BoxFacesReport, MeshReport, MeshRequest, ShellReport};
+pub use orientation_map::{
+    FractionMapReport, OrientationsReport, OrientationsRequest, SampleReport,
+};
+pub use orientation_set::{
+    LimitingCountReport, LimitingReport, LimitingVerticesReport, OrientationMeshReport,
+    OrientationWorkspaceReport, OrientationWorkspaceRequest, degrees, orientation_test,
+};
 pub use robot::{KinematicsModel, Robot, RobotFileFormat, RobotSource};
+pub use section::{Axis, SectionPlane, SectionPlaneReport, SectionReport, SectionRequest};
 pub use stiffness::{StiffnessReport, StiffnessRequest};
+pub use stiffness_map::{
+    DISPLACEMENT_UNIT, LambdaGridReport, MapReport, StiffnessMapReport, StiffnessMapRequest,
+};
 pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,
     TensionReport, TensionRequest, sotda_settings,
 };
-pub use workspace::{PreparedWorkspace, WorkspaceReport, WorkspaceRequest};
+pub use tension::{MethodSettings, refuse_sotda_options};
+pub use workspace::{
+    PreparedWorkspace, WorkspaceReport, WorkspaceRequest, box_numbers, orientation_or_default,
+};
 
 /// The nalgebra of the whole stack.
 pub use nalgebra;

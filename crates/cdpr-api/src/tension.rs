@@ -129,6 +129,93 @@ impl PeerOptions {
     }
 }
 
+/// The options of a tension method where a request solves many poses (a path, a timed
+/// trajectory): SOTDA's direction, ν and search, and the peers' options. Each belongs to its
+/// method and is refused with another.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize, JsonSchema)]
+pub struct MethodSettings {
+    /// SOTDA: direction d of the displacement to minimise (2 or 3 numbers; default +y).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub direction: Option<Vec<f64>>,
+    /// SOTDA: ν ∈ [0, 1] between the barycentre (0) and the stiffness-oriented optimum (1);
+    /// default 1.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu: Option<f64>,
+    /// SOTDA: which points of the feasible polygon are evaluated.
+    #[serde(default)]
+    pub sotda_search: SotdaSearch,
+    /// Options of the peers' methods.
+    #[serde(default, flatten)]
+    pub peer: PeerOptions,
+}
+
+impl MethodSettings {
+    /// SOTDA's ν (default 1) when the method is SOTDA, else `None`.
+    pub fn nu_of(&self, method: Method) -> Option<f64> {
+        (method == Method::Sotda).then_some(self.nu.unwrap_or(1.0))
+    }
+
+    /// The solver of `method` with these settings, for `robot`: the method applies (its
+    /// redundancy), SOTDA's options are refused with another method, SOTDA needs
+    /// `axial_stiffness`.
+    pub fn solver(
+        &self,
+        robot: &cdpr_io::RobotDescription,
+        method: Method,
+    ) -> Result<TensionSolver, ApiError> {
+        if let Some(nu) = self.nu
+            && !(0.0..=1.0).contains(&nu)
+        {
+            return Err(ApiError::invalid(format!(
+                "--nu must lie in [0, 1], got {nu}"
+            )));
+        }
+        refuse_sotda_options(method, self.nu.is_some(), self.direction.is_some(), false)?;
+        let options = self.peer.for_method(method)?;
+        if method != Method::Sotda {
+            return Ok(TensionSolver::new(method).with_options(options)?);
+        }
+        if robot.axial_stiffness.is_none() {
+            return Err(ApiError::invalid(
+                "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file",
+            ));
+        }
+        let s = sotda_settings(
+            self.direction.as_deref(),
+            self.nu.unwrap_or(1.0),
+            self.sotda_search,
+        )?;
+        Ok(TensionSolver::sotda(s))
+    }
+}
+
+/// `nu`, `direction` (and the command line's `--full`) belong to SOTDA: with another method
+/// they would be ignored, so they are refused, naming the method.
+pub fn refuse_sotda_options(
+    method: Method,
+    nu: bool,
+    direction: bool,
+    full: bool,
+) -> Result<(), ApiError> {
+    if method == Method::Sotda {
+        return Ok(());
+    }
+    let given: Vec<&str> = [("--nu", nu), ("--direction", direction), ("--full", full)]
+        .into_iter()
+        .filter_map(|(name, set)| set.then_some(name))
+        .collect();
+    let (verb, pronoun) = match given.len() {
+        0 => return Ok(()),
+        1 => ("is an option", "it"),
+        _ => ("are options", "them"),
+    };
+    Err(ApiError::invalid(format!(
+        "{} {verb} of the sotda method only, and the method is {method} (add --method \
+         sotda, or leave {pronoun} out)",
+        given.join(", ")
+    )))
+}
+
 fn default_method() -> Method {
     Method::L2
 }

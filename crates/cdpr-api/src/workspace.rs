@@ -11,7 +11,7 @@
 //! - Thesis Algorithm 6.2 and eq. 6.23 (the constant-orientation workspace).
 
 use cdpr_kinematics::{MotionPattern, Pose};
-use cdpr_workspace::{Grid, GridWorkspace, PoseEvaluator, VolumeConvention};
+use cdpr_workspace::{Grid, GridWorkspace, PoseEvaluator, Region, VolumeConvention};
 use nalgebra::Rotation3;
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -88,7 +88,7 @@ pub struct WorkspaceReport {
 }
 
 /// Serde of a [`VolumeConvention`] as its name.
-mod convention_name {
+pub(crate) mod convention_name {
     use cdpr_workspace::VolumeConvention;
     use serde::{Deserialize, Deserializer, Serializer};
 
@@ -115,6 +115,58 @@ pub struct PreparedWorkspace {
     pub evaluator: PoseEvaluator,
 }
 
+impl PreparedWorkspace {
+    /// Checks what every region analysis at one orientation needs (criteria with their
+    /// default method, orientation, box, resolution M) and builds its evaluator and grid.
+    pub fn new(
+        robot: &Robot,
+        criteria: &WorkspaceCriteria,
+        orientation: Option<&[f64]>,
+        area: Option<&[f64]>,
+        grid: Option<usize>,
+    ) -> Result<Self, ApiError> {
+        let desc = robot.description();
+        let motion = desc.robot.motion();
+        let dim = motion.space_dim();
+        let method = criteria
+            .method
+            .unwrap_or_else(|| default_method(&desc.robot));
+        let setup = CriteriaSetup::new(criteria, desc, method)?;
+        let rotation = region::rotation(motion, orientation)?;
+        let area = region::region(&desc.robot, area, "--box")?;
+        let m = region::resolution(grid, dim, 50)?;
+        let evaluator = setup.evaluator(desc, desc.robot.clone(), &rotation)?;
+        let grid = Grid::new(m, area);
+        grid.validate(dim)?;
+        Ok(Self {
+            setup,
+            rotation,
+            grid,
+            evaluator,
+        })
+    }
+}
+
+/// The orientation of a report: as given, else zeros (φ = 0 in the plane, rx = ry = rz = 0 in
+/// space), empty for point robots.
+pub fn orientation_or_default(motion: MotionPattern, given: Option<&[f64]>) -> Vec<f64> {
+    match (given, motion) {
+        (Some(o), _) => o.to_vec(),
+        (None, MotionPattern::Planar) => vec![0.0],
+        (None, MotionPattern::Spatial) => vec![0.0; 3],
+        (None, _) => vec![],
+    }
+}
+
+/// The box's bounds XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
+pub fn box_numbers(r: &Region, dim: usize) -> Vec<f64> {
+    let mut b = vec![r.min.x, r.max.x, r.min.y, r.max.y];
+    if dim == 3 {
+        b.extend([r.min.z, r.max.z]);
+    }
+    b
+}
+
 impl WorkspaceRequest {
     /// A request with the default criteria, orientation, box and grid.
     pub fn new(robot: Robot) -> Self {
@@ -130,26 +182,13 @@ impl WorkspaceRequest {
 
     /// Checks the request and builds its criteria, grid and evaluator.
     pub fn prepare(&self) -> Result<PreparedWorkspace, ApiError> {
-        let desc = self.robot.description();
-        let motion = desc.robot.motion();
-        let dim = motion.space_dim();
-        let method = self
-            .criteria
-            .method
-            .unwrap_or_else(|| default_method(&desc.robot));
-        let setup = CriteriaSetup::new(&self.criteria, desc, method)?;
-        let rotation = region::rotation(motion, self.orientation.as_deref())?;
-        let area = region::region(&desc.robot, self.area.as_deref(), "--box")?;
-        let m = region::resolution(self.grid, dim, 50)?;
-        let evaluator = setup.evaluator(desc, desc.robot.clone(), &rotation)?;
-        let grid = Grid::new(m, area);
-        grid.validate(dim)?;
-        Ok(PreparedWorkspace {
-            setup,
-            rotation,
-            grid,
-            evaluator,
-        })
+        PreparedWorkspace::new(
+            &self.robot,
+            &self.criteria,
+            self.orientation.as_deref(),
+            self.area.as_deref(),
+            self.grid,
+        )
     }
 
     /// Checks the request.
@@ -173,17 +212,9 @@ impl WorkspaceRequest {
         let dim = motion.space_dim();
         let ws = verdicts(&p.evaluator, &p.rotation, &p.grid, dim, row_done);
         let w_ext = p.setup.external_wrench(desc, &p.rotation)?;
-        let orientation = match (&self.orientation, motion) {
-            (Some(o), _) => o.clone(),
-            (None, MotionPattern::Planar) => vec![0.0],
-            (None, MotionPattern::Spatial) => vec![0.0; 3],
-            (None, _) => vec![],
-        };
-        let (r, convention) = (p.grid.region, self.volume_convention);
-        let mut area_box = vec![r.min.x, r.max.x, r.min.y, r.max.y];
-        if dim == 3 {
-            area_box.extend([r.min.z, r.max.z]);
-        }
+        let orientation = orientation_or_default(motion, self.orientation.as_deref());
+        let convention = self.volume_convention;
+        let area_box = box_numbers(&p.grid.region, dim);
         let measure = ws.measure(convention);
         Ok(WorkspaceReport {
             robot: desc.name.clone(),

@@ -1,8 +1,8 @@
 //! Requests against hand-derived values, their validation errors and their JSON round trip.
 
 use cdpr_api::{
-    ApiError, CapacityRequest, KinematicsRequest, Method, PeerOptions, Robot, RobotSource,
-    StiffnessRequest, TensionRequest,
+    ApiError, CapacityRequest, ForwardRequest, KinematicsRequest, Method, PeerOptions, Robot,
+    RobotSource, StiffnessRequest, TensionRequest,
 };
 
 /// A point2 robot: four cables from (±1, ±1) to the point platform, tensions in [1, 10] N, no
@@ -193,4 +193,33 @@ fn passive_stiffness_of_the_square_by_hand() {
     assert!((r.passive[0][0] - kp).abs() < 1e-6 * kp, "{:?}", r.passive);
     assert!(r.passive[0][1].abs() < 1e-9 * kp);
     assert!(r.tension_method.is_none());
+}
+
+/// The square's lengths at (0.3, 0.2): |a_i − p| for the anchors (±1, ±1).
+fn square_lengths() -> Vec<f64> {
+    [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+        .iter()
+        .map(|(x, y): &(f64, f64)| (x - 0.3).hypot(y - 0.2))
+        .collect()
+}
+
+#[test]
+fn forward_request_takes_an_iteration_limit() {
+    let json = serde_json::json!({
+        "robot": { "format": "toml", "text": SQUARE },
+        "lengths": square_lengths(),
+        "guess": [0.0, 0.0],
+    });
+    let mut r: ForwardRequest = serde_json::from_value(json).unwrap();
+    assert_eq!(r.max_iterations, 100);
+    let solved = r.run().unwrap().best;
+    assert!(solved.converged && solved.iterations > 1, "{solved:?}");
+    assert!((solved.pose[0] - 0.3).abs() < 1e-9 && (solved.pose[1] - 0.2).abs() < 1e-9);
+    // One step from (0, 0) cannot meet 1e-9 on these nonlinear lengths.
+    r.max_iterations = 1;
+    let cut = r.run().unwrap().best;
+    assert!(!cut.converged && cut.iterations <= 1, "{cut:?}");
+    assert_eq!(cut.status, "did not converge");
+    r.max_iterations = 0;
+    assert!(message(r.validate().unwrap_err()).contains("iteration"));
 }

@@ -540,6 +540,19 @@ impl ElasticCatenary {
         start: Option<&CatenarySolution>,
     ) -> Result<CatenarySolution, CatenaryError> {
         let chord = Self::check_span(x, z)?;
+        self.solve_for_tension_checked(x, z, chord, tension, start)
+    }
+
+    /// [`ElasticCatenary::solve_for_tension_from`] on a span checked by `check_span`, whose
+    /// chord (m) it was given.
+    fn solve_for_tension_checked(
+        &self,
+        x: f64,
+        z: f64,
+        chord: f64,
+        tension: f64,
+        start: Option<&CatenarySolution>,
+    ) -> Result<CatenarySolution, CatenaryError> {
         if !(tension.is_finite() && tension >= 0.0) {
             return Err(CatenaryError::InvalidInput {
                 what: "platform-end tension (N, ≥ 0)",
@@ -562,10 +575,16 @@ impl ElasticCatenary {
             return self.vertical_for_tension(x, z, tension);
         }
         let warm = start
-            .filter(|s| s.horizontal_force > 0.0 && s.unstrained_length > 0.0)
+            .filter(|s| {
+                s.horizontal_force > 0.0
+                    && s.unstrained_length > 0.0
+                    && s.platform_end_tension.is_finite()
+            })
             .map(|s| {
+                // T_B = √(F_x² + F_z²) of that solution: its direction (cos θ, sin θ).
+                let norm = s.platform_end_tension;
                 (
-                    s.vertical_force.atan2(s.horizontal_force),
+                    (s.horizontal_force / norm, s.vertical_force / norm),
                     s.unstrained_length,
                 )
             });
@@ -697,33 +716,44 @@ impl ElasticCatenary {
         Err(SearchEnd::Fold(least))
     }
 
-    /// Newton's method on (θ, L0) from the straight cable (the fast path).
+    /// Newton's method on (θ, L0) from the straight cable (the fast path). The angle θ of
+    /// F = T_B (cos θ, sin θ) is carried as (cos θ, sin θ); a step δ along θ moves it to
+    /// (cos θ − δ sin θ, sin θ + δ cos θ)/√(1 + δ²), the angle θ + atan δ (= θ + δ + O(δ³):
+    /// Newton's quadratic convergence is kept, without a sine, cosine or arctangent per step).
     fn tension_newton(
         &self,
         x: f64,
         z: f64,
         tension: f64,
         chord: f64,
-        start: Option<(f64, f64)>,
+        start: Option<((f64, f64), f64)>,
     ) -> Result<CatenarySolution, CatenaryError> {
         let (w, c, t) = (self.weight, self.compliance, tension);
         let target = Vector2::new(x, z);
-        let (mut theta, mut l0) = match start {
+        let ((mut co, mut s), mut l0) = match start {
             Some(s) => s,
             None => {
                 // The straight cable, its end force tilted by half the weight.
                 let l0 = chord / (1.0 + c * t);
                 let sin0 = (z / chord + 0.5 * w * l0 / t).clamp(-0.999, 0.999);
-                (sin0.asin(), l0)
+                (((1.0 - sin0 * sin0).sqrt(), sin0), l0)
             }
         };
-        let eval = |theta: f64, l0: f64| {
-            let (s, co) = theta.sin_cos();
+        let eval = |co: f64, s: f64, l0: f64| {
             let f = self.forward(l0, t * co, t * s);
             (f, Vector2::new(f.x, f.z) - target)
         };
+        // The solution at (θ, L0): T_B is the tension given, T_A the forward map's.
+        let solved = |l0: f64, co: f64, s: f64, f: &Forward, iterations| CatenarySolution {
+            unstrained_length: l0,
+            horizontal_force: t * co,
+            vertical_force: t * s,
+            frame_end_tension: f.ta,
+            platform_end_tension: t,
+            iterations,
+        };
         let tol = Self::tolerance(chord);
-        let (mut f, mut r) = eval(theta, l0);
+        let (mut f, mut r) = eval(co, s, l0);
         let mut norm = r.norm();
         let unreachable = CatenaryError::Unreachable {
             horizontal: x,
@@ -731,9 +761,8 @@ impl ElasticCatenary {
             reason: "the platform-end tension is too small to hold the cable across the span",
         };
         for it in 0..100 {
-            let (s, co) = theta.sin_cos();
             if norm <= tol {
-                return Ok(self.solution(l0, t * co, t * s, it));
+                return Ok(solved(l0, co, s, &f, it));
             }
             let jf = self.jacobian_at(l0, t * co, t * s, &f);
             let dth = Vector2::new(
@@ -752,12 +781,16 @@ impl ElasticCatenary {
             let mut alpha = 1.0;
             let mut accepted = false;
             for _ in 0..40 {
-                let (nth, nl0) = (theta - alpha * d_theta, l0 - alpha * d_l0);
-                if nl0 > 0.0 && nth.abs() < std::f64::consts::FRAC_PI_2 {
-                    let (nf, nr) = eval(nth, nl0);
+                let delta = -alpha * d_theta;
+                let scale = 1.0 / (1.0 + delta * delta).sqrt();
+                let (nco, ns) = ((co - delta * s) * scale, (s + delta * co) * scale);
+                let nl0 = l0 - alpha * d_l0;
+                // |θ| < π/2: the force keeps pointing away from A horizontally.
+                if nl0 > 0.0 && nco > 0.0 {
+                    let (nf, nr) = eval(nco, ns, nl0);
                     let nn = nr.norm();
                     if nn.is_finite() && nn < norm {
-                        (theta, l0, f, r, norm) = (nth, nl0, nf, nr, nn);
+                        (co, s, l0, f, r, norm) = (nco, ns, nl0, nf, nr, nn);
                         accepted = true;
                         break;
                     }
@@ -766,7 +799,7 @@ impl ElasticCatenary {
             }
             if !accepted {
                 if norm <= 1e3 * tol {
-                    return Ok(self.solution(l0, t * co, t * s, it));
+                    return Ok(solved(l0, co, s, &f, it));
                 }
                 // Newton stalls against the fold when the tension is too low.
                 return Err(if w > 0.0 {
@@ -789,7 +822,11 @@ impl ElasticCatenary {
     /// cable's tangent at B and the chord (rad). The deepest point is where the tangent is
     /// parallel to the chord: V(s) = F_x z_B/x_B, s = (F_x z_B/x_B − V_A)/w.
     pub fn sag(&self, sol: &CatenarySolution, x: f64, z: f64) -> (f64, f64) {
-        let chord = x.hypot(z);
+        self.sag_with_chord(sol, x, z, x.hypot(z))
+    }
+
+    /// [`ElasticCatenary::sag`] with the chord √(x² + z²) (m) already known.
+    fn sag_with_chord(&self, sol: &CatenarySolution, x: f64, z: f64, chord: f64) -> (f64, f64) {
         let (fx, fz) = (sol.horizontal_force, sol.vertical_force);
         let angle = (fx * z - fz * x).abs().atan2(fx * x + fz * z);
         if self.weight == 0.0 || x == 0.0 || chord == 0.0 {
@@ -878,7 +915,22 @@ impl SaggingCable {
         horizontal: &Vector3<f64>,
         up: &Vector3<f64>,
     ) -> Self {
-        let (max_sag, angle_to_chord) = model.sag(sol, x, z);
+        let mut cable = Self::forces_with_chord(model, sol, x, z, x.hypot(z), horizontal, up);
+        cable.fill_sag(model, x, z);
+        cable
+    }
+
+    /// [`SaggingCable::from_solution`] without the sag (`max_sag` and `angle_to_chord` NaN),
+    /// the chord √(x² + z²) (m) known.
+    fn forces_with_chord(
+        model: &ElasticCatenary,
+        sol: &CatenarySolution,
+        x: f64,
+        z: f64,
+        chord_length: f64,
+        horizontal: &Vector3<f64>,
+        up: &Vector3<f64>,
+    ) -> Self {
         let t = sol.platform_end_tension;
         let v_a = sol.vertical_force - model.weight() * sol.unstrained_length;
         let lowest_tension = if v_a < 0.0 && sol.vertical_force > 0.0 {
@@ -890,19 +942,25 @@ impl SaggingCable {
             -(horizontal * sol.horizontal_force + up * sol.vertical_force) / t
         } else {
             // No force: the chord's direction (towards A) keeps W's column defined.
-            -(horizontal * x + up * z) / x.hypot(z)
+            -(horizontal * x + up * z) / chord_length
         };
         Self {
             unstrained_length: sol.unstrained_length,
-            chord_length: x.hypot(z),
+            chord_length,
             frame_end_tension: sol.frame_end_tension,
             platform_end_tension: t,
             lowest_tension,
-            max_sag,
-            angle_to_chord,
+            max_sag: f64::NAN,
+            angle_to_chord: f64::NAN,
             unit,
             solution: *sol,
         }
+    }
+
+    /// `max_sag` and `angle_to_chord` from the solution and the plane span (x, z).
+    fn fill_sag(&mut self, model: &ElasticCatenary, x: f64, z: f64) {
+        (self.max_sag, self.angle_to_chord) =
+            model.sag_with_chord(&self.solution, x, z, self.chord_length);
     }
 }
 
@@ -1095,17 +1153,57 @@ impl RobotCatenaries {
         previous: &[SaggingCable],
         out: &mut Vec<SaggingCable>,
     ) -> Result<(), crate::KinematicsError> {
+        self.forces_with_tensions_from(kin, tensions, previous, out)?;
+        self.fill_sag(kin, out);
+        Ok(())
+    }
+
+    /// [`RobotCatenaries::with_tensions_from`] without the sag, for the iterations of a fixed
+    /// point that only need the end forces: `max_sag` and `angle_to_chord` are NaN until
+    /// [`RobotCatenaries::fill_sag`] (the other fields are those of `with_tensions_from`, bit
+    /// for bit).
+    pub fn forces_with_tensions_from(
+        &self,
+        kin: &crate::PoseKinematics,
+        tensions: &[f64],
+        previous: &[SaggingCable],
+        out: &mut Vec<SaggingCable>,
+    ) -> Result<(), crate::KinematicsError> {
         self.check_count(kin, tensions.len())?;
         let warm = previous.len() == tensions.len();
         out.clear();
         for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
             let (a, b) = Self::ends(kin, i);
             let start = warm.then(|| &previous[i].solution);
-            let s = SaggingCable::with_tension_from(model, &a, &b, &self.up, t, start)
+            let (x, z, horizontal) = plane_span(&a, &b, &self.up);
+            let sol = ElasticCatenary::check_span(x, z)
+                .and_then(|chord| {
+                    let sol = model.solve_for_tension_checked(x, z, chord, t, start)?;
+                    Ok(SaggingCable::forces_with_chord(
+                        model,
+                        &sol,
+                        x,
+                        z,
+                        chord,
+                        &horizontal,
+                        &self.up,
+                    ))
+                })
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
-            out.push(s);
+            out.push(sol);
         }
         Ok(())
+    }
+
+    /// Fills `max_sag` and `angle_to_chord` of `cables`, the catenaries of the cables of this
+    /// model at the pose of `kin` (as [`RobotCatenaries::forces_with_tensions_from`] leaves
+    /// them).
+    pub fn fill_sag(&self, kin: &crate::PoseKinematics, cables: &mut [SaggingCable]) {
+        for (i, (model, cable)) in self.cables.iter().zip(cables.iter_mut()).enumerate() {
+            let (a, b) = Self::ends(kin, i);
+            let (x, z, _) = plane_span(&a, &b, &self.up);
+            cable.fill_sag(model, x, z);
+        }
     }
 
     /// Each cable's catenary at the pose of `kin` with unstrained lengths `lengths` (m).

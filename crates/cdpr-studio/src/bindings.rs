@@ -3,7 +3,7 @@
 //! The page's interface (wasm-bindgen): JSON strings in, JSON strings out, errors as the
 //! message of a thrown `Error`. Compiled for `wasm32` only.
 
-use crate::{RobotFileText, RobotTable, Studio, StudioError};
+use crate::{PathSettings, RobotFileText, RobotTable, SectionSettings, Studio, StudioError};
 use wasm_bindgen::prelude::*;
 
 fn js(e: StudioError) -> JsError {
@@ -89,6 +89,57 @@ impl StudioSession {
         let text = json(&m);
         self.1 = m.stl;
         Ok(text)
+    }
+
+    /// The workspace on a grid (JSON: `cdpr workspace --grid M --json`'s report and the
+    /// feasible points).
+    pub fn workspace_grid(
+        &self,
+        pose: &str,
+        grid: usize,
+        method: &str,
+        wrench: &str,
+    ) -> Result<String, JsError> {
+        let q = numbers(pose, "pose")?.unwrap_or_default();
+        let w = numbers(wrench, "wrench")?;
+        self.0
+            .workspace_grid(&q, grid, method, w.as_deref())
+            .map(|g| json(&g))
+            .map_err(js)
+    }
+
+    /// The plane section `axis = value` (m) of the workspace by the chord method (JSON), seeded
+    /// by a `grid`, chord length `chord` (m).
+    #[allow(clippy::too_many_arguments)]
+    pub fn workspace_section(
+        &self,
+        pose: &str,
+        axis: usize,
+        value: f64,
+        grid: usize,
+        chord: f64,
+        method: &str,
+        wrench: &str,
+    ) -> Result<String, JsError> {
+        let q = numbers(pose, "pose")?.unwrap_or_default();
+        let w = numbers(wrench, "wrench")?;
+        let s = SectionSettings {
+            axis,
+            value,
+            grid,
+            chord,
+        };
+        self.0
+            .workspace_section(&q, s, method, w.as_deref())
+            .map(|r| json(&r))
+            .map_err(js)
+    }
+
+    /// A path or timed trajectory (JSON settings: `from`, `to`, `samples`, `method`, `wrench`,
+    /// `time_law`, `duration`, `dt`, `dynamics`); the JSON of `cdpr trajectory --json`.
+    pub fn trajectory(&self, settings_json: &str) -> Result<String, JsError> {
+        let s: PathSettings = serde_json::from_str(settings_json).map_err(|e| js(e.into()))?;
+        self.0.trajectory(&s).map(|r| json(&r)).map_err(js)
     }
 
     /// The binary STL file of the last workspace mesh (empty before the first).

@@ -13,8 +13,12 @@
 //!   the same numbers as `cdpr kinematics` and `cdpr tension --json`;
 //! - [`Studio::scene`]: anchors, cables and platform faces at a pose, for the 3-D view;
 //! - [`Studio::edit`], [`Studio::to_toml`], [`Studio::to_wcrfx`]: the robot table and downloads;
+//! - [`Studio::workspace_grid`]: the constant-orientation workspace on a grid (cdpr-api's
+//!   workspace request, `cdpr workspace --json`) and its feasible points;
 //! - [`Studio::workspace_mesh`]: the boundary mesh of the constant-orientation workspace, its
-//!   volume, STL file.
+//!   volume, STL file;
+//! - [`Studio::trajectory`]: a path or timed trajectory (`cdpr trajectory --json`);
+//! - [`Studio::workspace_section`]: a plane section of that workspace by the chord method.
 //!
 //! The JavaScript bindings (`wasm-bindgen`) are compiled only for `wasm32`; natively the crate is
 //! the plain session logic, tested with `cargo test -p cdpr-studio`.
@@ -41,17 +45,23 @@
 mod bindings;
 mod error;
 mod files;
+mod grid;
 mod mesh;
 mod robot_table;
 mod scene;
+mod section;
 mod state;
+mod trajectory;
 
 pub use error::StudioError;
 pub use files::RobotFileText;
+pub use grid::GridReport;
 pub use mesh::MeshReport;
 pub use robot_table::RobotTable;
 pub use scene::SceneData;
+pub use section::{SectionReport, SectionSettings};
 pub use state::State;
+pub use trajectory::PathSettings;
 
 use cdpr_io::RobotDescription;
 
@@ -72,5 +82,23 @@ impl Studio {
     /// The robot as read (cdpr-io's description).
     pub fn description(&self) -> &RobotDescription {
         &self.desc
+    }
+}
+
+#[cfg(test)]
+mod test_support {
+    use crate::{RobotFileText, Studio};
+
+    /// A shipped example robot (`examples/robots/NAME`), opened as the page opens a file.
+    pub fn open(name: &str) -> Studio {
+        let path = format!(
+            "{}/../../examples/robots/{name}",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        Studio::open(&[RobotFileText {
+            name: name.into(),
+            text: std::fs::read_to_string(path).unwrap(),
+        }])
+        .unwrap()
     }
 }

@@ -4,20 +4,19 @@
 //! grid verdicts, marching cubes with vertices bisected onto the boundary) at the orientation of
 //! the pose shown, over the default search box (the anchors' box), with the default criteria of
 //! `cdpr workspace`: tensions in bounds for the load (6.21) by the chosen method, plus l_i ≥ l_min
-//! (6.22) and |det J| ≥ D_min (6.24) when the robot file gives these limits. Single-threaded
-//! in the browser (cdpr-workspace without its `parallel` feature): same verdicts, same mesh.
+//! (6.22) and |det J| ≥ D_min (6.24) when the robot file gives these limits. It is the
+//! `MeshRequest` of `cdpr-api` (the request behind `cdpr workspace --boundary mesh`), run
+//! single-threaded in the browser (without the `parallel` feature): same verdicts, same mesh.
 //!
 //! ## References
 //! - The thesis chapter on planar tendon-driven manipulators, eqs. (6.21)–(6.24), Algorithm 6.2.
 //! - Lorensen & Cline 1987 (marching cubes).
 
+use crate::grid::orientation_of;
 use crate::state::parse_method;
 use crate::{Studio, StudioError};
-use cdpr_kinematics::Pose;
-use cdpr_workspace::{
-    Criterion, Grid, MeshSettings, PoseEvaluator, Region, VolumeConvention, boundary_mesh,
-};
-use nalgebra::DVector;
+use cdpr_api::{MeshRequest, Robot, WorkspaceCriteria, WorkspaceRequest};
+use cdpr_kinematics::{MotionPattern, Pose};
 use serde::Serialize;
 
 /// The workspace mesh for the page (and its downloads).
@@ -26,7 +25,7 @@ pub struct MeshReport {
     /// Grid resolution m (m + 1 points per axis).
     pub grid: usize,
     /// Tension method of the tension criterion.
-    pub method: &'static str,
+    pub method: String,
     /// Criteria (as `cdpr workspace --criteria` writes them).
     pub criteria: Vec<String>,
     /// Enclosed volume (m³), by the divergence theorem.
@@ -48,6 +47,29 @@ pub struct MeshReport {
 }
 
 impl Studio {
+    /// cdpr-api's workspace request for this robot at the orientation of pose `q` (the default
+    /// criteria and box of `cdpr workspace`), for the tension `method` and the external wrench
+    /// `wrench` (the robot file's load added), on `grid` intervals per side.
+    pub(crate) fn workspace_request(
+        &self,
+        q: &[f64],
+        grid: usize,
+        method: &str,
+        wrench: Option<&[f64]>,
+    ) -> Result<WorkspaceRequest, StudioError> {
+        let method = parse_method(method)?;
+        let dim = self.desc.robot.motion().space_dim();
+        let mut request = WorkspaceRequest::new(Robot::from_description(self.desc.clone()));
+        request.criteria = WorkspaceCriteria {
+            method: Some(method),
+            wrench: wrench.map(<[f64]>::to_vec),
+            ..WorkspaceCriteria::default()
+        };
+        request.orientation = Some(orientation_of(q, dim));
+        request.grid = Some(grid);
+        Ok(request)
+    }
+
     /// The boundary mesh at grid resolution `grid` for the orientation of pose `q`, the tension
     /// `method` and the external wrench `wrench` (gravity added). Robots moving in space only.
     pub fn workspace_mesh(
@@ -57,8 +79,7 @@ impl Studio {
         method: &str,
         wrench: Option<&[f64]>,
     ) -> Result<MeshReport, StudioError> {
-        let d = &self.desc;
-        let motion = d.robot.motion();
+        let motion = self.desc.robot.motion();
         if motion.space_dim() != 3 {
             return Err(StudioError::NotApplicable {
                 what: "the boundary mesh",
@@ -67,67 +88,39 @@ impl Studio {
             });
         }
         let method = parse_method(method)?;
-        let pose = Pose::from_coordinates(motion, q)?;
-        let given = match wrench {
-            Some(w) => cdpr_wrench::wrench_from_slice(motion, w)?,
-            None => DVector::zeros(motion.dof()),
-        };
-        d.require_no_passive_springs("the workspace")
-            .map_err(StudioError::Files)?;
-        let w_ext = given + d.load_wrench(&Pose::new(Default::default(), pose.rotation))?;
-        let mut criteria = vec![Criterion::TensionFeasible {
-            method,
-            wrench: w_ext,
-        }];
-        let mut labels = vec!["tension".to_string()];
-        if let Some(l) = d.limits.min_cable_length {
-            criteria.push(Criterion::MinCableLength(l));
-            labels.push(format!("length:{l}"));
-        }
-        if let Some(dmin) = d.limits.min_jacobian_det {
-            criteria.push(Criterion::MinJacobianDeterminant(dmin));
-            labels.push(format!("det:{dmin}"));
-        }
-        let eval = PoseEvaluator::new(d.robot.clone(), d.bounds.clone(), criteria)?;
-        let region = Region::default_for(&d.robot);
-        let g = Grid::new(grid, region);
-        let mesh = boundary_mesh(&eval, &pose.rotation, &g, &MeshSettings::default())?;
+        Pose::from_coordinates(motion, q)?;
+        let mut request = MeshRequest::new(Robot::from_description(self.desc.clone()));
+        request.criteria.method = Some(method);
+        request.criteria.wrench = wrench.map(<[f64]>::to_vec);
+        request.orientation = (motion == MotionPattern::Spatial).then(|| q[3..6].to_vec());
+        request.grid = Some(grid);
+        let r = request.run()?;
         let mut stl = Vec::new();
-        mesh.write_stl(&mut stl)
+        r.mesh
+            .write_stl(&mut stl)
             .expect("writing into a Vec cannot fail");
-        let r = &g.region;
+        let b = &r.area_box;
         Ok(MeshReport {
-            grid,
-            method: method.name(),
-            criteria: labels,
-            volume: mesh.volume,
-            grid_volume: mesh.grid.measure(VolumeConvention::Cells),
-            search_box: [[r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]],
-            evaluations: mesh.evaluations,
+            grid: r.resolution,
+            method: r.tension_method,
+            criteria: r.criteria,
+            volume: r.volume,
+            grid_volume: r.area_cells,
+            search_box: [[b[0], b[2], b[4]], [b[1], b[3], b[5]]],
+            evaluations: r.evaluations,
             stl,
-            vertices: mesh.vertices,
-            triangles: mesh.triangles,
+            vertices: r.vertices,
+            triangles: r.triangles,
         })
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::{RobotFileText, Studio};
+    use crate::test_support::open;
 
     #[test]
     fn mesh_of_the_8_cable_robot_is_closed_and_planar_robots_are_refused() {
-        let open = |name: &str| {
-            let path = format!(
-                "{}/../../examples/robots/{name}",
-                env!("CARGO_MANIFEST_DIR")
-            );
-            Studio::open(&[RobotFileText {
-                name: name.into(),
-                text: std::fs::read_to_string(path).unwrap(),
-            }])
-            .unwrap()
-        };
         let s = open("ipanema-like-8.toml");
         let q = s.table().start_pose;
         let m = s.workspace_mesh(&q, 6, "l2", None).unwrap();

@@ -204,19 +204,8 @@ impl Studio {
 
 #[cfg(test)]
 mod tests {
+    use crate::test_support::open;
     use crate::{RobotFileText, Studio};
-
-    fn open(name: &str) -> Studio {
-        let path = format!(
-            "{}/../../examples/robots/{name}",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        Studio::open(&[RobotFileText {
-            name: name.into(),
-            text: std::fs::read_to_string(path).unwrap(),
-        }])
-        .unwrap()
-    }
 
     #[test]
     fn edits_round_trip_through_the_toml_download() {

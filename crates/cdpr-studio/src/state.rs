@@ -133,20 +133,7 @@ pub(crate) fn parse_method(name: &str) -> Result<Method, StudioError> {
 
 #[cfg(test)]
 mod tests {
-    use crate::{RobotFileText, Studio};
-
-    fn open(name: &str) -> Studio {
-        let path = format!(
-            "{}/../../examples/robots/{name}",
-            env!("CARGO_MANIFEST_DIR")
-        );
-        let text = std::fs::read_to_string(path).unwrap();
-        Studio::open(&[RobotFileText {
-            name: name.into(),
-            text,
-        }])
-        .unwrap()
-    }
+    use crate::test_support::open;
 
     /// The 4-cable planar robot of the thesis at the centre: lengths by hand, equilibrium.
     #[test]

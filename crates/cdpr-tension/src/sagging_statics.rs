@@ -98,6 +98,7 @@ pub struct SaggingStatics {
     w: DMatrix<f64>,
     cables: Vec<SaggingCable>,
     previous: Vec<SaggingCable>,
+    t: DVector<f64>,
 }
 
 impl SaggingStatics {
@@ -139,12 +140,22 @@ impl SaggingStatics {
         let mut floor = vec![f64::NEG_INFINITY; n];
         for it in 1..=self.settings.max_iterations {
             let problem = TensionProblem::new(&self.w, w_ext, &effective);
-            let t = match solver.solve(&problem)? {
-                TensionOutcome::Feasible(s) => s.tensions,
-                TensionOutcome::Infeasible(r) => return Ok(SaggingOutcome::Infeasible(r)),
-            };
-            // Each cable's solve starts from its catenary of the previous iteration.
-            match model.with_tensions_from(kin, t.as_slice(), &self.previous, &mut self.cables) {
+            if solver.solve_into(&problem, &mut self.t)?.is_err() {
+                // The outcome with its reason (as `solve` words it).
+                match solver.solve(&problem)? {
+                    TensionOutcome::Feasible(s) => self.t = s.tensions,
+                    TensionOutcome::Infeasible(r) => return Ok(SaggingOutcome::Infeasible(r)),
+                }
+            }
+            let t = &self.t;
+            // Each cable's solve starts from its catenary of the previous iteration; the sag
+            // (not needed by the iterations) is filled in at the end.
+            match model.forces_with_tensions_from(
+                kin,
+                t.as_slice(),
+                &self.previous,
+                &mut self.cables,
+            ) {
                 Ok(()) => {}
                 Err(KinematicsError::Catenary {
                     cable,
@@ -194,10 +205,14 @@ impl SaggingStatics {
                         && (p.unit - c.unit).amax() <= tol
                 });
             if settled || (it > 1 && model.cables().iter().all(|c| c.weight() == 0.0)) {
-                return Ok(self.certified(t, w_ext, bounds, it));
+                model.fill_sag(kin, &mut self.cables);
+                return Ok(self.certified(t.clone(), w_ext, bounds, it));
             }
             // Platform-end bounds that keep the whole cable within [t_min, t_max].
-            let (mut lo, mut hi) = (bounds.min().clone(), bounds.max().clone());
+            let (mut lo, mut hi) = (
+                bounds.min().as_slice().to_vec(),
+                bounds.max().as_slice().to_vec(),
+            );
             for (i, c) in self.cables.iter().enumerate() {
                 let (lowest, highest) = tension_range(c);
                 lo[i] += c.platform_end_tension - lowest;
@@ -207,7 +222,7 @@ impl SaggingStatics {
                     return Ok(SaggingOutcome::Infeasible(Infeasibility::NoFeasibleTension));
                 }
             }
-            effective = TensionBounds::new(lo.as_slice().to_vec(), hi.as_slice().to_vec())?;
+            effective = TensionBounds::new(lo, hi)?;
             std::mem::swap(&mut self.previous, &mut self.cables);
         }
         Ok(SaggingOutcome::Infeasible(Infeasibility::SolverFailure {

@@ -70,6 +70,12 @@ pub enum WorkspaceError {
     /// The stiffness criterion uses the tensions of a tension-feasibility criterion; none is given.
     #[error("the stiffness criterion needs a TensionFeasible criterion to supply the tensions")]
     StiffnessNeedsTensions,
+    /// A criterion or method that has no version with sagging or elastic cables.
+    #[error("{what} has no version with elastic or sagging cables (use --cable-model straight)")]
+    NoSaggingModel {
+        /// What was asked.
+        what: &'static str,
+    },
     /// A planar orientation was required (rotation about z only) but another rotation was given.
     #[error("a planar robot's orientation must be a rotation about z")]
     NotPlanarRotation,

@@ -15,10 +15,11 @@
 use crate::criteria::square_determinant;
 use crate::wrench_closure::{LANES, WrenchClosureTest};
 use crate::{Criterion, PoseContext, WorkspaceError};
-use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot};
+use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot, RobotCatenaries};
 use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
 use cdpr_tension::{
-    Method, StiffnessData, TensionBounds, TensionError, TensionProblem, TensionSolver,
+    Method, SaggingOutcome, SaggingSettings, SaggingStatics, StiffnessData, TensionBounds,
+    TensionError, TensionProblem, TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 
@@ -49,6 +50,8 @@ pub struct PoseEvaluator {
     bounds: TensionBounds,
     criteria: Vec<Criterion>,
     axial_stiffness: Option<Vec<f64>>,
+    /// Elastic or heavy cables ([`PoseEvaluator::with_cable_model`]); `None`: straight cables.
+    catenaries: Option<RobotCatenaries>,
     /// Criterion indices, cheapest first.
     order: Vec<usize>,
     /// How many criteria at the head of `order` need no W (the cable-length floors): W is
@@ -70,6 +73,18 @@ struct Scratch {
     tensions_valid: bool,
     stiffness: DMatrix<f64>,
     batch: BatchBuffers,
+    sagging: Sagging,
+}
+
+/// The sagging-cable statics of the tension criterion and what the capacity criterion takes
+/// from its equilibrium (sized on first use).
+#[derive(Debug, Clone, Default)]
+struct Sagging {
+    statics: SaggingStatics,
+    /// The sag-aware W at the tension criterion's equilibrium.
+    w: DMatrix<f64>,
+    /// Platform-end bounds that keep every point of each cable within [t_min, t_max] there.
+    bounds: Option<TensionBounds>,
 }
 
 /// Poses per call of the batch inverse kinematics in [`PoseEvaluator::feasible_batch`].
@@ -257,12 +272,14 @@ impl PoseEvaluator {
             tensions_valid: false,
             stiffness: DMatrix::zeros(dof, dof),
             batch: BatchBuffers::default(),
+            sagging: Sagging::default(),
         };
         Ok(Self {
             robot,
             bounds,
             criteria,
             axial_stiffness: None,
+            catenaries: None,
             order,
             wrench_free,
             tension_source: needs_tensions.then_some(tension_source).flatten(),
@@ -289,6 +306,68 @@ impl PoseEvaluator {
         }
         self.axial_stiffness = Some(es);
         Ok(self)
+    }
+
+    /// Elastic or heavy sagging cables (Irvine's elastic catenary, one model per cable): the
+    /// tension criterion then solves the platform's equilibrium with the catenaries' end forces
+    /// (`cdpr_tension::sagging_statics`, bounds holding along each whole cable), and the capacity
+    /// criterion measures the wrench set of the sag-aware W at that equilibrium, with the
+    /// platform-end bounds that keep each whole cable within [t_min, t_max] there (a
+    /// linearisation about the equilibrium). Length, determinant, wrench-closure and
+    /// interference criteria keep the chords; custom criteria see the chords' W. Errors on a
+    /// wrong number of cable models, on criteria that have no sagging version (isotropic force,
+    /// stiffness, SOTDA), and on a capacity criterion without a tension criterion to supply the
+    /// equilibrium.
+    pub fn with_cable_model(mut self, model: RobotCatenaries) -> Result<Self, WorkspaceError> {
+        if model.cables().len() != self.robot.cable_count() {
+            return Err(WorkspaceError::DimensionMismatch {
+                what: "cable models (one per cable)",
+                expected: self.robot.cable_count(),
+                found: model.cables().len(),
+            });
+        }
+        for c in &self.criteria {
+            let unsupported = match c {
+                Criterion::TensionFeasible {
+                    method: Method::Sotda,
+                    ..
+                } => Some("the sotda method"),
+                Criterion::IsotropicForce { .. } | Criterion::IsotropicForceUnderLoad { .. } => {
+                    Some("the isotropic-force criterion")
+                }
+                Criterion::Stiffness { .. } | Criterion::StiffnessFloor { .. } => {
+                    Some("the stiffness criterion")
+                }
+                _ => None,
+            };
+            if let Some(what) = unsupported {
+                return Err(WorkspaceError::NoSaggingModel { what });
+            }
+        }
+        let tension = self
+            .criteria
+            .iter()
+            .position(|c| matches!(c, Criterion::TensionFeasible { .. }));
+        if self
+            .criteria
+            .iter()
+            .any(|c| matches!(c, Criterion::CapacityMargin { .. }))
+        {
+            if tension.is_none() {
+                return Err(WorkspaceError::NoSaggingModel {
+                    what: "the capacity criterion without the tension criterion",
+                });
+            }
+            self.tension_source = tension;
+        }
+        self.scratch.sagging.statics = SaggingStatics::new(SaggingSettings::default());
+        self.catenaries = Some(model);
+        Ok(self)
+    }
+
+    /// The cables' models, if not straight.
+    pub fn cable_model(&self) -> Option<&RobotCatenaries> {
+        self.catenaries.as_ref()
     }
 
     /// The robot.
@@ -368,6 +447,7 @@ impl PoseEvaluator {
     fn needs_only_w(&self) -> bool {
         !self.robot.has_pulleys()
             && self.axial_stiffness.is_none()
+            && self.catenaries.is_none()
             && self.criteria.iter().all(|c| match c {
                 Criterion::WrenchClosure
                 | Criterion::MinJacobianDeterminant(_)
@@ -545,6 +625,7 @@ impl PoseEvaluator {
             bounds,
             criteria,
             axial_stiffness,
+            catenaries,
             order,
             wrench_free,
             tension_source,
@@ -594,7 +675,19 @@ impl PoseEvaluator {
                         .margin
                         .as_mut()
                         .expect("a margin evaluator exists for a margin criterion");
-                    cm.margin(&scratch.w, bounds, required)? >= *min_margin
+                    if catenaries.is_some() {
+                        // The tension criterion ran before (cost order) and set the sag-aware
+                        // W and bounds of this pose's equilibrium, or failed the pose.
+                        let sag = &scratch.sagging;
+                        match &sag.bounds {
+                            Some(b) if scratch.tensions_valid => {
+                                cm.margin(&sag.w, b, required)? >= *min_margin
+                            }
+                            _ => false,
+                        }
+                    } else {
+                        cm.margin(&scratch.w, bounds, required)? >= *min_margin
+                    }
                 }
                 Criterion::IsotropicForce { min } => {
                     isotropic_force_of(robot.motion(), &scratch.w, bounds)? >= *min
@@ -606,6 +699,31 @@ impl PoseEvaluator {
                         bounds,
                         wrench.as_slice(),
                     )? >= *min
+                }
+                Criterion::TensionFeasible { wrench, .. } if catenaries.is_some() => {
+                    let model = catenaries.as_ref().expect("matched Some");
+                    let solver = scratch.solvers[k]
+                        .as_mut()
+                        .expect("a solver exists for every tension criterion");
+                    let outcome = scratch.sagging.statics.solve(
+                        solver,
+                        &scratch.kin,
+                        model,
+                        wrench,
+                        bounds,
+                    )?;
+                    match outcome {
+                        SaggingOutcome::Feasible(s) => {
+                            if *tension_source == Some(k) {
+                                scratch.tensions.copy_from(&s.tensions);
+                                scratch.tensions_valid = true;
+                                scratch.sagging.bounds = platform_end_bounds(bounds, &s.cables);
+                                scratch.sagging.w = s.wrench_matrix;
+                            }
+                            true
+                        }
+                        SaggingOutcome::Infeasible(_) => false,
+                    }
                 }
                 Criterion::TensionFeasible { method, wrench } => {
                     let stiffness = match (method, axial_stiffness.as_deref()) {
@@ -725,6 +843,23 @@ impl PoseEvaluator {
             .expect("solver of a tension criterion");
         Ok(solver.solve(&problem)?.tensions().cloned())
     }
+}
+
+/// The platform-end bounds that keep every point of each cable within `bounds` at its catenary
+/// `cables` (T_B shifted by the differences to the lowest and largest tension along the cable);
+/// `None` when some cable's range is wider than its bounds.
+fn platform_end_bounds(
+    bounds: &TensionBounds,
+    cables: &[cdpr_kinematics::SaggingCable],
+) -> Option<TensionBounds> {
+    let (mut lo, mut hi) = (Vec::new(), Vec::new());
+    for ((c, &t_min), &t_max) in cables.iter().zip(bounds.min()).zip(bounds.max()) {
+        let t = c.platform_end_tension;
+        let largest = c.frame_end_tension.max(t);
+        lo.push(t_min + (t - c.lowest_tension));
+        hi.push(t_max - (largest - t));
+    }
+    TensionBounds::new(lo, hi).ok()
 }
 
 /// Smallest eigenvalue of (K + Kᵀ)/2, on the stack for DOF ∈ {2, 3, 6}.

@@ -53,31 +53,7 @@ impl CableModelArgs {
         &self,
         robot: &RobotDescription,
     ) -> Result<Option<RobotCatenaries>, CliError> {
-        let model = self.model();
-        if model == CableModel::Straight {
-            return Ok(None);
-        }
-        let name = model.name();
-        if robot.robot.has_pulleys() {
-            return Err(format!(
-                "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
-            )
-            .into());
-        }
-        let es = robot.axial_stiffness.as_ref().ok_or_else(|| {
-            format!(
-                "--cable-model {name} needs `axial_stiffness` (E·S, N) on every cable of the robot file"
-            )
-        })?;
-        Ok(Some(match model {
-            CableModel::Elastic => RobotCatenaries::elastic(es)?,
-            _ => {
-                let rho = robot.linear_density.as_ref().ok_or(
-                    "--cable-model catenary needs `linear_density` (kg/m) on every cable of the robot file",
-                )?;
-                RobotCatenaries::new(rho, es, &robot.platform.gravity)?
-            }
-        }))
+        Ok(cdpr::api::cable_model::catenaries(robot, self.model())?)
     }
 }
 
@@ -249,48 +225,6 @@ pub fn tension(
         }
         Ok(())
     }
-}
-
-/// Per path sample, the sagging-cable statics (`method`, wrench `w_ext(k)`): the
-/// platform-end tensions and the unstrained lengths the winches must pay out for the platform to
-/// be at the sample (the makers' flex and sag compensation); `None` where no certified
-/// equilibrium exists (its reason in the third vector).
-pub type Compensation = (
-    Vec<Option<Vec<f64>>>,
-    Vec<Option<Vec<f64>>>,
-    Vec<Option<String>>,
-);
-
-/// Runs [`SaggingStatics`] at every pose of `poses`.
-pub fn compensation(
-    robot: &RobotDescription,
-    model: &RobotCatenaries,
-    method: Method,
-    poses: &[cdpr::kinematics::Pose],
-    w_ext: impl Fn(usize) -> DVector<f64>,
-) -> Result<Compensation, CliError> {
-    if method == Method::Sotda {
-        return Err("--cable-model elastic|catenary does not apply to sotda".into());
-    }
-    let mut statics = SaggingStatics::new(SaggingSettings::default());
-    let mut solver = TensionSolver::new(method);
-    let (mut lengths, mut tensions, mut reasons) = (Vec::new(), Vec::new(), Vec::new());
-    for (k, pose) in poses.iter().enumerate() {
-        let kin = robot.robot.inverse_kinematics(pose)?;
-        match statics.solve(&mut solver, &kin, model, &w_ext(k), &robot.bounds)? {
-            SaggingOutcome::Feasible(s) => {
-                lengths.push(Some(s.cables.iter().map(|c| c.unstrained_length).collect()));
-                tensions.push(Some(s.tensions.as_slice().to_vec()));
-                reasons.push(None);
-            }
-            SaggingOutcome::Infeasible(r) => {
-                lengths.push(None);
-                tensions.push(None);
-                reasons.push(Some(r.to_string()));
-            }
-        }
-    }
-    Ok((lengths, tensions, reasons))
 }
 
 /// `cdpr forward --unstrained-lengths … --cable-model elastic|catenary`: the elasto-geometric

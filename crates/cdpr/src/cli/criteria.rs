@@ -6,8 +6,9 @@
 
 use super::{CliError, Numbers};
 use cdpr::RobotDescription;
+pub use cdpr::api::CriteriaSetup;
 use cdpr::api::WorkspaceCriteria;
-pub use cdpr::api::{CriteriaSetup, default_method};
+use cdpr::kinematics::CableModel;
 use cdpr::tension::Method;
 
 /// Workspace criteria and load, shared by `workspace`, `dextrous` and `synthesize`.
@@ -42,6 +43,9 @@ pub struct CriteriaArgs {
     /// The twist ẋ of the `dynamic` criterion (DOF numbers, m/s and rad/s; default 0).
     #[arg(long, allow_hyphen_values = true, requires = "acceleration_box")]
     pub velocity: Option<Numbers>,
+    /// `--cable-model`: the `tension` and `capacity` criteria with elastic or sagging cables.
+    #[command(flatten)]
+    pub cable: super::cable_model::CableModelArgs,
 }
 
 impl CriteriaArgs {
@@ -55,6 +59,10 @@ impl CriteriaArgs {
             wrench_box: v(&self.wrench_box),
             acceleration_box: v(&self.acceleration_box),
             velocity: v(&self.velocity),
+            cable_model: match self.cable.model() {
+                CableModel::Straight => None,
+                m => Some(m.name().into()),
+            },
         }
     }
 }

@@ -1,17 +1,13 @@
 //! `cdpr dextrous`: the dextrous workspace over a range of orientations (thesis eq. 6.28).
 
-use super::criteria::{CriteriaArgs, default_method};
-use super::region::{
-    box_json, box_numbers, dextrous, draw_pose, load_text, measure_json, progress, region,
-    resolution, rotation, save_grid_plot,
-};
-use super::{CliError, Numbers, load_robot, print_json};
+use super::criteria::CriteriaArgs;
+use super::region::{draw_pose, load_text, progress, resolution, save_grid_plot};
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{DextrousReport, DextrousRequest, RangeReport};
 use cdpr::kinematics::MotionPattern;
 use cdpr::plot::tick;
-use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
-use nalgebra::{Rotation3, Unit, Vector3};
-use serde_json::json;
-use std::path::PathBuf;
+use cdpr::workspace::{OrientationRange, VolumeConvention};
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// The long help of the command (`--help`), also its documentation.
@@ -119,149 +115,132 @@ impl FromStr for Range {
     }
 }
 
-/// Runs the command.
+/// Runs the command: parse → request → run → render.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let desc = load_robot(&args.robot)?;
-    let robot = &desc.robot;
-    let motion = robot.motion();
-    let dim = motion.space_dim();
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(robot));
-    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
-    let (base, axis) = match motion {
-        MotionPattern::Spatial => {
-            let axis = match args.axis.as_deref() {
-                None => Vector3::z_axis(),
-                Some([x, y, z]) => Unit::try_new(Vector3::new(*x, *y, *z), 1e-12)
-                    .filter(|a| a.iter().all(|v| v.is_finite()))
-                    .ok_or("--axis must be a finite non-zero vector X,Y,Z")?,
-                Some(a) => {
-                    return Err(format!("--axis needs 3 numbers X,Y,Z, got {}", a.len()).into());
-                }
-            };
-            (rotation(motion, args.orientation.as_deref())?, axis)
-        }
-        _ => {
-            if args.axis.is_some() || args.orientation.is_some() {
-                return Err(format!(
-                    "--axis and --orientation apply to spatial robots; a `{}` robot rotates about z",
-                    motion.name()
-                )
-                .into());
-            }
-            (Rotation3::identity(), Vector3::z_axis())
-        }
-    };
-    let range = args.orientations.0;
-    let region = region(robot, args.area.as_deref(), "--box")?;
-    let m = resolution(args.grid, dim, 50)?;
-    let grid = Grid::new(m, region);
-    let bar = progress(grid.point_count(dim).div_ceil(grid.points_per_axis()));
-    let dex = dextrous(&setup, &desc, robot, &base, &axis, &range, &grid, &bar)?;
-    let ws = &dex.workspace;
-    let check = dex.central_check;
-    let (what, unit) = if dim == 2 {
-        ("area", "m²")
-    } else {
-        ("volume", "m³")
-    };
-    let conv = args.volume_convention;
+    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
+    let r = args.orientations.0;
+    let mut request = DextrousRequest::new(
+        request_robot(&args.robot)?,
+        RangeReport {
+            min: r.min,
+            max: r.max,
+            slices: r.slices,
+        },
+    );
+    request.criteria = args.criteria.to_request();
+    (request.axis, request.orientation) = (numbers(&args.axis), numbers(&args.orientation));
+    (request.area, request.grid) = (numbers(&args.area), args.grid);
+    request.volume_convention = args.volume_convention;
+    request.validate()?;
+    let dim = request.robot.robot.motion().space_dim();
+    let m = resolution(request.grid, dim, 50)?;
+    let bar = progress((m + 1).pow(dim as u32 - 1));
+    let report = request.run_with_progress(&|| bar.inc(1))?;
+    bar.finish_and_clear();
     if let Some(path) = &args.plot {
-        let central = match motion {
-            MotionPattern::Point2 | MotionPattern::Point3 => Rotation3::identity(),
-            _ => base * Rotation3::from_axis_angle(&axis, range.central()),
-        };
-        let pose = draw_pose(robot, args.draw_pose.as_deref(), &region, &central)?;
-        let w_ext = setup.external_wrench(&desc, &central)?;
-        let title = format!("{}: dextrous workspace (grid)", desc.name);
-        let load = load_text(motion, w_ext.as_slice(), method);
-        let about = match motion {
-            MotionPattern::Spatial => format!(" about the axis [{}]", {
-                let a = axis.into_inner();
-                format!("{}, {}, {}", tick(a.x), tick(a.y), tick(a.z))
-            }),
-            _ => String::new(),
-        };
-        let setting = format!(
-            "every orientation φ ∈ [{}, {}] rad{about} ({} slices); {load}",
-            tick(range.min),
-            tick(range.max),
-            range.slices
-        );
-        save_grid_plot(
-            &desc,
-            &pose,
-            ws,
-            title,
-            vec![
-                setting,
-                format!(
-                    "dextrous {what} {:.4} {unit} ({} of {} points, m = {m}, {conv} convention); \
-                     §6.5 check {}",
-                    ws.measure(conv),
-                    ws.feasible_points,
-                    ws.total_points,
-                    if check.holds { "holds" } else { "fails" }
-                ),
-            ],
-            path,
-        )?;
+        save_dextrous_plot(&request, &report, args.draw_pose.as_deref(), path)?;
     }
     if args.json {
-        let mut v = json!({
-            "robot": desc.name,
-            "orientations": { "min": range.min, "max": range.max, "slices": range.slices },
-            "angles": dex.angles,
-            "criteria": setup.labels(),
-            "tension_method": method.name(),
-            "box": box_json(&region, dim),
-            "resolution": m,
-            "dimension": dim,
-            "feasible_points": ws.feasible_points,
-            "total_points": ws.total_points,
-            "cell_area": ws.cell_area,
-            "central_check": {
-                "holds": check.holds,
-                "violations": check.violations,
-                "extremes_points": check.extremes_points,
-            },
-        });
-        measure_json(&mut v, ws, conv);
-        return print_json(&v);
+        return print_report(&report);
     }
-    println!(
-        "robot {}: dextrous workspace for φ ∈ [{}, {}] rad, {} slices",
-        desc.name, range.min, range.max, range.slices
-    );
-    println!(
-        "criteria: {} (tensions: {})",
-        setup.labels().join(", "),
-        method.name()
-    );
-    println!(
-        "grid m = {m} over {} m: {} of {} points feasible at every orientation, cell {what} \
-         {:.6e} {unit}",
-        super::nums(&box_numbers(&region, dim)),
-        ws.feasible_points,
-        ws.total_points,
-        ws.cell_area
-    );
-    println!(
-        "dextrous {what} {:.6} {unit} ({})",
-        ws.measure(conv),
-        conv.describe()
-    );
-    println!(
-        "§6.5 check (central orientation contains the two extremes' intersection): {} ({} violating \
-         of {} points feasible at both extremes)",
-        if check.holds { "holds" } else { "FAILS" },
-        check.violations,
-        check.extremes_points
-    );
+    print_dextrous(&report, request.volume_convention);
     if let Some(p) = &args.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
+}
+
+/// "area" and "m²" in the plane, "volume" and "m³" in space.
+fn measure_words(dim: usize) -> (&'static str, &'static str) {
+    if dim == 2 {
+        ("area", "m²")
+    } else {
+        ("volume", "m³")
+    }
+}
+
+/// The grid figure of the dextrous workspace, the robot drawn at the central orientation.
+fn save_dextrous_plot(
+    request: &DextrousRequest,
+    r: &DextrousReport,
+    q: Option<&[f64]>,
+    path: &Path,
+) -> Result<(), CliError> {
+    let desc = request.robot.description();
+    let motion = desc.robot.motion();
+    let region = &r.workspace.grid.region;
+    let pose = draw_pose(&desc.robot, q, region, &r.central_rotation)?;
+    let load = load_text(motion, &r.central_wrench, &r.tension_method);
+    let about = match motion {
+        MotionPattern::Spatial => format!(
+            " about the axis [{}, {}, {}]",
+            tick(r.axis.x),
+            tick(r.axis.y),
+            tick(r.axis.z)
+        ),
+        _ => String::new(),
+    };
+    let o = &r.orientations;
+    let setting = format!(
+        "every orientation φ ∈ [{}, {}] rad{about} ({} slices); {load}",
+        tick(o.min),
+        tick(o.max),
+        o.slices
+    );
+    let (what, unit) = measure_words(r.dimension);
+    let measure = format!(
+        "dextrous {what} {:.4} {unit} ({} of {} points, m = {}, {} convention); §6.5 check {}",
+        r.area,
+        r.feasible_points,
+        r.total_points,
+        r.resolution,
+        r.volume_convention,
+        if r.central_check.holds {
+            "holds"
+        } else {
+            "fails"
+        }
+    );
+    let title = format!("{}: dextrous workspace (grid)", desc.name);
+    save_grid_plot(
+        desc,
+        &pose,
+        &r.workspace,
+        title,
+        vec![setting, measure],
+        path,
+    )
+}
+
+/// The text answer.
+fn print_dextrous(r: &DextrousReport, conv: VolumeConvention) {
+    let (what, unit) = measure_words(r.dimension);
+    let o = &r.orientations;
+    println!(
+        "robot {}: dextrous workspace for φ ∈ [{}, {}] rad, {} slices",
+        r.robot, o.min, o.max, o.slices
+    );
+    println!(
+        "criteria: {} (tensions: {})",
+        r.criteria.join(", "),
+        r.tension_method
+    );
+    println!(
+        "grid m = {} over {} m: {} of {} points feasible at every orientation, cell {what} \
+         {:.6e} {unit}",
+        r.resolution,
+        super::nums(&r.area_box),
+        r.feasible_points,
+        r.total_points,
+        r.cell_area
+    );
+    println!("dextrous {what} {:.6} {unit} ({})", r.area, conv.describe());
+    let c = &r.central_check;
+    println!(
+        "§6.5 check (central orientation contains the two extremes' intersection): {} ({} violating \
+         of {} points feasible at both extremes)",
+        if c.holds { "holds" } else { "FAILS" },
+        c.violations,
+        c.extremes_points
+    );
 }

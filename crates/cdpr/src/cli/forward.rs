@@ -69,6 +69,10 @@ pub struct Args {
     /// least-squares residual consistent with it is "fitted"; it scales the pose's `pose_std`.
     #[arg(long, default_value_t = 1e-4, allow_hyphen_values = true)]
     length_sigma: f64,
+    /// Iteration limit of each solve (≥ 1; a start that has not converged by then is reported
+    /// "did not converge").
+    #[arg(long, default_value_t = 100, allow_hyphen_values = true)]
+    max_iterations: i64,
     /// Write one JSON object on stdout instead of a table.
     #[arg(long)]
     json: bool,
@@ -97,6 +101,12 @@ pub fn run(args: Args) -> Result<(), CliError> {
         guess: args.guess.map(|g| g.0),
         tolerance: args.tolerance,
         length_sigma: args.length_sigma,
+        max_iterations: usize::try_from(args.max_iterations).map_err(|_| {
+            format!(
+                "--max-iterations {}: expected an integer ≥ 1",
+                args.max_iterations
+            )
+        })?,
     };
     let report = request.run()?;
     if args.json {

@@ -19,6 +19,7 @@ pub mod tension;
 pub mod time_law;
 pub mod trajectory;
 pub mod workspace;
+pub mod workspace_chord;
 pub mod workspace_grid;
 pub mod workspace_mesh;
 

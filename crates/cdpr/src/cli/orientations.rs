@@ -2,17 +2,17 @@
 //! sampled set, as a tilt/torsion map and JSON); and the total-orientation and maximal
 //! workspaces behind `cdpr workspace --orientations … --kind total|maximal`.
 
-use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
-use super::{CliError, Numbers, load_robot, print_json};
-use cdpr::RobotDescription;
-use cdpr::kinematics::MotionPattern;
-use cdpr::plot::HeatMap;
-use cdpr::workspace::{
-    Grid, MeshSettings, OrientationSet, OrientationTest, OrientationWorkspaceKind, Region,
-    SampledOrientation, VolumeConvention, orientation_boundary_mesh, orientation_workspace,
+use super::criteria::CriteriaArgs;
+use super::region::{draw_pose, save_mesh_scene_plot, save_scene_plot};
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{
+    OrientationWorkspaceReport, OrientationWorkspaceRequest, OrientationsReport,
+    OrientationsRequest,
 };
-use nalgebra::{Rotation3, Vector3};
-use serde_json::{Value, json};
+use cdpr::plot::HeatMap;
+use cdpr::workspace::OrientationSet;
+use nalgebra::Rotation3;
+use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// The `--orientations` syntax, shared by the help texts.
@@ -56,8 +56,8 @@ pub struct Args {
     position: Numbers,
     /// The orientation set, e.g. `tilt:20,torsion=-30..30,n=5` or
     /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` (degrees; see below).
-    #[arg(long)]
-    orientations: OrientationSet,
+    #[arg(long, value_parser = set_spec)]
+    orientations: String,
     #[command(flatten)]
     criteria: CriteriaArgs,
     /// Write the tilt/torsion map (.svg or .png).
@@ -68,324 +68,173 @@ pub struct Args {
     json: bool,
 }
 
-/// The orientation test of a robot file: one evaluator per sampled orientation.
-pub fn orientation_test(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-) -> Result<(OrientationTest, Vec<SampledOrientation>), CliError> {
-    let motion = desc.robot.motion();
-    if motion != MotionPattern::Spatial {
-        return Err(format!(
-            "--orientations samples platform orientations in space: `spatial` robots only, this \
-             one is `{motion}` (planar robots: `cdpr dextrous`)"
-        )
-        .into());
-    }
-    let samples = set.orientations()?;
-    let evals = samples
-        .iter()
-        .map(|o| setup.evaluator(desc, desc.robot.clone(), &o.rotation))
-        .collect::<Result<Vec<_>, _>>()?;
-    let test = OrientationTest::new(kind, samples.iter().map(|o| o.rotation).collect(), evals)?;
-    Ok((test, samples))
-}
-
-/// Angles in degrees.
-pub fn degrees(o: &SampledOrientation) -> [f64; 3] {
-    o.angles.map(f64::to_degrees)
-}
-
-/// The map of fractions feasible: axes (x, y) = angle indices, fraction over the others.
-pub struct FractionMap {
-    /// Angle index along x and y.
-    pub axes: (usize, usize),
-    /// Sample values along x and y (degrees).
-    pub xs: Vec<f64>,
-    /// Sample values along y (degrees).
-    pub ys: Vec<f64>,
-    /// Fraction feasible, row-major, x fastest.
-    pub fraction: Vec<f64>,
-}
-
-/// Sorted distinct values.
-fn distinct(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * b.abs().max(1.0));
-    v
-}
-
-/// The tilt/torsion map of a set's verdicts.
-pub fn fraction_map(
-    set: &OrientationSet,
-    samples: &[SampledOrientation],
-    feasible: &[bool],
-) -> FractionMap {
-    let axes = match set {
-        OrientationSet::TiltTorsion { .. } => (2, 0),
-        OrientationSet::EulerBox { min, max, .. } => {
-            let ranged: Vec<usize> = (0..3).filter(|&k| min[k] < max[k]).collect();
-            match ranged.as_slice() {
-                [] => (0, 1),
-                [a] => (*a, if *a == 0 { 1 } else { 0 }),
-                [a, b, ..] => (*a, *b),
-            }
-        }
-    };
-    let deg = |o: &SampledOrientation, k: usize| o.angles[k].to_degrees();
-    let xs = distinct(samples.iter().map(|o| deg(o, axes.0)).collect());
-    let ys = distinct(samples.iter().map(|o| deg(o, axes.1)).collect());
-    let find = |v: &[f64], x: f64| {
-        v.iter()
-            .position(|a| (a - x).abs() <= 1e-12 * x.abs().max(1.0))
-            .unwrap_or(0)
-    };
-    let mut count = vec![(0usize, 0usize); xs.len() * ys.len()];
-    for (o, &ok) in samples.iter().zip(feasible) {
-        let cell = find(&ys, deg(o, axes.1)) * xs.len() + find(&xs, deg(o, axes.0));
-        count[cell].1 += 1;
-        count[cell].0 += ok as usize;
-    }
-    let fraction = count
-        .iter()
-        .map(|&(a, n)| {
-            if n == 0 {
-                f64::NAN
-            } else {
-                a as f64 / n as f64
-            }
-        })
-        .collect();
-    FractionMap {
-        axes,
-        xs,
-        ys,
-        fraction,
-    }
-}
-
-/// Runs `cdpr orientations`.
+/// Runs `cdpr orientations`: parse → request → run → render.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let desc = load_robot(&args.robot)?;
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(&desc.robot));
-    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
-    let u = match args.position.0.as_slice() {
-        [x, y, z] if [x, y, z].iter().all(|v| v.is_finite()) => Vector3::new(*x, *y, *z),
-        p => {
-            return Err(format!("--position needs 3 finite numbers x,y,z (m), got {p:?}").into());
-        }
+    let request = OrientationsRequest {
+        robot: request_robot(&args.robot)?,
+        criteria: args.criteria.to_request(),
+        position: args.position.0.clone(),
+        orientations: args.orientations.clone(),
     };
-    let set = &args.orientations;
-    let (mut test, samples) =
-        orientation_test(&desc, &setup, set, OrientationWorkspaceKind::Total)?;
-    let feasible = test.feasible_orientations(u);
-    let count = feasible.iter().filter(|&&f| f).count();
-    let names = set.angle_names();
-    let map = fraction_map(set, &samples, &feasible);
-    let spec = set.to_string();
+    let r = request.run()?;
     if let Some(path) = &args.plot {
-        let (nx, ny) = (map.xs.len(), map.ys.len());
-        let over = names[3 - map.axes.0 - map.axes.1];
-        let fig = HeatMap {
-            title: format!(
-                "{}: feasible orientations at ({}, {}, {}) m",
-                desc.name, u.x, u.y, u.z
-            ),
-            labels: (
-                format!("{} (°)", names[map.axes.0]),
-                format!("{} (°)", names[map.axes.1]),
-            ),
-            value_label: format!("fraction of {over} samples feasible"),
-            x_range: (map.xs[0], map.xs[nx - 1]),
-            y_range: (map.ys[0], map.ys[ny - 1]),
-            shape: (nx, ny),
-            values: map.fraction.clone(),
-            blank_below: f64::NEG_INFINITY,
-            markers: Vec::new(),
-            outlines: Vec::new(),
-            highlight: Vec::new(),
-        };
-        cdpr::plot::save(&fig, path)?;
+        save_map(&r, path)?;
     }
     if args.json {
-        return print_json(&json!({
-            "robot": desc.name,
-            "position": [u.x, u.y, u.z],
-            "orientation_set": spec,
-            "angle_names": names,
-            "criteria": setup.labels(),
-            "count": samples.len(),
-            "feasible_count": count,
-            "orientations": samples.iter().zip(&feasible).map(|(o, f)| json!({
-                "angles_deg": degrees(o),
-                "feasible": f,
-            })).collect::<Vec<_>>(),
-            "map": {
-                "x": names[map.axes.0],
-                "y": names[map.axes.1],
-                "x_deg": map.xs,
-                "y_deg": map.ys,
-                "fraction": map.fraction.chunks(map.xs.len().max(1)).map(|r| r.iter().map(|v| if v.is_finite() { json!(v) } else { Value::Null }).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            },
-        }));
+        return print_report(&r);
     }
-    println!(
-        "robot {}: orientation workspace at ({}, {}, {}) m over {spec}",
-        desc.name, u.x, u.y, u.z
-    );
-    println!("criteria: {}", setup.labels().join(", "));
-    println!(
-        "{count} of {} sampled orientations feasible ({:.1} %)",
-        samples.len(),
-        100.0 * count as f64 / samples.len() as f64
-    );
-    println!(
-        "map: {} (rows) × {} (columns), fraction feasible over {}",
-        names[map.axes.1],
-        names[map.axes.0],
-        names[3 - map.axes.0 - map.axes.1]
-    );
-    let header: Vec<String> = map.xs.iter().map(|x| format!("{x:>7.1}")).collect();
-    println!(
-        "{:>9} {}",
-        format!("{}\\{}", names[map.axes.1], names[map.axes.0])
-            .chars()
-            .take(9)
-            .collect::<String>(),
-        header.join("")
-    );
-    for (j, y) in map.ys.iter().enumerate() {
-        let row: Vec<String> = (0..map.xs.len())
-            .map(|i| format!("{:>7.2}", map.fraction[j * map.xs.len() + i]))
-            .collect();
-        println!("{y:>8.1}° {}", row.join(""));
-    }
+    print_orientations(&r);
     if let Some(p) = &args.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
 }
 
-/// How often each of `count` sampled orientations is the limiting one: `(orientation, times)`
-/// for those that are, most frequent first (ties by index).
-fn rank_limiting(limiting: impl Iterator<Item = usize>, count: usize) -> Vec<(usize, usize)> {
-    let mut per = vec![0usize; count];
-    for k in limiting {
-        per[k] += 1;
+/// The name of the angle the map folds over.
+fn folded(r: &OrientationsReport) -> &str {
+    &r.angle_names[3 - r.map_axes.0 - r.map_axes.1]
+}
+
+/// The tilt/torsion (or Euler) map as a heat map.
+fn save_map(r: &OrientationsReport, path: &Path) -> Result<(), CliError> {
+    let m = &r.map;
+    let (nx, ny) = (m.x_deg.len(), m.y_deg.len());
+    let [x, y, z] = r.position;
+    let fig = HeatMap {
+        title: format!("{}: feasible orientations at ({x}, {y}, {z}) m", r.robot),
+        labels: (format!("{} (°)", m.x), format!("{} (°)", m.y)),
+        value_label: format!("fraction of {} samples feasible", folded(r)),
+        x_range: (m.x_deg[0], m.x_deg[nx - 1]),
+        y_range: (m.y_deg[0], m.y_deg[ny - 1]),
+        shape: (nx, ny),
+        values: m
+            .fraction
+            .iter()
+            .flatten()
+            .map(|v| v.unwrap_or(f64::NAN))
+            .collect(),
+        blank_below: f64::NEG_INFINITY,
+        markers: Vec::new(),
+        outlines: Vec::new(),
+        highlight: Vec::new(),
+    };
+    cdpr::plot::save(&fig, path)?;
+    Ok(())
+}
+
+/// The text answer: counts and the map as a table.
+fn print_orientations(r: &OrientationsReport) {
+    let [x, y, z] = r.position;
+    println!(
+        "robot {}: orientation workspace at ({x}, {y}, {z}) m over {}",
+        r.robot, r.orientation_set
+    );
+    println!("criteria: {}", r.criteria.join(", "));
+    println!(
+        "{} of {} sampled orientations feasible ({:.1} %)",
+        r.feasible_count,
+        r.count,
+        100.0 * r.feasible_count as f64 / r.count as f64
+    );
+    let m = &r.map;
+    println!(
+        "map: {} (rows) × {} (columns), fraction feasible over {}",
+        m.y,
+        m.x,
+        folded(r)
+    );
+    let header: Vec<String> = m.x_deg.iter().map(|x| format!("{x:>7.1}")).collect();
+    println!(
+        "{:>9} {}",
+        format!("{}\\{}", m.y, m.x)
+            .chars()
+            .take(9)
+            .collect::<String>(),
+        header.join("")
+    );
+    for (y, row) in m.y_deg.iter().zip(&m.fraction) {
+        let cells: Vec<String> = row
+            .iter()
+            .map(|v| format!("{:>7.2}", v.unwrap_or(f64::NAN)))
+            .collect();
+        println!("{y:>8.1}° {}", cells.join(""));
     }
-    let mut ranked: Vec<(usize, usize)> = per
-        .into_iter()
-        .enumerate()
-        .filter(|&(_, n)| n > 0)
-        .collect();
-    ranked.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
-    ranked
+}
+
+/// The `--orientations` value: a valid orientation set, kept as written (the request parses it).
+pub fn set_spec(s: &str) -> Result<String, String> {
+    s.parse::<OrientationSet>().map_err(|e| e.to_string())?;
+    Ok(s.to_string())
+}
+
+/// How a workspace over an orientation set is shown.
+pub struct View<'a> {
+    /// The figure (.svg, .png or .html).
+    pub plot: Option<&'a Path>,
+    /// Pose at which the robot is drawn.
+    pub draw_pose: Option<&'a [f64]>,
+    /// One JSON object on stdout.
+    pub json: bool,
+}
+
+/// "ROBOT: total workspace over SET (N orientations)".
+fn set_title(robot: &str, kind: &str, set: &str, count: usize) -> String {
+    format!("{robot}: {kind} workspace over {set} ({count} orientations)")
 }
 
 /// `cdpr workspace --orientations SET [--kind total|maximal] --boundary mesh`: the certified
 /// boundary mesh of the total-orientation or maximal workspace, with the limiting orientation at
 /// every boundary vertex of a total-orientation workspace.
-#[allow(clippy::too_many_arguments)]
 pub fn run_workspace_mesh(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-    region: &Region,
-    m: usize,
-    plot: Option<&Path>,
-    draw_pose: Option<&[f64]>,
-    json_out: bool,
+    request: &OrientationWorkspaceRequest,
+    view: &View<'_>,
 ) -> Result<(), CliError> {
-    let grid = Grid::new(m, *region);
-    let (test, samples) = orientation_test(desc, setup, set, kind)?;
-    let om = orientation_boundary_mesh(&test, &grid, &MeshSettings::default())?;
-    let mesh = &om.mesh;
-    let ranked = rank_limiting(om.limiting.iter().flatten().copied(), samples.len());
-    let title = format!(
-        "{}: {} workspace over {set} ({} orientations)",
-        desc.name,
-        kind.name(),
-        samples.len()
-    );
-    let watertight = mesh.edge_defects() == 0;
-    let summary = format!(
-        "volume {} m³ (boundary mesh, m = {m}); {}",
-        super::num(mesh.volume),
-        setup.labels().join(", ")
-    );
-    if let Some(path) = plot {
-        let pose =
-            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::region::save_mesh_scene_plot(
-            desc,
-            &pose,
-            mesh,
-            title.clone(),
-            vec![summary.clone()],
-            path,
-        )?;
+    let r = request.run_mesh()?;
+    let title = set_title(&r.robot, &r.kind, &r.orientation_set, r.orientation_count);
+    if let Some(path) = view.plot {
+        let desc = request.robot.description();
+        let region = &r.mesh.grid.grid.region;
+        let pose = draw_pose(&desc.robot, view.draw_pose, region, &Rotation3::identity())?;
+        let summary = format!(
+            "volume {} m³ (boundary mesh, m = {}); {}",
+            super::num(r.volume),
+            r.resolution,
+            r.criteria.join(", ")
+        );
+        save_mesh_scene_plot(desc, &pose, &r.mesh, title.clone(), vec![summary], path)?;
     }
-    if json_out {
-        return print_json(&json!({
-            "robot": desc.name,
-            "method": "mesh",
-            "kind": kind.name(),
-            "orientation_set": set.to_string(),
-            "orientation_count": samples.len(),
-            "angle_names": set.angle_names(),
-            "criteria": setup.labels(),
-            "tension_method": setup.method.name(),
-            "box": super::region::box_json(region, 3),
-            "resolution": m,
-            "dimension": 3,
-            "volume": mesh.volume,
-            "surface_area": mesh.surface_area,
-            "components": mesh.components,
-            "vertices": mesh.vertices.len(),
-            "triangles": mesh.triangles.len(),
-            "tolerance": mesh.tolerance,
-            "watertight": watertight,
-            "feasible_points": mesh.grid.feasible_points,
-            "total_points": mesh.grid.total_points,
-            "limiting_summary": ranked.iter().map(|&(k, n)| json!({
-                "angles_deg": degrees(&samples[k]),
-                "boundary_vertices": n,
-            })).collect::<Vec<_>>(),
-        }));
+    if view.json {
+        return print_report(&r);
     }
     println!("{title}");
     println!(
         "criteria: {} (tensions: {})",
-        setup.labels().join(", "),
-        setup.method.name()
+        r.criteria.join(", "),
+        r.tension_method
     );
     println!(
-        "boundary mesh from a grid of m = {m}: volume {} m³, surface {} m², {} component(s), \
+        "boundary mesh from a grid of m = {}: volume {} m³, surface {} m², {} component(s), \
          {} vertices, {} triangles{}",
-        super::num(mesh.volume),
-        super::num(mesh.surface_area),
-        mesh.components,
-        mesh.vertices.len(),
-        mesh.triangles.len(),
-        if watertight {
+        r.resolution,
+        super::num(r.volume),
+        super::num(r.surface_area),
+        r.components,
+        r.vertices,
+        r.triangles,
+        if r.watertight {
             ", closed"
         } else {
             ", NOT closed (please report)"
         }
     );
-    for &(k, n) in ranked.iter().take(5) {
-        let a = degrees(&samples[k]);
+    for l in r.limiting_summary.iter().take(5) {
+        let a = l.angles_deg;
         println!(
-            "  limiting ({:.2}, {:.2}, {:.2})° at {n} vertices",
-            a[0], a[1], a[2]
+            "  limiting ({:.2}, {:.2}, {:.2})° at {} vertices",
+            a[0], a[1], a[2], l.boundary_vertices
         );
     }
-    if let Some(p) = plot {
+    if let Some(p) = view.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
@@ -393,101 +242,77 @@ pub fn run_workspace_mesh(
 
 /// `cdpr workspace --orientations SET [--kind total|maximal]`: the grid workspace of the
 /// set, with the limiting orientations of a total-orientation workspace.
-#[allow(clippy::too_many_arguments)]
 pub fn run_workspace(
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    kind: OrientationWorkspaceKind,
-    region: &Region,
-    m: usize,
-    plot: Option<&Path>,
-    draw_pose: Option<&[f64]>,
-    json_out: bool,
-    convention: VolumeConvention,
+    request: &OrientationWorkspaceRequest,
+    view: &View<'_>,
 ) -> Result<(), CliError> {
-    let grid = Grid::new(m, *region);
-    let (test, samples) = orientation_test(desc, setup, set, kind)?;
-    let ws = orientation_workspace(&test, &grid)?;
-    let names = set.angle_names();
-    let ranked = rank_limiting(ws.limiting.iter().map(|l| l.orientation), samples.len());
-    let w = &ws.workspace;
-    let title = format!(
-        "{}: {} workspace over {set} ({} orientations)",
-        desc.name,
-        kind.name(),
-        samples.len()
-    );
-    let volume = w.measure(convention);
-    let summary = format!(
-        "volume {:.4} m³ ({} of {} points, m = {m}, {} convention); {}",
-        volume,
-        w.feasible_points,
-        w.total_points,
-        convention,
-        setup.labels().join(", ")
-    );
-    if let Some(path) = plot {
-        let pose =
-            super::region::draw_pose(&desc.robot, draw_pose, region, &Rotation3::identity())?;
-        super::region::save_scene_plot(desc, &pose, w, title.clone(), vec![summary.clone()], path)?;
-    }
-    if json_out {
-        let mut v = json!({
-            "robot": desc.name,
-            "method": "grid",
-            "kind": kind.name(),
-            "orientation_set": set.to_string(),
-            "orientation_count": samples.len(),
-            "angle_names": names,
-            "criteria": setup.labels(),
-            "tension_method": setup.method.name(),
-            "box": super::region::box_json(region, 3),
-            "resolution": m,
-            "dimension": 3,
-            "feasible_points": w.feasible_points,
-            "total_points": w.total_points,
-            "cell_area": w.cell_area,
-            "limiting_orientations": ws.limiting.iter().map(|l| json!({
-                "point": [l.boundary_point.x, l.boundary_point.y, l.boundary_point.z],
-                "angles_deg": degrees(&samples[l.orientation]),
-            })).collect::<Vec<_>>(),
-            "limiting_summary": ranked.iter().map(|&(k, n)| json!({
-                "angles_deg": degrees(&samples[k]),
-                "boundary_points": n,
-            })).collect::<Vec<_>>(),
-        });
-        super::region::measure_json(&mut v, w, convention);
-        return print_json(&v);
-    }
-    println!("{title}");
-    println!(
-        "criteria: {} (tensions: {})",
-        setup.labels().join(", "),
-        setup.method.name()
-    );
-    println!(
-        "grid m = {m} over {}: {} of {} points in the {} workspace, cell volume {:.6e} m³",
-        super::region::box_json(region, 3),
-        w.feasible_points,
-        w.total_points,
-        kind.name(),
-        w.cell_area
-    );
-    println!("volume {volume:.6} m³ ({convention} convention)");
-    if !ranked.is_empty() {
-        println!(
-            "limiting orientations at {} boundary grid points ({}, degrees):",
-            ws.limiting.len(),
-            names.join(", ")
+    let r = request.run()?;
+    let title = set_title(&r.robot, &r.kind, &r.orientation_set, r.orientation_count);
+    if let Some(path) = view.plot {
+        let desc = request.robot.description();
+        let region = &r.workspace.grid.region;
+        let pose = draw_pose(&desc.robot, view.draw_pose, region, &Rotation3::identity())?;
+        let summary = format!(
+            "volume {:.4} m³ ({} of {} points, m = {}, {} convention); {}",
+            r.area,
+            r.feasible_points,
+            r.total_points,
+            r.resolution,
+            r.volume_convention,
+            r.criteria.join(", ")
         );
-        for &(k, n) in ranked.iter().take(5) {
-            let a = degrees(&samples[k]);
-            println!("  ({:.2}, {:.2}, {:.2}) at {n} point(s)", a[0], a[1], a[2]);
-        }
+        save_scene_plot(
+            desc,
+            &pose,
+            &r.workspace,
+            title.clone(),
+            vec![summary],
+            path,
+        )?;
     }
-    if let Some(p) = plot {
+    if view.json {
+        return print_report(&r);
+    }
+    print_workspace(&title, &r);
+    if let Some(p) = view.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
+}
+
+/// The text answer of the grid workspace over a set.
+fn print_workspace(title: &str, r: &OrientationWorkspaceReport) {
+    println!("{title}");
+    println!(
+        "criteria: {} (tensions: {})",
+        r.criteria.join(", "),
+        r.tension_method
+    );
+    println!(
+        "grid m = {} over {}: {} of {} points in the {} workspace, cell volume {:.6e} m³",
+        r.resolution,
+        json!(r.area_box),
+        r.feasible_points,
+        r.total_points,
+        r.kind,
+        r.cell_area
+    );
+    println!(
+        "volume {:.6} m³ ({} convention)",
+        r.area, r.volume_convention
+    );
+    if !r.limiting_summary.is_empty() {
+        println!(
+            "limiting orientations at {} boundary grid points ({}, degrees):",
+            r.limiting_orientations.len(),
+            r.angle_names.join(", ")
+        );
+        for l in r.limiting_summary.iter().take(5) {
+            let a = l.angles_deg;
+            println!(
+                "  ({:.2}, {:.2}, {:.2}) at {} point(s)",
+                a[0], a[1], a[2], l.boundary_points
+            );
+        }
+    }
 }

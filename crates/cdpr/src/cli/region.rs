@@ -3,18 +3,12 @@
 //! progress bar, the dextrous verdicts of a grid, plots and their titles, box and measure JSON.
 
 use super::CliError;
-use super::criteria::CriteriaSetup;
 use cdpr::RobotDescription;
 use cdpr::kinematics::{MotionPattern, Pose, Robot};
 use cdpr::plot::{Figure, Panels, WorkspacePlot};
-use cdpr::tension::Method;
-use cdpr::workspace::{
-    CentralCheck, Grid, GridWorkspace, LeanScratch, OrientationRange, PlanarSlice, PoseEvaluator,
-    Region, VolumeConvention, dextrous_verdicts_lean,
-};
+use cdpr::workspace::{GridWorkspace, Region};
 use indicatif::ProgressBar;
-use nalgebra::{Rotation3, Unit, Vector3};
-use rayon::prelude::*;
+use nalgebra::{Rotation3, Vector3};
 use serde_json::{Value, json};
 use std::io::IsTerminal;
 use std::path::Path;
@@ -41,192 +35,6 @@ pub fn progress(len: usize) -> ProgressBar {
     } else {
         ProgressBar::hidden()
     }
-}
-
-/// Evaluates `f` at every point of `grid` in parallel (grid order: x fastest), one clone of
-/// `state` per rayon task; `bar` counts rows of the grid (chunks of M + 1 points).
-pub fn map_rows<S, T, F>(state: &S, grid: &Grid, dim: usize, bar: &ProgressBar, f: F) -> Vec<T>
-where
-    S: Clone + Send + Sync,
-    T: Send,
-    F: Fn(&mut S, Vector3<f64>) -> T + Sync,
-{
-    let row = grid.points_per_axis();
-    let total = grid.point_count(dim);
-    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
-        .into_par_iter()
-        .map_init(
-            || state.clone(),
-            |s, r| {
-                let out = (r * row..((r + 1) * row).min(total))
-                    .map(|idx| f(s, grid.point(dim, idx)))
-                    .collect();
-                bar.inc(1);
-                out
-            },
-        )
-        .collect();
-    rows.into_iter().flatten().collect()
-}
-
-/// [`map_rows`] a row at a time: `f(state, points, verdicts)` fills the verdicts of one row's
-/// points (`T::default()` on entry).
-pub fn map_row_blocks<S, T, F>(
-    state: &S,
-    grid: &Grid,
-    dim: usize,
-    bar: &ProgressBar,
-    f: F,
-) -> Vec<T>
-where
-    S: Clone + Send + Sync,
-    T: Send + Copy + Default,
-    F: Fn(&mut S, &[Vector3<f64>], &mut [T]) + Sync,
-{
-    let row = grid.points_per_axis();
-    let total = grid.point_count(dim);
-    let rows: Vec<Vec<T>> = (0..total.div_ceil(row))
-        .into_par_iter()
-        .map_init(
-            || (state.clone(), Vec::new()),
-            |(s, points), r| {
-                points.clear();
-                points
-                    .extend((r * row..((r + 1) * row).min(total)).map(|idx| grid.point(dim, idx)));
-                let mut out = vec![T::default(); points.len()];
-                f(s, points, &mut out);
-                bar.inc(1);
-                out
-            },
-        )
-        .collect();
-    rows.into_iter().flatten().collect()
-}
-
-/// A dextrous workspace on a grid (eq. 6.28) with the §6.5 check.
-pub struct Dextrous {
-    /// Points feasible at every sampled orientation.
-    pub workspace: GridWorkspace,
-    /// The check of the two-extremes shortcut.
-    pub central_check: CentralCheck,
-    /// Sampled angles.
-    pub angles: Vec<f64>,
-}
-
-/// One evaluator per sampled orientation (each with the gravity moment of that orientation).
-#[derive(Clone)]
-struct Slices {
-    evals: Vec<PoseEvaluator>,
-    rotations: Vec<Rotation3<f64>>,
-    /// Index of the central orientation among the slices, or its own evaluator.
-    central: Result<usize, (Box<PoseEvaluator>, Rotation3<f64>)>,
-}
-
-/// Eq. (6.28) for rotations `base · R(axis, φ)`, φ over `range`, on `grid`: the points feasible at
-/// every sampled orientation, tested as `cdpr::workspace::dextrous_workspace_about_axis` does
-/// (extremes first, then the central orientation, then the others), but with one evaluator per
-/// orientation so that the gravity moment of an offset centre of mass follows the platform.
-#[allow(clippy::too_many_arguments)]
-pub fn dextrous(
-    setup: &CriteriaSetup,
-    desc: &RobotDescription,
-    robot: &Robot,
-    base: &Rotation3<f64>,
-    axis: &Unit<Vector3<f64>>,
-    range: &OrientationRange,
-    grid: &Grid,
-    bar: &ProgressBar,
-) -> Result<Dextrous, CliError> {
-    range.validate()?;
-    let motion = robot.motion();
-    let dim = motion.space_dim();
-    grid.validate(dim)?;
-    let rot = |phi: f64| -> Rotation3<f64> {
-        match motion {
-            MotionPattern::Point2 | MotionPattern::Point3 => Rotation3::identity(),
-            _ => base * Rotation3::from_axis_angle(axis, phi),
-        }
-    };
-    let angles = range.angles();
-    let rotations: Vec<Rotation3<f64>> = angles.iter().map(|&a| rot(a)).collect();
-    let evals = rotations
-        .iter()
-        .map(|r| setup.evaluator(desc, robot.clone(), r))
-        .collect::<Result<Vec<_>, _>>()?;
-    let c = range.central();
-    let central = match angles.iter().position(|&a| a == c) {
-        Some(k) => Ok(k),
-        None => {
-            let r = rot(c);
-            Err((Box::new(setup.evaluator(desc, robot.clone(), &r)?), r))
-        }
-    };
-    // The lean planar r = 1 path of every orientation, if all have it (the same verdicts).
-    let lean = evals
-        .iter()
-        .zip(&rotations)
-        .map(|(e, r)| PlanarSlice::new(e, r))
-        .collect::<Option<Vec<_>>>()
-        .and_then(|l| match &central {
-            Ok(_) => Some((l, None)),
-            Err((e, r)) => PlanarSlice::new(e, r).map(|c| (l, Some(c))),
-        });
-    let slices = Slices {
-        evals,
-        rotations,
-        central,
-    };
-    let n = angles.len();
-    let verdicts = if let Some((lean, central_lean)) = &lean {
-        // Row by row, four points at a time, orientation by orientation.
-        let central = match &slices.central {
-            Ok(k) => Ok(*k),
-            Err(_) => Err(central_lean
-                .as_ref()
-                .expect("built with the central evaluator")),
-        };
-        let state = (slices, LeanScratch::default());
-        map_row_blocks(&state, grid, dim, bar, |(s, scratch), points, out| {
-            dextrous_verdicts_lean(lean, central, points, out, scratch, |k, u| match k {
-                Some(k) => s.evals[k].is_feasible(&Pose::new(*u, s.rotations[k])),
-                None => match &mut s.central {
-                    Err((ev, r)) => ev.is_feasible(&Pose::new(*u, *r)),
-                    Ok(k) => s.evals[*k].is_feasible(&Pose::new(*u, s.rotations[*k])),
-                },
-            })
-        })
-    } else {
-        map_rows(&slices, grid, dim, bar, |s, u| {
-            let ok =
-                |s: &mut Slices, k: usize| s.evals[k].is_feasible(&Pose::new(u, s.rotations[k]));
-            if !ok(s, 0) || (n > 1 && !ok(s, n - 1)) {
-                return (false, false, false);
-            }
-            let (central_ok, central_index) = match &mut s.central {
-                Ok(k) => {
-                    let k = *k;
-                    (ok(s, k), Some(k))
-                }
-                Err((ev, r)) => (ev.is_feasible(&Pose::new(u, *r)), None),
-            };
-            let others_ok = (1..n.saturating_sub(1))
-                .filter(|&k| Some(k) != central_index)
-                .all(|k| ok(s, k));
-            let dextrous = (central_ok || central_index.is_none()) && others_ok;
-            (dextrous, true, !central_ok)
-        })
-    };
-    bar.finish_and_clear();
-    let violations = verdicts.iter().filter(|v| v.2).count();
-    Ok(Dextrous {
-        workspace: GridWorkspace::from_verdicts(*grid, dim, verdicts.iter().map(|v| v.0).collect()),
-        central_check: CentralCheck {
-            holds: violations == 0,
-            violations,
-            extremes_points: verdicts.iter().filter(|v| v.1).count(),
-        },
-        angles,
-    })
 }
 
 /// The pose at which the robot is drawn: `--draw-pose` or the box centre at `rotation`.
@@ -257,7 +65,7 @@ pub fn plot_title(
     motion: MotionPattern,
     orientation: &[f64],
     w_ext: &[f64],
-    method: Method,
+    method: &str,
 ) -> (String, String) {
     let orientation = match motion {
         MotionPattern::Planar => format!(
@@ -274,7 +82,7 @@ pub fn plot_title(
 }
 
 /// "load w_ext = [0, -10, 0] (N, N, N·m); tensions l2".
-pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String {
+pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: &str) -> String {
     let units = match motion {
         MotionPattern::Planar => "N, N, N·m",
         MotionPattern::Spatial => "forces N, moments N·m",
@@ -283,7 +91,7 @@ pub fn load_text(motion: MotionPattern, w_ext: &[f64], method: Method) -> String
     format!(
         "load w_ext = [{}] ({units}); tensions {}",
         tick_list(w_ext),
-        method.name()
+        method
     )
 }
 
@@ -381,10 +189,7 @@ pub fn save_mesh_scene_plot(
         triangles: mesh.triangles.clone(),
         region: ([r.min.x, r.min.y, r.min.z], [r.max.x, r.max.y, r.max.z]),
         legend,
-        mesh_label: format!(
-            "boundary mesh (vertices on the boundary to {:.1e} m)",
-            mesh.tolerance
-        ),
+        mesh_label: format!("boundary mesh ({})", vertex_placement(mesh.tolerance)),
         anchor_names: cdpr::plot::cable_names(&desc.cable_names),
         ..cdpr::plot::Scene::default()
     }
@@ -479,18 +284,6 @@ pub fn save_plot(fig: &impl Figure, path: &Path) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The grid's area (volume) fields: `area` in `convention`, both conventions, and its name.
-pub fn measure_json(v: &mut Value, ws: &GridWorkspace, convention: VolumeConvention) {
-    let a = ws.measure(convention);
-    v["area"] = json!(a);
-    v["area_cells"] = json!(ws.clipped_area);
-    v["area_points"] = json!(ws.area);
-    v["volume_convention"] = json!(convention.name());
-    if ws.dim == 3 {
-        v["volume"] = json!(a);
-    }
-}
-
 /// The grid workspace figure: one chart for planar robots, z-slices for 3-D ones.
 pub fn save_grid_plot(
     desc: &RobotDescription,
@@ -533,7 +326,44 @@ pub fn at_orientation(orientation: &[f64]) -> String {
     }
 }
 
+/// The box of a report's numbers XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
+pub fn box_region(b: &[f64]) -> Region {
+    match b {
+        [x0, x1, y0, y1] => Region::planar(*x0, *x1, *y0, *y1),
+        _ => Region::cuboid(
+            Vector3::new(b[0], b[2], b[4]),
+            Vector3::new(b[1], b[3], b[5]),
+        ),
+    }
+}
+
+/// The two header lines of a region answer: "robot R: WHAT at orientation (…), w_ext […]" (no
+/// orientation for a point robot) and "criteria: … (tensions: METHOD)"; `forces` is the number
+/// of force components of the wrench (the rest are moments).
+pub fn print_header(
+    robot: &str,
+    what: &str,
+    orientation: &[f64],
+    w_ext: &[f64],
+    forces: usize,
+    criteria: &[String],
+    method: &str,
+) {
+    println!(
+        "robot {robot}: {what}{}, w_ext {}",
+        at_orientation(orientation),
+        super::wrench_text(w_ext, forces)
+    );
+    println!("criteria: {} (tensions: {method})", criteria.join(", "));
+}
+
 /// Box as JSON numbers.
 pub fn box_json(r: &Region, dim: usize) -> Value {
     json!(box_numbers(r, dim))
+}
+
+/// "vertices within 2.0e-8 m of the boundary": the placement of a mesh's vertices (ε/2 along
+/// their grid edge), as the text, the figures and the HTML legend say it.
+pub fn vertex_placement(tolerance: f64) -> String {
+    format!("vertices within {:.1e} m of the boundary", 0.5 * tolerance)
 }

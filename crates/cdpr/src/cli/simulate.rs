@@ -1,10 +1,8 @@
 //! `cdpr simulate`: forward dynamics of the platform (issue 28).
 
-use super::{CliError, Numbers, load_robot, pose};
-use cdpr::dynamics::{Drive, Integrator, Simulator, State, TimedSample};
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::simulate::{IntegratorName, SimulateRequest, TensionProfile};
 use cdpr::plot::{LinePlot, Series};
-use nalgebra::Vector6;
-use serde_json::json;
 use std::path::PathBuf;
 
 /// Forward dynamics: the motion of the platform from a pose and a twist under given cable
@@ -78,148 +76,84 @@ pub enum IntegratorArg {
     Rk45,
 }
 
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON or a table (and the plot).
 pub fn run(args: Args) -> Result<(), CliError> {
-    let robot = load_robot(&args.robot)?;
-    robot.require_no_passive_springs("simulate")?;
-    let motion = robot.robot.motion();
-    let n = robot.robot.cable_count();
-    let body = super::time_law::rigid_body(&robot)?;
-    let start_pose = pose(&robot, &args.from)?;
-    let twist = match &args.velocity {
-        Some(v) => {
-            if v.len() != motion.dof() {
-                return Err(format!(
-                    "--velocity: {} numbers for a {} platform, expected {}",
-                    v.len(),
-                    motion.name(),
-                    motion.dof()
-                )
-                .into());
-            }
-            if let Some(x) = v.iter().find(|x| !x.is_finite()) {
-                return Err(format!("--velocity: {x} is not finite").into());
-            }
-            cdpr::dynamics::rigid_body::embed(motion, v)
-        }
-        None => Vector6::zeros(),
-    };
-    let drive = match (
-        &args.tensions,
-        &args.tension_profile,
-        &args.unstrained_lengths,
-    ) {
-        (Some(t), _, _) => Drive::Tensions(t.0.clone()),
-        (None, Some(file), _) => tension_profile(file)?,
-        (None, None, Some(l0)) => {
-            let es = robot.axial_stiffness.clone().ok_or(
-                "--unstrained-lengths needs `axial_stiffness` (E·S, N) on every cable of the robot file",
-            )?;
-            Drive::Elastic {
-                unstrained_lengths: l0.0.clone(),
-                axial_stiffness: es,
-                damping: vec![args.damping; n],
-            }
-        }
-        (None, None, None) => {
-            return Err(
-                "give the drive: --tensions T1,…,Tn, --tension-profile FILE.json or --unstrained-lengths L1,…,Ln"
-                    .into(),
-            );
-        }
-    };
-    let external = super::wrench(&robot, args.wrench.as_deref())?;
-    let mut sim = Simulator::new(&robot.robot, body, drive, external.as_slice())?;
-    let integrator = match args.integrator {
-        IntegratorArg::Rk4 => Integrator::Rk4,
-        IntegratorArg::Rk45 => Integrator::Rk45 {
-            tolerance: args.tolerance,
+    let request = SimulateRequest {
+        robot: request_robot(&args.robot)?,
+        from: args.from.0,
+        velocity: args.velocity.map(|v| v.0),
+        duration: args.duration,
+        dt: args.dt,
+        tensions: args.tensions.map(|t| t.0),
+        tension_profile: args
+            .tension_profile
+            .as_deref()
+            .map(tension_profile)
+            .transpose()?,
+        unstrained_lengths: args.unstrained_lengths.map(|l| l.0),
+        damping: args.damping,
+        integrator: match args.integrator {
+            IntegratorArg::Rk4 => IntegratorName::Rk4,
+            IntegratorArg::Rk45 => IntegratorName::Rk45,
         },
+        tolerance: args.tolerance,
+        wrench: args.wrench.map(|w| w.0),
     };
-    let run = sim.run(
-        State::new(&start_pose, twist),
-        args.duration,
-        args.dt,
-        integrator,
-    )?;
-    let poses: Vec<Vec<f64>> = run
-        .states
-        .iter()
-        .map(|s| s.pose().coordinates(motion))
-        .collect();
+    let r = request.run()?;
     if let Some(file) = &args.plot {
-        cdpr::plot::save(&pose_plot(&robot, &run.t, &poses), file)?;
+        cdpr::plot::save(&pose_plot(&request.robot, &r.t, &r.poses), file)?;
     }
     if args.json {
-        super::print_json(&json!({
-            "robot": robot.name,
-            "integrator": match args.integrator { IntegratorArg::Rk4 => "rk4", IntegratorArg::Rk45 => "rk45" },
-            "t": run.t,
-            "poses": poses,
-            "velocities": run.states.iter().map(|s| TimedSample::components(motion, &s.twist)).collect::<Vec<_>>(),
-            "accelerations": run.accelerations.iter().map(|a| TimedSample::components(motion, a)).collect::<Vec<_>>(),
-            "tensions": run.tensions.chunks(n).map(<[f64]>::to_vec).collect::<Vec<_>>(),
-            "steps": run.steps,
-            "rejected_steps": run.rejected,
-        }))
-    } else {
-        println!(
-            "robot {}, {} steps ({}), {} s",
-            robot.name,
-            run.steps,
-            match args.integrator {
-                IntegratorArg::Rk4 => "RK4".to_string(),
-                IntegratorArg::Rk45 => format!("RK45, {} rejected", run.rejected),
-            },
-            args.duration
-        );
-        println!("pose coordinates (m, rad) against time t (s)");
-        let every = run.t.len().div_ceil(20).max(1);
-        for (k, (t, q)) in run.t.iter().zip(&poses).enumerate() {
-            if k % every == 0 || k + 1 == run.t.len() {
-                let cells: Vec<String> = q.iter().map(|v| format!("{v:>10.5}")).collect();
-                println!("{t:>9.4}  {}", cells.join(" "));
-            }
-        }
-        Ok(())
+        return print_report(&r);
     }
+    println!(
+        "robot {}, {} steps ({}), {} s",
+        r.robot,
+        r.steps,
+        match request.integrator {
+            IntegratorName::Rk4 => "RK4".to_string(),
+            IntegratorName::Rk45 => format!("RK45, {} rejected", r.rejected_steps),
+        },
+        args.duration
+    );
+    println!("pose coordinates (m, rad) against time t (s)");
+    let every = r.t.len().div_ceil(20).max(1);
+    for (k, (t, q)) in r.t.iter().zip(&r.poses).enumerate() {
+        if k % every == 0 || k + 1 == r.t.len() {
+            let cells: Vec<String> = q.iter().map(|v| format!("{v:>10.5}")).collect();
+            println!("{t:>9.4}  {}", cells.join(" "));
+        }
+    }
+    Ok(())
 }
 
 /// `t` and `tensions` of a trajectory JSON.
-fn tension_profile(file: &std::path::Path) -> Result<Drive, CliError> {
+fn tension_profile(file: &std::path::Path) -> Result<TensionProfile, CliError> {
     let text = std::fs::read_to_string(file)
         .map_err(|e| format!("{}: cannot read: {e}", file.display()))?;
     let v: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
-    let times: Vec<f64> = serde_json::from_value(v["t"].clone()).map_err(|e| {
+    let t: Vec<f64> = serde_json::from_value(v["t"].clone()).map_err(|e| {
         format!(
             "{}: `t` must be an array of times in s: {e}",
             file.display()
         )
     })?;
-    let raw: Vec<Option<Vec<f64>>> =
+    let tensions: Vec<Option<Vec<f64>>> =
         serde_json::from_value(v["tensions"].clone()).map_err(|e| {
             format!(
                 "{}: `tensions` must be an array of arrays of N: {e}",
                 file.display()
             )
         })?;
-    let tensions = raw
-        .into_iter()
-        .enumerate()
-        .map(|(k, t)| {
-            t.ok_or_else(|| {
-                format!(
-                    "{}: tensions[{k}] is null (an infeasible sample): no tension to apply",
-                    file.display()
-                )
-            })
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    Ok(Drive::Profile { times, tensions })
+    Ok(TensionProfile {
+        t,
+        tensions,
+        file: Some(file.display().to_string()),
+    })
 }
 
-fn pose_plot(robot: &cdpr::RobotDescription, t: &[f64], poses: &[Vec<f64>]) -> LinePlot {
+fn pose_plot(robot: &cdpr::api::Robot, t: &[f64], poses: &[Vec<f64>]) -> LinePlot {
     let names: &[&str] = match robot.robot.motion() {
         cdpr::kinematics::MotionPattern::Point2 => &["x (m)", "y (m)"],
         cdpr::kinematics::MotionPattern::Planar => &["x (m)", "y (m)", "φ (rad)"],

@@ -3,9 +3,10 @@
 
 use super::criteria::{CriteriaArgs, CriteriaSetup};
 use super::dextrous::Range;
-use super::region::{Dextrous, box_json, dextrous, region, save_plot, workspace_plot};
+use super::region::{box_json, region, save_plot, workspace_plot};
 use super::{CliError, Numbers, load_robot, print_json};
 use cdpr::RobotDescription;
+use cdpr::api::{Dextrous, dextrous};
 use cdpr::kinematics::{MotionPattern, Pose};
 use cdpr::tension::Method;
 use cdpr::workspace::synthesis::{
@@ -129,8 +130,9 @@ impl Problem<'_> {
             &Vector3::z_axis(),
             &self.range,
             &self.grid,
-            &ProgressBar::hidden(),
+            &|| {},
         )
+        .map_err(CliError::from)
     }
 }
 

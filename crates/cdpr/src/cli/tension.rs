@@ -3,7 +3,7 @@
 use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_report};
 use cdpr::RobotDescription;
 use cdpr::api::{BindingReport, Robot, TensionReport, TensionRequest};
-use cdpr::tension::{Method, SotdaSettings};
+use cdpr::tension::Method;
 use std::path::PathBuf;
 
 /// Cable tensions t with W t + w_ext = 0 and t_min ≤ t ≤ t_max at one pose.
@@ -118,39 +118,20 @@ fn print_binding(c: &BindingReport) {
 }
 
 /// `--nu`, `--direction` and `--full` belong to SOTDA: with another method they would be
-/// ignored, so they are a usage error (exit 2) naming the method.
+/// ignored, so they are a usage error (exit 2) naming the method
+/// ([`cdpr::api::refuse_sotda_options`]).
 pub fn refuse_sotda_options(
     method: Method,
     nu: Option<f64>,
     direction: bool,
     full: bool,
 ) -> Result<(), CliError> {
-    if method == Method::Sotda {
-        return Ok(());
-    }
-    let given: Vec<&str> = [
-        ("--nu", nu.is_some()),
-        ("--direction", direction),
-        ("--full", full),
-    ]
-    .into_iter()
-    .filter_map(|(name, set)| set.then_some(name))
-    .collect();
-    match given.as_slice() {
-        [] => Ok(()),
-        names => Err(format!(
-            "{} {} of the sotda method only, and the method is {method} (add --method \
-             sotda, or leave {} out)",
-            names.join(", "),
-            if names.len() == 1 {
-                "is an option"
-            } else {
-                "are options"
-            },
-            if names.len() == 1 { "it" } else { "them" }
-        )
-        .into()),
-    }
+    Ok(cdpr::api::refuse_sotda_options(
+        method,
+        nu.is_some(),
+        direction,
+        full,
+    )?)
 }
 
 /// `--sotda-search`: the points of the feasible polygon SOTDA evaluates ([`SotdaVariant`]).
@@ -178,15 +159,6 @@ impl SotdaSearch {
             SotdaSearch::Full => cdpr::api::SotdaSearch::Full,
         }
     }
-}
-
-/// SOTDA settings from the command line (shared with the trajectory command).
-pub fn sotda_settings(
-    direction: Option<&[f64]>,
-    nu: f64,
-    search: SotdaSearch,
-) -> Result<SotdaSettings, CliError> {
-    Ok(cdpr::api::sotda_settings(direction, nu, search.to_api())?)
 }
 
 /// Runs the command: the request, its report, rendered as JSON or a table.

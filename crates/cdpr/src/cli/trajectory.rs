@@ -12,15 +12,13 @@
 //!
 //! Between waypoints the wrench is interpolated linearly in the path parameter s.
 
-use super::tension::{SotdaSearch, sotda_settings};
-use super::{CliError, Numbers, check_method, load_robot, pose, print_json, wrench};
-use cdpr::kinematics::{Path, PathSample, Pose, Sampling};
-use cdpr::plot::{LinePlot, Series};
-use cdpr::tension::profile::{TensionProfile, WaypointWrenches, tension_profile};
-use cdpr::tension::{Method, TensionSolver};
-use nalgebra::DVector;
-use serde::Deserialize;
-use serde_json::json;
+use super::tension::SotdaSearch;
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::cable_model::CableModelName;
+use cdpr::api::trajectory::{PathReport, TrajectoryReport, TrajectoryRequest, parse_waypoints};
+use cdpr::api::{MethodSettings, Robot};
+use cdpr::plot::LinePlot;
+use cdpr::tension::Method;
 use std::path::PathBuf;
 
 /// Tensions along a path: profiles, infeasible samples, largest jumps.
@@ -116,284 +114,147 @@ pub struct Args {
     timing: super::time_law::TimingArgs,
 }
 
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct WaypointFile {
-    waypoints: Vec<Waypoint>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Waypoint {
-    pose: Vec<f64>,
-    wrench: Option<Vec<f64>>,
-    /// The waypoint's time (s) for --time-law.
-    time: Option<f64>,
-}
-
-/// Runs the command.
+/// Runs the command: the request, its report, rendered as JSON, tables and plots.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let robot = load_robot(&args.robot)?;
-    check_method(&robot, args.method)?;
-    super::tension::refuse_sotda_options(
+    let request = request(&args)?;
+    super::time_law::check_outputs(&args.timing, &request.robot)?;
+    match request.run()? {
+        TrajectoryReport::Path(r) => render(&args, &request.robot, &r),
+        TrajectoryReport::Timed(r) => {
+            let out = super::time_law::Outputs {
+                timing: &args.timing,
+                plot: args.plot.as_deref(),
+                json: args.json,
+            };
+            super::time_law::render(&out, &request.robot, &r)
+        }
+    }
+}
+
+/// The request of the command line.
+fn request(args: &Args) -> Result<TrajectoryRequest, CliError> {
+    cdpr::api::refuse_sotda_options(
         args.method,
-        args.nu,
+        args.nu.is_some(),
         args.direction.is_some(),
         args.full,
     )?;
-    let motion = robot.robot.motion();
-    let default_wrench = wrench(&robot, args.wrench.as_deref())?;
-    let mut times: Option<Vec<f64>> = None;
-    let (poses, wrenches): (Vec<Pose>, Vec<DVector<f64>>) = match (&args.waypoints, &args.from) {
-        (Some(file), _) => {
+    let robot = request_robot(&args.robot)?;
+    let waypoints = match &args.waypoints {
+        Some(file) => {
             let text = std::fs::read_to_string(file)
                 .map_err(|e| format!("{}: cannot read: {e}", file.display()))?;
-            let parsed: WaypointFile =
-                toml::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
-            if parsed.waypoints.len() < 2 {
-                return Err(format!("{}: needs at least two [[waypoints]]", file.display()).into());
-            }
-            let mut poses = Vec::new();
-            let mut wrenches = Vec::new();
-            times = super::time_law::waypoint_times(file, &parsed.waypoints, |w| w.time)?;
-            for (k, w) in parsed.waypoints.iter().enumerate() {
-                poses.push(
-                    pose(&robot, &w.pose)
-                        .map_err(|e| format!("{}: waypoints[{k}].pose: {e}", file.display()))?,
-                );
-                wrenches.push(match &w.wrench {
-                    Some(v) => wrench(&robot, Some(v))
-                        .map_err(|e| format!("{}: waypoints[{k}].wrench: {e}", file.display()))?,
-                    None => default_wrench.clone(),
-                });
-            }
-            (poses, wrenches)
+            Some(parse_waypoints(&text, &file.display().to_string())?)
         }
-        (None, Some(from)) => {
-            let to = args.to.as_ref().ok_or("--from needs --to")?;
-            (
-                vec![pose(&robot, from)?, pose(&robot, to)?],
-                vec![default_wrench.clone(), default_wrench.clone()],
-            )
-        }
-        (None, None) => {
-            return Err("give the path: --from POSE --to POSE, or --waypoints FILE".into());
-        }
-    };
-    let sampling = match (args.samples, args.step) {
-        (Some(n), _) => Sampling::Count(n),
-        (None, Some(h)) => Sampling::Step(h),
-        (None, None) => Sampling::Count(101),
-    };
-    if let Sampling::Count(n) = sampling
-        && n > 10_000_000
-    {
-        return Err("--samples: at most 10 000 000".into());
-    }
-    if !(args.jump_ratio.is_finite() && args.jump_ratio > 1.0) {
-        return Err("--jump-ratio must be a finite number > 1".into());
-    }
-    let path = Path::new(motion, poses.clone())?;
-    let samples = path.sample(sampling)?;
-    let way = WaypointWrenches::new(motion, &poses, wrenches.clone())?;
-    let es = robot.axial_stiffness.clone();
-    let mut solver = if args.method == Method::Sotda {
-        if es.is_none() {
-            return Err(
-                "sotda needs `axial_stiffness` (E·S, N) on every cable of the robot file".into(),
-            );
-        }
-        TensionSolver::sotda(sotda_settings(
-            args.direction.as_deref(),
-            args.nu.unwrap_or(1.0),
-            SotdaSearch::from_args(args.sotda_search, args.full),
-        )?)
-    } else {
-        TensionSolver::new(args.method)
-    };
-    if args.timing.time_law.is_some() {
-        return super::time_law::run(
-            &args.timing,
-            super::time_law::TimedRequest {
-                robot: &robot,
-                poses,
-                wrenches,
-                times,
-                solver: &mut solver,
-                method: args.method.name(),
-                axial_stiffness: es.as_deref(),
-                json: args.json,
-                plot: args.plot.as_deref(),
-            },
-        );
-    }
-    // Weight and passive springs at each sample (checked here: a spring of zero length is an
-    // error naming the sample, not a panic in the profile).
-    for sample in &samples {
-        robot
-            .load_wrench(&sample.pose)
-            .map_err(|e| format!("at s = {}: {e}", sample.s))?;
-    }
-    let gravity = |p: &Pose| robot.load_wrench(p).expect("checked at every sample above");
-    let profile = tension_profile(
-        &robot.robot,
-        &samples,
-        &robot.bounds,
-        &mut solver,
-        es.as_deref(),
-        |sample: &PathSample| way.at(sample.s) + gravity(&sample.pose),
-    )?;
-    let discontinuities = profile.discontinuities(args.jump_ratio);
-    let compensation = match args.cable_model.catenaries(&robot)? {
         None => None,
-        Some(cables) => {
-            let w = |k: usize| way.at(samples[k].s) + gravity(&samples[k].pose);
-            let poses: Vec<Pose> = samples.iter().map(|p| p.pose).collect();
-            let c = super::cable_model::compensation(&robot, &cables, args.method, &poses, w)?;
-            Some((args.cable_model.model().name(), c))
-        }
     };
-    if let Some(file) = &args.plot {
-        cdpr::plot::save(&profile_plot(&robot, &args, &profile), file)?;
-    }
-    if args.json {
-        let mut v = json!({
-            "robot": robot.name,
-            "method": args.method.name(),
-            "nu": (args.method == Method::Sotda).then_some(args.nu.unwrap_or(1.0)),
-            "s": profile.s,
-            "poses": samples.iter().map(|p| p.pose.coordinates(motion)).collect::<Vec<_>>(),
-            "tensions": profile.tensions.iter().map(|t| t.as_ref().map(|t| t.as_slice().to_vec())).collect::<Vec<_>>(),
-            "reasons": profile.reasons,
-            "feasible_count": profile.feasible_count(),
-            "max_jump": profile.max_jump,
-            "discontinuities": discontinuities,
-            "t_min": robot.bounds.min().as_slice(),
-            "t_max": robot.bounds.max().as_slice(),
-        });
-        if let Some((name, (lengths, tensions, reasons))) = compensation {
-            v["cable_model"] = json!(name);
-            v["unstrained_lengths"] = json!(lengths);
-            v["platform_end_tensions"] = json!(tensions);
-            v["cable_model_reasons"] = json!(reasons);
-        }
-        print_json(&v)
-    } else {
-        print_table(&robot, &args, &profile, &samples, &discontinuities);
-        if let Some((name, (lengths, _, reasons))) = compensation {
-            println!("unstrained lengths L0_i in m ({name} cables) along s");
-            for (k, (l, r)) in lengths.iter().zip(&reasons).enumerate() {
-                match l {
-                    Some(l) => println!("{:>8.4}  {}", profile.s[k], super::nums(l)),
-                    None => println!("{:>8.4}  {}", profile.s[k], r.as_deref().unwrap_or("")),
-                }
-            }
-        }
-        Ok(())
-    }
+    let mut request = TrajectoryRequest::segment(robot, Vec::new(), Vec::new());
+    request.from = args.from.as_ref().map(|p| p.0.clone());
+    request.to = args.to.as_ref().map(|p| p.0.clone());
+    request.waypoints = waypoints;
+    request.waypoints_file = args.waypoints.as_ref().map(|f| f.display().to_string());
+    request.samples = args.samples;
+    request.step = args.step;
+    request.wrench = args.wrench.as_ref().map(|w| w.0.clone());
+    request.method = args.method;
+    request.options = MethodSettings {
+        direction: args.direction.as_ref().map(|d| d.0.clone()),
+        nu: args.nu,
+        sotda_search: SotdaSearch::from_args(args.sotda_search, args.full).to_api(),
+        peer: Default::default(),
+    };
+    request.jump_ratio = args.jump_ratio;
+    request.timing = args.timing.settings();
+    request.cable_model = match args.cable_model.cable_model {
+        super::cable_model::CableModelName::Straight => CableModelName::Straight,
+        super::cable_model::CableModelName::Elastic => CableModelName::Elastic,
+        super::cable_model::CableModelName::Catenary => CableModelName::Catenary,
+    };
+    Ok(request)
 }
 
-fn print_table(
-    robot: &cdpr::RobotDescription,
-    args: &Args,
-    profile: &TensionProfile,
-    samples: &[PathSample],
-    discontinuities: &[usize],
-) {
+/// The untimed profile: the plot, then JSON or the tables.
+fn render(args: &Args, robot: &Robot, r: &PathReport) -> Result<(), CliError> {
+    if let Some(file) = &args.plot {
+        cdpr::plot::save(&profile_plot(robot, r), file)?;
+    }
+    if args.json {
+        return print_report(r);
+    }
+    print_table(robot, r, args.jump_ratio);
+    if let (Some(name), Some(lengths), Some(reasons)) = (
+        &r.cable_model,
+        &r.unstrained_lengths,
+        &r.cable_model_reasons,
+    ) {
+        println!("unstrained lengths L0_i in m ({name} cables) along s");
+        for (k, (l, why)) in lengths.iter().zip(reasons).enumerate() {
+            match l {
+                Some(l) => println!("{:>8.4}  {}", r.s[k], super::nums(l)),
+                None => println!("{:>8.4}  {}", r.s[k], why.as_deref().unwrap_or("")),
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The tension table along s (at most ~40 rows, every infeasible sample), jumps, flagged steps.
+fn print_table(robot: &Robot, r: &PathReport, jump_ratio: f64) {
     let n = robot.robot.cable_count();
+    let motion = robot.robot.motion();
     println!(
         "robot {}, method {}, {} samples, {} feasible",
         robot.name,
-        args.method.name(),
-        profile.s.len(),
-        profile.feasible_count()
+        r.method,
+        r.s.len(),
+        r.feasible_count
     );
-    let head: Vec<String> = (1..=n)
-        .map(|i| format!("{:>10}", format!("t{i}")))
-        .collect();
     println!("tensions t_i in N along the path parameter s ∈ [0, 1]");
-    println!("{:>8}  {}", "s", head.join(" "));
-    // At most ~40 rows in the table: every k-th sample, plus every infeasible one.
-    let every = profile.s.len().div_ceil(40).max(1);
-    for (k, (s, t)) in profile.s.iter().zip(&profile.tensions).enumerate() {
+    println!("{:>8}  {}", "s", super::time_law::cable_head(n));
+    let every = r.s.len().div_ceil(40).max(1);
+    for (k, (s, t)) in r.s.iter().zip(&r.tensions).enumerate() {
         match t {
-            Some(t) if k % every == 0 || k + 1 == profile.s.len() => {
-                let cells: Vec<String> = t.iter().map(|v| format!("{v:>10.4}")).collect();
-                println!("{s:>8.4}  {}", cells.join(" "));
+            Some(t) if k % every == 0 || k + 1 == r.s.len() => {
+                println!("{s:>8.4}  {}", super::time_law::cells(t));
             }
             Some(_) => {}
             None => println!(
                 "{s:>8.4}  infeasible at {}: {}",
-                super::pose_text(
-                    &samples[k].pose.coordinates(robot.robot.motion()),
-                    robot.robot.motion().space_dim()
-                ),
-                profile.reasons[k].as_deref().unwrap_or("")
+                super::pose_text(&r.poses[k], motion.space_dim()),
+                r.reasons[k].as_deref().unwrap_or("")
             ),
         }
     }
-    let jumps: Vec<String> = profile
-        .max_jump
-        .iter()
-        .map(|v| format!("{v:>10.4}"))
-        .collect();
-    println!("{:>8}  {}", "max jump", jumps.join(" "));
-    if discontinuities.is_empty() {
-        println!("no discontinuity flagged (jump ratio {})", args.jump_ratio);
+    println!("{:>8}  {}", "max jump", super::time_law::cells(&r.max_jump));
+    if r.discontinuities.is_empty() {
+        println!("no discontinuity flagged (jump ratio {jump_ratio})");
     } else {
-        let at: Vec<String> = discontinuities
+        let at: Vec<String> = r
+            .discontinuities
             .iter()
-            .map(|&k| format!("{:.4}→{:.4}", profile.s[k], profile.s[k + 1]))
+            .map(|&k| format!("{:.4}→{:.4}", r.s[k], r.s[k + 1]))
             .collect();
         println!("discontinuities flagged at s = {}", at.join(", "));
     }
 }
 
 /// One line per cable against s, NaN (a gap) where infeasible, dashed t_min / t_max.
-pub fn profile_plot(
-    robot: &cdpr::RobotDescription,
-    args: &Args,
-    profile: &TensionProfile,
-) -> LinePlot {
-    let n = robot.robot.cable_count();
-    let series = (0..n)
-        .map(|i| Series {
-            label: format!("t{}", i + 1),
-            points: profile
-                .s
-                .iter()
-                .zip(&profile.tensions)
-                .map(|(&s, t)| (s, t.as_ref().map_or(f64::NAN, |t| t[i])))
-                .collect(),
-        })
-        .collect();
-    let mut reference_lines = Vec::new();
-    let (lo, hi) = (robot.bounds.min(), robot.bounds.max());
-    if lo.iter().all(|&v| v == lo[0]) {
-        reference_lines.push((lo[0], format!("t_min = {} N", cdpr::plot::tick(lo[0]))));
-    }
-    if hi.iter().all(|&v| v == hi[0]) && hi[0].is_finite() {
-        reference_lines.push((hi[0], format!("t_max = {} N", cdpr::plot::tick(hi[0]))));
-    }
-    let nu = if args.method == Method::Sotda {
-        format!(", ν = {}", args.nu.unwrap_or(1.0))
-    } else {
-        String::new()
-    };
+pub fn profile_plot(robot: &Robot, r: &PathReport) -> LinePlot {
+    let nu = r.nu.map_or(String::new(), |nu| format!(", ν = {nu}"));
     LinePlot {
         title: format!(
             "{}: tensions along the path ({}{nu}; {} of {} samples feasible)",
             robot.name,
-            args.method.name(),
-            profile.feasible_count(),
-            profile.s.len()
+            r.method,
+            r.feasible_count,
+            r.s.len()
         ),
         labels: (
             "path parameter s (0 at the first waypoint, 1 at the last)".into(),
             "cable tension (N)".into(),
         ),
-        series,
-        reference_lines,
+        series: super::time_law::tension_series(robot.robot.cable_count(), &r.s, &r.tensions),
+        reference_lines: super::time_law::bound_lines(robot),
         gap_label: Some("infeasible poses".into()),
     }
 }

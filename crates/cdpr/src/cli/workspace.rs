@@ -3,22 +3,15 @@
 //! `criteria` (criteria from the command line) and `region` (boxes, grids with a progress bar,
 //! plots).
 
-use super::criteria::{CriteriaArgs, CriteriaSetup, default_method};
-use super::region::{
-    box_json, draw_pose, is_html, plot_title, region, resolution, rotation, save_plot,
-    workspace_plot,
+use super::criteria::CriteriaArgs;
+use super::region::is_html;
+use super::{CliError, Numbers, request_robot};
+use cdpr::api::{
+    ChordRequest, MeshRequest, OrientationWorkspaceRequest, SectionRequest, WorkspaceCriteria,
+    WorkspaceRequest,
 };
-use super::workspace_mesh::Context;
-use super::{CliError, Numbers, load_robot, print_json, request_robot};
-use cdpr::RobotDescription;
-use cdpr::api::WorkspaceRequest;
-use cdpr::kinematics::{MotionPattern, Pose};
-use cdpr::workspace::{
-    ChordSettings, ChordWorkspace, OrientationSet, OrientationWorkspaceKind, Region,
-    VolumeConvention, chord_workspace,
-};
-use serde_json::json;
-use std::path::{Path, PathBuf};
+use cdpr::workspace::VolumeConvention;
+use std::path::PathBuf;
 
 /// The long help of the command (`--help`), also its documentation.
 const LONG_HELP: &str = "\
@@ -170,8 +163,8 @@ pub struct Args {
     /// Spatial robots: a sampled orientation set (degrees), e.g.
     /// `euler:rx=-10..10,ry=-10..10,rz=-20..20,n=5` or `tilt:20,torsion=-30..30,n=5`; the
     /// workspace is then the total-orientation or maximal one (--kind).
-    #[arg(long, conflicts_with = "orientation")]
-    orientations: Option<OrientationSet>,
+    #[arg(long, conflicts_with = "orientation", value_parser = super::orientations::set_spec)]
+    orientations: Option<String>,
     /// With --orientations: `total` (every orientation feasible; default) or `maximal` (some).
     #[arg(long, value_parser = ["total", "maximal"], requires = "orientations")]
     kind: Option<String>,
@@ -180,119 +173,80 @@ pub struct Args {
     json: bool,
 }
 
-/// The options that `--boundary mesh` and `--section` check.
-fn args_mesh_view(args: &Args) -> super::workspace_mesh::Options<'_> {
-    super::workspace_mesh::Options {
-        boundary: &args.boundary,
-        mesh: args.mesh.as_deref(),
-        points: args.points.as_deref(),
-        section: args.section.as_deref(),
-    }
-}
-
-/// Runs the command.
+/// Runs the command: parse → request → run → render (modules `workspace_grid`,
+/// `workspace_mesh`, `workspace_chord`, `orientations`).
 pub fn run(args: Args) -> Result<(), CliError> {
-    if args.boundary == "grid" && args.section.is_none() && args.orientations.is_none() {
-        return run_grid(&args);
-    }
-    let desc = load_robot(&args.robot)?;
-    let robot = &desc.robot;
-    let motion = robot.motion();
-    let dim = motion.space_dim();
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(robot));
-    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
-    let rot = rotation(motion, args.orientation.as_deref())?;
-    let region = region(robot, args.area.as_deref(), "--box")?;
-    let m = resolution(args.grid, dim, 50)?;
-    super::workspace_mesh::check_options(&args_mesh_view(&args), motion)?;
+    super::workspace_mesh::check_options(
+        &args.boundary,
+        args.mesh.as_deref(),
+        args.points.as_deref(),
+        args.section.as_deref(),
+    )?;
     if let Some(set) = &args.orientations {
-        return run_orientations(&args, &desc, &setup, set, &region, m);
+        return run_orientations(&args, set);
     }
-    let eval = setup.evaluator(&desc, robot.clone(), &rot)?;
-    let w_ext = setup.external_wrench(&desc, &rot)?;
-    let orientation = match (&args.orientation, motion) {
-        (Some(o), _) => o.0.clone(),
-        (None, MotionPattern::Planar) => vec![0.0],
-        (None, MotionPattern::Spatial) => vec![0.0; 3],
-        (None, _) => vec![],
-    };
-    if let Some(p) = &args.plot
-        && is_html(p)
-        && (dim != 3 || args.boundary == "chord")
-    {
-        return Err(format!(
-            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
-                 use .svg or .png",
-            p.display()
-        )
-        .into());
-    }
-    let context = super::workspace_mesh::Context {
-        desc: &desc,
-        setup: &setup,
-        eval: &eval,
-        rotation: &rot,
-        orientation: &orientation,
-        w_ext: w_ext.as_slice(),
-        region: &region,
-        m,
-        volume_convention: args.volume_convention,
-        draw_pose: args.draw_pose.as_deref(),
-        plot: args.plot.as_deref(),
-        json: args.json,
+    let robot = request_robot(&args.robot)?;
+    let (draw_pose, plot, json) = (args.draw_pose.as_deref(), args.plot.as_deref(), args.json);
+    let chord_view = super::workspace_chord::View {
+        draw_pose,
+        plot,
+        json,
     };
     if let Some(section) = &args.section {
-        let section = super::workspace_mesh::parse_section(section, &region)?;
-        return super::workspace_mesh::run_section(&context, section, args.chord);
+        let mut request = SectionRequest::new(robot, section.parse()?);
+        (request.criteria, request.orientation, request.area) = common(&args);
+        (request.grid, request.chord) = (args.grid, args.chord);
+        return super::workspace_chord::run_section(&request, &chord_view);
     }
-    if args.boundary == "mesh" {
-        return super::workspace_mesh::run_mesh(
-            &context,
-            args.mesh.as_deref(),
-            args.points.as_deref(),
-        );
+    match args.boundary.as_str() {
+        "mesh" => {
+            let mut request = MeshRequest::new(robot);
+            (request.criteria, request.orientation, request.area) = common(&args);
+            (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+            let view = super::workspace_mesh::View {
+                draw_pose,
+                plot,
+                mesh: args.mesh.as_deref(),
+                points: args.points.as_deref(),
+                json,
+            };
+            super::workspace_mesh::run(&request, &view)
+        }
+        "chord" => {
+            let mut request = ChordRequest::new(robot);
+            (request.criteria, request.orientation, request.area) = common(&args);
+            (request.grid, request.chord) = (args.grid, args.chord);
+            super::workspace_chord::run_chord(&request, &chord_view)
+        }
+        _ => run_grid(&args, robot),
     }
-    let pose = if args.plot.is_some() {
-        Some(draw_pose(robot, args.draw_pose.as_deref(), &region, &rot)?)
-    } else {
-        None
-    };
-    run_chord(&args, &context, pose.as_ref())?;
-    if let (Some(p), false) = (&args.plot, args.json) {
-        println!("plot written to {}", p.display());
-    }
-    Ok(())
 }
 
-/// `--boundary grid` (the default) at one orientation: parse → request → run → render
-/// (module `workspace_grid`).
-fn run_grid(args: &Args) -> Result<(), CliError> {
-    let robot = request_robot(&args.robot)?;
-    let motion = robot.robot.motion();
-    super::workspace_mesh::check_options(&args_mesh_view(args), motion)?;
-    if let Some(p) = &args.plot
-        && is_html(p)
-        && motion.space_dim() != 3
+/// The criteria, orientation and box of every request of the command.
+fn common(args: &Args) -> (WorkspaceCriteria, Option<Vec<f64>>, Option<Vec<f64>>) {
+    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
+    (
+        args.criteria.to_request(),
+        numbers(&args.orientation),
+        numbers(&args.area),
+    )
+}
+
+/// `--boundary grid` (the default) at one orientation (module `workspace_grid`).
+fn run_grid(args: &Args, robot: cdpr::api::Robot) -> Result<(), CliError> {
+    if let Some(p) = args.plot.as_deref().filter(|p| is_html(p))
+        && robot.robot.motion().space_dim() != 3
     {
         return Err(format!(
-            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; \
-                 use .svg or .png",
+            "--plot {}: the HTML viewer shows 3-D workspaces (point3, spatial) on the grid; use \
+             .svg or .png",
             p.display()
         )
         .into());
     }
-    let numbers = |n: &Option<Numbers>| n.as_ref().map(|n| n.0.clone());
-    let request = WorkspaceRequest {
-        robot,
-        criteria: args.criteria.to_request(),
-        orientation: numbers(&args.orientation),
-        area: numbers(&args.area),
-        grid: args.grid,
-        volume_convention: args.volume_convention,
-    };
+    let mut request = WorkspaceRequest::new(robot);
+    (request.criteria, request.orientation, request.area) = common(args);
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
     let view = super::workspace_grid::View {
         draw_pose: args.draw_pose.as_deref(),
         plot: args.plot.as_deref(),
@@ -302,15 +256,9 @@ fn run_grid(args: &Args) -> Result<(), CliError> {
     super::workspace_grid::run(&request, &view)
 }
 
-/// `--orientations`: the workspace over a set of orientations (module `orientations`).
-fn run_orientations(
-    args: &Args,
-    desc: &RobotDescription,
-    setup: &CriteriaSetup,
-    set: &OrientationSet,
-    region: &Region,
-    m: usize,
-) -> Result<(), CliError> {
+/// `--orientations`: the workspace over a set of orientations (an
+/// `OrientationWorkspaceRequest`, rendered by module `orientations`).
+fn run_orientations(args: &Args, set: &str) -> Result<(), CliError> {
     if args.boundary == "chord" {
         return Err(
             "--orientations runs on the grid or the boundary mesh (--boundary grid|mesh)".into(),
@@ -321,170 +269,18 @@ fn run_orientations(
             "--section, --points and --mesh apply to one orientation, not --orientations".into(),
         );
     }
-    let kind = match args.kind.as_deref() {
-        Some("maximal") => OrientationWorkspaceKind::Maximal,
-        _ => OrientationWorkspaceKind::Total,
+    let robot = request_robot(&args.robot)?;
+    let mut request = OrientationWorkspaceRequest::new(robot, set);
+    request.criteria = args.criteria.to_request();
+    (request.kind, request.area) = (args.kind.clone(), common(args).2);
+    (request.grid, request.volume_convention) = (args.grid, args.volume_convention);
+    let view = super::orientations::View {
+        plot: args.plot.as_deref(),
+        draw_pose: args.draw_pose.as_deref(),
+        json: args.json,
     };
     if args.boundary == "mesh" {
-        return super::orientations::run_workspace_mesh(
-            desc,
-            setup,
-            set,
-            kind,
-            region,
-            m,
-            args.plot.as_deref(),
-            args.draw_pose.as_deref(),
-            args.json,
-        );
+        return super::orientations::run_workspace_mesh(&request, &view);
     }
-    super::orientations::run_workspace(
-        desc,
-        setup,
-        set,
-        kind,
-        region,
-        m,
-        args.plot.as_deref(),
-        args.draw_pose.as_deref(),
-        args.json,
-        args.volume_convention,
-    )
-}
-
-/// `--boundary chord`: boundary curves by the chord method (§6.4.3), planar robots only.
-fn run_chord(args: &Args, c: &Context<'_>, pose: Option<&Pose>) -> Result<(), CliError> {
-    let motion = c.desc.robot.motion();
-    if motion.space_dim() != 2 {
-        return Err(format!(
-            "--boundary chord maps boundary curves in the plane; this robot is `{}` \
-             (use --boundary grid)",
-            motion.name()
-        )
-        .into());
-    }
-    let phi = if motion == MotionPattern::Planar {
-        c.orientation.first().copied().unwrap_or(0.0)
-    } else {
-        0.0
-    };
-    // The bisection tolerance ε^u must stay below d/100: the default 1e-8 m, smaller for
-    // chords under 1e-6 m (the user sets d only, so no tolerance of theirs is at fault).
-    let defaults = ChordSettings::default();
-    let settings = ChordSettings {
-        chord: args.chord,
-        seed_resolution: c.m,
-        tolerance: defaults.tolerance.min(args.chord * 1e-3),
-        ..defaults
-    };
-    let ws = chord_workspace(c.eval, phi, c.region, &settings)?;
-    if let (Some(path), Some(pose)) = (&args.plot, pose) {
-        save_chord_plot(args, c, pose, &ws, path)?;
-    }
-    if args.json {
-        return print_json(&super::workspace_mesh::with_chord_fields(
-            json!({
-                "robot": c.desc.name,
-                "method": "chord",
-                "orientation": c.orientation,
-                "external_wrench": c.w_ext,
-                "criteria": c.setup.labels(),
-                "tension_method": c.setup.method.name(),
-                "box": box_json(c.region, 2),
-                "chord": args.chord,
-            }),
-            &ws,
-        ));
-    }
-    print_chord(args, c, &ws);
-    Ok(())
-}
-
-/// Regions (counter-clockwise boundaries) and holes (clockwise) of a chord-method workspace.
-fn regions_and_holes(ws: &ChordWorkspace) -> (usize, usize) {
-    let regions = ws
-        .boundaries
-        .iter()
-        .filter(|b| b.signed_area() > 0.0)
-        .count();
-    (regions, ws.boundaries.len() - regions)
-}
-
-/// The plot of `--boundary chord`: the robot and the boundary curves.
-fn save_chord_plot(
-    args: &Args,
-    c: &Context<'_>,
-    pose: &Pose,
-    ws: &ChordWorkspace,
-    path: &Path,
-) -> Result<(), CliError> {
-    let robot = &c.desc.robot;
-    let polys: Vec<Vec<(f64, f64)>> = ws
-        .boundaries
-        .iter()
-        .map(|b| b.vertices.iter().map(|v| (v[0], v[1])).collect())
-        .collect();
-    let (regions, holes) = regions_and_holes(ws);
-    let (title, setting) = plot_title(
-        &c.desc.name,
-        "constant-orientation workspace (chord method)",
-        robot.motion(),
-        c.orientation,
-        c.w_ext,
-        c.setup.method,
-    );
-    let mut fig = workspace_plot(
-        robot,
-        pose,
-        None,
-        polys,
-        title,
-        vec![
-            setting,
-            format!(
-                "area {:.4}, {regions} region(s), {holes} hole(s), chord d = {}; {}",
-                ws.area,
-                args.chord,
-                c.setup.labels().join(", ")
-            ),
-        ],
-    );
-    fig.anchor_names = cdpr::plot::cable_names(&c.desc.cable_names);
-    save_plot(&fig, path)
-}
-
-/// The text answer of `--boundary chord`.
-fn print_chord(args: &Args, c: &Context<'_>, ws: &ChordWorkspace) {
-    let (regions, holes) = regions_and_holes(ws);
-    println!(
-        "robot {}: chord-method workspace at orientation {} rad, w_ext {}",
-        c.desc.name,
-        super::nums(c.orientation),
-        super::wrench_text(c.w_ext, c.desc.robot.motion().translation_dof())
-    );
-    println!(
-        "criteria: {} (tensions: {})",
-        c.setup.labels().join(", "),
-        c.setup.method.name()
-    );
-    println!(
-        "area {:.6} m²: {regions} region(s), {holes} hole(s), chord d = {} m, {} pose evaluations",
-        ws.area, args.chord, ws.evaluations
-    );
-    for (k, b) in ws.boundaries.iter().enumerate() {
-        println!(
-            "  boundary {}: {} vertices, signed area {:+.6} m², perimeter {:.4} m, {} bifurcation point(s)",
-            k + 1,
-            b.vertices.len(),
-            b.signed_area(),
-            b.perimeter(),
-            b.bifurcations.len()
-        );
-    }
-    if ws.abandoned > 0 {
-        println!(
-            "warning: {} boundary walk(s) abandoned (curves missing)",
-            ws.abandoned
-        );
-    }
+    super::orientations::run_workspace(&request, &view)
 }

@@ -7,7 +7,7 @@ use super::region::{
     save_scene_plot,
 };
 use super::{CliError, print_report};
-use cdpr::api::{WorkspaceReport, WorkspaceRequest, default_method};
+use cdpr::api::{WorkspaceReport, WorkspaceRequest};
 use cdpr::kinematics::Pose;
 use std::path::Path;
 
@@ -99,17 +99,13 @@ fn save_workspace_plot(
             path,
         );
     }
-    let method = request
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(&desc.robot));
     let (title, setting) = plot_title(
         &desc.name,
         "constant-orientation workspace (grid)",
         motion,
         &r.orientation,
         &r.external_wrench,
-        method,
+        &r.tension_method,
     );
     let (what, unit) = measure_name(2);
     save_grid_plot(

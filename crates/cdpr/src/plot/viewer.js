@@ -6,9 +6,11 @@ var CdprViewer = (function () {
   "use strict";
 
   // A renderer on `canvas` for scene S: { anchors, cables, platform, platformPosition, vertices,
-  // triangles, box, cableColours? } (m). `controls` (all optional): the cut-plane `axis` select,
-  // `cut` slider and `cutValue` label, and `onDraw(triangles)` called after each drawing.
-  // Returns { draw(), setScene(S, refit) }.
+  // triangles, box, cableColours?, points?, sections?, planar? } (m). `controls` (all optional):
+  // the cut-plane `axis` select, `cut` slider and `cutValue` label, `onDraw(triangles)` called
+  // after each drawing, and `onPlatformDrag(event)`: when given, a mouse drag that starts on the
+  // platform moves it instead of orbiting (see platformDrag below).
+  // Returns { draw(), setScene(S, refit), screenOf(p), view(), dragDisplacement(dx, dy, axis) }.
   function create(canvas, S, controls) {
     controls = controls || {};
     var ctx = canvas.getContext("2d");
@@ -102,7 +104,8 @@ var CdprViewer = (function () {
       // The frame, the search box and the mesh change with the view only, not with the pose:
       // drawn once into a layer and reused while the platform moves (thousands of triangles).
       var key = [W, H, dpr, view.yaw, view.pitch, view.zoom, axis, cut, JSON.stringify(S.anchors), JSON.stringify(S.box)].join(";");
-      if (!layer || layer.key !== key || layer.vertices !== S.vertices || layer.triangles !== S.triangles) {
+      if (!layer || layer.key !== key || layer.vertices !== S.vertices || layer.triangles !== S.triangles ||
+          layer.points !== S.points || layer.sections !== S.sections) {
         var main = ctx, off = layer ? layer.canvas : document.createElement("canvas");
         off.width = canvas.width; off.height = canvas.height;
         ctx = off.getContext("2d");
@@ -167,9 +170,10 @@ var CdprViewer = (function () {
           ctx.closePath(); ctx.fill();
         });
         section.forEach(function (s) { line(s[0], s[1], "#d62728", 2); });
+        drawPointsAndSections();
 
         ctx = main;
-        layer = { canvas: off, key: key, vertices: S.vertices, triangles: S.triangles };
+        layer = { canvas: off, key: key, vertices: S.vertices, triangles: S.triangles, points: S.points, sections: S.sections };
       }
       ctx.save(); ctx.setTransform(1, 0, 0, 1, 0, 0); ctx.drawImage(layer.canvas, 0, 0); ctx.restore();
 
@@ -212,13 +216,146 @@ var CdprViewer = (function () {
         line(o, e, ["#c0392b", "#27ae60", "#2e62c9"][k], 2);
         var s = project(e); ctx.fillStyle = "#333"; ctx.fillText(name + " (" + (S.units || "m") + ")", s[0] + 3, s[1] - 3);
       });
+      drawDragGuide();
       if (controls.onDraw) controls.onDraw(S.triangles.length);
     }
 
+    // Grid points (S.points: [[x, y, z], …], one colour, S.pointColour) and plane sections
+    // (S.sections: [{ loops: [[[x, y, z], …], …], colour }]: closed boundary loops, filled by
+    // the even-odd rule so holes stay open), drawn into the cached layer.
+    function drawPointsAndSections() {
+      if (S.points && S.points.length) {
+        ctx.fillStyle = S.pointColour || "rgba(31,95,160,0.55)";
+        var r = S.points.length > 4000 ? 1.2 : 1.8;
+        S.points.forEach(function (p) { var q = project(p); ctx.fillRect(q[0] - r, q[1] - r, 2 * r, 2 * r); });
+      }
+      (S.sections || []).forEach(function (sec) {
+        ctx.beginPath();
+        sec.loops.forEach(function (loop) {
+          loop.forEach(function (p, i) { var q = project(p); if (i) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]); });
+          ctx.closePath();
+        });
+        ctx.fillStyle = sec.fill || "rgba(214,39,40,0.22)"; ctx.fill("evenodd");
+        ctx.strokeStyle = sec.colour || "#d62728"; ctx.lineWidth = 2; ctx.stroke();
+      });
+    }
+
+    // ---- dragging the platform (the studio) --------------------------------------------------
+    // A drag that starts on the platform moves it: in the view plane (planar robots, S.planar:
+    // in their plane z = const), or along one world axis: Shift picks the axis whose screen
+    // image follows the mouse best, a held X, Y or Z key names it. controls.onPlatformDrag gets
+    // { phase: "start" | "move" | "end", displacement: [dx, dy, dz] (m, from the drag's start),
+    // axis: null | 0 | 1 | 2 }.
+    function viewBasis() {
+      // The rows of the view rotation of toView: world directions of screen right, screen up
+      // and the line of sight (towards the eye).
+      var cy = Math.cos(view.yaw), sy = Math.sin(view.yaw), ce = Math.cos(view.pitch), se = Math.sin(view.pitch);
+      return { right: [cy, -sy, 0], up: [sy * se, cy * se, ce], depth: [-sy * ce, -cy * ce, se] };
+    }
+    // The world displacement (m) under a mouse motion of (dx, dy) px (screen y down).
+    function dragDisplacement(dx, dy, axis) {
+      var b = viewBasis(), sx = dx / scale, sy = -dy / scale;
+      if (axis !== null && axis !== undefined) {
+        // Along the axis: the displacement whose screen image is nearest the mouse motion. An
+        // axis within ~8° of the line of sight does not move (its screen image is a point).
+        var ax = b.right[axis], ay = b.up[axis], n2 = ax * ax + ay * ay, d = [0, 0, 0];
+        if (n2 > 0.02) d[axis] = (sx * ax + sy * ay) / n2;
+        return d;
+      }
+      var v = [0, 1, 2].map(function (k) { return sx * b.right[k] + sy * b.up[k]; });
+      if (S.planar) {
+        // Slide along the line of sight onto the plane z = const (orthographic projection);
+        // seen edge-on, keep the in-plane part.
+        var nd = b.depth[2];
+        if (Math.abs(nd) > 0.15) {
+          var lam = -v[2] / nd;
+          v = v.map(function (x, k) { return x + lam * b.depth[k]; });
+        }
+        v[2] = 0;
+      }
+      return v;
+    }
+    function bestAxis(dx, dy) {
+      var b = viewBasis(), best = null, score = -1, n = Math.hypot(dx, dy) || 1;
+      for (var k = 0; k < (S.planar ? 2 : 3); k++) {
+        var ax = b.right[k], ay = b.up[k], m = Math.hypot(ax, ay);
+        if (m < 0.15) continue;
+        var c = Math.abs(ax * dx - ay * dy) / (m * n);
+        if (c > score) { score = c; best = k; }
+      }
+      return best;
+    }
+    function overPlatform(x, y) {
+      if (!S.platformPosition) return false;
+      var p = project(S.platformPosition);
+      if (Math.hypot(x - p[0], y - p[1]) <= 12) return true;
+      return S.platform.some(function (face) {
+        var q = face.map(project), inside = false;
+        for (var i = 0, j = q.length - 1; i < q.length; j = i++) {
+          if ((q[i][1] > y) !== (q[j][1] > y) && x < q[j][0] + (y - q[j][1]) * (q[i][0] - q[j][0]) / (q[i][1] - q[j][1])) inside = !inside;
+        }
+        return inside;
+      });
+    }
+    var heldAxis = null, platformDrag = null;
+    window.addEventListener("keydown", function (e) {
+      var k = { x: 0, y: 1, z: 2 }[String(e.key).toLowerCase()];
+      if (k !== undefined && !(S.planar && k === 2)) heldAxis = k;
+    });
+    window.addEventListener("keyup", function (e) {
+      if ({ x: 1, y: 1, z: 1 }[String(e.key).toLowerCase()]) heldAxis = null;
+    });
+    window.addEventListener("blur", function () { heldAxis = null; });
+    function local(e) {
+      var r = canvas.getBoundingClientRect();
+      return [e.clientX - r.left, e.clientY - r.top];
+    }
+    function startPlatformDrag(e) {
+      if (!controls.onPlatformDrag) return false;
+      var at = local(e);
+      if (!overPlatform(at[0], at[1])) return false;
+      platformDrag = { x0: e.clientX, y0: e.clientY, axis: heldAxis, shift: e.shiftKey, origin: S.platformPosition.slice() };
+      canvas.style.cursor = "move";
+      controls.onPlatformDrag({ phase: "start", displacement: [0, 0, 0], axis: platformDrag.axis });
+      return true;
+    }
+    function movePlatform(e) {
+      var d = platformDrag, dx = e.clientX - d.x0, dy = e.clientY - d.y0;
+      if (d.shift && d.axis === null && Math.hypot(dx, dy) >= 3) d.axis = bestAxis(dx, dy);
+      if (d.shift && d.axis === null) return;
+      controls.onPlatformDrag({ phase: "move", displacement: dragDisplacement(dx, dy, d.axis), axis: d.axis });
+    }
+    function endPlatformDrag() {
+      var d = platformDrag;
+      platformDrag = null;
+      canvas.style.cursor = "grab";
+      controls.onPlatformDrag({ phase: "end", displacement: null, axis: d.axis });
+      draw();
+    }
+    // While dragging along an axis: a dashed line through the drag's start along it.
+    function drawDragGuide() {
+      if (!platformDrag || platformDrag.axis === null) return;
+      var k = platformDrag.axis, a = platformDrag.origin.slice(), b = platformDrag.origin.slice();
+      a[k] -= 2 * radius; b[k] += 2 * radius;
+      line(a, b, ["#c0392b", "#27ae60", "#2e62c9"][k], 1.5, [6, 4]);
+    }
+
     var drag = null;
-    canvas.addEventListener("mousedown", function (e) { drag = [e.clientX, e.clientY]; canvas.style.cursor = "grabbing"; });
-    window.addEventListener("mouseup", function () { drag = null; canvas.style.cursor = "grab"; });
+    canvas.addEventListener("mousedown", function (e) {
+      if (startPlatformDrag(e)) { e.preventDefault(); return; }
+      drag = [e.clientX, e.clientY]; canvas.style.cursor = "grabbing";
+    });
+    window.addEventListener("mouseup", function () {
+      if (platformDrag) { endPlatformDrag(); return; }
+      drag = null; canvas.style.cursor = "grab";
+    });
+    canvas.addEventListener("mousemove", function (e) {
+      if (drag || platformDrag || !controls.onPlatformDrag) return;
+      var at = local(e);
+      canvas.style.cursor = overPlatform(at[0], at[1]) ? "move" : "grab";
+    });
     window.addEventListener("mousemove", function (e) {
+      if (platformDrag) { movePlatform(e); return; }
       if (!drag) return;
       view.yaw += (e.clientX - drag[0]) * 0.01;
       view.pitch = Math.max(-1.55, Math.min(1.55, view.pitch + (e.clientY - drag[1]) * 0.01));
@@ -240,7 +377,15 @@ var CdprViewer = (function () {
       draw();
     }
     fit();
-    return { draw: draw, setScene: setScene };
+    return {
+      draw: draw,
+      setScene: setScene,
+      // Where a world point (m) is drawn, in CSS px from the canvas' top left corner.
+      screenOf: function (p) { return project(p); },
+      // The view: yaw and pitch (rad) and the drawing scale (px per m).
+      view: function () { return { yaw: view.yaw, pitch: view.pitch, scale: scale }; },
+      dragDisplacement: dragDisplacement
+    };
   }
 
   // The self-contained page of `--plot FILE.html`: the scene from #scene, its title and legend,

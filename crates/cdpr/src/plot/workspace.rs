@@ -34,6 +34,8 @@ pub struct WorkspacePlot {
     pub chained_lines: Vec<Vec<(f64, f64)>>,
     /// Points marked with a red ring, e.g. the bifurcation points of a chord boundary.
     pub markers: Vec<(f64, f64)>,
+    /// What the red rings mark, shown in a legend (none: no legend).
+    pub marker_label: Option<String>,
     /// Axis captions (default "x" and "y"), e.g. "y (m)" and "z (m)" for a section x = c.
     pub axis_names: Option<(String, String)>,
     /// Drawn in a box near the top of the chart, e.g. "no feasible pose in the box": an empty
@@ -46,6 +48,7 @@ pub struct WorkspacePlot {
 const FILL: RGBColor = RGBColor(158, 202, 225);
 const BOUNDARY: RGBColor = RGBColor(8, 69, 148);
 const CABLE: RGBColor = RGBColor(120, 120, 120);
+const MARKER: RGBColor = RGBColor(200, 30, 30);
 
 impl Figure for WorkspacePlot {
     fn size(&self) -> (u32, u32) {
@@ -161,11 +164,24 @@ impl Figure for WorkspacePlot {
             )))?;
             chart.draw_series(std::iter::once(PathElement::new(p, BLACK.stroke_width(1))))?;
         }
-        chart.draw_series(
-            self.markers
-                .iter()
-                .map(|&p| Circle::new(p, 6, RGBColor(200, 30, 30).stroke_width(2))),
-        )?;
+        let ring = |p: (f64, f64)| Circle::new(p, 6, MARKER.stroke_width(2));
+        let rings = chart.draw_series(self.markers.iter().map(|&p| ring(p)))?;
+        if let Some(label) = self
+            .marker_label
+            .as_ref()
+            .filter(|_| !self.markers.is_empty())
+        {
+            rings
+                .label(label.as_str())
+                .legend(move |(x, y)| Circle::new((x, y), 6, MARKER.stroke_width(2)));
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK.mix(0.4))
+                .label_font(("sans-serif", 14))
+                .draw()?;
+        }
         // Anchors that coincide in the drawing (e.g. the upper and lower anchors of a spatial
         // frame seen from above) share one label; labels sit outside, away from the centroid.
         let labels = anchor_labels(&self.anchors, &self.anchor_names, 0.01 * half);

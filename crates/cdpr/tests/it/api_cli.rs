@@ -111,6 +111,7 @@ fn pose_commands_print_their_reports() {
         guess: Some(vec![0.0, 0.0, 0.0]),
         tolerance: 1e-9,
         length_sigma: 1e-4,
+        max_iterations: 100,
     };
     same(
         &f.run().unwrap(),

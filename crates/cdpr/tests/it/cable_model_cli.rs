@@ -325,3 +325,51 @@ fn forward_from_unstrained_lengths_returns_the_statics_pose() {
         assert!(err.contains(needle), "{all:?}: {err}");
     }
 }
+
+#[test]
+fn workspace_with_sagging_cables() {
+    // `cdpr workspace --cable-model`: weightless-limit equality and the shrinking set are tested
+    // in cdpr-api (tests/workspace.rs); here the flag reaches the request (the JSON's verdict
+    // count changes on CoGiRo's edge) and the criteria without a sagging version exit 2.
+    let cogiro = robot("wirecenter-cogiro.toml");
+    let count = |model: &str| {
+        let v = json(&[
+            "--kinematics",
+            "standard",
+            "workspace",
+            &cogiro,
+            "--grid",
+            "6",
+            "--cable-model",
+            model,
+            "--json",
+        ]);
+        v["feasible_points"].as_u64().unwrap()
+    };
+    assert_eq!(count("elastic"), count("straight"));
+    assert!(count("catenary") < count("straight"));
+    for (args, needle) in [
+        (
+            vec![&cogiro, "--criteria", "tension,isotropic:1"],
+            "isotropic-force criterion has no version",
+        ),
+        (
+            vec![
+                &cogiro,
+                "--criteria",
+                "capacity",
+                "--wrench-box",
+                "1,1,1,1,1,1",
+            ],
+            "capacity criterion without the tension criterion",
+        ),
+    ] {
+        let mut all = vec!["--kinematics", "standard", "workspace", "--grid", "2"];
+        all.extend(args);
+        all.extend(["--cable-model", "catenary"]);
+        let out = cdpr().args(&all).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{all:?}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{all:?}: {err}");
+    }
+}

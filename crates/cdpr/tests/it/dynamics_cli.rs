@@ -415,3 +415,77 @@ fn timed_trajectory_replay_page() {
             .join("\n")
     );
 }
+
+/// Issue 25: `cdpr trajectory --json` (untimed, timed with dynamics and a drive train) and
+/// `cdpr simulate --json` are the serialised reports of their `cdpr-api` requests.
+#[test]
+fn trajectory_and_simulate_print_their_reports() {
+    use cdpr::api::simulate::SimulateRequest;
+    use cdpr::api::timed::TimedSettings;
+    use cdpr::api::trajectory::TrajectoryRequest;
+    use cdpr::api::{Robot, RobotSource};
+    let dir = tempfile::tempdir().unwrap();
+    let file = robot_with_winches(dir.path(), 100.0);
+    let api_robot =
+        || Robot::from_source(RobotSource::toml(std::fs::read_to_string(&file).unwrap())).unwrap();
+    let (from, to) = (
+        vec![-0.3, 0.0, 0.8, 0.0, 0.0, 0.0],
+        vec![0.3, 0.2, 1.2, 0.0, 0.0, 0.1],
+    );
+    let mut r = TrajectoryRequest::segment(api_robot(), from.clone(), to.clone());
+    r.samples = Some(7);
+    let cli = json(&[
+        "trajectory",
+        &file,
+        "--from",
+        "-0.3,0,0.8,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0.1",
+        "--samples",
+        "7",
+        "--json",
+    ]);
+    assert_eq!(serde_json::to_value(r.run().unwrap()).unwrap(), cli);
+    let mut r = TrajectoryRequest::segment(api_robot(), from.clone(), to);
+    r.timing = TimedSettings {
+        time_law: Some("quintic".parse().unwrap()),
+        duration: Some(1.0),
+        dt: Some(0.05),
+        dynamics: true,
+        ..TimedSettings::default()
+    };
+    let timed = serde_json::to_value(r.run().unwrap()).unwrap();
+    let cli = json(&[
+        "trajectory",
+        &file,
+        "--from",
+        "-0.3,0,0.8,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0.1",
+        "--time-law",
+        "quintic",
+        "--duration",
+        "1",
+        "--dt",
+        "0.05",
+        "--dynamics",
+        "--json",
+    ]);
+    assert_eq!(timed, cli);
+    assert!(cli.get("motor_torques").is_some() && cli.get("inertial_wrench").is_some());
+    let s = SimulateRequest::with_tensions(api_robot(), from, vec![20.0; 8], 0.1, 0.02);
+    let cli = json(&[
+        "simulate",
+        &file,
+        "--from",
+        "-0.3,0,0.8,0,0,0",
+        "--tensions",
+        "20,20,20,20,20,20,20,20",
+        "--duration",
+        "0.1",
+        "--dt",
+        "0.02",
+        "--json",
+    ]);
+    assert_eq!(serde_json::to_value(s.run().unwrap()).unwrap(), cli);
+}

@@ -271,7 +271,7 @@ fn mesh_plots_draw_the_boundary_mesh() {
         );
         let text = std::fs::read_to_string(&out).unwrap();
         assert!(
-            text.contains("boundary mesh (vertices on the boundary"),
+            text.contains("boundary mesh (vertices within 5.0e-9 m of the boundary"),
             "{name}"
         );
     }

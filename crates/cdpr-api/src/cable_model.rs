@@ -1,0 +1,129 @@
+//! # Cable models of a request
+//!
+//! `straight` (massless, inextensible: every result as in the classical model), `elastic`
+//! (massless springs, L0 = l/(1 + t/EA); needs `axial_stiffness`) or `catenary` (heavy elastic
+//! cables, Irvine's elastic catenary; needs `axial_stiffness` and `linear_density`), and the flex
+//! and sag compensation along a path: per pose, the sagging-cable statics' platform-end tensions
+//! and the unstrained lengths the winches pay out for the platform to be there.
+//!
+//! ## References
+//! - Irvine 1981, *Cable Structures*, §2.3 (the elastic catenary).
+//! - docs/algorithms.md, "Sagging cables".
+
+use cdpr_io::RobotDescription;
+use cdpr_kinematics::{CableModel, Pose, RobotCatenaries};
+use cdpr_tension::{Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionSolver};
+use nalgebra::DVector;
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+use crate::ApiError;
+
+/// The spelling of a cable model in a request (`--cable-model`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum CableModelName {
+    /// Massless inextensible straight cables (the default).
+    #[default]
+    Straight,
+    /// Massless elastic straight cables.
+    Elastic,
+    /// Heavy elastic cables (elastic catenary).
+    Catenary,
+}
+
+impl CableModelName {
+    /// The model.
+    pub fn model(self) -> CableModel {
+        match self {
+            Self::Straight => CableModel::Straight,
+            Self::Elastic => CableModel::Elastic,
+            Self::Catenary => CableModel::Catenary,
+        }
+    }
+
+    /// Whether the model is the default straight one.
+    pub fn is_straight(&self) -> bool {
+        *self == Self::Straight
+    }
+}
+
+/// The robot's cables under `model`: `None` for straight cables; an error when the robot file
+/// lacks the keys the model needs or has pulleys.
+pub fn catenaries(
+    robot: &RobotDescription,
+    model: CableModel,
+) -> Result<Option<RobotCatenaries>, ApiError> {
+    if model == CableModel::Straight {
+        return Ok(None);
+    }
+    let name = model.name();
+    if robot.robot.has_pulleys() {
+        return Err(ApiError::invalid(format!(
+            "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
+        )));
+    }
+    let es = robot.axial_stiffness.as_ref().ok_or_else(|| {
+        ApiError::invalid(format!(
+            "--cable-model {name} needs `axial_stiffness` (E·S, N) on every cable of the robot file"
+        ))
+    })?;
+    Ok(Some(match model {
+        CableModel::Elastic => RobotCatenaries::elastic(es)?,
+        _ => {
+            let rho = robot.linear_density.as_ref().ok_or(ApiError::invalid(
+                "--cable-model catenary needs `linear_density` (kg/m) on every cable of the robot file",
+            ))?;
+            RobotCatenaries::new(rho, es, &robot.platform.gravity)?
+        }
+    }))
+}
+
+/// Flex and sag compensation along poses: per pose the unstrained lengths L0 (m), the
+/// platform-end tensions (N), both `None` where the sagging-cable statics have no certified
+/// equilibrium, and then its reason.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Compensation {
+    /// L0 per cable (m) per pose.
+    pub unstrained_lengths: Vec<Option<Vec<f64>>>,
+    /// Platform-end tensions (N) per pose.
+    pub platform_end_tensions: Vec<Option<Vec<f64>>>,
+    /// Why a pose has no equilibrium.
+    pub reasons: Vec<Option<String>>,
+}
+
+/// Runs [`SaggingStatics`] with `method` at every pose, under the wrench `w_ext(k)`.
+pub fn compensation(
+    robot: &RobotDescription,
+    model: &RobotCatenaries,
+    method: Method,
+    poses: &[Pose],
+    w_ext: impl Fn(usize) -> DVector<f64>,
+) -> Result<Compensation, ApiError> {
+    if method == Method::Sotda {
+        return Err(ApiError::invalid(
+            "--cable-model elastic|catenary does not apply to sotda",
+        ));
+    }
+    let mut statics = SaggingStatics::new(SaggingSettings::default());
+    let mut solver = TensionSolver::new(method);
+    let mut out = Compensation::default();
+    for (k, pose) in poses.iter().enumerate() {
+        let kin = robot.robot.inverse_kinematics(pose)?;
+        match statics.solve(&mut solver, &kin, model, &w_ext(k), &robot.bounds)? {
+            SaggingOutcome::Feasible(s) => {
+                let lengths = s.cables.iter().map(|c| c.unstrained_length).collect();
+                out.unstrained_lengths.push(Some(lengths));
+                out.platform_end_tensions
+                    .push(Some(s.tensions.as_slice().to_vec()));
+                out.reasons.push(None);
+            }
+            SaggingOutcome::Infeasible(r) => {
+                out.unstrained_lengths.push(None);
+                out.platform_end_tensions.push(None);
+                out.reasons.push(Some(r.to_string()));
+            }
+        }
+    }
+    Ok(out)
+}
