@@ -932,6 +932,13 @@ mod tests {
         assert_clean(&[37_673, 51_618]);
     }
 
+    /// vertex-centroid called this feasible problem (depth 0.0496) infeasible (300 000-problem
+    /// soak of the peer methods, seed 20261122).
+    #[test]
+    fn soak_regressions_vertex_centroid() {
+        assert_clean(&[203_901]);
+    }
+
     /// Soak problems (seed 20261122) that must have no false or non-optimal answer.
     fn assert_clean(indices: &[u64]) {
         for &index in indices {

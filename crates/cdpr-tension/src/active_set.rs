@@ -59,7 +59,7 @@ use crate::null_space::NullSpace;
 use crate::{Infeasibility, TensionBounds};
 
 /// Rows whose null-space row has a norm below this are "fixed" cables (t_i = t0_i).
-const ZERO_ROW: f64 = 1e-13;
+pub(crate) const ZERO_ROW: f64 = 1e-13;
 /// Relative feasibility tolerance of a row (slack ≥ −FEAS · scale of the row).
 const FEAS: f64 = 1e-12;
 

@@ -9,7 +9,9 @@
 //! set S of r cables (C(n, r) sets) whose rows N_S are independent (LU with partial pivoting,
 //! smallest pivot above 10⁻¹⁰; the rows of N have norm ≤ 1), and each of the 2^r choices of a
 //! bound per cable, N_S λ = b_S − t0_S gives a candidate; it is a vertex when every cable is
-//! within its bounds (relative tolerance 10⁻¹⁰). Degenerate vertices (more than r active
+//! within its bounds (relative tolerance 10⁻¹⁰; for a cable whose null-space row is zero, whose
+//! tension is t0_i on the whole equilibrium set, e.g. every cable at r = 0, the certificate's
+//! 10⁻⁹, since t0 = −W⁺ w_ext carries its own rounding, as in the l2 active set). Degenerate vertices (more than r active
 //! bounds) are found from several bases and kept once (entries equal within 10⁻⁹ relative), as
 //! WireLib drops its doublets. The answer is their mean. For a bounded set (finite t_max) a
 //! non-empty feasible set has at least one vertex; when none is found the solver confirms the
@@ -23,7 +25,8 @@
 //! - WireLib (Pott, Fraunhofer IPA), `CForceDistribution::getDistributionAllVertices` and
 //!   `getDistributionWeightedSum`.
 
-use crate::certificate::SET_TOLERANCE;
+use crate::active_set::ZERO_ROW;
+use crate::certificate::{BOUND_TOLERANCE, SET_TOLERANCE};
 use crate::null_space::NullSpace;
 use crate::{GiveUp, Infeasibility, TensionBounds};
 
@@ -42,6 +45,9 @@ pub(crate) struct VertexCentroid {
     piv: Vec<usize>,
     lambda: Vec<f64>,
     cand: Vec<f64>,
+    /// Lowest and highest accepted tension of each cable.
+    below: Vec<f64>,
+    above: Vec<f64>,
     vertices: Vec<f64>,
     /// Distinct vertices found by the last solve.
     pub count: usize,
@@ -80,6 +86,21 @@ impl VertexCentroid {
         self.piv.resize(r, 0);
         self.lambda.resize(r, 0.0);
         self.cand.resize(n, 0.0);
+        self.below.clear();
+        self.above.clear();
+        for i in 0..n {
+            // A cable with a zero null-space row is at t0_i on every candidate: judged with
+            // the certificate's tolerance (soak problem 203901: r = 0, a fixed cable 4.9·10⁻¹⁰
+            // N off its bound of 3.29 N was "no vertex").
+            let row2: f64 = (0..r).map(|j| ns.basis[j * n + i].powi(2)).sum();
+            let tol = if row2 <= ZERO_ROW * ZERO_ROW {
+                BOUND_TOLERANCE
+            } else {
+                SET_TOLERANCE
+            };
+            self.below.push(lo[i] - tol * lo[i].abs().max(1.0));
+            self.above.push(hi[i] + tol * hi[i].abs().max(1.0));
+        }
         self.vertices.clear();
         self.count = 0;
         loop {
@@ -93,8 +114,7 @@ impl VertexCentroid {
                     ns.tensions(&self.lambda, &mut self.cand);
                     let feasible = (0..n).all(|i| {
                         let c = self.cand[i];
-                        c >= lo[i] - SET_TOLERANCE * lo[i].abs().max(1.0)
-                            && c <= hi[i] + SET_TOLERANCE * hi[i].abs().max(1.0)
+                        c >= self.below[i] && c <= self.above[i]
                     });
                     if feasible && !self.known(n) {
                         self.vertices.extend_from_slice(&self.cand);

@@ -23,6 +23,8 @@ fn assert_all_feasible(w: &DMatrix<f64>, we: &DVector<f64>, b: &TensionBounds, m
 }
 
 /// Soak problem 203901: planar, n = DOF = 3, cable 1 fixed at 3.29 N (t0 is 4.9·10⁻¹⁰ N off).
+/// vertex-centroid judged its one candidate, t0, with the feasible-set tolerance (10⁻¹⁰) and
+/// found "no vertex" on a set of depth 0.05.
 #[test]
 fn redundancy_0_fixed_cable_203901() {
     let w = DMatrix::from_column_slice(
@@ -51,7 +53,23 @@ fn redundancy_0_fixed_cable_203901() {
     )
     .unwrap();
     use Method::*;
-    assert_all_feasible(&w, &we, &b, &[Exact, L1, L1Max, L2, L2Max, Linf]);
+    assert_all_feasible(
+        &w,
+        &we,
+        &b,
+        &[
+            Exact,
+            L1,
+            L1Max,
+            L2,
+            L2Max,
+            Linf,
+            PottClosedForm,
+            L2Mid,
+            VertexCentroid,
+            OptimallySafe,
+        ],
+    );
 }
 
 /// Soak problem 487284: planar, n = DOF = 3, cable 3 fixed at 18.84 N (t0 is 3.5·10⁻⁹ N off).
