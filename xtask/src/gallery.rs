@@ -292,7 +292,9 @@ fn markdown(rows: &[Row]) -> String {
          wrench-feasible workspace (own weight, file bounds, zero orientation) over the frame: \
          the bounding box of the frame anchors, or, when the anchors span less than a quarter of \
          the frame's width in height, that box extended to half the width below the highest \
-         anchor (the `--box` printed with the command) — on a coarse grid of {GRID_SPACE} intervals per side in space \
+         anchor (the `--box` printed with the command; the same rule, `Robot::default_region`, is the \
+         default region of `cdpr workspace`, `dextrous`, `synthesize` and Python's `workspace()`, and \
+         places the hanging starts of `cdpr forward`) — on a coarse grid of {GRID_SPACE} intervals per side in space \
          ({} points), {GRID_PLANE} in the plane ({} points): in space the volume (m³) enclosed by \
          the boundary mesh seeded by that grid, every vertex bisected onto the boundary to 1e-8 \
          of the box (`--boundary mesh`); in the plane the area (m²) by the cell convention; and \
