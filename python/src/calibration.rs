@@ -3,15 +3,15 @@
 //! `cdpr.calibrate(robot, samples, known_poses=…, unknowns=…)`: the `cdpr-calibration` crate
 //! (known poses: per-cable least squares; unknown poses: self-calibration with the gauge fixed,
 //! Borgstrom et al. 2009; Miermeister & Pott 2012), its report as a dict with the field names
-//! of `cdpr calibrate --json`.
+//! of `cdpr calibrate --json`: the same `cdpr_api::CalibrationRequest` as the command line,
+//! with the samples as arrays.
 
 use crate::arrays::{FloatArray, shape_string};
 use crate::model::Robot;
+use crate::requests::{api_error, api_robot};
 use crate::value_error;
-use cdpr_calibration::{Calibration, Readings, Samples, Unknowns, calibrate_with_encoders};
-use cdpr_io::Encoders;
-use cdpr_kinematics::Pose;
-use cdpr_kinematics::nalgebra::Vector3;
+use cdpr_api::{CalibrationReport, SamplesSource};
+use cdpr_calibration::Unknowns;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -36,8 +36,9 @@ pub fn calibrate<'py>(
     reference: Option<Vec<f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let geo = robot.geometry();
-    let (n, motion, dof) = (geo.cable_count(), geo.motion(), geo.dof());
-    let unknowns = Unknowns::parse(unknowns).map_err(value_error)?;
+    let (n, dof) = (geo.cable_count(), geo.dof());
+    // The unknowns first, then the arrays, then the request (the order of the messages).
+    Unknowns::parse(unknowns).map_err(value_error)?;
     let s = FloatArray::new(samples, "samples")?;
     let k = match s.shape() {
         [k, c] if *c == n => *k,
@@ -61,107 +62,61 @@ pub fn calibrate<'py>(
                 )));
             }
             a.check_finite("known_poses")?;
-            let poses = a
-                .data()
-                .chunks(dof)
-                .map(|q| Pose::from_coordinates(motion, q))
-                .collect::<Result<Vec<_>, _>>()
-                .map_err(value_error)?;
-            Some(poses)
+            Some(a.data().into_owned())
         }
     };
-    let readings = if relative {
-        let q = reference.unwrap_or_else(|| vec![0.0; dof]);
-        let reference = Pose::from_coordinates(motion, &q).map_err(value_error)?;
-        Readings::Relative { reference }
-    } else {
-        Readings::Absolute
+    let rows = |data: &[f64], width: usize| -> Vec<Vec<f64>> {
+        data.chunks(width).map(<[f64]>::to_vec).collect()
     };
-    let samples = Samples {
-        readings: s.data().into_owned(),
-        poses,
-    };
-    let encoders = robot
-        .desc
-        .encoders
-        .clone()
-        .unwrap_or_else(|| Encoders::identity(n));
-    let cal = py
-        .detach(|| {
-            calibrate_with_encoders(
-                geo,
-                &encoders.offsets,
-                &encoders.gains,
-                &samples,
-                unknowns,
-                &readings,
-            )
-        })
-        .map_err(value_error)?;
-    report(py, robot, &cal, k)
+    let mut request = cdpr_api::CalibrationRequest::new(
+        api_robot(robot),
+        SamplesSource::Arrays {
+            readings: rows(&s.data()[..], n),
+            poses: poses.map(|p| rows(&p[..], dof)),
+        },
+    );
+    request.unknowns = unknowns.to_string();
+    request.relative = relative;
+    // Python's reference defaults to the origin (not the robot file's `home_pose`).
+    request.reference = Some(reference.unwrap_or_else(|| vec![0.0; dof]));
+    let report = py.detach(|| request.run()).map_err(api_error)?;
+    to_dict(py, &report)
 }
 
-fn finite(v: f64) -> Option<f64> {
-    v.is_finite().then_some(v)
-}
-
-fn report<'py>(
-    py: Python<'py>,
-    robot: &Robot,
-    cal: &Calibration,
-    k: usize,
-) -> PyResult<Bound<'py, PyDict>> {
-    let motion = robot.geometry().motion();
-    let dim = motion.space_dim();
-    let points = |v: &[Vector3<f64>]| -> Vec<Vec<f64>> {
-        v.iter()
-            .map(|p| p.iter().take(dim).copied().collect())
-            .collect()
-    };
-    let p = &cal.parameters;
+/// The report as the dict of `cdpr calibrate --json` (the fields Python has always returned).
+fn to_dict<'py>(py: Python<'py>, r: &CalibrationReport) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    d.set_item("samples", k)?;
-    d.set_item("frame", points(&p.frame))?;
-    d.set_item(
-        "platform",
-        motion.has_orientation().then(|| points(&p.platform)),
-    )?;
-    d.set_item("offsets", p.offsets.clone())?;
-    d.set_item("gains", p.gains.clone())?;
-    d.set_item(
-        "poses",
-        cal.poses_estimated.then(|| {
-            cal.poses
-                .iter()
-                .map(|x| x.coordinates(motion))
-                .collect::<Vec<_>>()
-        }),
-    )?;
-    d.set_item("residual_rms", finite(cal.residual_rms))?;
-    d.set_item("residual_max", finite(cal.residual_max))?;
-    d.set_item("length_sigma", cal.length_sigma)?;
-    let sigma = match &cal.sigma {
+    d.set_item("samples", r.samples)?;
+    d.set_item("frame", r.frame.clone())?;
+    d.set_item("platform", r.platform.clone())?;
+    d.set_item("offsets", r.offsets.clone())?;
+    d.set_item("gains", r.gains.clone())?;
+    d.set_item("poses", r.poses.clone())?;
+    d.set_item("residual_rms", r.residual_rms)?;
+    d.set_item("residual_max", r.residual_max)?;
+    d.set_item("length_sigma", r.length_sigma)?;
+    let sigma = match &r.sigma {
         None => None,
         Some(s) => {
             let g = PyDict::new(py);
-            g.set_item("frame", s.frame.as_deref().map(points))?;
-            g.set_item("platform", s.platform.as_deref().map(points))?;
+            g.set_item("frame", s.frame.clone())?;
+            g.set_item("platform", s.platform.clone())?;
             g.set_item("offsets", s.offsets.clone())?;
             g.set_item("gains", s.gains.clone())?;
             Some(g)
         }
     };
     d.set_item("sigma", sigma)?;
-    d.set_item("identifiable", cal.identifiable)?;
-    d.set_item("rank_deficiency", cal.rank_deficiency)?;
-    d.set_item("condition_number", finite(cal.condition_number))?;
-    d.set_item("parameters", cal.counting.parameters)?;
-    d.set_item("gauge_count", cal.counting.gauge)?;
-    d.set_item("gauge", cal.gauge.clone())?;
-    d.set_item("samples_needed", cal.counting.samples_needed)?;
-    d.set_item("reason", cal.counting.reason.clone())?;
-    d.set_item("iterations", cal.iterations)?;
-    d.set_item("converged", cal.converged)?;
-    d.set_item("warnings", cal.warnings.clone())?;
+    d.set_item("identifiable", r.identifiable)?;
+    d.set_item("rank_deficiency", r.rank_deficiency)?;
+    d.set_item("condition_number", r.condition_number)?;
+    d.set_item("parameters", r.parameters)?;
+    d.set_item("gauge_count", r.gauge_count)?;
+    d.set_item("gauge", r.gauge.clone())?;
+    d.set_item("samples_needed", r.samples_needed)?;
+    d.set_item("reason", r.reason.clone())?;
+    d.set_item("iterations", r.iterations)?;
+    d.set_item("converged", r.converged)?;
+    d.set_item("warnings", r.warnings.clone())?;
     Ok(d)
 }

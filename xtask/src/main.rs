@@ -22,9 +22,13 @@
 //!   WebAssembly, wasm-bindgen, the page and the example robots); `--check` loads it in headless
 //!   Chromium and compares its numbers with the CLI's (see `xtask/src/studio.rs`);
 //! - `loops [--tests]`: the files of the tree that import each other in a loop; exit code 1 if there is one
-//!   (see `xtask/src/loops.rs`; its test runs the check under `cargo test`).
+//!   (see `xtask/src/loops.rs`; its test runs the check under `cargo test`);
+//! - `fn-length [MAX] [DIR …]`: the front-end functions (CLI and plots, Python, studio) longer
+//!   than MAX = 80 lines; exit code 1 if there is one (see `xtask/src/fn_length.rs`; its test
+//!   runs the check under `cargo test`).
 
 mod bench;
+mod fn_length;
 mod fuzz;
 mod gallery;
 mod loops;
@@ -36,7 +40,7 @@ mod studio;
 use std::path::Path;
 use std::process::ExitCode;
 
-const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | studio | loops | schema> [options]   (`cargo xtask <command> --help`)";
+const USAGE: &str = "usage: cargo xtask <reproduce | gallery | bench | fuzz | soak | studio | loops | fn-length | schema> [options]   (`cargo xtask <command> --help`)";
 
 const REPRODUCE_HELP: &str = "cargo xtask reproduce: regenerates the reproduction of the thesis chapter on \
 planar tendon-driven manipulators (Tables 6.5-6.10), Krut, Company & Pierrot 2004 and Picard, Caro, \
@@ -109,6 +113,13 @@ fn main() -> ExitCode {
             }
         },
         Some("studio") => studio::run(root, &args[1..]),
+        Some("fn-length") => match fn_length::run(root, &args[1..]) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::FAILURE
+            }
+        },
         Some("loops") => match loops::run(root, &args[1..]) {
             Ok(()) => ExitCode::SUCCESS,
             Err(e) => {

@@ -7,12 +7,14 @@
 //! ## References
 //! - The `thiserror` conventions of the cdpr crates (docs/architecture.md).
 
+use cdpr_calibration::CalibrationError;
 use cdpr_dynamics::DynamicsError;
 use cdpr_io::RobotFileError;
 use cdpr_kinematics::KinematicsError;
 use cdpr_polytope::PolytopeError;
 use cdpr_tension::TensionError;
 use cdpr_workspace::WorkspaceError;
+use cdpr_workspace::synthesis::SynthesisError;
 use cdpr_wrench::WrenchError;
 
 /// Why a request has no report.
@@ -44,6 +46,12 @@ pub enum ApiError {
     /// Regions, grids and pose evaluators.
     #[error(transparent)]
     Workspace(#[from] WorkspaceError),
+    /// Dimensional synthesis (designs, optimiser settings).
+    #[error(transparent)]
+    Synthesis(#[from] SynthesisError),
+    /// Kinematic calibration.
+    #[error(transparent)]
+    Calibration(#[from] CalibrationError),
 }
 
 impl ApiError {

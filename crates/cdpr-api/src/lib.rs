@@ -25,6 +25,8 @@
 //! | [`OrientationsRequest`] | [`OrientationsReport`] | feasible orientations of a set at one position |
 //! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
+//! | [`SynthesisRequest`] | [`SynthesisReport`] | anchor placement for maximal dextrous area (planar) |
+//! | [`CalibrationRequest`] | [`CalibrationReport`] | kinematic calibration from cable-length readings |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -49,6 +51,7 @@
 //! - docs/architecture.md, "Requests and reports".
 
 pub mod cable_model;
+mod calibration;
 mod capacity;
 mod chord;
 pub mod criteria;
@@ -70,11 +73,16 @@ mod section;
 pub mod simulate;
 mod stiffness;
 mod stiffness_map;
+mod synthesis;
 mod tension;
 pub mod timed;
 pub mod trajectory;
 mod workspace;
 
+pub use calibration::{
+    CalibrationReport, CalibrationRequest, SamplesSource, SigmaReport, parse_samples_csv,
+    pose_columns,
+};
 pub use capacity::{CapacityReport, CapacityRequest, FacetReport, RequiredReport};
 pub use chord::{ChordReport, ChordRequest, CurvesReport, DEFAULT_CHORD, chord_settings};
 pub use criteria::{CriteriaSetup, WorkspaceCriteria, default_method};
@@ -103,6 +111,9 @@ pub use section::{Axis, SectionPlane, SectionPlaneReport, SectionReport, Section
 pub use stiffness::{StiffnessReport, StiffnessRequest};
 pub use stiffness_map::{
     DISPLACEMENT_UNIT, LambdaGridReport, MapReport, StiffnessMapReport, StiffnessMapRequest,
+};
+pub use synthesis::{
+    EvaluationsReport, SynthesisOptimizer, SynthesisReport, SynthesisRequest, synthesis_method,
 };
 pub use tension::{
     BindingCable, BindingReport, PeerOptions, PolygonReport, SotdaReport, SotdaSearch,

@@ -227,6 +227,26 @@ pub fn tension(
     }
 }
 
+/// `--unstrained-lengths`: one finite length > 0 (m) per cable of `n`.
+fn check_unstrained_lengths(l0: &[f64], n: usize) -> Result<(), CliError> {
+    if l0.len() != n {
+        return Err(format!(
+            "--unstrained-lengths needs {n} numbers (one per cable), got {}",
+            l0.len()
+        )
+        .into());
+    }
+    if let Some(i) = l0.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
+        return Err(format!(
+            "--unstrained-lengths: cable {} has length {} m; lengths are finite numbers > 0",
+            i + 1,
+            l0[i]
+        )
+        .into());
+    }
+    Ok(())
+}
+
 /// `cdpr forward --unstrained-lengths … --cable-model elastic|catenary`: the elasto-geometric
 /// forward kinematics ([`cdpr::kinematics::ElastoGeometricForward`]) under the platform's
 /// weight (and springs) from the robot file plus `wrench`, from `guess` or else from the
@@ -248,21 +268,7 @@ pub fn forward(
         );
     };
     let n = robot.robot.cable_count();
-    if l0.len() != n {
-        return Err(format!(
-            "--unstrained-lengths needs {n} numbers (one per cable), got {}",
-            l0.len()
-        )
-        .into());
-    }
-    if let Some(i) = l0.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
-        return Err(format!(
-            "--unstrained-lengths: cable {} has length {} m; lengths are finite numbers > 0",
-            i + 1,
-            l0[i]
-        )
-        .into());
-    }
+    check_unstrained_lengths(l0, n)?;
     let w_e = super::wrench(robot, wrench)?;
     let mut fk = ElastoGeometricForward::new(&robot.robot, &model, Default::default())?;
     let mut load = |p: &cdpr::kinematics::Pose, out: &mut [f64]| {

@@ -1,13 +1,12 @@
 //! `cdpr calibrate`: kinematic calibration from cable-length readings (crate
 //! `cdpr-calibration`).
 
-use super::{CliError, load_robot, print_json};
+use super::{CliError, print_report, request_robot};
 use cdpr::RobotDescription;
-use cdpr::calibration::{Calibration, Readings, Samples, Unknowns, calibrate_with_encoders};
+use cdpr::api::{CalibrationRequest, SamplesSource};
+use cdpr::calibration::{Calibration, Unknowns};
 use cdpr::io::Encoders;
 use cdpr::kinematics::nalgebra::Vector3;
-use cdpr::kinematics::{MotionPattern, Pose};
-use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
 /// Calibrates a robot from samples of its cable-length readings: frame anchors, platform
@@ -67,217 +66,41 @@ pub struct Args {
     json: bool,
 }
 
-/// Runs the command.
+/// Runs the command: parse → request → run → render.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let desc = load_robot(&args.robot)?;
-    let robot = &desc.robot;
-    let motion = robot.motion();
-    let unknowns = Unknowns::parse(&args.unknowns)?;
-    let samples = read_samples(&args.samples, motion, robot.cable_count(), args.known_poses)?;
-    let readings = if args.relative {
-        let reference = match &desc.home_pose {
-            Some(q) => Pose::from_coordinates(motion, q)?,
-            None => Pose::from_coordinates(motion, &vec![0.0; motion.dof()])?,
-        };
-        Readings::Relative { reference }
-    } else {
-        Readings::Absolute
-    };
-    // A robot file written by `calibrate -o` holds calibrated encoders: start from them.
-    let encoders = desc
-        .encoders
-        .clone()
-        .unwrap_or_else(|| Encoders::identity(robot.cable_count()));
-    let cal = calibrate_with_encoders(
+    let robot = request_robot(&args.robot)?;
+    // The unknowns are checked before the samples file is read (as they were before the request).
+    Unknowns::parse(&args.unknowns)?;
+    let text = std::fs::read_to_string(&args.samples)
+        .map_err(|e| format!("{}: cannot read: {e}", args.samples.display()))?;
+    let mut request = CalibrationRequest::new(
         robot,
-        &encoders.offsets,
-        &encoders.gains,
-        &samples,
-        unknowns,
-        &readings,
-    )?;
-    for w in &cal.warnings {
+        SamplesSource::Csv {
+            text,
+            file: Some(args.samples.display().to_string()),
+            known_poses: args.known_poses,
+        },
+    );
+    request.unknowns = args.unknowns.clone();
+    request.relative = args.relative;
+    let report = request.run()?;
+    for w in &report.warnings {
         eprintln!("warning: {w}");
     }
     if let Some(out) = &args.output {
-        write_robot(&desc, &cal, out)?;
+        write_robot(request.robot.description(), &report.calibration, out)?;
     }
     if args.json {
-        print_json(&report(&desc, &args, &cal))
+        print_report(&report)
     } else {
-        print_table(&desc, &cal);
+        print_table(request.robot.description(), &report.calibration);
         Ok(())
     }
-}
-
-/// The pose columns of a motion pattern.
-fn pose_columns(motion: MotionPattern) -> &'static [&'static str] {
-    match motion {
-        MotionPattern::Point2 => &["x", "y"],
-        MotionPattern::Planar => &["x", "y", "phi"],
-        MotionPattern::Point3 => &["x", "y", "z"],
-        MotionPattern::Spatial => &["x", "y", "z", "rx", "ry", "rz"],
-    }
-}
-
-/// Reads the CSV; errors name the file, line and column (exit 2).
-fn read_samples(
-    path: &Path,
-    motion: MotionPattern,
-    n: usize,
-    known_poses: bool,
-) -> Result<Samples, CliError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let file = path.display();
-    let mut lines = text
-        .lines()
-        .enumerate()
-        .map(|(i, l)| (i + 1, l.trim()))
-        .filter(|(_, l)| !l.is_empty() && !l.starts_with('#'));
-    let Some((header_line, header)) = lines.next() else {
-        return Err(format!("{file}: no header line (expected l1,…,l{n})").into());
-    };
-    let names: Vec<String> = header.split(',').map(|s| s.trim().to_lowercase()).collect();
-    let find = |name: &str| names.iter().position(|c| c == name);
-    let mut wanted: Vec<String> = (1..=n).map(|i| format!("l{i}")).collect();
-    if known_poses {
-        wanted.splice(0..0, pose_columns(motion).iter().map(|s| s.to_string()));
-    }
-    let mut index = Vec::with_capacity(wanted.len());
-    for w in &wanted {
-        match find(w) {
-            Some(c) => index.push(c),
-            None => {
-                return Err(format!(
-                    "{file}:{header_line}: missing column `{w}` (the header needs {}{})",
-                    wanted.join(","),
-                    if known_poses {
-                        format!(
-                            ": the pose of a {} robot and one reading per cable",
-                            motion.name()
-                        )
-                    } else {
-                        ": one reading per cable".to_string()
-                    }
-                )
-                .into());
-            }
-        }
-    }
-    if let Some((c, extra)) = names.iter().enumerate().find(|(_, c)| !wanted.contains(c)) {
-        return Err(format!(
-            "{file}:{header_line}, column {}: unexpected column `{extra}` (expected {}{})",
-            c + 1,
-            wanted.join(","),
-            if !known_poses && pose_columns(motion).contains(&extra.as_str()) {
-                "; pose columns need --known-poses"
-            } else {
-                ""
-            }
-        )
-        .into());
-    }
-    let dof = motion.dof();
-    let (mut readings, mut poses) = (Vec::new(), Vec::new());
-    for (line, row) in lines {
-        let fields: Vec<&str> = row.split(',').map(str::trim).collect();
-        if fields.len() != names.len() {
-            return Err(format!(
-                "{file}:{line}: {} fields, the header has {} columns",
-                fields.len(),
-                names.len()
-            )
-            .into());
-        }
-        let mut values = Vec::with_capacity(wanted.len());
-        for (w, &c) in wanted.iter().zip(&index) {
-            let v: f64 = fields[c].parse().map_err(|_| {
-                format!(
-                    "{file}:{line}, column {} (`{w}`): `{}` is not a number",
-                    c + 1,
-                    fields[c]
-                )
-            })?;
-            if !v.is_finite() {
-                return Err(format!(
-                    "{file}:{line}, column {} (`{w}`): not a finite number ({v})",
-                    c + 1
-                )
-                .into());
-            }
-            values.push(v);
-        }
-        if known_poses {
-            poses.push(Pose::from_coordinates(motion, &values[..dof])?);
-            readings.extend_from_slice(&values[dof..]);
-        } else {
-            readings.extend_from_slice(&values);
-        }
-    }
-    if readings.is_empty() {
-        return Err(format!("{file}: no samples after the header").into());
-    }
-    Ok(Samples {
-        readings,
-        poses: known_poses.then_some(poses),
-    })
 }
 
 /// A point as its motion pattern's number of coordinates.
 fn point(v: &Vector3<f64>, dim: usize) -> Vec<f64> {
     v.iter().take(dim).copied().collect()
-}
-
-fn finite_or_null(v: f64) -> Value {
-    if v.is_finite() { json!(v) } else { Value::Null }
-}
-
-fn report(desc: &RobotDescription, args: &Args, cal: &Calibration) -> Value {
-    let motion = desc.robot.motion();
-    let dim = motion.space_dim();
-    let points = |v: &[Vector3<f64>]| -> Value { v.iter().map(|p| point(p, dim)).collect() };
-    let p = &cal.parameters;
-    let sigma = cal.sigma.as_ref().map(|s| {
-        json!({
-            "frame": s.frame.as_deref().map(points),
-            "platform": s.platform.as_deref().map(points),
-            "offsets": s.offsets,
-            "gains": s.gains,
-        })
-    });
-    let unknowns: Vec<&str> = args.unknowns.split(',').map(str::trim).collect();
-    json!({
-        "robot": desc.name,
-        "motion": motion.name(),
-        "samples": cal.counting.equations / desc.robot.cable_count(),
-        "cables": desc.robot.cable_count(),
-        "known_poses": args.known_poses,
-        "relative": args.relative,
-        "unknowns": unknowns,
-        "frame": points(&p.frame),
-        "platform": motion.has_orientation().then(|| points(&p.platform)),
-        "offsets": p.offsets,
-        "gains": p.gains,
-        "poses": cal.poses_estimated.then(|| {
-            cal.poses.iter().map(|x| x.coordinates(motion)).collect::<Vec<_>>()
-        }),
-        "residual_rms": finite_or_null(cal.residual_rms),
-        "residual_max": finite_or_null(cal.residual_max),
-        "length_sigma": cal.length_sigma,
-        "sigma": sigma,
-        "identifiable": cal.identifiable,
-        "rank_deficiency": cal.rank_deficiency,
-        "condition_number": finite_or_null(cal.condition_number),
-        "parameters": cal.counting.parameters,
-        "gauge_count": cal.counting.gauge,
-        "gauge": cal.gauge,
-        "samples_needed": cal.counting.samples_needed,
-        "reason": cal.counting.reason,
-        "iterations": cal.iterations,
-        "converged": cal.converged,
-        "warnings": cal.warnings,
-    })
 }
 
 fn print_table(desc: &RobotDescription, cal: &Calibration) {

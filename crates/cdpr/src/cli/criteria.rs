@@ -1,12 +1,10 @@
 //! Workspace criteria from the command line (`--criteria`, `--method`, `--wrench`,
 //! `--wrench-box`, `--acceleration-box`, `--velocity`), shared by `workspace`, `orientations`,
 //! `dextrous` and `synthesize`: turned into the request's [`WorkspaceCriteria`] and checked
-//! against the robot file by `cdpr-api` into a [`CriteriaSetup`] that builds a pose evaluator at
+//! against the robot file by `cdpr-api` into a [`cdpr::api::CriteriaSetup`] that builds a pose evaluator at
 //! any orientation.
 
-use super::{CliError, Numbers};
-use cdpr::RobotDescription;
-pub use cdpr::api::CriteriaSetup;
+use super::Numbers;
 use cdpr::api::WorkspaceCriteria;
 use cdpr::kinematics::CableModel;
 use cdpr::tension::Method;
@@ -65,13 +63,4 @@ impl CriteriaArgs {
             },
         }
     }
-}
-
-/// Reads the criteria options against the robot file (`method` for the tension criterion).
-pub fn setup(
-    args: &CriteriaArgs,
-    desc: &RobotDescription,
-    method: Method,
-) -> Result<CriteriaSetup, CliError> {
-    Ok(CriteriaSetup::new(&args.to_request(), desc, method)?)
 }

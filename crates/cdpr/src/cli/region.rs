@@ -9,18 +9,12 @@ use cdpr::plot::{Figure, Panels, WorkspacePlot};
 use cdpr::workspace::{GridWorkspace, Region};
 use indicatif::ProgressBar;
 use nalgebra::{Rotation3, Vector3};
-use serde_json::{Value, json};
 use std::io::IsTerminal;
 use std::path::Path;
 
 /// The platform orientation from command-line numbers (see [`cdpr::api::region::rotation`]).
 pub fn rotation(motion: MotionPattern, q: Option<&[f64]>) -> Result<Rotation3<f64>, CliError> {
     Ok(cdpr::api::region::rotation(motion, q)?)
-}
-
-/// The search box (see [`cdpr::api::region::region`]).
-pub fn region(robot: &Robot, q: Option<&[f64]>, option: &str) -> Result<Region, CliError> {
-    Ok(cdpr::api::region::region(robot, q, option)?)
 }
 
 /// Grid resolution (see [`cdpr::api::region::resolution`]).
@@ -307,15 +301,6 @@ pub fn save_grid_plot(
     }
 }
 
-/// The box's bounds XMIN, XMAX, YMIN, YMAX[, ZMIN, ZMAX] (m).
-pub fn box_numbers(r: &Region, dim: usize) -> Vec<f64> {
-    let mut b = vec![r.min.x, r.max.x, r.min.y, r.max.y];
-    if dim == 3 {
-        b.extend([r.min.z, r.max.z]);
-    }
-    b
-}
-
 /// ` at orientation (φ rad, …)` for a robot with an orientation, nothing for a point robot
 /// (titles and headers used to print `orientation []`).
 pub fn at_orientation(orientation: &[f64]) -> String {
@@ -355,11 +340,6 @@ pub fn print_header(
         super::wrench_text(w_ext, forces)
     );
     println!("criteria: {} (tensions: {method})", criteria.join(", "));
-}
-
-/// Box as JSON numbers.
-pub fn box_json(r: &Region, dim: usize) -> Value {
-    json!(box_numbers(r, dim))
 }
 
 /// "vertices within 2.0e-8 m of the boundary": the placement of a mesh's vertices (ε/2 along

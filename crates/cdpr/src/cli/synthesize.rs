@@ -1,24 +1,16 @@
 //! `cdpr synthesize`: dimensional synthesis of a planar robot for maximal dextrous workspace
 //! (thesis §6.6, eq. 6.29).
 
-use super::criteria::{CriteriaArgs, CriteriaSetup};
+use super::criteria::CriteriaArgs;
 use super::dextrous::Range;
-use super::region::{box_json, region, save_plot, workspace_plot};
-use super::{CliError, Numbers, load_robot, print_json};
-use cdpr::RobotDescription;
-use cdpr::api::{Dextrous, dextrous};
-use cdpr::kinematics::{MotionPattern, Pose};
-use cdpr::tension::Method;
-use cdpr::workspace::synthesis::{
-    Method as Optimizer, SynthesisSettings, Termination, frame_anchor, in_first_turn,
-    robot_from_design, separation_violation, synthesise,
-};
-use cdpr::workspace::{Grid, OrientationRange, VolumeConvention};
+use super::region::{save_plot, workspace_plot};
+use super::{CliError, Numbers, print_report, request_robot};
+use cdpr::api::{RangeReport, SynthesisOptimizer, SynthesisReport, SynthesisRequest};
+use cdpr::kinematics::Pose;
+use cdpr::workspace::VolumeConvention;
 use indicatif::ProgressBar;
-use nalgebra::{Rotation3, Vector3};
-use serde_json::json;
 use std::io::IsTerminal;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The long help of the command (`--help`), also its documentation.
 const LONG_HELP: &str = "\
@@ -98,241 +90,135 @@ pub struct Args {
     json: bool,
 }
 
-/// The thesis' tension method: exact for n = DOF, Algorithm 6.1 (the closed-form constrained
-/// minimum ℓ1) for n = DOF + 1, the ℓ1 linear program otherwise.
-fn default_method(n: usize, dof: usize) -> Method {
-    if n == dof {
-        Method::Exact
-    } else if n == dof + 1 {
-        Method::ClosedForm
-    } else {
-        Method::L1
-    }
+/// The request of the command line.
+fn request(args: &Args) -> Result<SynthesisRequest, CliError> {
+    let r = args.orientations.0;
+    let range = RangeReport {
+        min: r.min,
+        max: r.max,
+        slices: r.slices,
+    };
+    let mut request =
+        SynthesisRequest::new(request_robot(&args.robot)?, range, args.start.0.clone());
+    request.criteria = args.criteria.to_request();
+    request.grid = args.grid;
+    request.grid_box = args.grid_box.as_ref().map(|b| b.0.clone());
+    request.optimizer = SynthesisOptimizer::from_name(&args.optimizer).unwrap_or_default();
+    request.min_separation = args.min_separation;
+    request.move_limit = args.move_limit;
+    request.fd_interval = args.fd_interval;
+    Ok(request)
 }
 
-/// Everything the objective needs.
-struct Problem<'a> {
-    desc: &'a RobotDescription,
-    setup: CriteriaSetup,
-    platform: Vec<[f64; 2]>,
-    range: OrientationRange,
-    grid: Grid,
-}
-
-impl Problem<'_> {
-    fn dextrous(&self, design: &[f64]) -> Result<Dextrous, CliError> {
-        let robot = robot_from_design(design, &self.platform)?;
-        dextrous(
-            &self.setup,
-            self.desc,
-            &robot,
-            &Rotation3::identity(),
-            &Vector3::z_axis(),
-            &self.range,
-            &self.grid,
-            &|| {},
-        )
-        .map_err(CliError::from)
-    }
-}
-
-/// Runs the command.
+/// Runs the command: parse → request → run → render.
 pub fn run(args: Args) -> Result<(), CliError> {
-    let desc = load_robot(&args.robot)?;
-    desc.require_no_passive_springs("synthesize")?;
-    let robot = &desc.robot;
-    if robot.motion() != MotionPattern::Planar {
-        return Err(format!(
-            "synthesize places anchors on the planar square frame; this robot is `{}` (need planar)",
-            robot.motion().name()
-        )
-        .into());
-    }
-    let n = robot.cable_count();
-    if args.start.len() != n {
-        return Err(format!(
-            "--start has {} angles but the robot file has {n} cables (one angle per cable)",
-            args.start.len()
-        )
-        .into());
-    }
-    let method = args
-        .criteria
-        .method
-        .unwrap_or_else(|| default_method(n, robot.dof()));
-    let setup = super::criteria::setup(&args.criteria, &desc, method)?;
-    let platform: Vec<[f64; 2]> = robot
-        .cables()
-        .iter()
-        .map(|c| [c.platform.x, c.platform.y])
-        .collect();
-    let frame_box = [-1.0, 1.0, -1.0, 1.0];
-    let region = region(
-        robot,
-        Some(args.grid_box.as_deref().unwrap_or(&frame_box)),
-        "--grid-box",
-    )?;
-    let m = args.grid.unwrap_or(if n == robot.dof() { 100 } else { 50 });
-    if !(1..=1000).contains(&m) {
-        return Err("--grid M must lie in [1, 1000]".into());
-    }
-    let problem = Problem {
-        desc: &desc,
-        setup,
-        platform,
-        range: args.orientations.0,
-        grid: Grid::new(m, region),
-    };
-    let mut settings = SynthesisSettings {
-        method: match args.optimizer.as_str() {
-            "dynamic-q" => Optimizer::DynamicQ,
-            "compass" => Optimizer::CompassSearch,
-            "global" => Optimizer::Global,
-            _ => Optimizer::DynamicQThenCompass,
-        },
-        ..SynthesisSettings::default()
-    };
-    settings.multi_start.platform = Some(problem.platform.clone());
-    if let Some(b) = args.min_separation {
-        settings.min_separation = b;
-    }
-    settings.dynamic_q.move_limit = args.move_limit;
-    settings.dynamic_q.fd_interval = args.fd_interval.unwrap_or(if n <= 3 { 0.05 } else { 0.1 });
-    settings.validate()?;
-    settings
-        .check_feasible_separation(n)
-        .map_err(|e| format!("--min-separation: {e}"))?;
-    // Bad input (a non-finite angle, an invalid criterion) is reported here, not hidden as −∞.
-    let start_ws = problem.dextrous(&args.start)?;
+    let request = request(&args)?;
+    request.validate()?;
     let bar = if std::io::stderr().is_terminal() {
         ProgressBar::new_spinner()
     } else {
         ProgressBar::hidden()
     };
-    let mut calls = 0usize;
-    let mut objective = |d: &[f64]| -> f64 {
-        calls += 1;
+    let report = request.run_with_progress(&|calls| {
         bar.set_message(format!("{calls} area evaluations"));
         bar.tick();
-        problem
-            .dextrous(d)
-            .map_or(f64::NEG_INFINITY, |w| w.workspace.area)
-    };
-    let result = synthesise(&mut objective, &args.start, &settings)?;
+    })?;
     bar.finish_and_clear();
-    let best = problem.dextrous(&result.design)?;
-    let anchors: Vec<[f64; 2]> = result.design.iter().map(|&b| frame_anchor(b)).collect();
-    let termination = match result.termination {
-        Termination::Converged => "converged",
-        Termination::Budget => "budget",
-    };
     if let Some(path) = &args.plot {
-        let opt = robot_from_design(&result.design, &problem.platform)?;
-        let c = (region.min + region.max) * 0.5;
-        let pose = Pose::planar(c.x, c.y, problem.range.central());
-        let mut fig = workspace_plot(
-            &opt,
-            &pose,
-            Some(&best.workspace),
-            Vec::new(),
-            format!(
-                "{}: optimised design, dextrous workspace φ ∈ [{}, {}]",
-                desc.name, problem.range.min, problem.range.max
-            ),
-            vec![format!(
-                "A_d = {:.4} (start {:.4}); β = {}",
-                result.area,
-                start_ws.workspace.area,
-                result
-                    .design
-                    .iter()
-                    .map(|b| format!("{b:.4}"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )],
-        );
-        fig.frame = vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-        save_plot(&fig, path)?;
+        save_synthesis_plot(&report, path)?;
     }
     if args.json {
-        return print_json(&json!({
-            "robot": desc.name,
-            "optimizer": args.optimizer,
-            "criteria": problem.setup.labels(),
-            "tension_method": method.name(),
-            "orientations": { "min": problem.range.min, "max": problem.range.max, "slices": problem.range.slices },
-            "resolution": m,
-            "box": box_json(&region, 2),
-            "min_separation": settings.min_separation,
-            "start": args.start.0,
-            "start_area": start_ws.workspace.area,
-            "start_constraint_violation": separation_violation(&args.start, settings.min_separation),
-            "design": in_first_turn(&result.design),
-            "area": result.area,
-            "anchors": anchors,
-            "constraint_violation": result.constraint_violation,
-            "evaluations": { "function": result.evaluations.function, "gradient": result.evaluations.gradient },
-            "iterations": result.iterations,
-            "termination": termination,
-            "feasible_points": best.workspace.feasible_points,
-            "total_points": best.workspace.total_points,
-            "cell_area": best.workspace.cell_area,
-            "volume_convention": VolumeConvention::Points.name(),
-            "central_check": {
-                "holds": best.central_check.holds,
-                "violations": best.central_check.violations,
-                "extremes_points": best.central_check.extremes_points,
-            },
-        }));
+        return print_report(&report);
     }
-    let fmt = |v: &[f64]| {
-        v.iter()
-            .map(|b| format!("{b:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    println!(
-        "robot {}: synthesis of {n} frame anchors for the dextrous workspace φ ∈ [{}, {}] ({} slices), \
-         grid m = {m}",
-        desc.name, problem.range.min, problem.range.max, problem.range.slices
-    );
-    println!(
-        "criteria: {} (tensions: {}); optimiser {}, β_min = {:.4}",
-        problem.setup.labels().join(", "),
-        method.name(),
-        args.optimizer,
-        settings.min_separation
-    );
-    println!("A_d in m², {}", VolumeConvention::Points.describe());
-    println!(
-        "start    d0 = [{}]  A_d = {:.6}",
-        fmt(&args.start),
-        start_ws.workspace.area
-    );
-    println!(
-        "optimum  d* = [{}]  A_d = {:.6} ({} points)",
-        fmt(&in_first_turn(&result.design)),
-        result.area,
-        best.workspace.feasible_points
-    );
-    for (i, a) in anchors.iter().enumerate() {
-        println!("  anchor c{} = ({:.4}, {:.4})", i + 1, a[0], a[1]);
-    }
-    println!(
-        "{} area evaluations, {} gradients, {} iterations, {termination}; constraint violation {:.2e}",
-        result.evaluations.function,
-        result.evaluations.gradient,
-        result.iterations,
-        result.constraint_violation
-    );
-    if !best.central_check.holds {
-        println!(
-            "note: the §6.5 central check fails at the optimum ({} points): consider more slices",
-            best.central_check.violations
-        );
-    }
+    print_synthesis(&report);
     if let Some(p) = &args.plot {
         println!("plot written to {}", p.display());
     }
     Ok(())
+}
+
+/// Angles with 4 decimals, comma-separated.
+fn angles(v: &[f64]) -> String {
+    v.iter()
+        .map(|b| format!("{b:.4}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The optimised design's dextrous workspace on the square frame.
+fn save_synthesis_plot(report: &SynthesisReport, path: &Path) -> Result<(), CliError> {
+    let opt = report.optimised_robot()?;
+    let region = report.workspace.grid.region;
+    let c = (region.min + region.max) * 0.5;
+    let range = report.orientations;
+    let pose = Pose::planar(c.x, c.y, 0.5 * (range.min + range.max));
+    let mut fig = workspace_plot(
+        &opt,
+        &pose,
+        Some(&report.workspace),
+        Vec::new(),
+        format!(
+            "{}: optimised design, dextrous workspace φ ∈ [{}, {}]",
+            report.robot, range.min, range.max
+        ),
+        vec![format!(
+            "A_d = {:.4} (start {:.4}); β = {}",
+            report.area,
+            report.start_area,
+            angles(&report.design_raw)
+        )],
+    );
+    fig.frame = vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    save_plot(&fig, path)
+}
+
+/// The report as text.
+fn print_synthesis(r: &SynthesisReport) {
+    let o = r.orientations;
+    println!(
+        "robot {}: synthesis of {} frame anchors for the dextrous workspace φ ∈ [{}, {}] ({} slices), \
+         grid m = {}",
+        r.robot,
+        r.start.len(),
+        o.min,
+        o.max,
+        o.slices,
+        r.resolution
+    );
+    println!(
+        "criteria: {} (tensions: {}); optimiser {}, β_min = {:.4}",
+        r.criteria.join(", "),
+        r.tension_method,
+        r.optimizer,
+        r.min_separation
+    );
+    println!("A_d in m², {}", VolumeConvention::Points.describe());
+    println!(
+        "start    d0 = [{}]  A_d = {:.6}",
+        angles(&r.start),
+        r.start_area
+    );
+    println!(
+        "optimum  d* = [{}]  A_d = {:.6} ({} points)",
+        angles(&r.design),
+        r.area,
+        r.feasible_points
+    );
+    for (i, a) in r.anchors.iter().enumerate() {
+        println!("  anchor c{} = ({:.4}, {:.4})", i + 1, a[0], a[1]);
+    }
+    println!(
+        "{} area evaluations, {} gradients, {} iterations, {}; constraint violation {:.2e}",
+        r.evaluations.function,
+        r.evaluations.gradient,
+        r.iterations,
+        r.termination,
+        r.constraint_violation
+    );
+    if !r.central_check.holds {
+        println!(
+            "note: the §6.5 central check fails at the optimum ({} points): consider more slices",
+            r.central_check.violations
+        );
+    }
 }

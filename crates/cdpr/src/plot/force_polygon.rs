@@ -97,6 +97,86 @@ fn ellipse_points(b: &[[f64; 2]; 2]) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// The facets n_k · f ≤ d_k with d_k ≤ r + tol (those the circle of radius r touches) as edges
+/// between their two vertices, and their outward normals' angles (degrees in [0, 360), rounded
+/// to 0.1°); none when r ≤ 0.
+type TouchingFacets = (Vec<((f64, f64), (f64, f64))>, Vec<f64>);
+
+fn touching_facets(
+    aws: &AvailableWrenchSet,
+    vertices: &[(f64, f64)],
+    r: f64,
+    tol: f64,
+) -> TouchingFacets {
+    let mut edges = Vec::new();
+    let mut touching = Vec::new();
+    if r > 0.0 {
+        for f in aws.facets().iter().filter(|f| f.offset <= r + tol) {
+            let on: Vec<(f64, f64)> = vertices
+                .iter()
+                .copied()
+                .filter(|&(x, y)| (f.normal[0] * x + f.normal[1] * y - f.offset).abs() <= tol)
+                .collect();
+            if let [a, b] = on[..] {
+                edges.push((a, b));
+                // In [0°, 360°), rounded to 0.1° (so that −0 and 360 do not appear).
+                let deg = f.normal[1]
+                    .atan2(f.normal[0])
+                    .to_degrees()
+                    .rem_euclid(360.0);
+                touching.push((deg * 10.0).round() % 3600.0 / 10.0);
+            }
+        }
+    }
+    (edges, touching)
+}
+
+/// The note lines of [`ForcePolygonPlot::operational`]: the vertex count and circle radius (N),
+/// the touching facets' normals, the ellipse's semi-axes (N), angle and area (N²).
+fn operational_notes(
+    vertex_count: usize,
+    r: f64,
+    mut touching: Vec<f64>,
+    ellipse: Option<&InscribedEllipse>,
+) -> Vec<String> {
+    let mut notes = vec![format!(
+        "{} vertices; largest centred circle: radius {:.1} N (maximum isotropic force, eq. 19){}",
+        vertex_count,
+        r,
+        if r > 0.0 {
+            ""
+        } else {
+            ": the origin is outside, no circle"
+        }
+    )];
+    touching.sort_by(f64::total_cmp);
+    if !touching.is_empty() {
+        notes.push(format!(
+            "circle touches {} facet(s), outward normals at {}",
+            touching.len(),
+            touching
+                .iter()
+                .map(|a| format!("{a:.1}°"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    if let Some(e) = ellipse {
+        let [a, b] = e.semi_axes;
+        notes.push(if a - b <= 1e-6 * a {
+            format!("largest centred ellipse: the circle (semi-axes {a:.1} N, {b:.1} N)")
+        } else {
+            format!(
+                "largest centred ellipse: semi-axes {a:.1} N, {b:.1} N, major axis at {:.1}°, \
+                 area {:.0} N²",
+                e.angle.to_degrees(),
+                e.area()
+            )
+        });
+    }
+    notes
+}
+
 impl ForcePolygonPlot {
     /// Krut, Company & Pierrot 2004, Fig. 4 for a 2-D available wrench set (point2 robots): the polygon from its
     /// vertices, the largest origin-centred circle (radius min_k d_k over the supporting
@@ -121,62 +201,8 @@ impl ForcePolygonPlot {
             .map(|&(x, y)| x.hypot(y))
             .fold(0.0, f64::max)
             .max(f64::MIN_POSITIVE);
-        let tol = 1e-7 * size;
-        let mut edges = Vec::new();
-        let mut touching = Vec::new();
-        if r > 0.0 {
-            for f in aws.facets().iter().filter(|f| f.offset <= r + tol) {
-                let on: Vec<(f64, f64)> = vertices
-                    .iter()
-                    .copied()
-                    .filter(|&(x, y)| (f.normal[0] * x + f.normal[1] * y - f.offset).abs() <= tol)
-                    .collect();
-                if let [a, b] = on[..] {
-                    edges.push((a, b));
-                    // In [0°, 360°), rounded to 0.1° (so that −0 and 360 do not appear).
-                    let deg = f.normal[1]
-                        .atan2(f.normal[0])
-                        .to_degrees()
-                        .rem_euclid(360.0);
-                    touching.push((deg * 10.0).round() % 3600.0 / 10.0);
-                }
-            }
-        }
-        let mut notes = vec![format!(
-            "{} vertices; largest centred circle: radius {:.1} N (maximum isotropic force, eq. 19){}",
-            vertices.len(),
-            r,
-            if r > 0.0 {
-                ""
-            } else {
-                ": the origin is outside, no circle"
-            }
-        )];
-        touching.sort_by(f64::total_cmp);
-        if !touching.is_empty() {
-            notes.push(format!(
-                "circle touches {} facet(s), outward normals at {}",
-                touching.len(),
-                touching
-                    .iter()
-                    .map(|a| format!("{a:.1}°"))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-        }
-        if let Some(e) = ellipse {
-            let [a, b] = e.semi_axes;
-            notes.push(if a - b <= 1e-6 * a {
-                format!("largest centred ellipse: the circle (semi-axes {a:.1} N, {b:.1} N)")
-            } else {
-                format!(
-                    "largest centred ellipse: semi-axes {a:.1} N, {b:.1} N, major axis at {:.1}°, \
-                     area {:.0} N²",
-                    e.angle.to_degrees(),
-                    e.area()
-                )
-            });
-        }
+        let (edges, touching) = touching_facets(aws, &vertices, r, 1e-7 * size);
+        let notes = operational_notes(vertices.len(), r, touching, ellipse);
         Some(Self {
             labels: ("f_x (N)".into(), "f_y (N)".into()),
             notes,
@@ -226,16 +252,17 @@ impl ForcePolygonPlot {
     }
 }
 
-impl Figure for ForcePolygonPlot {
-    fn size(&self) -> (u32, u32) {
-        (1050, 820)
-    }
+/// The chart of a force polygon (N on both axes).
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        // Extent: polygon, shapes, points, segments and the origin; equal scales.
+impl ForcePolygonPlot {
+    /// The square view: its centre and half-width (N) around the polygon, shapes, points,
+    /// segments and the origin (equal scales).
+    fn view(&self) -> ((f64, f64), f64) {
         let mut pts: Vec<(f64, f64)> = self.polygon.clone();
         if let Some((r, _)) = &self.circle
             && *r > 0.0
@@ -252,24 +279,14 @@ impl Figure for ForcePolygonPlot {
         }
         let ((x0, x1), (y0, y1)) = layout::bounds(pts);
         let half = (0.5 * (x1 - x0).max(y1 - y0) * 1.08).max(1e-9);
-        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        ((0.5 * (x0 + x1), 0.5 * (y0 + y1)), half)
+    }
 
-        let (body, legend) = layout::layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
-        let mut chart = ChartBuilder::on(&body)
-            .margin(12)
-            .x_label_area_size(42)
-            .y_label_area_size(62)
-            .build_cartesian_2d(cx - half..cx + half, cy - half..cy + half)?;
-        chart
-            .configure_mesh()
-            .light_line_style(WHITE.mix(0.0))
-            .bold_line_style(BLACK.mix(0.08))
-            .x_desc(self.labels.0.as_str())
-            .y_desc(self.labels.1.as_str())
-            .x_label_formatter(&|v| super::tick(*v))
-            .y_label_formatter(&|v| super::tick(*v))
-            .label_style(("sans-serif", 14))
-            .draw()?;
+    /// The polygon, the highlighted edges, the circle and the ellipse.
+    fn draw_shapes<DB: DrawingBackend>(&self, chart: &mut Chart<'_, DB>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         if self.polygon.len() > 1 {
             let mut p = self.polygon.clone();
             p.push(self.polygon[0]);
@@ -301,6 +318,14 @@ impl Figure for ForcePolygonPlot {
                 ELLIPSE.stroke_width(3),
             ))?;
         }
+        Ok(())
+    }
+
+    /// The segments, the origin and the points.
+    fn draw_marks<DB: DrawingBackend>(&self, chart: &mut Chart<'_, DB>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         for ((a, b), _) in &self.segments {
             chart.draw_series(DashedLineSeries::new(
                 vec![*a, *b],
@@ -317,43 +342,21 @@ impl Figure for ForcePolygonPlot {
         for (k, (p, _)) in self.points.iter().enumerate() {
             marker(chart.plotting_area(), k, *p)?;
         }
-        // Legend column; a label may span several lines ('\n').
+        Ok(())
+    }
+
+    /// The legend column; a label may span several lines ('\n').
+    fn draw_legend<DB: DrawingBackend>(&self, legend: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         let mut y = 30;
         for (swatch, label) in self.legend() {
-            let (sx0, sx1) = (10, 46);
-            match swatch {
-                Swatch::Fill => {
-                    legend.draw(&Rectangle::new([(sx0, y - 8), (sx1, y + 8)], FILL.filled()))?;
-                    legend.draw(&Rectangle::new(
-                        [(sx0, y - 8), (sx1, y + 8)],
-                        EDGE.stroke_width(2),
-                    ))?;
-                }
-                Swatch::Line(c, width) => {
-                    legend.draw(&PathElement::new(
-                        vec![(sx0, y), (sx1, y)],
-                        c.stroke_width(width),
-                    ))?;
-                }
-                Swatch::Dashed(c, width) => {
-                    for x in [sx0, sx0 + 14, sx0 + 28] {
-                        legend.draw(&PathElement::new(
-                            vec![(x, y), (x + 8, y)],
-                            c.stroke_width(width),
-                        ))?;
-                    }
-                }
-                Swatch::Origin => {
-                    legend.draw(
-                        &(EmptyElement::at((28, y)) + Cross::new((0, 0), 8, BLACK.stroke_width(2))),
-                    )?;
-                }
-                Swatch::Point(i) => marker(&legend, i, (28, y))?,
-            }
+            draw_swatch(legend, swatch, y)?;
             for line in label.lines() {
                 legend.draw(&Text::new(
                     line.to_string(),
-                    (sx1 + 10, y - 8),
+                    (SWATCH_X.1 + 10, y - 8),
                     ("sans-serif", 15).into_font(),
                 ))?;
                 y += 19;
@@ -361,5 +364,82 @@ impl Figure for ForcePolygonPlot {
             y += 12;
         }
         Ok(())
+    }
+}
+
+/// The legend swatches' left and right ends (px).
+const SWATCH_X: (i32, i32) = (10, 46);
+
+/// One legend swatch centred at height `y` (px).
+fn draw_swatch<DB: DrawingBackend>(
+    legend: &DrawingArea<DB, Shift>,
+    swatch: Swatch,
+    y: i32,
+) -> DrawResult
+where
+    DB::ErrorType: 'static,
+{
+    let (sx0, sx1) = SWATCH_X;
+    match swatch {
+        Swatch::Fill => {
+            legend.draw(&Rectangle::new([(sx0, y - 8), (sx1, y + 8)], FILL.filled()))?;
+            legend.draw(&Rectangle::new(
+                [(sx0, y - 8), (sx1, y + 8)],
+                EDGE.stroke_width(2),
+            ))?;
+        }
+        Swatch::Line(c, width) => {
+            legend.draw(&PathElement::new(
+                vec![(sx0, y), (sx1, y)],
+                c.stroke_width(width),
+            ))?;
+        }
+        Swatch::Dashed(c, width) => {
+            for x in [sx0, sx0 + 14, sx0 + 28] {
+                legend.draw(&PathElement::new(
+                    vec![(x, y), (x + 8, y)],
+                    c.stroke_width(width),
+                ))?;
+            }
+        }
+        Swatch::Origin => {
+            legend.draw(
+                &(EmptyElement::at((28, y)) + Cross::new((0, 0), 8, BLACK.stroke_width(2))),
+            )?;
+        }
+        Swatch::Point(i) => marker(legend, i, (28, y))?,
+    }
+    Ok(())
+}
+
+impl Figure for ForcePolygonPlot {
+    fn size(&self) -> (u32, u32) {
+        (1050, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let ((cx, cy), half) = self.view();
+        let (body, legend) = layout::layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
+        let mut chart = ChartBuilder::on(&body)
+            .margin(12)
+            .x_label_area_size(42)
+            .y_label_area_size(62)
+            .build_cartesian_2d(cx - half..cx + half, cy - half..cy + half)?;
+        chart
+            .configure_mesh()
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.08))
+            .x_desc(self.labels.0.as_str())
+            .y_desc(self.labels.1.as_str())
+            .x_label_formatter(&|v| super::tick(*v))
+            .y_label_formatter(&|v| super::tick(*v))
+            .label_style(("sans-serif", 14))
+            .draw()?;
+        self.draw_shapes(&mut chart)?;
+        self.draw_marks(&mut chart)?;
+        self.draw_legend(&legend)
     }
 }

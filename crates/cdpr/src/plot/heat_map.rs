@@ -63,17 +63,16 @@ fn highlight_offset(label: &str, right_half: bool, upper_half: bool) -> (i32, i3
     (dx, dy)
 }
 
-impl Figure for HeatMap {
-    fn size(&self) -> (u32, u32) {
-        (1000, 820)
-    }
+/// The chart of a heat map (m, or the quantities of `labels`, on both axes).
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        root.fill(&WHITE)?;
-        let (main, bar) = root.split_horizontally(840);
+impl HeatMap {
+    /// The grid spacing (Δx, Δy); 1 along an axis with one sample.
+    fn cell(&self) -> (f64, f64) {
         let (nx, ny) = self.shape;
         let dx = if nx > 1 {
             (self.x_range.1 - self.x_range.0) / (nx - 1) as f64
@@ -85,29 +84,31 @@ impl Figure for HeatMap {
         } else {
             1.0
         };
+        (dx, dy)
+    }
+
+    /// The x and y extents of the cells, markers and outlines.
+    fn extent(&self, (dx, dy): (f64, f64)) -> ((f64, f64), (f64, f64)) {
         let mut xs = (self.x_range.0 - dx / 2.0, self.x_range.1 + dx / 2.0);
         let mut ys = (self.y_range.0 - dy / 2.0, self.y_range.1 + dy / 2.0);
         for &(x, y) in self.markers.iter().chain(self.outlines.iter().flatten()) {
             xs = (xs.0.min(x), xs.1.max(x));
             ys = (ys.0.min(y), ys.1.max(y));
         }
-        let pad = 0.04 * (xs.1 - xs.0).max(ys.1 - ys.0);
-        let mut chart = ChartBuilder::on(&main)
-            .caption(&self.title, ("sans-serif", 22))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(65)
-            .build_cartesian_2d(xs.0 - pad..xs.1 + pad, ys.0 - pad..ys.1 + pad)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc(self.labels.0.as_str())
-            .y_desc(self.labels.1.as_str())
-            .x_label_formatter(&|v| super::tick(*v))
-            .y_label_formatter(&|v| super::tick(*v))
-            .label_style(("sans-serif", 15))
-            .draw()?;
-        let (lo, hi) = self.value_range();
+        (xs, ys)
+    }
+
+    /// The coloured cells over `lo..hi`.
+    fn draw_cells<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<'_, DB>,
+        (dx, dy): (f64, f64),
+        (lo, hi): (f64, f64),
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let nx = self.shape.0;
         chart.draw_series(self.values.iter().enumerate().filter_map(|(k, &v)| {
             if !(v.is_finite() && v >= self.blank_below) {
                 return None;
@@ -123,6 +124,18 @@ impl Figure for HeatMap {
                 c.filled(),
             ))
         }))?;
+        Ok(())
+    }
+
+    /// The outlines, the markers and the highlighted points with their labels.
+    fn draw_overlays<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<'_, DB>,
+        (xs, ys): ((f64, f64), (f64, f64)),
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         for outline in &self.outlines {
             let mut pts = outline.clone();
             if let Some(&first) = outline.first() {
@@ -146,8 +159,19 @@ impl Figure for HeatMap {
                     + Text::new(label.clone(), (dx, dy), ("sans-serif", 15).into_font()),
             ))?;
         }
-        // Colour bar.
-        let mut bar_chart = ChartBuilder::on(&bar)
+        Ok(())
+    }
+
+    /// The colour bar over `lo..hi`.
+    fn draw_colour_bar<DB: DrawingBackend>(
+        &self,
+        bar: &DrawingArea<DB, Shift>,
+        (lo, hi): (f64, f64),
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let mut bar_chart = ChartBuilder::on(bar)
             .margin_top(50)
             .margin_bottom(57)
             .margin_right(10)
@@ -172,6 +196,42 @@ impl Figure for HeatMap {
             )
         }))?;
         Ok(())
+    }
+}
+
+impl Figure for HeatMap {
+    fn size(&self) -> (u32, u32) {
+        (1000, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let (main, bar) = root.split_horizontally(840);
+        let cell = self.cell();
+        let (xs, ys) = self.extent(cell);
+        let pad = 0.04 * (xs.1 - xs.0).max(ys.1 - ys.0);
+        let mut chart = ChartBuilder::on(&main)
+            .caption(&self.title, ("sans-serif", 22))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(65)
+            .build_cartesian_2d(xs.0 - pad..xs.1 + pad, ys.0 - pad..ys.1 + pad)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc(self.labels.0.as_str())
+            .y_desc(self.labels.1.as_str())
+            .x_label_formatter(&|v| super::tick(*v))
+            .y_label_formatter(&|v| super::tick(*v))
+            .label_style(("sans-serif", 15))
+            .draw()?;
+        let range = self.value_range();
+        self.draw_cells(&mut chart, cell, range)?;
+        self.draw_overlays(&mut chart, (xs, ys))?;
+        self.draw_colour_bar(&bar, range)
     }
 }
 

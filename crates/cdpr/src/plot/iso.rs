@@ -103,18 +103,9 @@ const BOX_EDGES: [(usize, usize); 12] = [
 ];
 
 impl IsoFigure {
-    fn draw_iso<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        let s = &self.scene;
-        let (w, h) = area.dim_in_pixel();
-        area.draw(&Text::new(
-            "isometric view",
-            (10, 6),
-            ("sans-serif", 16).into_font(),
-        ))?;
-        let (lo, hi) = s.bounds();
+    /// The camera that fits the scene's bounding box into `area` (w × h px).
+    fn camera(&self, (w, h): (u32, u32)) -> Camera {
+        let (lo, hi) = self.scene.bounds();
         let centre = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
         let mut cam = Camera {
             centre,
@@ -132,7 +123,19 @@ impl IsoFigure {
             (b - a).max(1e-12)
         };
         cam.scale = ((w as f64 - 60.0) / span(0)).min((h as f64 - 70.0) / span(1));
-        // Frame (the anchors' bounding box) and the search box.
+        cam
+    }
+
+    /// The frame (the anchors' bounding box, grey) and the search box (dashed).
+    fn draw_boxes<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        cam: &Camera,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let s = &self.scene;
         if let Some(first) = s.anchors.first() {
             let (mut alo, mut ahi) = (*first, *first);
             for a in &s.anchors {
@@ -158,7 +161,19 @@ impl IsoFigure {
                 BOX.stroke_width(1),
             )?;
         }
-        // Mesh, back to front.
+        Ok(())
+    }
+
+    /// The boundary mesh, shaded, back to front.
+    fn draw_mesh<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        cam: &Camera,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let s = &self.scene;
         let light = [0.35, 0.45, 0.82];
         // (depth, screen corners, shade) per triangle.
         type Shaded = (f64, [(i32, i32); 3], f64);
@@ -190,7 +205,19 @@ impl IsoFigure {
             );
             area.draw(&Polygon::new(p.to_vec(), c.mix(0.45).filled()))?;
         }
-        // Robot at the draw pose.
+        Ok(())
+    }
+
+    /// The robot at the draw pose: cables, platform faces back to front, anchors.
+    fn draw_robot<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        cam: &Camera,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let s = &self.scene;
         for (a, b) in &s.cables {
             area.draw(&PathElement::new(
                 vec![cam.project(a), cam.project(b)],
@@ -217,8 +244,20 @@ impl IsoFigure {
                 PLATFORM.filled(),
             ))?;
         }
-        self.anchor_labels(area, |p| cam.project(p))?;
-        // Axes triad at the box's lower corner, and the box corners' coordinates.
+        self.anchor_labels(area, |p| cam.project(p))
+    }
+
+    /// The axes triad at the box's lower corner, and that corner's coordinates.
+    fn draw_triad<DB: DrawingBackend>(
+        &self,
+        area: &DrawingArea<DB, Shift>,
+        cam: &Camera,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let s = &self.scene;
+        let (lo, hi) = s.bounds();
         let o = s.region.0;
         let len = 0.15 * (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         for k in 0..3 {
@@ -248,6 +287,23 @@ impl IsoFigure {
             ("sans-serif", 12).into_font().color(&BOX),
         ))?;
         Ok(())
+    }
+
+    /// The isometric view: boxes, mesh, robot and axes.
+    fn draw_iso<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        area.draw(&Text::new(
+            "isometric view",
+            (10, 6),
+            ("sans-serif", 16).into_font(),
+        ))?;
+        let cam = self.camera(area.dim_in_pixel());
+        self.draw_boxes(area, &cam)?;
+        self.draw_mesh(area, &cam)?;
+        self.draw_robot(area, &cam)?;
+        self.draw_triad(area, &cam)
     }
 
     /// Anchors as black squares with non-overlapping labels A1, A2, …
@@ -287,6 +343,22 @@ impl IsoFigure {
         Ok(())
     }
 
+    /// The section's chart range: the scene's bounds on axes `u`, `v`, padded and widened to
+    /// equal scales in a w × h px area (x0, x1, y0, y1, m).
+    fn section_range(&self, (u, v): (usize, usize), (w, h): (u32, u32)) -> (f64, f64, f64, f64) {
+        let (lo, hi) = self.scene.bounds();
+        // Equal scales: widen the shorter range to the plot's aspect ratio.
+        let (pw, ph) = (w as f64 - 75.0, h as f64 - 75.0);
+        let (mut x0, mut x1, mut y0, mut y1) = (lo[u], hi[u], lo[v], hi[v]);
+        let pad = 0.05 * (x1 - x0).max(y1 - y0);
+        (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+        let per_px = ((x1 - x0) / pw).max((y1 - y0) / ph);
+        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
+        (x0, x1) = (cx - 0.5 * pw * per_px, cx + 0.5 * pw * per_px);
+        (y0, y1) = (cy - 0.5 * ph * per_px, cy + 0.5 * ph * per_px);
+        (x0, x1, y0, y1)
+    }
+
     /// The section by the plane `axis` = the draw pose's coordinate.
     fn draw_section<DB: DrawingBackend>(
         &self,
@@ -303,17 +375,7 @@ impl IsoFigure {
             1 => (0, 2),
             _ => (0, 1),
         };
-        let (lo, hi) = s.bounds();
-        let (w, h) = area.dim_in_pixel();
-        // Equal scales: widen the shorter range to the plot's aspect ratio.
-        let (pw, ph) = (w as f64 - 75.0, h as f64 - 75.0);
-        let (mut x0, mut x1, mut y0, mut y1) = (lo[u], hi[u], lo[v], hi[v]);
-        let pad = 0.05 * (x1 - x0).max(y1 - y0);
-        (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
-        let per_px = ((x1 - x0) / pw).max((y1 - y0) / ph);
-        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-        (x0, x1) = (cx - 0.5 * pw * per_px, cx + 0.5 * pw * per_px);
-        (y0, y1) = (cy - 0.5 * ph * per_px, cy + 0.5 * ph * per_px);
+        let (x0, x1, y0, y1) = self.section_range((u, v), area.dim_in_pixel());
         let mut chart = ChartBuilder::on(area)
             .caption(
                 format!("section {} = {} m", AXES[axis], tick(value)),

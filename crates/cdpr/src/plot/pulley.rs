@@ -85,48 +85,87 @@ where
     Ok(())
 }
 
-impl Figure for PulleyCablePlot {
-    fn size(&self) -> (u32, u32) {
-        (1300, 650)
+/// A chart of the figure, in metres on both axes.
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// `n + 1` points `f(k / n)`, k = 0 … n.
+fn sampled(n: usize, f: impl Fn(f64) -> (f64, f64)) -> Vec<(f64, f64)> {
+    (0..=n).map(|k| f(k as f64 / n as f64)).collect()
+}
+
+/// The dashed line style of axes.
+fn axis_style() -> ShapeStyle {
+    BLACK.mix(0.5).stroke_width(1)
+}
+
+/// A chart with its mesh (no light lines) over `x` × `y` (m).
+fn chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    (x, y): (std::ops::Range<f64>, std::ops::Range<f64>),
+    (x_desc, y_desc): (&str, &str),
+) -> Result<Chart<'a, DB>, Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(55)
+        .build_cartesian_2d(x, y)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .label_style(("sans-serif", 14))
+        .light_line_style(WHITE.mix(0.0))
+        .draw()?;
+    Ok(chart)
+}
+
+impl PulleyCablePlot {
+    /// B's radial distance s from the swivel axis and its height h along it (m).
+    fn attachment_sh(&self) -> (f64, f64) {
+        (
+            self.attachment.x.hypot(self.attachment.y),
+            self.attachment.z,
+        )
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    /// The tangent point C in the side view: radial x' (towards B) and axial z' (m).
+    fn exit_side(&self) -> (f64, f64) {
+        let (gc, gs) = (self.swivel_angle.cos(), self.swivel_angle.sin());
+        (
+            self.exit_point.x * gc + self.exit_point.y * gs,
+            self.exit_point.z,
+        )
+    }
+
+    /// Side view: the swivel axis, the pulley, the wrapped arc, β and the free segment.
+    fn draw_side<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> DrawResult
     where
         DB::ErrorType: 'static,
     {
-        root.fill(&WHITE)?;
-        let root = root.titled(&self.title, ("sans-serif", 22))?;
-        let (left, right) = root.split_horizontally(650);
         let rho = self.radius;
-        let (s, h) = (
-            self.attachment.x.hypot(self.attachment.y),
-            self.attachment.z,
-        );
-        let (gc, gs) = (self.swivel_angle.cos(), self.swivel_angle.sin());
-        // Side view: radial coordinate x' (towards B) and axial z'.
-        let cx = self.exit_point.x * gc + self.exit_point.y * gs;
-        let cz = self.exit_point.z;
+        let (s, h) = self.attachment_sh();
         let span = s.max(h.abs()).max(3.0 * rho) * 1.15;
-        let mut chart = ChartBuilder::on(&left)
-            .caption("in the pulley plane (side view)", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d(-0.35 * span..1.05 * span, -0.7 * span..0.7 * span)?;
-        chart
-            .configure_mesh()
-            .x_desc("radial x' (m)")
-            .y_desc("along the swivel axis z' (m)")
-            .label_style(("sans-serif", 14))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
+        let mut chart = chart(
+            area,
+            "in the pulley plane (side view)",
+            (-0.35 * span..1.05 * span, -0.7 * span..0.7 * span),
+            ("radial x' (m)", "along the swivel axis z' (m)"),
+        )?;
         // Swivel axis and the incoming cable along +k.
-        let axis = BLACK.mix(0.5).stroke_width(1);
         chart.draw_series(DashedLineSeries::new(
             vec![(0.0, -0.7 * span), (0.0, 0.7 * span)],
             8,
             5,
-            axis,
+            axis_style(),
         ))?;
         label(
             &mut chart,
@@ -144,31 +183,39 @@ impl Figure for PulleyCablePlot {
             (0.01 * span, -0.6 * span),
             CABLE,
         )?;
-        // Pulley circle, centre M = (ρ, 0).
-        let circle: Vec<(f64, f64)> = (0..=200)
-            .map(|k| {
-                let t = k as f64 / 200.0 * std::f64::consts::TAU;
-                (rho + rho * t.cos(), rho * t.sin())
-            })
-            .collect();
+        self.draw_pulley_and_wrap(&mut chart, span)?;
+        self.draw_side_points(&mut chart, span)
+    }
+
+    /// The pulley circle (centre M = (ρ, 0)), the wrapped arc from a to C and the wrap angle β.
+    fn draw_pulley_and_wrap<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<'_, DB>,
+        span: f64,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let rho = self.radius;
+        let (cx, cz) = self.exit_side();
+        let circle = sampled(200, |u| {
+            let t = u * std::f64::consts::TAU;
+            (rho + rho * t.cos(), rho * t.sin())
+        });
         chart.draw_series(LineSeries::new(circle, PULLEY.stroke_width(2)))?;
         chart.draw_series(std::iter::once(Circle::new((rho, 0.0), 3, PULLEY.filled())))?;
-        label(&mut chart, "M", (rho + 0.03 * span, -0.04 * span), PULLEY)?;
+        label(chart, "M", (rho + 0.03 * span, -0.04 * span), PULLEY)?;
         // Wrapped arc from a (β = 0) to C (β): (ρ (1 − cos t), ρ sin t).
-        let arc: Vec<(f64, f64)> = (0..=200)
-            .map(|k| {
-                let t = k as f64 / 200.0 * self.wrap_angle;
-                (rho * (1.0 - t.cos()), rho * t.sin())
-            })
-            .collect();
+        let arc = sampled(200, |u| {
+            let t = u * self.wrap_angle;
+            (rho * (1.0 - t.cos()), rho * t.sin())
+        });
         chart.draw_series(LineSeries::new(arc, CABLE.stroke_width(3)))?;
         // Wrap angle β at M, from Ma to MC.
-        let wedge: Vec<(f64, f64)> = (0..=100)
-            .map(|k| {
-                let t = k as f64 / 100.0 * self.wrap_angle;
-                (rho - 0.45 * rho * t.cos(), 0.45 * rho * t.sin())
-            })
-            .collect();
+        let wedge = sampled(100, |u| {
+            let t = u * self.wrap_angle;
+            (rho - 0.45 * rho * t.cos(), 0.45 * rho * t.sin())
+        });
         chart.draw_series(LineSeries::new(wedge, ANGLE.stroke_width(2)))?;
         chart.draw_series(LineSeries::new(
             vec![(0.0, 0.0), (rho, 0.0), (cx, cz)],
@@ -176,15 +223,28 @@ impl Figure for PulleyCablePlot {
         ))?;
         let mid = 0.5 * self.wrap_angle;
         label(
-            &mut chart,
+            chart,
             &format!("β = {:.3} rad", self.wrap_angle),
             (
                 rho - 0.9 * rho * mid.cos() + 0.02 * span,
                 0.9 * rho * mid.sin() + 0.06 * span,
             ),
             ANGLE,
-        )?;
-        // Free segment C → B.
+        )
+    }
+
+    /// The free segment C → B, the points a, C, B and the lengths.
+    fn draw_side_points<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<'_, DB>,
+        span: f64,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let rho = self.radius;
+        let (s, h) = self.attachment_sh();
+        let (cx, cz) = self.exit_side();
         chart.draw_series(LineSeries::new(
             vec![(cx, cz), (s, h)],
             CABLE.stroke_width(3),
@@ -195,40 +255,38 @@ impl Figure for PulleyCablePlot {
             ((s, h), "B (attachment)"),
         ] {
             chart.draw_series(std::iter::once(Circle::new(p, 5, BLACK.filled())))?;
-            label(
-                &mut chart,
-                name,
-                (p.0 + 0.03 * span, p.1 + 0.03 * span),
-                BLACK,
-            )?;
+            label(chart, name, (p.0 + 0.03 * span, p.1 + 0.03 * span), BLACK)?;
         }
         let (l, lf) = self.lengths;
         label(
-            &mut chart,
+            chart,
             &format!("L = ρβ + l_f = {l:.3} m (l_f = {lf:.3} m, ρ = {rho} m)"),
             (-0.3 * span, -0.66 * span),
             BLACK,
-        )?;
+        )
+    }
 
-        // View along the swivel axis: e₁ (γ = 0), the pulley plane at γ, and B's projection.
+    /// View along the swivel axis: e₁ (γ = 0), the pulley plane at γ, and B's projection.
+    fn draw_top<DB: DrawingBackend>(&self, area: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let rho = self.radius;
+        let (s, _) = self.attachment_sh();
+        let (cx, _) = self.exit_side();
+        let (gc, gs) = (self.swivel_angle.cos(), self.swivel_angle.sin());
         let r = s.max(2.0 * rho) * 1.3;
-        let mut top = ChartBuilder::on(&right)
-            .caption("along the swivel axis (top view)", ("sans-serif", 18))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(55)
-            .build_cartesian_2d(-r..r, -r..r)?;
-        top.configure_mesh()
-            .x_desc("e₁ (m)")
-            .y_desc("e₂ = k × e₁ (m)")
-            .label_style(("sans-serif", 14))
-            .light_line_style(WHITE.mix(0.0))
-            .draw()?;
+        let mut top = chart(
+            area,
+            "along the swivel axis (top view)",
+            (-r..r, -r..r),
+            ("e₁ (m)", "e₂ = k × e₁ (m)"),
+        )?;
         top.draw_series(DashedLineSeries::new(
             vec![(0.0, 0.0), (0.95 * r, 0.0)],
             8,
             5,
-            axis,
+            axis_style(),
         ))?;
         label(
             &mut top,
@@ -245,16 +303,24 @@ impl Figure for PulleyCablePlot {
             vec![(0.0, 0.0), (cx * gc, cx * gs), (s * gc, s * gs)],
             CABLE.stroke_width(3),
         ))?;
-        let sweep: Vec<(f64, f64)> = (0..=100)
-            .map(|k| {
-                let t = k as f64 / 100.0 * self.swivel_angle;
-                (0.3 * r * t.cos(), 0.3 * r * t.sin())
-            })
-            .collect();
+        self.draw_swivel(&mut top, r)
+    }
+
+    /// The swivel angle γ and the points a and B in the top view.
+    fn draw_swivel<DB: DrawingBackend>(&self, top: &mut Chart<'_, DB>, r: f64) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let (s, _) = self.attachment_sh();
+        let (gc, gs) = (self.swivel_angle.cos(), self.swivel_angle.sin());
+        let sweep = sampled(100, |u| {
+            let t = u * self.swivel_angle;
+            (0.3 * r * t.cos(), 0.3 * r * t.sin())
+        });
         top.draw_series(LineSeries::new(sweep, ANGLE.stroke_width(2)))?;
         let mid = 0.5 * self.swivel_angle;
         label(
-            &mut top,
+            top,
             &format!("γ = {:.3} rad", self.swivel_angle),
             (0.36 * r * mid.cos(), 0.36 * r * mid.sin()),
             ANGLE,
@@ -272,8 +338,25 @@ impl Figure for PulleyCablePlot {
             ),
         ] {
             top.draw_series(std::iter::once(Circle::new(p, 5, BLACK.filled())))?;
-            label(&mut top, name, at, BLACK)?;
+            label(top, name, at, BLACK)?;
         }
         Ok(())
+    }
+}
+
+impl Figure for PulleyCablePlot {
+    fn size(&self) -> (u32, u32) {
+        (1300, 650)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let root = root.titled(&self.title, ("sans-serif", 22))?;
+        let (left, right) = root.split_horizontally(650);
+        self.draw_side(&left)?;
+        self.draw_top(&right)
     }
 }

@@ -9,6 +9,7 @@
 use super::layout::{bounds, layout};
 use super::{DrawResult, Figure, Segment, tick};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -249,43 +250,39 @@ impl CandidateLinesPlot {
     }
 }
 
-impl Figure for CandidateLinesPlot {
-    fn size(&self) -> (u32, u32) {
-        (1200, 900)
-    }
+/// A chart in data coordinates (N or the quantities of the labels on both axes).
+type Chart<'a, DB> = ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
+/// A plotting area in data coordinates.
+type DataArea<DB> = DrawingArea<DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+impl CandidateLinesPlot {
+    /// The chart's x and y ranges: the points, the polygon and the origin, equal scales on a
+    /// w × h px body.
+    fn ranges(&self, (w, h): (u32, u32)) -> ((f64, f64), (f64, f64)) {
         let mut extent: Vec<(f64, f64)> = self.points.iter().map(|p| p.0).collect();
         extent.extend(&self.polygon);
         if self.origin {
             extent.push((0.0, 0.0));
         }
-        let (w, h) = body.dim_in_pixel();
         let plot_px = (
             w.saturating_sub(2 * MARGIN + Y_LABELS),
             h.saturating_sub(2 * MARGIN + X_LABELS),
         );
         let (xs, ys) = bounds(extent);
-        let (xs, ys) = equal_scale_ranges(xs, ys, 0.2, plot_px);
-        let mut chart = ChartBuilder::on(&body)
-            .margin(MARGIN)
-            .x_label_area_size(X_LABELS)
-            .y_label_area_size(Y_LABELS)
-            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?;
-        chart
-            .configure_mesh()
-            .light_line_style(WHITE.mix(0.0))
-            .bold_line_style(BLACK.mix(0.08))
-            .x_desc(self.labels.0.as_str())
-            .y_desc(self.labels.1.as_str())
-            .x_label_formatter(&|v| tick(*v))
-            .y_label_formatter(&|v| tick(*v))
-            .label_style(("sans-serif", 14))
-            .draw()?;
+        equal_scale_ranges(xs, ys, 0.2, plot_px)
+    }
+
+    /// The polygon, the candidate lines and borders clipped to `xs` × `ys`, and the origin.
+    fn draw_lines<DB: DrawingBackend>(
+        &self,
+        chart: &mut Chart<'_, DB>,
+        xs: (f64, f64),
+        ys: (f64, f64),
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         if self.polygon.len() > 2 {
             let mut p = self.polygon.clone();
             p.push(self.polygon[0]);
@@ -309,19 +306,34 @@ impl Figure for CandidateLinesPlot {
                 EmptyElement::at((0.0, 0.0)) + Cross::new((0, 0), 8, BLACK.stroke_width(2)),
             ))?;
         }
-        let points = self.merged_points();
+        Ok(())
+    }
+
+    /// The (merged) points and their labels, away from their centroid.
+    fn draw_points<DB: DrawingBackend>(
+        &self,
+        area: &DataArea<DB>,
+        points: &[((f64, f64), String)],
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         let n = points.len().max(1) as f64;
         let c = points
             .iter()
             .fold((0.0, 0.0), |s, p| (s.0 + p.0.0 / n, s.1 + p.0.1 / n));
-        let area = chart.plotting_area();
-        for (p, _) in &points {
+        for (p, _) in points {
             area.draw(&Circle::new(*p, 5, BLACK.filled()))?;
         }
-        for (p, text) in &points {
+        for (p, text) in points {
             // Away from the points' centroid; a point at the centroid gets its label below right.
             label(area, *p, text, (p.0 - c.0, p.1 - c.1), 12.0)?;
         }
+        Ok(())
+    }
+
+    /// The legend entries of what is drawn.
+    fn legend_entries(&self, has_points: bool) -> Vec<(Swatch, String)> {
         let mut entries = Vec::new();
         if self.polygon.len() > 2 {
             entries.push((Swatch::Fill(false), self.polygon_label.clone()));
@@ -332,13 +344,46 @@ impl Figure for CandidateLinesPlot {
         if self.lines.iter().any(|l| l.2) {
             entries.push((Swatch::Line(BORDER, 4), self.line_labels.1.clone()));
         }
-        if !points.is_empty() {
+        if has_points {
             entries.push((Swatch::Dot, self.points_label.clone()));
         }
         if self.origin {
             entries.push((Swatch::Origin, "origin".into()));
         }
-        legend(&legend_area, &entries)
+        entries
+    }
+}
+
+impl Figure for CandidateLinesPlot {
+    fn size(&self) -> (u32, u32) {
+        (1200, 900)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
+        let (xs, ys) = self.ranges(body.dim_in_pixel());
+        let mut chart = ChartBuilder::on(&body)
+            .margin(MARGIN)
+            .x_label_area_size(X_LABELS)
+            .y_label_area_size(Y_LABELS)
+            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?;
+        chart
+            .configure_mesh()
+            .light_line_style(WHITE.mix(0.0))
+            .bold_line_style(BLACK.mix(0.08))
+            .x_desc(self.labels.0.as_str())
+            .y_desc(self.labels.1.as_str())
+            .x_label_formatter(&|v| tick(*v))
+            .y_label_formatter(&|v| tick(*v))
+            .label_style(("sans-serif", 14))
+            .draw()?;
+        self.draw_lines(&mut chart, xs, ys)?;
+        let points = self.merged_points();
+        self.draw_points(chart.plotting_area(), &points)?;
+        legend(&legend_area, &self.legend_entries(!points.is_empty()))
     }
 }
 
@@ -416,45 +461,45 @@ impl TensionBoxPlot {
     }
 }
 
-impl Figure for TensionBoxPlot {
-    fn size(&self) -> (u32, u32) {
-        (1100, 820)
+/// An axis tip and the unit direction of its axis on screen.
+type AxisTip = ((f64, f64), (f64, f64));
+
+impl TensionBoxPlot {
+    /// The tip of axis j (N).
+    fn axis_tip(&self, j: usize) -> [f64; 3] {
+        let mut t = [0.0; 3];
+        t[j] = self.axis_end(j);
+        t
     }
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
-        let axis_tip = |j: usize| {
-            let mut t = [0.0; 3];
-            t[j] = self.axis_end(j);
-            t
-        };
+    /// The chart's x and y ranges: the vertices, the origin and the axis tips, equal scales on
+    /// a w × h px body.
+    fn ranges(&self, (w, h): (u32, u32)) -> ((f64, f64), (f64, f64)) {
         let mut extent: Vec<(f64, f64)> = (0..8).map(|b| self.project(self.corner(b))).collect();
         extent.push(self.project([0.0; 3]));
-        extent.extend((0..3).map(|j| self.project(axis_tip(j))));
-        let (w, h) = body.dim_in_pixel();
+        extent.extend((0..3).map(|j| self.project(self.axis_tip(j))));
         let (xs, ys) = bounds(extent);
-        let (xs, ys) = equal_scale_ranges(
+        equal_scale_ranges(
             xs,
             ys,
             0.12,
             (w.saturating_sub(2 * MARGIN), h.saturating_sub(2 * MARGIN)),
-        );
-        let chart = ChartBuilder::on(&body)
-            .margin(MARGIN)
-            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?;
-        let area = chart.plotting_area();
-        let px_per_unit = f64::from(area.dim_in_pixel().0.max(1)) / (xs.1 - xs.0);
+        )
+    }
 
-        // Axes first, under the translucent faces: their parts behind the box show through.
-        // No ticks: the points (t_min, 0, 0) … sit next to the labelled vertices.
-        let centre = self.project(std::array::from_fn(|j| 0.5 * (self.min[j] + self.max[j])));
+    /// The axes with their arrow heads and the origin; returns each tip and its direction.
+    fn draw_axes<DB: DrawingBackend>(
+        &self,
+        area: &DataArea<DB>,
+        px_per_unit: f64,
+    ) -> Result<Vec<AxisTip>, Box<dyn std::error::Error>>
+    where
+        DB::ErrorType: 'static,
+    {
         let origin = self.project([0.0; 3]);
         let mut axis_labels = Vec::new();
         for j in 0..3 {
-            let tip = self.project(axis_tip(j));
+            let tip = self.project(self.axis_tip(j));
             area.draw(&PathElement::new(vec![origin, tip], AXIS.stroke_width(2)))?;
             let (dx, dy) = (tip.0 - origin.0, tip.1 - origin.1);
             let len = dx.hypot(dy).max(f64::MIN_POSITIVE);
@@ -471,8 +516,14 @@ impl Figure for TensionBoxPlot {
             axis_labels.push((tip, (ux, uy)));
         }
         area.draw(&Circle::new(origin, 4, AXIS.filled()))?;
+        Ok(axis_labels)
+    }
 
-        // Visible faces, translucent, a shade per axis.
+    /// The visible faces, translucent, a shade per axis.
+    fn draw_faces<DB: DrawingBackend>(&self, area: &DataArea<DB>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         for (j, shade) in FACES.iter().enumerate() {
             for at_max in [false, true] {
                 if !self.visible(j, at_max) {
@@ -487,7 +538,15 @@ impl Figure for TensionBoxPlot {
                 area.draw(&Polygon::new(face, shade.mix(0.75).filled()))?;
             }
         }
-        // Edges: along axis k, with the other two bounds fixed; hidden unless on a visible face.
+        Ok(())
+    }
+
+    /// The edges: along axis k, with the other two bounds fixed; hidden (dashed) unless on a
+    /// visible face.
+    fn draw_edges<DB: DrawingBackend>(&self, area: &DataArea<DB>, px_per_unit: f64) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         for k in 0..3 {
             for other in 0..8usize {
                 if other >> k & 1 == 1 {
@@ -518,6 +577,20 @@ impl Figure for TensionBoxPlot {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// The axis names, the vertices with their tensions and the origin's "0".
+    fn draw_labels<DB: DrawingBackend>(
+        &self,
+        area: &DataArea<DB>,
+        axis_labels: Vec<AxisTip>,
+    ) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let centre = self.project(std::array::from_fn(|j| 0.5 * (self.min[j] + self.max[j])));
+        let origin = self.project([0.0; 3]);
         for (j, (tip, dir)) in axis_labels.into_iter().enumerate() {
             label(area, tip, &self.axes[j], dir, 10.0)?;
         }
@@ -537,7 +610,32 @@ impl Figure for TensionBoxPlot {
             "0",
             (origin.0 - centre.0, origin.1 - centre.1),
             8.0,
-        )?;
+        )
+    }
+}
+
+impl Figure for TensionBoxPlot {
+    fn size(&self) -> (u32, u32) {
+        (1100, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        let (body, legend_area) = layout(root, &self.title, &self.notes, LEGEND_WIDTH)?;
+        let (xs, ys) = self.ranges(body.dim_in_pixel());
+        let chart = ChartBuilder::on(&body)
+            .margin(MARGIN)
+            .build_cartesian_2d(xs.0..xs.1, ys.0..ys.1)?;
+        let area = chart.plotting_area();
+        let px_per_unit = f64::from(area.dim_in_pixel().0.max(1)) / (xs.1 - xs.0);
+        // Axes first, under the translucent faces: their parts behind the box show through.
+        // No ticks: the points (t_min, 0, 0) … sit next to the labelled vertices.
+        let axis_labels = self.draw_axes(area, px_per_unit)?;
+        self.draw_faces(area)?;
+        self.draw_edges(area, px_per_unit)?;
+        self.draw_labels(area, axis_labels)?;
         legend(
             &legend_area,
             &[

@@ -50,16 +50,16 @@ const BOUNDARY: RGBColor = RGBColor(8, 69, 148);
 const CABLE: RGBColor = RGBColor(120, 120, 120);
 const MARKER: RGBColor = RGBColor(200, 30, 30);
 
-impl Figure for WorkspacePlot {
-    fn size(&self) -> (u32, u32) {
-        (800, 820)
-    }
+/// The chart of a workspace figure (m on both axes).
+type Chart<'a, DB> = ChartContext<
+    'a,
+    DB,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
 
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
-    where
-        DB::ErrorType: 'static,
-    {
-        root.fill(&WHITE)?;
+impl WorkspacePlot {
+    /// The square view around the content: its centre and half-width (m).
+    fn view(&self) -> ((f64, f64), f64) {
         let pts = self
             .anchors
             .iter()
@@ -78,8 +78,17 @@ impl Figure for WorkspacePlot {
         // outermost anchors for their labels.
         let room = if self.anchors.is_empty() { 1.08 } else { 1.22 };
         let half = 0.5 * (x1 - x0).max(y1 - y0) * room;
-        let (cx, cy) = (0.5 * (x0 + x1), 0.5 * (y0 + y1));
-        // Title, then the note lines, then the chart.
+        ((0.5 * (x0 + x1), 0.5 * (y0 + y1)), half)
+    }
+
+    /// The title and the note lines; returns the area under them.
+    fn header<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<DrawingArea<DB, Shift>, Box<dyn std::error::Error>>
+    where
+        DB::ErrorType: 'static,
+    {
         let titled = root.titled(&self.title, ("sans-serif", 20))?;
         let (notes, body) = titled.split_vertically(4 + 18 * self.notes.len() as u32);
         for (k, note) in self.notes.iter().enumerate() {
@@ -89,7 +98,20 @@ impl Figure for WorkspacePlot {
                 ("sans-serif", 14).into_font(),
             ))?;
         }
-        let mut chart = ChartBuilder::on(&body)
+        Ok(body)
+    }
+
+    /// The chart with its axes.
+    fn chart<'a, DB: DrawingBackend>(
+        &self,
+        body: &'a DrawingArea<DB, Shift>,
+        (cx, cy): (f64, f64),
+        half: f64,
+    ) -> Result<Chart<'a, DB>, Box<dyn std::error::Error>>
+    where
+        DB::ErrorType: 'static,
+    {
+        let mut chart = ChartBuilder::on(body)
             .margin(12)
             .x_label_area_size(40)
             .y_label_area_size(55)
@@ -103,6 +125,14 @@ impl Figure for WorkspacePlot {
             .y_label_formatter(&|v| super::tick(*v))
             .label_style(("sans-serif", 14))
             .draw()?;
+        Ok(chart)
+    }
+
+    /// The frame outline, the feasible cells, the filled regions and the boundaries.
+    fn draw_regions<DB: DrawingBackend>(&self, chart: &mut Chart<'_, DB>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         if self.frame.len() > 1 {
             let mut f = self.frame.clone();
             f.push(self.frame[0]);
@@ -139,6 +169,14 @@ impl Figure for WorkspacePlot {
                 BOUNDARY.stroke_width(2),
             )))?;
         }
+        Ok(())
+    }
+
+    /// The chained lines, the cables and the platform.
+    fn draw_robot<DB: DrawingBackend>(&self, chart: &mut Chart<'_, DB>, half: f64) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         // Chained lines: dash (4 % of the view), gap, dot, gap, in data units (equal scales).
         let period = 0.08 * half;
         for line in &self.chained_lines {
@@ -164,6 +202,14 @@ impl Figure for WorkspacePlot {
             )))?;
             chart.draw_series(std::iter::once(PathElement::new(p, BLACK.stroke_width(1))))?;
         }
+        Ok(())
+    }
+
+    /// The red rings and their legend entry.
+    fn draw_markers<'a, DB: DrawingBackend + 'a>(&self, chart: &mut Chart<'a, DB>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         let ring = |p: (f64, f64)| Circle::new(p, 6, MARKER.stroke_width(2));
         let rings = chart.draw_series(self.markers.iter().map(|&p| ring(p)))?;
         if let Some(label) = self
@@ -182,6 +228,14 @@ impl Figure for WorkspacePlot {
                 .label_font(("sans-serif", 14))
                 .draw()?;
         }
+        Ok(())
+    }
+
+    /// The anchors and their labels, and the message of an empty result.
+    fn draw_anchors<DB: DrawingBackend>(&self, chart: &mut Chart<'_, DB>, half: f64) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
         // Anchors that coincide in the drawing (e.g. the upper and lower anchors of a spatial
         // frame seen from above) share one label; labels sit outside, away from the centroid.
         let labels = anchor_labels(&self.anchors, &self.anchor_names, 0.01 * half);
@@ -210,6 +264,27 @@ impl Figure for WorkspacePlot {
             area.draw(&Text::new(message.clone(), (x + 12, y + 8), font))?;
         }
         Ok(())
+    }
+}
+
+impl Figure for WorkspacePlot {
+    fn size(&self) -> (u32, u32) {
+        (800, 820)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> DrawResult
+    where
+        DB::ErrorType: 'static,
+    {
+        root.fill(&WHITE)?;
+        let (centre, half) = self.view();
+        // Title, then the note lines, then the chart.
+        let body = self.header(root)?;
+        let mut chart = self.chart(&body, centre, half)?;
+        self.draw_regions(&mut chart)?;
+        self.draw_robot(&mut chart, half)?;
+        self.draw_markers(&mut chart)?;
+        self.draw_anchors(&mut chart, half)
     }
 }
 
