@@ -14,8 +14,8 @@
 //! - Barrette & Gosselin 2005 (the platform's equations of motion).
 
 use cdpr_dynamics::{
-    DriveTrainProfile, DynamicsProfile, TimeLaw, TimedSample, TimingSettings, Trajectory,
-    drive_train, inverse_dynamics,
+    DriveTrainProfile, DynamicsProfile, JointSpline, TimeLaw, TimedSample, TimingSettings,
+    Trajectory, drive_train, inverse_dynamics,
 };
 use cdpr_kinematics::Pose;
 use cdpr_tension::{Method, TensionSolver};
@@ -102,6 +102,25 @@ impl TimedSettings {
         }
     }
 
+    /// Time-law options given with a CASPR trajectory (which has its own times and step).
+    pub(crate) fn refuse_with_caspr(&self) -> Result<(), ApiError> {
+        let given = [
+            ("--time-law", self.time_law.is_some()),
+            ("--duration", self.duration.is_some()),
+            ("--dt", self.dt.is_some()),
+            ("--max-velocity", self.max_velocity.is_some()),
+            ("--max-acceleration", self.max_acceleration.is_some()),
+            ("--blend-time", self.blend_time.is_some()),
+        ];
+        match given.iter().find(|(_, set)| *set) {
+            Some((name, _)) => Err(ApiError::invalid(format!(
+                "{name} does not apply to --trajectory: the CASPR file gives the points' times, \
+                 its spline and its time_step"
+            ))),
+            None => Ok(()),
+        }
+    }
+
     /// The timed trajectory through the prepared waypoints.
     pub(crate) fn trajectory(
         &self,
@@ -132,6 +151,94 @@ impl TimedSettings {
     }
 }
 
+/// A CASPR joint-space trajectory as data: the text of `NAME_trajectories.xml` and the `id` of
+/// one of its trajectories (read by `cdpr_io::parse_caspr_trajectory`; the splines:
+/// `cdpr_dynamics::joint_spline`). It replaces the path and the time law: the file gives the
+/// points, their times and the sampling period `time_step`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CasprTrajectorySource {
+    /// The text of the CASPR trajectories file.
+    pub text: String,
+    /// The trajectory's `id` (default: the file's only joint trajectory).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub id: Option<String>,
+    /// The file name shown in error messages (default `robot_trajectories.xml`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub file: Option<String>,
+}
+
+impl CasprTrajectorySource {
+    /// Reads the trajectory for `robot` (errors name the file, line and element).
+    pub fn read(&self, robot: &Robot) -> Result<cdpr_io::CasprTrajectory, ApiError> {
+        let file =
+            std::path::PathBuf::from(self.file.as_deref().unwrap_or("robot_trajectories.xml"));
+        let id = match &self.id {
+            Some(id) => id.clone(),
+            None => {
+                let ids = cdpr_io::caspr_trajectory_ids(&self.text, &file)?;
+                match ids.as_slice() {
+                    [(id, _)] => id.clone(),
+                    _ => {
+                        let names: Vec<&str> = ids.iter().map(|(i, _)| i.as_str()).collect();
+                        return Err(ApiError::invalid(format!(
+                            "{}: give --trajectory-id (the file has {} joint trajectories: {})",
+                            file.display(),
+                            names.len(),
+                            names.join(", ")
+                        )));
+                    }
+                }
+            }
+        };
+        Ok(cdpr_io::parse_caspr_trajectory(
+            &self.text,
+            &file,
+            &id,
+            robot.robot.motion(),
+        )?)
+    }
+}
+
+/// The samples of a timed trajectory and what the report says of its timing.
+pub(crate) struct Timeline {
+    samples: Vec<TimedSample>,
+    waypoint_times: Vec<f64>,
+    duration: f64,
+    law: String,
+    dt: f64,
+    trajectory_id: Option<String>,
+}
+
+impl Timeline {
+    /// A time law's samples every `timing.period()` s.
+    pub(crate) fn of_law(timing: &TimedSettings, traj: &Trajectory) -> Result<Self, ApiError> {
+        let dt = timing.period();
+        let (start, end) = traj.time_span();
+        Ok(Self {
+            samples: traj.sample(dt)?,
+            waypoint_times: traj.waypoint_times(),
+            duration: end - start,
+            law: timing.time_law.map_or("", |l| l.name()).to_string(),
+            dt,
+            trajectory_id: None,
+        })
+    }
+
+    /// A CASPR trajectory's samples every `time_step`.
+    pub(crate) fn of_caspr(id: &str, spline: &JointSpline) -> Self {
+        let (start, end) = spline.time_span();
+        Self {
+            samples: spline.samples(),
+            waypoint_times: spline.waypoint_times(),
+            duration: end - start,
+            law: spline.kind().element().to_string(),
+            dt: spline.time_step(),
+            trajectory_id: Some(id.to_string()),
+        }
+    }
+}
+
 /// A checked request: waypoint poses, their wrenches and times, the solver.
 pub(crate) struct PreparedPath {
     /// Waypoint poses.
@@ -142,6 +249,8 @@ pub(crate) struct PreparedPath {
     pub times: Option<Vec<f64>>,
     /// The solver.
     pub solver: TensionSolver,
+    /// A CASPR trajectory (its id and spline) instead of a time law.
+    pub caspr: Option<(String, JointSpline)>,
 }
 
 /// The drive train along a timed trajectory (robots with a `winch` on every cable).
@@ -182,8 +291,12 @@ pub struct TimedReport {
     pub robot: String,
     /// The method's name.
     pub method: String,
-    /// The time law.
+    /// The time law (`linear`, …), or the CASPR trajectory's element
+    /// (`quintic_spline_trajectory`, …).
     pub time_law: String,
+    /// The CASPR trajectory's `id` (with `caspr_trajectory`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub trajectory_id: Option<String>,
     /// Whether the inertial wrench is balanced (inverse dynamics) or not (quasi-static).
     pub dynamics: bool,
     /// Sampling period (s).
@@ -236,35 +349,37 @@ fn wrench_at(times: &[f64], wrenches: &[DVector<f64>], t: f64) -> DVector<f64> {
     &wrenches[k] * (1.0 - tau) + &wrenches[k + 1] * tau
 }
 
-/// Runs the timed trajectory of a prepared request.
+/// Runs the timed trajectory of a prepared request (its time law, or its CASPR trajectory).
 pub(crate) fn run(
     robot: &Robot,
     timing: &TimedSettings,
     method: Method,
     mut prepared: PreparedPath,
 ) -> Result<TimedReport, ApiError> {
-    let traj = timing.trajectory(robot, &prepared)?;
-    let dt = timing.period();
-    let samples = traj.sample(dt)?;
+    let timeline = match &prepared.caspr {
+        Some((id, spline)) => Timeline::of_caspr(id, spline),
+        None => Timeline::of_law(timing, &timing.trajectory(robot, &prepared)?)?,
+    };
+    let samples = &timeline.samples;
     let body = match timing.dynamics {
         true => Some(crate::criteria::rigid_body(robot)?),
         false => None,
     };
-    for s in &samples {
+    for s in samples {
         robot
             .load_wrench(&s.pose)
             .map_err(|e| ApiError::invalid(format!("at t = {} s: {e}", s.t)))?;
     }
-    let times = traj.waypoint_times();
+    let times = &timeline.waypoint_times;
     let profile = inverse_dynamics(
         &robot.robot,
         body.as_ref(),
-        &samples,
+        samples,
         &robot.bounds,
         &mut prepared.solver,
         robot.axial_stiffness.as_deref(),
         |_, s: &TimedSample| {
-            wrench_at(&times, &prepared.wrenches, s.t)
+            wrench_at(times, &prepared.wrenches, s.t)
                 + robot
                     .load_wrench(&s.pose)
                     .expect("checked at every sample above")
@@ -274,13 +389,12 @@ pub(crate) fn run(
         Some(w) => Some(drive_report(w, &drive_train(w, &profile)?)),
         None => None,
     };
-    let (start, end) = traj.time_span();
     let head = Head {
         robot,
         timing,
         method,
     };
-    Ok(report(&head, &samples, profile, times, end - start, drive))
+    Ok(report(&head, &timeline, profile, drive))
 }
 
 /// Rows of a flat per-sample quantity.
@@ -297,12 +411,11 @@ struct Head<'a> {
 
 fn report(
     request: &Head,
-    samples: &[TimedSample],
+    timeline: &Timeline,
     profile: DynamicsProfile,
-    waypoint_times: Vec<f64>,
-    duration: f64,
     drive_train: Option<DriveTrainReport>,
 ) -> TimedReport {
+    let samples = &timeline.samples;
     let robot = &request.robot;
     let motion = robot.robot.motion();
     let n = robot.robot.cable_count();
@@ -312,15 +425,15 @@ fn report(
             .map(|s| TimedSample::components(motion, f(s)))
             .collect()
     };
-    let law = request.timing.time_law.map_or("", |l| l.name());
     TimedReport {
         robot: robot.name.clone(),
         method: request.method.name().to_string(),
-        time_law: law.to_string(),
+        time_law: timeline.law.clone(),
+        trajectory_id: timeline.trajectory_id.clone(),
         dynamics: request.timing.dynamics,
-        dt: request.timing.period(),
-        duration,
-        waypoint_times,
+        dt: timeline.dt,
+        duration: timeline.duration,
+        waypoint_times: timeline.waypoint_times.clone(),
         poses: samples.iter().map(|s| s.pose.coordinates(motion)).collect(),
         velocity: components(|s| &s.twist),
         acceleration: components(|s| &s.twist_rate),

@@ -27,7 +27,7 @@ use serde::{Deserialize, Serialize};
 use crate::cable_model::{CableModelName, catenaries, compensation};
 use crate::inputs::{check_method, method_name, pose, wrench};
 use crate::tension::MethodSettings;
-use crate::timed::{PreparedPath, TimedReport, TimedSettings};
+use crate::timed::{CasprTrajectorySource, PreparedPath, TimedReport, TimedSettings};
 use crate::{ApiError, Robot};
 
 /// One waypoint of a polyline (a `[[waypoints]]` table of the waypoints file).
@@ -107,6 +107,11 @@ pub struct TrajectoryRequest {
     /// The time law and inverse dynamics (timed trajectories).
     #[serde(default, flatten)]
     pub timing: TimedSettings,
+    /// A CASPR joint-space trajectory (`NAME_trajectories.xml` and an `id`) instead of the path
+    /// and the time law: timed by the file, sampled every `time_step` (`cdpr trajectory
+    /// --trajectory FILE --trajectory-id ID`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub caspr_trajectory: Option<CasprTrajectorySource>,
     /// Cable model of the flex and sag compensation (default `straight`: none).
     #[serde(default, skip_serializing_if = "CableModelName::is_straight")]
     pub cable_model: CableModelName,
@@ -180,8 +185,14 @@ impl TrajectoryRequest {
             options: MethodSettings::default(),
             jump_ratio: default_jump_ratio(),
             timing: TimedSettings::default(),
+            caspr_trajectory: None,
             cable_model: CableModelName::Straight,
         }
+    }
+
+    /// Whether the trajectory is timed (a time law or a CASPR trajectory).
+    pub fn is_timed(&self) -> bool {
+        self.timing.is_timed() || self.caspr_trajectory.is_some()
     }
 
     /// Checks the request (the messages of the command line): the method and its options, the
@@ -194,10 +205,41 @@ impl TrajectoryRequest {
         Ok(())
     }
 
+    /// The CASPR trajectory's waypoints (its points), wrenches and times, and its spline.
+    #[allow(clippy::type_complexity)]
+    fn caspr_points(
+        &self,
+        source: &CasprTrajectorySource,
+        default_wrench: &DVector<f64>,
+    ) -> Result<
+        (
+            Vec<Pose>,
+            Vec<DVector<f64>>,
+            (String, cdpr_dynamics::JointSpline),
+        ),
+        ApiError,
+    > {
+        if self.from.is_some() || self.waypoints.as_ref().is_some_and(|w| !w.is_empty()) {
+            return Err(ApiError::invalid(
+                "give the path as --from/--to, as --waypoints or as --trajectory, not two of them",
+            ));
+        }
+        self.timing.refuse_with_caspr()?;
+        let t = source.read(&self.robot)?;
+        let motion = self.robot.robot.motion();
+        let poses = t
+            .points
+            .iter()
+            .map(|p| Pose::from_coordinates(motion, &p.q))
+            .collect::<Result<Vec<_>, _>>()?;
+        let wrenches = vec![default_wrench.clone(); poses.len()];
+        Ok((poses, wrenches, (t.id, t.spline)))
+    }
+
     /// Runs the analysis.
     pub fn run(&self) -> Result<TrajectoryReport, ApiError> {
         let prepared = self.prepare()?;
-        if self.timing.is_timed() {
+        if self.is_timed() {
             let report = crate::timed::run(&self.robot, &self.timing, self.method, prepared)?;
             return Ok(TrajectoryReport::Timed(Box::new(report)));
         }
@@ -233,6 +275,22 @@ impl TrajectoryRequest {
             false,
         )?;
         let default_wrench = wrench(robot, self.wrench.as_deref())?;
+        if let Some(source) = &self.caspr_trajectory {
+            let (poses, wrenches, caspr) = self.caspr_points(source, &default_wrench)?;
+            if self.samples.is_some() || self.step.is_some() {
+                return Err(ApiError::invalid(
+                    "a CASPR trajectory is sampled every time_step of its file: leave --samples and --step out",
+                ));
+            }
+            let solver = self.options.solver(robot, self.method)?;
+            return Ok(PreparedPath {
+                times: Some(caspr.1.waypoint_times()),
+                poses,
+                wrenches,
+                solver,
+                caspr: Some(caspr),
+            });
+        }
         let (poses, wrenches, times) = self.waypoint_poses(&default_wrench)?;
         if !self.timing.is_timed() {
             self.timing.refuse_untimed()?;
@@ -256,6 +314,7 @@ impl TrajectoryRequest {
             wrenches,
             times,
             solver,
+            caspr: None,
         })
     }
 

@@ -2,7 +2,7 @@
 //! hand-derived values; their validation messages and JSON round trips.
 
 use cdpr_api::simulate::{SimulateRequest, TensionProfile};
-use cdpr_api::timed::TimedSettings;
+use cdpr_api::timed::{CasprTrajectorySource, TimedSettings};
 use cdpr_api::trajectory::{TrajectoryReport, TrajectoryRequest, Waypoint};
 use cdpr_api::{Robot, RobotSource};
 
@@ -276,4 +276,112 @@ fn simulate_requests_refuse_bad_input() {
     let text = serde_json::to_string(&base).unwrap();
     let back: SimulateRequest = serde_json::from_str(&text).unwrap();
     assert_eq!(back.run().unwrap(), base.run().unwrap());
+}
+
+/// Two CASPR trajectories for the hanging point: the quintic lift of
+/// `a_quintic_lift_balances_weight_and_inertia` and a linear move.
+const LIFT_XML: &str = r#"<?xml version="1.0" encoding="utf-8"?>
+<trajectories>
+  <joint_trajectories>
+    <quintic_spline_trajectory id="lift" time_definition="relative" time_step="0.1">
+      <points>
+        <point><q>1 0</q><q_dot>0 0</q_dot><q_ddot>0 0</q_ddot></point>
+        <point time="2.0"><q>1 1</q><q_dot>0 0</q_dot><q_ddot>0 0</q_ddot></point>
+      </points>
+    </quintic_spline_trajectory>
+    <linear_spline_trajectory id="slide" time_definition="absolute" time_step="0.5">
+      <points>
+        <point><q>0.5 0.5</q></point>
+        <point time="1.0"><q>1.5 0.5</q></point>
+      </points>
+    </linear_spline_trajectory>
+  </joint_trajectories>
+</trajectories>"#;
+
+fn caspr(id: Option<&str>) -> TrajectoryRequest {
+    let mut r = TrajectoryRequest::segment(robot(HANG), vec![], vec![]);
+    r.from = None;
+    r.to = None;
+    r.caspr_trajectory = Some(CasprTrajectorySource {
+        text: LIFT_XML.into(),
+        id: id.map(str::to_string),
+        file: Some("hang_trajectories.xml".into()),
+    });
+    r
+}
+
+/// A CASPR quintic lift is the time law's quintic lift: the same samples, tensions and
+/// inertial wrench (t = m (g + ÿ) ℓ / (2 (h − y)) at each sample), and the report names the
+/// trajectory.
+#[test]
+fn a_caspr_quintic_lift_is_the_quintic_time_law() {
+    let mut r = caspr(Some("lift"));
+    r.timing.dynamics = true;
+    let TrajectoryReport::Timed(v) = r.run().unwrap() else {
+        panic!("a timed report")
+    };
+    assert_eq!(v.time_law, "quintic_spline_trajectory");
+    assert_eq!(v.trajectory_id.as_deref(), Some("lift"));
+    assert_eq!((v.t.len(), v.dt, v.duration), (21, 0.1, 2.0));
+    assert_eq!(v.waypoint_times, [0.0, 2.0]);
+    for k in 0..v.t.len() {
+        let tau = v.t[k] / 2.0;
+        let y = 10.0 * tau.powi(3) - 15.0 * tau.powi(4) + 6.0 * tau.powi(5);
+        let y_dd = 60.0 * tau * (1.0 - 3.0 * tau + 2.0 * tau * tau) / 4.0;
+        let rise = 2.0 - y;
+        let t = 2.0 * (G + y_dd) * (1.0 + rise * rise).sqrt() / (2.0 * rise);
+        for ti in v.tensions[k].as_ref().unwrap() {
+            assert!((ti - t).abs() < 1e-9 * t, "t = {}: {ti} vs {t}", v.t[k]);
+        }
+        let w = &v.inertial_wrench.as_ref().unwrap()[k];
+        assert!((w[1] - 2.0 * y_dd).abs() < 1e-9);
+    }
+    let mut law = TrajectoryRequest::segment(robot(HANG), vec![1.0, 0.0], vec![1.0, 1.0]);
+    law.timing = timed("quintic", 2.0, 0.1, true);
+    let TrajectoryReport::Timed(l) = law.run().unwrap() else {
+        panic!("a timed report")
+    };
+    for k in 0..v.t.len() {
+        assert!((l.poses[k][1] - v.poses[k][1]).abs() < 1e-14);
+        assert!((l.velocity[k][1] - v.velocity[k][1]).abs() < 1e-13);
+    }
+    // The request survives a JSON round trip.
+    let text = serde_json::to_string(&r).unwrap();
+    let back: TrajectoryRequest = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        serde_json::to_value(back.run().unwrap()).unwrap(),
+        serde_json::to_value(TrajectoryReport::Timed(v)).unwrap()
+    );
+}
+
+#[test]
+fn caspr_trajectory_requests_refuse_bad_input() {
+    let e = error(&caspr(None));
+    assert_eq!(
+        e,
+        "hang_trajectories.xml: give --trajectory-id (the file has 2 joint trajectories: lift, slide)"
+    );
+    let e = error(&caspr(Some("drop")));
+    assert!(
+        e.starts_with("hang_trajectories.xml:3: <joint_trajectories>: no joint trajectory with id `drop` (the file has: lift, slide)"),
+        "{e}"
+    );
+    let mut r = caspr(Some("slide"));
+    r.timing.time_law = Some("cubic".parse().unwrap());
+    assert!(
+        error(&r).starts_with("--time-law does not apply to --trajectory"),
+        "{}",
+        error(&r)
+    );
+    let mut r = caspr(Some("slide"));
+    r.timing.dt = Some(0.1);
+    assert!(error(&r).starts_with("--dt does not apply to --trajectory"));
+    let mut r = caspr(Some("slide"));
+    r.from = Some(vec![1.0, 0.0]);
+    r.to = Some(vec![1.0, 1.0]);
+    assert!(error(&r).contains("not two of them"));
+    let mut r = caspr(Some("slide"));
+    r.samples = Some(4);
+    assert!(error(&r).contains("leave --samples and --step out"));
+    assert!(caspr(Some("slide")).validate().is_ok());
 }

@@ -5,7 +5,8 @@
 //! inverse dynamics W t + w_ext + w_g = M ẍ + b at every sample ([`inverse_dynamics()`]), the
 //! forward dynamics under given tensions or elastic cables (`forward_dynamics`), and the
 //! dynamic feasibility of an acceleration box ([`DynamicFeasibility`]), and the drive train:
-//! motor speeds and torques of the cables' winches ([`drive_train()`]).
+//! motor speeds and torques of the cables' winches ([`drive_train()`]), and CASPR's joint-space
+//! spline trajectories ([`JointSpline`]).
 //!
 //! Vocabulary: a twist ẋ = [v; ω] (m/s, rad/s, base axes) and its rate ẍ; motion patterns keep
 //! their components (planar: v_x, v_y, ω_z; points: v).
@@ -44,6 +45,7 @@ pub mod drive_train;
 pub mod dynamic_feasibility;
 pub mod forward_dynamics;
 pub mod inverse_dynamics;
+pub mod joint_spline;
 pub mod rigid_body;
 pub mod time_law;
 
@@ -52,6 +54,7 @@ pub use dynamic_feasibility::DynamicFeasibility;
 pub use error::DynamicsError;
 pub use forward_dynamics::{Drive, Integrator, Simulation, Simulator, State};
 pub use inverse_dynamics::{DynamicsProfile, inverse_dynamics};
+pub use joint_spline::{JointSpline, SplineKind, SplinePoint};
 /// The nalgebra of this crate's API.
 pub use nalgebra;
 pub use rigid_body::{RigidBody, euler_rate_matrix, twist_from_euler_rates};

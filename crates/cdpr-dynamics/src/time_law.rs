@@ -14,8 +14,9 @@
 //! The parabolic blend (linear segments in the motion-pattern coordinates joined by parabolas of
 //! a blend time t_b centred on the interior waypoints, from and to rest at the ends: Craig 2005,
 //! §7.3) does not stop at the interior waypoints and passes near them, not through them; its
-//! spatial orientations are interpolated in XYZ Euler angles, as CASPR does, and turned into
-//! twists by ω = H φ̇.
+//! spatial orientations are interpolated in XYZ Euler angles and turned into twists by
+//! ω = H φ̇. (CASPR's own parabolic blend stops at every point and moves orientations along the
+//! shortest rotation: [`crate::joint_spline`].)
 //!
 //! Segment durations: per-waypoint times, or a total duration shared in proportion to the pose
 //! distance √(‖Δu‖² + θ²) of each segment, or (trapezoid without a duration) each segment's
@@ -26,7 +27,8 @@
 //! - Biagiotti & Melchiorri 2008, *Trajectory Planning for Automatic Machines and Robots*,
 //!   §2.1 (cubic, quintic: eqs. (2.2), (2.5)), §3.2 (trapezoidal velocity profile, eq. (3.8)).
 //! - Craig 2005, *Introduction to Robotics*, 3rd ed., §7.3: linear segments with parabolic blends.
-//! - CASPR `TrajectoryGenerator` (Lau et al. 2016): the same laws for its joint trajectories.
+//! - CASPR's `JointTrajectory` and `Spline` (Lau et al. 2016): its joint trajectories, read by
+//!   [`crate::joint_spline`].
 
 use crate::DynamicsError;
 use crate::error::bad;

@@ -14,6 +14,8 @@
 //! - WireCenter `.wcrfx` (read and written: [`RobotDescription::parse_wcrfx`],
 //!   [`RobotDescription::to_wcrfx`]).
 //!
+//! and CASPR's joint-space trajectories (`NAME_trajectories.xml`: [`parse_caspr_trajectory`]).
+//!
 //! ```
 //! use cdpr_io::RobotDescription;
 //!
@@ -27,12 +29,16 @@
 //! - Pott, *Cable-Driven Parallel Robots: Theory and Application*, Springer 2018 (WireCenter).
 
 mod caspr;
+mod caspr_trajectory;
 mod toml_file;
 mod toml_writer;
 mod wirecenter;
 mod xml;
 
 pub use caspr::{CASPR_GRAVITY, pulley_frame};
+pub use caspr_trajectory::{
+    CasprTrajectory, caspr_trajectory_ids, load_caspr_trajectory, parse_caspr_trajectory,
+};
 pub use nalgebra;
 pub use toml_file::{Encoders, Limits, RobotDescription, RobotFileError, pulley_toml};
 pub use wirecenter::{WIRELIB_DEFAULT_BOUNDS, WIRELIB_DEFAULT_PULLEY_RADIUS, WIRELIB_GRAVITY};

@@ -15,7 +15,7 @@
 
 use super::CliError;
 use cdpr::api::Robot;
-use cdpr::api::timed::{DriveTrainReport, TimedReport, TimedSettings};
+use cdpr::api::timed::{CasprTrajectorySource, DriveTrainReport, TimedReport, TimedSettings};
 use cdpr::dynamics::TimeLaw;
 use cdpr::kinematics::Pose;
 use cdpr::plot::{LinePlot, Series};
@@ -27,40 +27,50 @@ pub struct TimingArgs {
     /// Time law along the path: linear, cubic, quintic, trapezoid (--max-acceleration, and
     /// --max-velocity or --duration) or parabolic-blend (--blend-time). Rest at every waypoint
     /// except with parabolic-blend. Replaces --samples/--step by --dt.
-    #[arg(long, value_name = "LAW", value_parser = parse_law, conflicts_with_all = ["samples", "step"])]
+    #[arg(long, value_name = "LAW", value_parser = parse_law, group = "timed", conflicts_with_all = ["samples", "step"])]
     pub time_law: Option<TimeLaw>,
+    /// A CASPR trajectories file (NAME_trajectories.xml) instead of the path and the time law:
+    /// the joint trajectory --trajectory-id ID (linear, cubic, quintic, cubic-average-velocity
+    /// or parabolic-blend spline) through the file's points at its times, sampled every
+    /// `time_step` s as CASPR does; orientations along CASPR's shortest rotation (or, with
+    /// non-zero Euler rates, ω = H(φ) φ̇). See docs/robot-file.md.
+    #[arg(long, value_name = "FILE.xml", group = "timed", conflicts_with_all = ["samples", "step", "from", "waypoints"])]
+    pub trajectory: Option<std::path::PathBuf>,
+    /// The `id` of the trajectory in --trajectory (default: the file's only one).
+    #[arg(long, value_name = "ID", requires = "trajectory")]
+    pub trajectory_id: Option<String>,
     /// Total duration T (s), shared among segments in proportion to their pose distance (or
     /// give each waypoint a `time` in the --waypoints file).
-    #[arg(long, requires = "time_law", value_parser = super::positive)]
+    #[arg(long, requires = "timed", value_parser = super::positive)]
     pub duration: Option<f64>,
     /// Sampling period (s) of the timed trajectory (default 0.01 s).
-    #[arg(long, requires = "time_law", value_parser = super::positive)]
+    #[arg(long, requires = "timed", value_parser = super::positive)]
     pub dt: Option<f64>,
     /// Largest speed along the path (m/s, 1 rad counting as 1 m): the trapezoid's cruise speed
     /// bound; the other rest-to-rest laws are checked against it.
-    #[arg(long, requires = "time_law", value_parser = super::positive)]
+    #[arg(long, requires = "timed", value_parser = super::positive)]
     pub max_velocity: Option<f64>,
     /// Largest acceleration along the path (m/s²).
-    #[arg(long, requires = "time_law", value_parser = super::positive)]
+    #[arg(long, requires = "timed", value_parser = super::positive)]
     pub max_acceleration: Option<f64>,
     /// Parabolic blend time t_b (s; default a quarter of the shortest segment).
-    #[arg(long, requires = "time_law", value_parser = super::positive)]
+    #[arg(long, requires = "timed", value_parser = super::positive)]
     pub blend_time: Option<f64>,
     /// Inverse dynamics: balance the inertial wrench M ẍ + b too (needs the platform's mass,
     /// and `inertia` for planar and spatial platforms).
-    #[arg(long, requires = "time_law")]
+    #[arg(long, requires = "timed")]
     pub dynamics: bool,
     /// Motor torques against time (N·m, one line per motor, dashed ±max_torque): needs a
     /// `winch` on every cable of the robot file.
-    #[arg(long, value_name = "FILE", requires = "time_law")]
+    #[arg(long, value_name = "FILE", requires = "timed")]
     pub motor_torque_plot: Option<std::path::PathBuf>,
     /// Cable speeds l̇ against time (m/s, one line per cable; with winches, dashed ± the cable
     /// speed of max_speed, r/G · max_speed).
-    #[arg(long, value_name = "FILE", requires = "time_law")]
+    #[arg(long, value_name = "FILE", requires = "timed")]
     pub cable_speed_plot: Option<std::path::PathBuf>,
     /// A self-contained HTML page replaying the trajectory: platform and cables moving, cables
     /// coloured by tension, play button and time slider.
-    #[arg(long, value_name = "FILE.html", requires = "time_law")]
+    #[arg(long, value_name = "FILE.html", requires = "timed")]
     pub replay: Option<std::path::PathBuf>,
 }
 
@@ -80,6 +90,22 @@ impl TimingArgs {
             blend_time: self.blend_time,
             dynamics: self.dynamics,
         }
+    }
+}
+
+impl TimingArgs {
+    /// The CASPR trajectory of --trajectory, read as text.
+    pub fn caspr_source(&self) -> Result<Option<CasprTrajectorySource>, CliError> {
+        let Some(file) = &self.trajectory else {
+            return Ok(None);
+        };
+        let text = std::fs::read_to_string(file)
+            .map_err(|e| format!("{}: cannot read: {e}", file.display()))?;
+        Ok(Some(CasprTrajectorySource {
+            text,
+            id: self.trajectory_id.clone(),
+            file: Some(file.display().to_string()),
+        }))
     }
 }
 

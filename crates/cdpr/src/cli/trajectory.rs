@@ -165,6 +165,7 @@ fn request(args: &Args) -> Result<TrajectoryRequest, CliError> {
     };
     request.jump_ratio = args.jump_ratio;
     request.timing = args.timing.settings();
+    request.caspr_trajectory = args.timing.caspr_source()?;
     request.cable_model = match args.cable_model.cable_model {
         super::cable_model::CableModelName::Straight => CableModelName::Straight,
         super::cable_model::CableModelName::Elastic => CableModelName::Elastic,
