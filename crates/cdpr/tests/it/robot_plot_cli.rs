@@ -86,7 +86,7 @@ fn kinematics_plot_draws_2d_and_3d_robots_with_their_anchor_names() {
     let svg = std::fs::read_to_string(&planar).unwrap();
     for label in ["A1", "A2", "A3", "A4"] {
         assert!(
-            svg.contains(&format!(">{label}<")),
+            svg.contains(&format!("\n{label}\n")),
             "{label} in the planar view"
         );
     }
