@@ -958,7 +958,7 @@ mod tests {
     fn block_update_equals_the_cable_equations_bit_for_bit() {
         assert_eq!(block_update_pulley_cables(&mixed_robot()), 200 * 9);
         let full = robot_with(16, |_| true);
-        assert!(full.pulley_blocks().0.iter().all(|b| b.all_pulleys));
+        assert!(full.pulley_blocks().blocks.iter().all(|b| b.all_pulleys));
         assert_eq!(block_update_pulley_cables(&full), 200 * 16);
     }
 
