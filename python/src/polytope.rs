@@ -14,8 +14,7 @@ use crate::tension::read_wrenches;
 use crate::{map_poses, row, run_batch, value_error};
 use cdpr_api::{CapacityRequest, IsotropicRequest, StiffnessRequest};
 use cdpr_kinematics::PoseKinematics;
-use cdpr_polytope::hyperplane_shifting::available_wrench_set;
-use cdpr_polytope::{IsotropicForce, RequiredWrenchSet, limiting_facet};
+use cdpr_polytope::{IsotropicForce, LimitingFacet, RequiredWrenchSet};
 use nalgebra::{DMatrix, DVector};
 use numpy::PyArrayDyn;
 use pyo3::IntoPyObjectExt;
@@ -122,19 +121,33 @@ pub fn capacity_margin(
         };
         return capacity_at(py, &request);
     }
+    // The required set's shape checked once (centre zero); each pose moves its centre. One
+    // kinematics buffer, W and limiting-facet buffers per worker: no allocation per pose.
+    let zero = DVector::zeros(dof);
+    let template = match (&wrench_box, wrench_ball) {
+        (Some(h), _) => RequiredWrenchSet::boxed(zero, DVector::from_column_slice(h)),
+        (None, Some(r)) => RequiredWrenchSet::ball(zero, r),
+        (None, None) => RequiredWrenchSet::point(zero),
+    }
+    .map_err(value_error)?;
+    let facets = LimitingFacet::new(dof, &robot.desc.bounds).map_err(value_error)?;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();
     let slices: Vec<&mut [f64]> = outs.iter_mut().map(|v| v.as_mut_slice()).collect();
-    let required = (wrench_box.as_deref(), wrench_ball);
     run_batch(py, count, || {
         map_poses(
             count,
             &widths,
             slices,
-            || PoseKinematics::for_robot(geo),
-            |kin, k, j, blocks| {
+            || CapacityState {
+                kin: PoseKinematics::for_robot(geo),
+                w: DMatrix::zeros(dof, geo.cable_count()),
+                facets: facets.clone(),
+                required: template.clone(),
+            },
+            |state, k, j, blocks| {
                 let q = &data[k * dof..(k + 1) * dof];
-                let limit = limit_at_pose(robot, kin, (q, wr.at(k)), required, k)?;
+                let limit = state.limit_at_pose(robot, (q, wr.at(k)), k)?;
                 let [m, f] = blocks else {
                     unreachable!("two outputs")
                 };
@@ -156,31 +169,40 @@ pub fn capacity_margin(
     })
 }
 
-/// The limiting facet and margin at pose k (coordinates `q`, wrench `we`) of the required set
-/// (box half-widths or ball radius; a point without either).
-fn limit_at_pose(
-    robot: &Robot,
-    kin: &mut PoseKinematics,
-    (q, we): (&[f64], &[f64]),
-    (wrench_box, wrench_ball): (Option<&[f64]>, Option<f64>),
-    k: usize,
-) -> Result<Option<(usize, f64)>, String> {
-    let desc = &robot.desc;
-    let pose = pose_at(robot, q, k)?;
-    let centre = DVector::from_column_slice(we) + desc.load_wrench(&pose).map_err(at(k))?;
-    let required = match (wrench_box, wrench_ball) {
-        (Some(h), _) => RequiredWrenchSet::boxed(centre, DVector::from_column_slice(h)),
-        (None, Some(r)) => RequiredWrenchSet::ball(centre, r),
-        (None, None) => RequiredWrenchSet::point(centre),
+/// One worker's buffers of a capacity batch.
+struct CapacityState {
+    kin: PoseKinematics,
+    w: DMatrix<f64>,
+    facets: LimitingFacet,
+    required: RequiredWrenchSet,
+}
+
+impl CapacityState {
+    /// The limiting facet and margin at pose k (coordinates `q`, external wrench `we`): the
+    /// required set centred at `we` + the robot file's load at the pose, against the AWS of
+    /// the pose's W (the facet index and margin of `cdpr capacity`, without building the set).
+    fn limit_at_pose(
+        &mut self,
+        robot: &Robot,
+        (q, we): (&[f64], &[f64]),
+        k: usize,
+    ) -> Result<Option<(usize, f64)>, String> {
+        let pose = pose_at(robot, q, k)?;
+        let load = robot.desc.load_wrench(&pose).map_err(at(k))?;
+        let mut centre = [0.0; 6];
+        for (c, (a, b)) in centre.iter_mut().zip(we.iter().zip(load.iter())) {
+            *c = a + b;
+        }
+        self.required
+            .set_centre(&centre[..we.len()])
+            .map_err(at(k))?;
+        robot
+            .geometry()
+            .update_kinematics(&pose, &mut self.kin)
+            .map_err(at(k))?;
+        self.kin.write_wrench_matrix(&mut self.w);
+        self.facets.at(&self.w, &self.required).map_err(at(k))
     }
-    .map_err(|e| e.to_string())?;
-    robot
-        .geometry()
-        .update_kinematics(&pose, kin)
-        .map_err(at(k))?;
-    let w = kin.wrench_matrix();
-    let aws = available_wrench_set(&w, &desc.bounds).map_err(at(k))?;
-    limiting_facet(&aws, &required).map_err(at(k))
 }
 
 /// One pose: the `cdpr capacity` request and its report.

@@ -17,6 +17,11 @@
 //!   u = (C − B) / l_f                                                    free-segment direction
 //! ```
 //!
+//! With QᵀQ = I, u = −Q R_z(γ) (sin β, 0, cos β), which the block update computes. A frame that
+//! is orthonormal only to ~10⁻⁷ (six-digit `.wcrfx` entries such as 0.707107) makes the two
+//! differ by that much: such cables take WireLib's form, C from the pulley side and
+//! u = (C − B) / ‖C − B‖ (`wirelib_direction`).
+//!
 //! M = **a** + ρ Q R_z(γ) e_x is the pulley centre and BM the distance from it to **B**. For
 //! s ≥ ρ the wrap angle is the issue's / WireLib's β = acos(l_f / BM) + acos(h / BM); that form
 //! takes the *unsigned* angle between MB and **k**, which mirrors the tangent point when
@@ -292,7 +297,18 @@ fn tangent(pulley: &Pulley, b: &Vector3<f64>, plane: &PulleyPlane, wrap: f64) ->
 /// A robot's cables in blocks of [`BLOCK`], one array per coordinate, as [`update_cables`]
 /// reads them (built once, with the robot; empty for a robot without pulleys).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub(crate) struct PulleyBlocks(Vec<PulleyBlock>);
+pub(crate) struct PulleyBlocks {
+    blocks: Vec<PulleyBlock>,
+    /// The pulley cables whose frame Q is not orthonormal to rounding (|QᵀQ − I| above
+    /// [`SKEWED_FRAME`]; e.g. the EXPO 2015 files' 0.707107 entries): their free-segment
+    /// direction is WireLib's ([`wirelib_direction`]).
+    skewed: Vec<usize>,
+}
+
+/// The deviation |QᵀQ − I| (largest entry) from which a pulley frame takes WireLib's
+/// free-segment direction: far above the rounding of a computed rotation (≈ 10⁻¹⁶), far below
+/// the 6·10⁻⁷ of six-digit frames.
+const SKEWED_FRAME: f64 = 1e-12;
 
 /// [`BLOCK`] cables: frame points **a**, platform attachments **b̄**, pulley frames Q (entry k
 /// of Q in column-major order is `q[k]`) and radii ρ. Straight cables hold Q = I, ρ = 0 (their
@@ -314,37 +330,45 @@ impl PulleyBlocks {
         if cables.iter().all(|c| c.pulley.is_none()) {
             return Self::default();
         }
-        Self(
-            cables
-                .chunks(BLOCK)
-                .map(|cables| {
-                    let mut block = PulleyBlock {
-                        frame: [[0.0; BLOCK]; 3],
-                        platform: [[0.0; BLOCK]; 3],
-                        q: [[0.0; BLOCK]; 9],
-                        rho: [0.0; BLOCK],
-                        all_pulleys: cables.len() == BLOCK
-                            && cables.iter().all(|c| c.pulley.is_some()),
-                    };
-                    (block.q[0], block.q[4], block.q[8]) =
-                        ([1.0; BLOCK], [1.0; BLOCK], [1.0; BLOCK]);
-                    for (j, cable) in cables.iter().enumerate() {
-                        for c in 0..3 {
-                            block.frame[c][j] = cable.frame[c];
-                            block.platform[c][j] = cable.platform[c];
-                        }
-                        let Some(pulley) = &cable.pulley else {
-                            continue;
-                        };
-                        for (e, q) in pulley.orientation.iter().zip(block.q.iter_mut()) {
-                            q[j] = *e;
-                        }
-                        block.rho[j] = pulley.radius;
-                    }
-                    block
+        let skewed = cables
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| {
+                c.pulley.as_ref().is_some_and(|p| {
+                    let q = &p.orientation;
+                    (q.transpose() * q - Matrix3::identity()).amax() > SKEWED_FRAME
                 })
-                .collect(),
-        )
+            })
+            .map(|(i, _)| i)
+            .collect();
+        let blocks = cables
+            .chunks(BLOCK)
+            .map(|cables| {
+                let mut block = PulleyBlock {
+                    frame: [[0.0; BLOCK]; 3],
+                    platform: [[0.0; BLOCK]; 3],
+                    q: [[0.0; BLOCK]; 9],
+                    rho: [0.0; BLOCK],
+                    all_pulleys: cables.len() == BLOCK && cables.iter().all(|c| c.pulley.is_some()),
+                };
+                (block.q[0], block.q[4], block.q[8]) = ([1.0; BLOCK], [1.0; BLOCK], [1.0; BLOCK]);
+                for (j, cable) in cables.iter().enumerate() {
+                    for c in 0..3 {
+                        block.frame[c][j] = cable.frame[c];
+                        block.platform[c][j] = cable.platform[c];
+                    }
+                    let Some(pulley) = &cable.pulley else {
+                        continue;
+                    };
+                    for (e, q) in pulley.orientation.iter().zip(block.q.iter_mut()) {
+                        q[j] = *e;
+                    }
+                    block.rho[j] = pulley.radius;
+                }
+                block
+            })
+            .collect();
+        Self { blocks, skewed }
     }
 }
 
@@ -373,17 +397,55 @@ pub(crate) fn update_cables(
     pulleys: &mut [Option<PulleyState>],
 ) -> Result<(), KinematicsError> {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
+    let done = if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU supports AVX2, the only feature the function enables.
-        return unsafe {
+        unsafe {
             update_cables_avx2(
                 cables, geometry, rotation, position, threshold, states, pulleys,
             )
-        };
-    }
-    update_cables_portable::<false>(
+        }
+    } else {
+        update_cables_portable::<false>(
+            cables, geometry, rotation, position, threshold, states, pulleys,
+        )
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let done = update_cables_portable::<false>(
         cables, geometry, rotation, position, threshold, states, pulleys,
-    )
+    );
+    done?;
+    for &i in &geometry.skewed {
+        if let (Some(pulley), Some(p)) = (&cables[i].pulley, &mut pulleys[i]) {
+            wirelib_direction(&cables[i].frame, pulley, &mut states[i], p);
+        }
+    }
+    Ok(())
+}
+
+/// The free segment of a cable whose pulley frame Q is not orthonormal to rounding, as WireLib
+/// computes it (Pott 2018; `CKinematics::doInverseKinematicsPulleyEx`): the tangent point from
+/// the pulley side, **C** = **a** + Q R_z(γ) (ρ (1 − cos β), 0, ρ sin β), and
+/// u = (**C** − **B**) / ‖**C** − **B**‖. With QᵀQ = I this is the module's u; otherwise the two
+/// differ by (I − QQᵀ) **d** / l_f and by ‖Q v‖ − 1 for a unit v (docs/robot-file.md). The
+/// length L = ρ β + l_f is the same in both (WireLib's too). Only such cables come here: the
+/// others keep the block update's result.
+#[cold]
+fn wirelib_direction(
+    frame: &Vector3<f64>,
+    pulley: &Pulley,
+    state: &mut CableState,
+    p: &mut PulleyState,
+) {
+    let (sin_beta, cos_beta) = p.wrap_angle.sin_cos();
+    let [cos_gamma, sin_gamma] = p.swivel_direction;
+    let rho = pulley.radius;
+    let radial = rho * (1.0 - cos_beta);
+    let local = Vector3::new(radial * cos_gamma, radial * sin_gamma, rho * sin_beta);
+    let exit = frame + pulley.orientation * local;
+    let vector = exit - state.attachment_point;
+    state.unit = vector / vector.norm();
+    state.vector = vector;
+    p.exit_point = exit;
 }
 
 /// [`update_cables_portable`] compiled with AVX2.
@@ -428,7 +490,7 @@ pub(crate) fn update_cables_portable<const WIDE: bool>(
             q,
             rho,
             all_pulleys,
-        } = &geometry.0[block];
+        } = &geometry.blocks[block];
         // Stage 1: attachments R b̄ (as nalgebra's matrix–vector product: column by column),
         // attachment points B and p = Qᵀ(B − a) (entry k of Q column-major is q[k]).
         let r = rotation;
@@ -896,7 +958,7 @@ mod tests {
     fn block_update_equals_the_cable_equations_bit_for_bit() {
         assert_eq!(block_update_pulley_cables(&mixed_robot()), 200 * 9);
         let full = robot_with(16, |_| true);
-        assert!(full.pulley_blocks().0.iter().all(|b| b.all_pulleys));
+        assert!(full.pulley_blocks().blocks.iter().all(|b| b.all_pulleys));
         assert_eq!(block_update_pulley_cables(&full), 200 * 16);
     }
 

@@ -76,10 +76,8 @@ pub struct AvailableWrenchSet {
 /// Whether two normals agree within [`MERGE_TOL`] in every component (‖a − b‖∞ < tol, no
 /// allocation).
 #[inline]
-fn same_normal(a: &DVector<f64>, b: &DVector<f64>) -> bool {
-    a.iter()
-        .zip(b.iter())
-        .all(|(x, y)| (x - y).abs() < MERGE_TOL)
+fn same_normal(a: &[f64], b: &[f64]) -> bool {
+    a.iter().zip(b).all(|(x, y)| (x - y).abs() < MERGE_TOL)
 }
 
 /// An integer with the order of [`f64::total_cmp`] (IEEE 754 totalOrder).
@@ -114,28 +112,81 @@ fn lexicographic(a: &[f64], b: &[f64]) -> std::cmp::Ordering {
 /// only the *live* facets (n₀ within the tolerance) are compared, in order of creation — the same
 /// first match, the same result, with no allocation per comparison.
 fn merge_sorted(raw: &[Facet]) -> (Vec<Facet>, Vec<usize>) {
-    let mut facets: Vec<Facet> = Vec::with_capacity(raw.len());
-    let mut group = Vec::with_capacity(raw.len());
-    let mut live: Vec<usize> = Vec::new();
-    for f in raw {
-        let f0 = f.normal.get(0).copied().unwrap_or(0.0);
-        live.retain(|&k| (facets[k].normal.get(0).copied().unwrap_or(0.0) - f0).abs() < MERGE_TOL);
-        if let Some(k) = live
-            .iter()
-            .copied()
-            .find(|&k| same_normal(&facets[k].normal, &f.normal))
-        {
-            if f.offset < facets[k].offset {
-                facets[k].clone_from(f);
+    let mut groups = Groups::default();
+    groups.merge(raw.len(), |i| raw[i].normal.as_slice(), |i| raw[i].offset);
+    let facets = groups.reps.iter().map(|&r| raw[r].clone()).collect();
+    (facets, groups.group)
+}
+
+/// The merge of [`merge_sorted`] on indices, with its buffers (reused from call to call: no
+/// allocation once they have grown): the one copy of the rule, shared by the set and by
+/// [`crate::LimitingFacet`], which never builds the facet list.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Groups {
+    /// Per facet, the half-space (sorted index) whose normal and offset it keeps.
+    pub(crate) reps: Vec<usize>,
+    /// Per half-space (sorted index), its facet.
+    pub(crate) group: Vec<usize>,
+    live: Vec<usize>,
+}
+
+impl Groups {
+    /// Merges `count` half-spaces sorted by [`sort_halfspaces`], the i-th with `normal(i)` and
+    /// `offset(i)`.
+    pub(crate) fn merge<'a>(
+        &mut self,
+        count: usize,
+        normal: impl Fn(usize) -> &'a [f64],
+        offset: impl Fn(usize) -> f64,
+    ) {
+        let Self { reps, group, live } = self;
+        reps.clear();
+        group.clear();
+        live.clear();
+        let first = |v: &[f64]| v.first().copied().unwrap_or(0.0);
+        for i in 0..count {
+            let (n, f0) = (normal(i), first(normal(i)));
+            live.retain(|&k| (first(normal(reps[k])) - f0).abs() < MERGE_TOL);
+            if let Some(k) = live
+                .iter()
+                .copied()
+                .find(|&k| same_normal(normal(reps[k]), n))
+            {
+                if offset(i) < offset(reps[k]) {
+                    reps[k] = i;
+                }
+                group.push(k);
+            } else {
+                live.push(reps.len());
+                group.push(reps.len());
+                reps.push(i);
             }
-            group.push(k);
-        } else {
-            live.push(facets.len());
-            group.push(facets.len());
-            facets.push(f.clone());
         }
     }
-    (facets, group)
+}
+
+/// Sorts the indices of `count` half-spaces (the i-th with `normal(i)`, `offset(i)`) into the
+/// set's deterministic order, `order[j].1` the j-th: by an integer key of the first component
+/// of the normal (the order of [`f64::total_cmp`]), then the whole normal and the offset;
+/// unstable, since elements comparing equal are equal (same normal and offset).
+pub(crate) fn sort_halfspaces<'a>(
+    order: &mut Vec<(i64, usize)>,
+    count: usize,
+    normal: impl Fn(usize) -> &'a [f64],
+    offset: impl Fn(usize) -> f64,
+) {
+    order.clear();
+    order.extend((0..count).map(|i| {
+        (
+            total_order_key(normal(i).first().copied().unwrap_or(0.0)),
+            i,
+        )
+    }));
+    order.sort_unstable_by(|a, b| {
+        a.0.cmp(&b.0).then_with(|| {
+            lexicographic(normal(a.1), normal(b.1)).then(offset(a.1).total_cmp(&offset(b.1)))
+        })
+    });
 }
 
 impl AvailableWrenchSet {
@@ -151,21 +202,13 @@ impl AvailableWrenchSet {
         let scale = scale.max(f64::MIN_POSITIVE);
         // Deterministic order: lexicographic on the normal, then the offset.
         raw.retain(|f| f.offset.is_finite());
-        // Sorted by an integer key of the first component (the order of `f64::total_cmp`),
-        // then the whole normal and the offset; unstable, since elements comparing equal are
-        // equal (same normal and offset).
-        let mut order: Vec<(i64, usize)> = raw
-            .iter()
-            .enumerate()
-            .map(|(i, f)| (total_order_key(f.normal.get(0).copied().unwrap_or(0.0)), i))
-            .collect();
-        order.sort_unstable_by(|a, b| {
-            a.0.cmp(&b.0).then_with(|| {
-                let (fa, fb) = (&raw[a.1], &raw[b.1]);
-                lexicographic(fa.normal.as_slice(), fb.normal.as_slice())
-                    .then(fa.offset.total_cmp(&fb.offset))
-            })
-        });
+        let mut order = Vec::with_capacity(raw.len());
+        sort_halfspaces(
+            &mut order,
+            raw.len(),
+            |i| raw[i].normal.as_slice(),
+            |i| raw[i].offset,
+        );
         let empty = || Facet {
             normal: DVector::zeros(0),
             offset: 0.0,

@@ -29,7 +29,7 @@
 //! - S. Bouchard, C. Gosselin, B. Moore, J. Mech. Robot. 2(1), 2010 (hyperplane shifting).
 
 use crate::PolytopeError;
-use crate::available_wrench_set::AvailableWrenchSet;
+use crate::available_wrench_set::{AvailableWrenchSet, Groups, sort_halfspaces};
 use crate::hyperplane_shifting::{HyperplaneShifting, for_each_halfspace};
 use crate::input::{MAX_DOF, check_vector};
 use cdpr_tension::TensionBounds;
@@ -167,6 +167,16 @@ impl RequiredWrenchSet {
         let mut c = [0.0; MAX_DOF];
         c[..centre.len()].copy_from_slice(centre.as_slice());
         Ok(c)
+    }
+
+    /// Moves the set to a new centre wrench (same dimension, finite), in place: the required
+    /// set of a batch whose centre (the platform's weight, an external wrench) changes from
+    /// pose to pose, without reallocating.
+    pub fn set_centre(&mut self, centre: &[f64]) -> Result<(), PolytopeError> {
+        check_vector("required wrench centre", centre, self.dof())?;
+        self.centre.copy_from_slice(centre);
+        self.centre_fixed[..centre.len()].copy_from_slice(centre);
+        Ok(())
     }
 
     /// Dimension of the wrenches.
@@ -398,6 +408,91 @@ impl CapacityMarginEvaluator {
     }
 }
 
+/// [`limiting_facet`] of the AWS of W, for many poses: the same facet index and margin,
+/// without building the set (no vertices, no faces, no facet list; the half-spaces of hyperplane
+/// shifting sorted and merged in buffers kept from pose to pose, by the set's own sort and
+/// merge rule). The bounds are checked once, at construction.
+///
+/// ```
+/// use cdpr_polytope::{LimitingFacet, RequiredWrenchSet, capacity_margin::limiting_facet};
+/// use cdpr_polytope::hyperplane_shifting::available_wrench_set;
+/// use cdpr_tension::TensionBounds;
+/// use nalgebra::{dmatrix, dvector};
+/// let bounds = TensionBounds::uniform(4, 1.0, 10.0).unwrap();
+/// let w = dmatrix![1.0, -1.0, 0.0, 0.0; 0.0, 0.0, 1.0, -1.0];
+/// let gravity = RequiredWrenchSet::point(dvector![0.0, -5.0]).unwrap();
+/// let mut lf = LimitingFacet::new(2, &bounds).unwrap();
+/// let aws = available_wrench_set(&w, &bounds).unwrap();
+/// assert_eq!(lf.at(&w, &gravity).unwrap(), limiting_facet(&aws, &gravity).unwrap());
+/// ```
+#[derive(Debug, Clone)]
+pub struct LimitingFacet {
+    engine: HyperplaneShifting,
+    /// The half-spaces of the last pose: normals (DOF each, in a row) and finite offsets.
+    normals: Vec<f64>,
+    offsets: Vec<f64>,
+    order: Vec<(i64, usize)>,
+    groups: Groups,
+}
+
+impl LimitingFacet {
+    /// Buffers for DOF × n wrench matrices with `bounds` (n pairs).
+    pub fn new(dof: usize, bounds: &TensionBounds) -> Result<Self, PolytopeError> {
+        Ok(Self {
+            engine: HyperplaneShifting::new(dof, bounds)?,
+            normals: Vec::new(),
+            offsets: Vec::new(),
+            order: Vec::new(),
+            groups: Groups::default(),
+        })
+    }
+
+    /// `limiting_facet(&available_wrench_set(w, bounds)?, required)`: the merged facet (index
+    /// into [`AvailableWrenchSet::facets`]) where the margin is reached, and the margin.
+    pub fn at(
+        &mut self,
+        w: &DMatrix<f64>,
+        required: &RequiredWrenchSet,
+    ) -> Result<Option<(usize, f64)>, PolytopeError> {
+        let dof = self.engine.dof();
+        if required.dof() != dof {
+            return Err(PolytopeError::DimensionMismatch {
+                what: "required wrench set vs rows of W",
+                expected: dof,
+                found: required.dof(),
+            });
+        }
+        let Self {
+            engine,
+            normals,
+            offsets,
+            order,
+            groups,
+        } = self;
+        normals.clear();
+        offsets.clear();
+        engine.for_each_halfspace(w, |n, d| {
+            if d.is_finite() {
+                normals.extend_from_slice(n);
+                offsets.push(d);
+            }
+        })?;
+        let normal = |i: usize| &normals[i * dof..(i + 1) * dof];
+        sort_halfspaces(order, offsets.len(), normal, |i| offsets[i]);
+        let sorted = |j: usize| order[j].1;
+        groups.merge(offsets.len(), |j| normal(sorted(j)), |j| offsets[sorted(j)]);
+        let mut best: Option<(usize, f64)> = None;
+        for j in 0..offsets.len() {
+            let i = sorted(j);
+            let s = finite_or_overflow(offsets[i] - required.mirrored_support(normal(i)))?;
+            if best.is_none_or(|(_, m)| s < m) {
+                best = Some((j, s));
+            }
+        }
+        Ok(best.map(|(j, s)| (groups.group[j], s)))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -459,5 +554,61 @@ mod tests {
         assert!(CapacityMargin::new(3, 4).margin(&w, &b, &r3).is_err());
         let aws = available_wrench_set(&w, &b).unwrap();
         assert!(capacity_margin(&aws, &r3).is_err());
+    }
+
+    /// [`LimitingFacet`] gives `limiting_facet` of the built set on random W (DOF 2, 3 and 6;
+    /// boxes, balls, points; centres moved with `set_centre`), on W with repeated and opposite
+    /// columns (coinciding half-spaces that the merge joins into one facet), and with an
+    /// infinite t_max (half-spaces dropped): one buffer reused over every case.
+    #[test]
+    fn limiting_facet_without_the_set_equals_the_sets() {
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut rand = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut compared = 0;
+        for (dof, n) in [(2, 4), (2, 5), (3, 5), (3, 7), (6, 8)] {
+            let mut t_max = vec![50.0; n];
+            t_max[n - 1] = f64::INFINITY;
+            let bounded = TensionBounds::uniform(n, 1.0, 50.0).unwrap();
+            let open = TensionBounds::new(vec![1.0; n], t_max).unwrap();
+            for bounds in [&bounded, &open] {
+                let mut lf = LimitingFacet::new(dof, bounds).unwrap();
+                let mut ball = RequiredWrenchSet::ball(DVector::zeros(dof), 2.0).unwrap();
+                let half = DVector::from_element(dof, 1.5);
+                let mut boxed = RequiredWrenchSet::boxed(DVector::zeros(dof), half).unwrap();
+                for case in 0..40 {
+                    let mut w = DMatrix::from_fn(dof, n, |_, _| rand());
+                    if case % 3 == 0 {
+                        // Column 1 repeats column 0, column 2 opposes it.
+                        let c0 = w.column(0).into_owned();
+                        w.set_column(1, &c0);
+                        w.set_column(2, &(-c0));
+                    }
+                    let centre: Vec<f64> = (0..dof).map(|_| 10.0 * rand()).collect();
+                    ball.set_centre(&centre).unwrap();
+                    boxed.set_centre(&centre).unwrap();
+                    let point = RequiredWrenchSet::point(DVector::from_column_slice(&centre));
+                    let aws = available_wrench_set(&w, bounds).unwrap();
+                    for required in [&ball, &boxed, &point.unwrap()] {
+                        assert_eq!(required.centre().as_slice(), centre.as_slice());
+                        let expected = limiting_facet(&aws, required).unwrap();
+                        assert_eq!(lf.at(&w, required).unwrap(), expected, "case {case}");
+                        compared += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(compared, 5 * 2 * 40 * 3);
+        // A wrong dimension is an error, not a panic.
+        let mut lf = LimitingFacet::new(2, &TensionBounds::uniform(4, 1.0, 10.0).unwrap()).unwrap();
+        let (w, _) = square();
+        let r3 = RequiredWrenchSet::point(dvector![0.0, 0.0, 0.0]).unwrap();
+        assert!(lf.at(&w, &r3).is_err());
+        let mut r2 = RequiredWrenchSet::point(dvector![0.0, 0.0]).unwrap();
+        assert!(r2.set_centre(&[1.0]).is_err() && r2.set_centre(&[f64::NAN, 0.0]).is_err());
     }
 }

@@ -23,7 +23,8 @@
 //! The indices come in two flavours: functions of an [`AvailableWrenchSet`] (facets built and
 //! kept, vertices for plotting), and allocation-free evaluators for sweeps over many poses
 //! ([`IsotropicForce`], [`CapacityMarginEvaluator`], [`CapacityMargin`],
-//! [`isotropic_force_of`]), built on [`hyperplane_shifting::HyperplaneShifting`], which checks
+//! [`isotropic_force_of`], and [`LimitingFacet`]: the limiting facet's index without the set,
+//! in buffers reused from pose to pose), built on [`hyperplane_shifting::HyperplaneShifting`], which checks
 //! the tension bounds once.
 //!
 //! ```
@@ -67,7 +68,8 @@ pub mod krut_vertex_projection;
 
 pub use available_wrench_set::{AvailableWrenchSet, Face, Facet};
 pub use capacity_margin::{
-    CapacityMargin, CapacityMarginEvaluator, RequiredWrenchSet, capacity_margin, limiting_facet,
+    CapacityMargin, CapacityMarginEvaluator, LimitingFacet, RequiredWrenchSet, capacity_margin,
+    limiting_facet,
 };
 pub use ellipse::{InscribedEllipse, largest_inscribed_ellipse};
 pub use error::PolytopeError;

@@ -31,7 +31,10 @@ use std::path::{Path, PathBuf};
 /// One chain of a .wcrfx file: `<base>` position, frame and radius; `<platform>` position.
 struct Chain {
     a: Vector3<f64>,
+    /// The `<base>` frame made orthonormal (below).
     frame: Matrix3<f64>,
+    /// The `<base>` frame as the file writes it.
+    written: Matrix3<f64>,
     radius: f64,
     b: Vector3<f64>,
 }
@@ -89,6 +92,7 @@ fn chains(path: &Path) -> (String, Vec<Chain>) {
             Chain {
                 a: v(&base),
                 frame,
+                written,
                 radius: attribute(&base, "radius").unwrap_or(0.0),
                 b: v(&platform),
             }
@@ -267,4 +271,75 @@ fn pulley_lengths_and_wrench_matrix_equal_an_independent_implementation() {
         robots >= 12 && pulley_cables >= 90,
         "{robots} robots, {pulley_cables} pulley cables"
     );
+}
+
+/// Length and W column of one cable by WireLib's `CKinematics::doInverseKinematicsPulleyEx`
+/// and `CStructureMatrix` (Pott 2018), operation by operation on the frame **as written**
+/// (`written`, not made orthonormal): b = Qᵀ (B − a); γ = atan2(b_y, b_x); l_f =
+/// √(b_z² + (b_xy − ρ)² − ρ²); β = acos(l_f / BM) + acos(b_z / BM); L = β ρ + l_f; C = a +
+/// Q R_z(γ) ((ρ, 0, 0) + R_y(β) (−ρ, 0, 0)); u = (C − B) / ‖C − B‖; column [u; (R b̄) × u].
+fn wirelib_cable(c: &Chain, pose: &Pose) -> (f64, [f64; 6]) {
+    let rb = pose.rotation.matrix() * c.b;
+    let attachment = pose.position + rb;
+    let (rho, q) = (c.radius, c.written);
+    let b = q.transpose() * (attachment - c.a);
+    let bxy = b.x.hypot(b.y);
+    let bm = (bxy - rho).hypot(b.z);
+    let gamma = b.y.atan2(b.x);
+    let lf = (b.z * b.z + (bxy - rho) * (bxy - rho) - rho * rho).sqrt();
+    let beta = (lf / bm).acos() + (b.z / bm).acos();
+    let rz = Rotation3::from_axis_angle(&Vector3::z_axis(), gamma);
+    let ry = Rotation3::from_axis_angle(&Vector3::y_axis(), beta);
+    let exit = c.a + q * (rz * (Vector3::new(rho, 0.0, 0.0) + ry * Vector3::new(-rho, 0.0, 0.0)));
+    let u = (exit - attachment).normalize();
+    let m = rb.cross(&u);
+    (beta * rho + lf, [u.x, u.y, u.z, m.x, m.y, m.z])
+}
+
+/// Issue 25: the two EXPO 2015 files write their pulley frames to six digits (0.707107), so
+/// they are orthonormal only to 6·10⁻⁷. Read as written, cdpr's lengths and wrench matrix
+/// equal WireLib's operations on that frame (above) to 1e-12 relative; they used to differ by
+/// up to 10⁻⁶ in W (cdpr mapped the free-segment direction back with Q without normalising it).
+#[test]
+fn expo2015_frames_as_written_give_wirelibs_lengths_and_wrench_matrix() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/wirecenter");
+    let mut worst = (0.0f64, 0.0f64);
+    let mut skew = 0.0f64;
+    for name in ["EXPO2015_Lucia.wcrfx", "EXPO2015_Roberto.wcrfx"] {
+        let path = dir.join(name);
+        let (_, chains) = chains(&path);
+        for c in &chains {
+            skew = skew.max((c.written.transpose() * c.written - Matrix3::identity()).amax());
+        }
+        let d = RobotDescription::load(&path).unwrap();
+        let (lo, hi) = d.robot.frame_bounding_box();
+        let mut compared = 0;
+        for pose in poses(lo, hi) {
+            let Ok(kin) = d.robot.inverse_kinematics(&pose) else {
+                continue;
+            };
+            let w: DMatrix<f64> = kin.wrench_matrix();
+            for (i, c) in chains.iter().enumerate() {
+                let (length, column) = wirelib_cable(c, &pose);
+                let l = kin.cables()[i].length;
+                let norm = column.iter().map(|v| v * v).sum::<f64>().sqrt();
+                let diff = (0..6)
+                    .map(|r| (w[(r, i)] - column[r]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                worst = (
+                    worst.0.max((l - length).abs() / length),
+                    worst.1.max(diff / norm),
+                );
+            }
+            compared += 1;
+        }
+        assert!(compared >= 6, "{name}: {compared} poses");
+    }
+    eprintln!(
+        "EXPO 2015: |QᵀQ − I| = {skew:.1e}; worst relative error {:.1e} (L), {:.1e} (W)",
+        worst.0, worst.1
+    );
+    assert!(skew > 1e-7, "the files' frames are not orthonormal: {skew}");
+    assert!(worst.0 <= 1e-12 && worst.1 <= 1e-12, "{worst:?}");
 }

@@ -41,6 +41,11 @@ pub struct Args {
     /// Platform-end cable tensions T1,…,Tn (N) for --cable-model elastic|catenary.
     #[arg(long)]
     tensions: Option<Numbers>,
+    /// Draw the robot at the pose: .svg or .png (2-D robots seen from +z, 3-D robots an
+    /// isometric view with three sections) or .html (an interactive 3-D view); anchors carry
+    /// the cables' names.
+    #[arg(long)]
+    plot: Option<PathBuf>,
     /// Write one JSON object on stdout instead of tables.
     #[arg(long)]
     json: bool,
@@ -49,7 +54,16 @@ pub struct Args {
 /// Runs the command: the request, its report, rendered as JSON or tables.
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
+    if let Some(path) = &args.plot {
+        super::robot_plot::check_path(path)?;
+    }
     if let Some(cables) = args.cable_model.catenaries(&robot)? {
+        if args.plot.is_some() {
+            return Err(
+                "--plot is not drawn with --cable-model elastic|catenary (straight cables only)"
+                    .into(),
+            );
+        }
         let p = pose(&robot, &args.pose)?;
         let kin = robot.robot.inverse_kinematics(&p)?;
         let (t, name) = (args.tensions.as_deref(), args.cable_model.model().name());
@@ -62,12 +76,34 @@ pub fn run(args: Args) -> Result<(), CliError> {
         pose: args.pose.0,
     };
     let report = request.run()?;
+    if let Some(path) = &args.plot {
+        plot(&request, &report, path)?;
+    }
     if args.json {
         print_report(&report)
     } else {
         print_text(&report, request.robot.robot.motion().space_dim());
         Ok(())
     }
+}
+
+/// `--plot`: the robot at the pose ([`super::robot_plot`]).
+fn plot(
+    request: &KinematicsRequest,
+    r: &KinematicsReport,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let desc = request.robot.description();
+    let dim = desc.robot.motion().space_dim();
+    let pose = pose(desc, &request.pose)?;
+    super::robot_plot::RobotFigure {
+        desc,
+        pose: &pose,
+        title: format!("{} at pose {}", r.robot, super::pose_text(&r.pose, dim)),
+        notes: vec![format!("{} kinematics", r.kinematics.name())],
+        tensions: None,
+    }
+    .save(path)
 }
 
 /// The report as tables (`dim` position coordinates in the pose).

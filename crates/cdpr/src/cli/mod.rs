@@ -11,6 +11,7 @@ pub mod isotropic;
 pub mod kinematics;
 pub mod orientations;
 pub mod region;
+pub mod robot_plot;
 pub mod simulate;
 pub mod stiffness;
 pub mod stiffness_map;

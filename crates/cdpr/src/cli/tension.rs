@@ -65,6 +65,11 @@ pub struct Args {
     peer: PeerOptions,
     #[command(flatten)]
     cable_model: super::cable_model::CableModelArgs,
+    /// Draw the robot at the pose with each cable's tension: .svg or .png (2-D robots seen
+    /// from +z, 3-D robots an isometric view with three sections; tensions in the anchor
+    /// labels) or .html (an interactive 3-D view, cables coloured by tension).
+    #[arg(long)]
+    plot: Option<PathBuf>,
     /// Write one JSON object on stdout.
     #[arg(long)]
     json: bool,
@@ -165,7 +170,16 @@ impl SotdaSearch {
 pub fn run(args: Args) -> Result<(), CliError> {
     let robot = load_robot(&args.robot)?;
     refuse_sotda_options(args.method, args.nu, args.direction.is_some(), args.full)?;
+    if let Some(path) = &args.plot {
+        super::robot_plot::check_path(path)?;
+    }
     if let Some(cables) = args.cable_model.catenaries(&robot)? {
+        if args.plot.is_some() {
+            return Err(
+                "--plot is not drawn with --cable-model elastic|catenary (straight cables only)"
+                    .into(),
+            );
+        }
         return run_sagging(&args, &robot, &cables);
     }
     let request = TensionRequest {
@@ -179,12 +193,48 @@ pub fn run(args: Args) -> Result<(), CliError> {
         options: args.peer.to_api(),
     };
     let report = request.run()?;
+    if let Some(path) = &args.plot {
+        plot(&request, &report, path)?;
+    }
     if args.json {
         print_report(&report)
     } else {
         print_text(&request.robot, &report);
         Ok(())
     }
+}
+
+/// `--plot`: the robot at the pose, each cable with its tension ([`super::robot_plot`]).
+fn plot(
+    request: &TensionRequest,
+    r: &TensionReport,
+    path: &std::path::Path,
+) -> Result<(), CliError> {
+    let desc = request.robot.description();
+    let motion = desc.robot.motion();
+    let pose = super::pose(desc, &request.pose)?;
+    let verdict = match (r.feasible, &r.reason) {
+        (true, _) => "feasible".to_string(),
+        (false, reason) => format!("infeasible: {}", reason.as_deref().unwrap_or_default()),
+    };
+    super::robot_plot::RobotFigure {
+        desc,
+        pose: &pose,
+        title: format!(
+            "{}: tensions at pose {}",
+            r.robot,
+            super::pose_text(&r.pose, motion.space_dim())
+        ),
+        notes: vec![
+            format!("method {}, {verdict}", r.method),
+            format!(
+                "w_ext {}",
+                super::wrench_text(&r.external_wrench, motion.translation_dof())
+            ),
+        ],
+        tensions: r.tensions.as_deref().filter(|_| r.feasible),
+    }
+    .save(path)
 }
 
 /// `--cable-model elastic|catenary`: the sag-aware statics (cli/cable_model.rs).

@@ -14,6 +14,7 @@ mod plots;
 mod polytope_cli;
 mod pulley_cli;
 mod robot_files;
+mod robot_plot_cli;
 mod trajectory;
 mod viewer;
 mod workspace_cli;
