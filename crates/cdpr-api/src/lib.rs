@@ -25,6 +25,9 @@
 //! | [`OrientationsRequest`] | [`OrientationsReport`] | feasible orientations of a set at one position |
 //! | [`OrientationWorkspaceRequest`] | [`OrientationWorkspaceReport`], [`OrientationMeshReport`] | total-orientation or maximal workspace of an orientation set |
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
+//! | [`sagging::SaggingKinematicsRequest`] | [`sagging::SaggingKinematicsReport`] | inverse kinematics with elastic or sagging cables |
+//! | [`sagging::SaggingTensionRequest`] | [`sagging::SaggingTensionReport`] | statics with elastic or sagging cables |
+//! | [`sagging::ElastoGeometricRequest`] | [`sagging::ElastoGeometricReport`] | elasto-geometric forward kinematics from unstrained lengths |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -65,6 +68,7 @@ mod orientation_set;
 pub mod region;
 mod robot;
 pub mod rows;
+pub mod sagging;
 pub mod schema;
 mod section;
 pub mod simulate;

@@ -961,6 +961,33 @@ impl SaggingCable {
         Ok(Self::from_solution(model, &sol, x, z, &horizontal, up))
     }
 
+    /// `count` ≥ 2 points of the cable from its frame point A to its attachment B (m, base
+    /// coordinates), evenly spaced in unstrained arc length: point k is A plus the forward map
+    /// of the piece [0, s_k] of the catenary ([`ElasticCatenary::point_at`], Irvine 1981
+    /// eqs. (2.29)–(2.30)) in the cable's vertical plane, `up` the unit vertical. For drawing
+    /// a sagging cable (the HTML viewer and the 3-D plots).
+    pub fn polyline(
+        &self,
+        model: &ElasticCatenary,
+        frame_point: &Vector3<f64>,
+        attachment_point: &Vector3<f64>,
+        up: &Vector3<f64>,
+        count: usize,
+    ) -> Vec<Vector3<f64>> {
+        let (_, _, horizontal) = plane_span(frame_point, attachment_point, up);
+        let count = count.max(2);
+        let l0 = self.solution.unstrained_length;
+        (0..count)
+            .map(|k| {
+                if k + 1 == count {
+                    return *attachment_point;
+                }
+                let p = model.point_at(&self.solution, l0 * k as f64 / (count - 1) as f64);
+                frame_point + horizontal * p.x + up * p.y
+            })
+            .collect()
+    }
+
     pub(crate) fn from_solution(
         model: &ElasticCatenary,
         sol: &CatenarySolution,

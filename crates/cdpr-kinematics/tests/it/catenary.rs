@@ -421,3 +421,39 @@ fn unresolvable_tension_is_an_error() {
         Err(e) => panic!("{e}"),
     }
 }
+
+/// The drawn cable: starts at A, ends at B (the last point of the forward map meets B to the
+/// solve's tolerance), hangs below the chord by at most `max_sag`, reaching it to the
+/// sampling's resolution.
+#[test]
+fn polyline_runs_from_a_to_b_and_sags_by_max_sag() {
+    let model = ElasticCatenary::from_density(0.5, 9.81, 1e5).unwrap();
+    let a = Vector3::new(0.0, 0.0, 5.0);
+    let b = Vector3::new(9.0, 12.0, 0.0);
+    let up = Vector3::z();
+    let s = SaggingCable::with_tension(&model, &a, &b, &up, 80.0).unwrap();
+    assert!(s.max_sag > 0.1, "{}", s.max_sag);
+    let pts = s.polyline(&model, &a, &b, &up, 401);
+    assert_eq!(pts.len(), 401);
+    assert_eq!(pts[0], a);
+    assert_eq!(pts[400], b);
+    // The forward map's own end (not snapped) is B too.
+    let end = model.point_at(&s.solution, s.unstrained_length);
+    let (x, z, _) = cdpr_kinematics::catenary::plane_span(&a, &b, &up);
+    assert!((end.x - x).abs() < 1e-9 && (end.y - z).abs() < 1e-9);
+    // Distance below the chord, in the vertical plane of the cable.
+    let chord = b - a;
+    let normal = chord.cross(&up).cross(&chord).normalize(); // in the plane, ⟂ chord, upwards
+    let sag = pts
+        .iter()
+        .map(|p| -(p - a).dot(&normal))
+        .fold(0.0, f64::max);
+    assert!(
+        sag <= s.max_sag * (1.0 + 1e-12) && sag > s.max_sag * (1.0 - 1e-4),
+        "{sag} vs {}",
+        s.max_sag
+    );
+    // All points lie in the vertical plane of A and B.
+    let side = chord.cross(&up).normalize();
+    assert!(pts.iter().all(|p| (p - a).dot(&side).abs() < 1e-12));
+}

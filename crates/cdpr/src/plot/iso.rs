@@ -191,9 +191,9 @@ impl IsoFigure {
             area.draw(&Polygon::new(p.to_vec(), c.mix(0.45).filled()))?;
         }
         // Robot at the draw pose.
-        for (a, b) in &s.cables {
+        for (a, b) in (0..s.cables.len()).flat_map(|i| s.cable_segments(i)) {
             area.draw(&PathElement::new(
-                vec![cam.project(a), cam.project(b)],
+                vec![cam.project(&a), cam.project(&b)],
                 CABLE.stroke_width(1),
             ))?;
         }
@@ -343,7 +343,7 @@ impl IsoFigure {
             ],
             BOX.stroke_width(1),
         )))?;
-        for (a, b) in &s.cables {
+        for (a, b) in (0..s.cables.len()).flat_map(|i| s.cable_segments(i)) {
             chart.draw_series(std::iter::once(PathElement::new(
                 vec![(a[u], a[v]), (b[u], b[v])],
                 CABLE.mix(0.5).stroke_width(1),
