@@ -214,6 +214,9 @@ pub fn forward(
     Ok(())
 }
 
+/// A cable drawn as points (m, base coordinates).
+type Polyline = Vec<[f64; 3]>;
+
 /// Points drawn per sagging cable.
 const CURVE_POINTS: usize = 33;
 
@@ -226,7 +229,7 @@ pub fn draw_curves(
     desc: &RobotDescription,
     model: Option<&str>,
     pose: &cdpr::kinematics::Pose,
-) -> Result<(Vec<Vec<[f64; 3]>>, Option<String>), CliError> {
+) -> Result<(Vec<Polyline>, Option<String>), CliError> {
     if model != Some("catenary") {
         return Ok((Vec::new(), None));
     }

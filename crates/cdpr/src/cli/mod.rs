@@ -25,8 +25,7 @@ pub mod workspace_mesh;
 
 use cdpr::RobotDescription;
 use cdpr::io::LoadOptions;
-use cdpr::kinematics::Pose;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use std::path::Path;
 use std::sync::OnceLock;
 
