@@ -18,6 +18,7 @@ mod model;
 mod polytope;
 mod requests;
 mod robot;
+mod sagging;
 mod tension;
 mod trajectory;
 mod workspace;
@@ -195,6 +196,7 @@ fn _cdpr(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<polytope::StiffnessResult>()?;
     m.add_class::<workspace::WorkspaceResult>()?;
     m.add_class::<trajectory::TrajectoryResult>()?;
+    m.add_class::<sagging::SaggingResult>()?;
     m.add_class::<trajectory::TimedTrajectoryResult>()?;
     m.add_class::<dynamics::SimulationResult>()?;
     m.add_function(wrap_pyfunction!(thread_count, m)?)?;

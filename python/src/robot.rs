@@ -407,14 +407,30 @@ impl Robot {
     /// ``out``: a result of an earlier call with the same number of poses; its arrays are
     /// overwritten and it is returned (no new memory for a large batch). Its arrays must keep
     /// their shapes and must not share memory with ``poses``.
-    #[pyo3(signature = (poses, *, out=None))]
+    ///
+    /// ``cable_model``: ``"straight"`` (default), or ``"elastic"`` / ``"catenary"`` (needs the
+    /// robot file's ``axial_stiffness`` and, for catenary, ``linear_density``) with one pose and
+    /// its platform-end ``tensions`` (n,) in N: a :class:`SaggingResult` (unstrained lengths,
+    /// sag, the sag-aware wrench matrix), as ``cdpr kinematics --cable-model``.
+    #[pyo3(signature = (poses, *, out=None, cable_model="straight", tensions=None))]
     fn inverse_kinematics(
         &self,
         py: Python<'_>,
         poses: &Bound<'_, PyAny>,
         out: Option<Bound<'_, crate::kinematics::KinematicsResult>>,
-    ) -> PyResult<Py<crate::kinematics::KinematicsResult>> {
-        crate::kinematics::inverse_kinematics(self, py, poses, out)
+        cable_model: &str,
+        tensions: Option<Vec<f64>>,
+    ) -> PyResult<Py<PyAny>> {
+        if let Some(model) = crate::sagging::model_name(cable_model)? {
+            let r = crate::sagging::kinematics(self, py, poses, model, tensions)?;
+            return Ok(Py::new(py, r)?.into_any());
+        }
+        if tensions.is_some() {
+            return Err(crate::value_error(
+                "tensions: only with cable_model=\"elastic\" or \"catenary\"",
+            ));
+        }
+        Ok(crate::kinematics::inverse_kinematics(self, py, poses, out)?.into_any())
     }
 
     /// Tension distributions at one pose or a batch.
@@ -428,8 +444,13 @@ impl Robot {
     /// ``"cf"``), ``alternating`` (dykstra: plain alternating projections), ``p`` (p-norm,
     /// default 4), ``alpha`` (optimally-safe, default 1); given with another method they are a
     /// ``ValueError``. Infeasible poses are answers (NaN tensions and a reason), not errors.
+    ///
+    /// ``cable_model="elastic"`` or ``"catenary"``: the statics with sagging cables at one pose
+    /// (``cdpr tension --cable-model``), a :class:`SaggingResult` (platform-end ``tensions``,
+    /// unstrained lengths, frame-end tensions, sag; not with sotda).
     #[pyo3(signature = (poses, wrenches=None, method="l2", *, direction=None, nu=1.0,
-        sotda_search="corners", interior=None, alternating=false, p=None, alpha=None))]
+        sotda_search="corners", interior=None, alternating=false, p=None, alpha=None,
+        cable_model="straight"))]
     #[allow(clippy::too_many_arguments)]
     fn tensions(
         &self,
@@ -444,14 +465,20 @@ impl Robot {
         alternating: bool,
         p: Option<f64>,
         alpha: Option<f64>,
-    ) -> PyResult<crate::tension::TensionResult> {
+        cable_model: &str,
+    ) -> PyResult<Py<PyAny>> {
+        if let Some(model) = crate::sagging::model_name(cable_model)? {
+            let m = crate::tension::parse_method(method)?;
+            let r = crate::sagging::tension(self, py, poses, wrenches, m, model)?;
+            return Ok(Py::new(py, r)?.into_any());
+        }
         let peer = crate::tension::PeerOptions {
             interior,
             alternating,
             p,
             alpha,
         };
-        crate::tension::tensions(
+        let r = crate::tension::tensions(
             self,
             py,
             poses,
@@ -461,7 +488,8 @@ impl Robot {
             nu,
             sotda_search,
             peer,
-        )
+        )?;
+        Ok(Py::new(py, r)?.into_any())
     }
 
     /// Forward kinematics: the pose whose cable lengths are ``lengths`` (m; ``(n,)`` or a batch
@@ -470,7 +498,15 @@ impl Robot {
     /// ``solutions``). A pose solves the lengths when max |l_i − L_i| ≤ ``tolerance`` (m).
     /// Unsolved lengths are answers (``status``), not errors. With more cables than DOF,
     /// ``length_sigma`` (m) is the length noise that makes a least-squares pose ``"fitted"``.
-    #[pyo3(signature = (lengths, guess=None, *, tolerance=1e-9, max_iterations=100, length_sigma=1e-4))]
+    ///
+    /// ``cable_model="elastic"`` or ``"catenary"``: ``lengths`` (n,) are the *unstrained*
+    /// lengths and the answer the platform's equilibrium under its weight plus ``wrench``
+    /// (DOF,), the elasto-geometric forward kinematics of ``cdpr forward --unstrained-lengths``:
+    /// a :class:`SaggingResult` (``pose``, ``tensions``, ``residual``, ``status``,
+    /// ``slack_cables``).
+    #[pyo3(signature = (lengths, guess=None, *, tolerance=1e-9, max_iterations=100, length_sigma=1e-4,
+        cable_model="straight", wrench=None))]
+    #[allow(clippy::too_many_arguments)]
     fn forward_kinematics(
         &self,
         py: Python<'_>,
@@ -479,9 +515,20 @@ impl Robot {
         tolerance: f64,
         max_iterations: i64,
         length_sigma: f64,
-    ) -> PyResult<crate::forward::ForwardResult> {
+        cable_model: &str,
+        wrench: Option<Vec<f64>>,
+    ) -> PyResult<Py<PyAny>> {
+        if let Some(model) = crate::sagging::model_name(cable_model)? {
+            let r = crate::sagging::forward(self, py, lengths, guess, wrench, model)?;
+            return Ok(Py::new(py, r)?.into_any());
+        }
+        if wrench.is_some() {
+            return Err(crate::value_error(
+                "wrench: only with cable_model=\"elastic\" or \"catenary\" (measured lengths are the straight cables')",
+            ));
+        }
         let max_iterations = count(max_iterations, "max_iterations")?;
-        crate::forward::forward_kinematics(
+        let r = crate::forward::forward_kinematics(
             self,
             py,
             lengths,
@@ -489,7 +536,8 @@ impl Robot {
             tolerance,
             max_iterations,
             length_sigma,
-        )
+        )?;
+        Ok(Py::new(py, r)?.into_any())
     }
 
     /// Capacity margin (Guay et al. 2014) of a required wrench set at one pose or a batch.
@@ -609,10 +657,15 @@ impl Robot {
     /// s), sampled every ``dt`` s (default 0.01), ``max_velocity`` (m/s), ``max_acceleration``
     /// (m/s²), ``blend_time`` (s); ``dynamics=True`` balances the inertial wrench M ẍ + b too.
     /// Returns a :class:`TimedTrajectoryResult` then, else a :class:`TrajectoryResult`.
+    ///
+    /// ``cable_model="elastic"`` or ``"catenary"`` (untimed paths): the flex and sag
+    /// compensation of ``cdpr trajectory --cable-model``, per sample the ``unstrained_lengths``
+    /// (m) the winches pay out, the sagging statics' ``platform_end_tensions`` (N) and, with a
+    /// winch on every cable, the ``drum_angles`` (rad) that pay them out.
     #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
         direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0, time_law=None,
         duration=None, dt=None, times=None, max_velocity=None, max_acceleration=None,
-        blend_time=None, dynamics=false))]
+        blend_time=None, dynamics=false, cable_model="straight"))]
     #[allow(clippy::too_many_arguments)]
     fn trajectory(
         &self,
@@ -634,8 +687,10 @@ impl Robot {
         max_acceleration: Option<f64>,
         blend_time: Option<f64>,
         dynamics: bool,
+        cable_model: &str,
     ) -> PyResult<Py<PyAny>> {
         use crate::trajectory::{MethodArgs, PathArgs};
+        let cable_model = crate::sagging::model_name(cable_model)?.unwrap_or_default();
         let time_law = time_law
             .map(|l| l.parse().map_err(crate::value_error))
             .transpose()?;
@@ -662,7 +717,7 @@ impl Robot {
             nu,
             sotda_search: sotda_search.into(),
         };
-        crate::trajectory::trajectory(self, py, path, method, timing)
+        crate::trajectory::trajectory(self, py, path, method, (timing, cable_model))
     }
 
     /// Forward dynamics (the ``cdpr simulate`` command, through its request): the motion from

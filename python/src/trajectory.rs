@@ -27,7 +27,11 @@ use pyo3::prelude::*;
 /// (S, n) in N, NaN where infeasible; ``feasible`` (S,) bool; ``reason``: list of S strings
 /// (None where feasible); ``max_jump`` (n,): per cable the largest |t_i(k+1) − t_i(k)| over
 /// consecutive feasible samples (N); ``discontinuities``: the steps k → k+1 whose jump exceeds
-/// ``jump_ratio`` median jumps; ``feasible_count``; ``method``.
+/// ``jump_ratio`` median jumps; ``feasible_count``; ``method``. With ``cable_model`` elastic
+/// or catenary: ``cable_model``, ``unstrained_lengths`` (S, n) in m and
+/// ``platform_end_tensions`` (S, n) in N (NaN where the sagging statics have no equilibrium),
+/// ``cable_model_reasons``, and with a winch on every cable ``drum_angles`` (S, n) in rad;
+/// else None.
 #[pyclass(module = "cdpr", frozen, get_all)]
 pub struct TrajectoryResult {
     pub s: Py<PyArrayDyn<f64>>,
@@ -39,6 +43,11 @@ pub struct TrajectoryResult {
     pub discontinuities: Vec<usize>,
     pub feasible_count: usize,
     pub method: String,
+    pub cable_model: Option<String>,
+    pub unstrained_lengths: Option<Py<PyArrayDyn<f64>>>,
+    pub platform_end_tensions: Option<Py<PyArrayDyn<f64>>>,
+    pub cable_model_reasons: Option<Vec<Option<String>>>,
+    pub drum_angles: Option<Py<PyArrayDyn<f64>>>,
 }
 
 #[pymethods]
@@ -142,7 +151,7 @@ pub fn trajectory(
     py: Python<'_>,
     path: PathArgs,
     method: MethodArgs,
-    timing: TimedSettings,
+    (timing, cable_model): (TimedSettings, cdpr_api::cable_model::CableModelName),
 ) -> PyResult<Py<PyAny>> {
     let mut request = TrajectoryRequest::segment(api_robot(robot), Vec::new(), Vec::new());
     request.from = None;
@@ -154,6 +163,7 @@ pub fn trajectory(
     request.method = parse_method(&method.method)?;
     request.options = method_settings(request.method, method)?;
     request.timing = timing;
+    request.cable_model = cable_model;
     if let (Some(_), Some(_)) = (path.samples, path.step) {
         return Err(value_error("give samples or step, not both"));
     }
@@ -264,6 +274,14 @@ fn path_result(py: Python<'_>, r: &PathReport, n: usize) -> TrajectoryResult {
         discontinuities: r.discontinuities.clone(),
         feasible_count: r.feasible_count,
         method: r.method.clone(),
+        cable_model: r.cable_model.clone(),
+        unstrained_lengths: r.unstrained_lengths.as_ref().map(|l| nan_matrix(py, l, n)),
+        platform_end_tensions: r
+            .platform_end_tensions
+            .as_ref()
+            .map(|t| nan_matrix(py, t, n)),
+        cable_model_reasons: r.cable_model_reasons.clone(),
+        drum_angles: r.drum_angles.as_ref().map(|a| nan_matrix(py, a, n)),
     }
 }
 

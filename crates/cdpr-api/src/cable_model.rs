@@ -80,7 +80,7 @@ pub fn catenaries(
 }
 
 /// Flex and sag compensation along poses: per pose the unstrained lengths L0 (m), the
-/// platform-end tensions (N), both `None` where the sagging-cable statics have no certified
+/// platform-end tensions (N) and, with winches, the drum angles (rad), `None` where the sagging-cable statics have no certified
 /// equilibrium, and then its reason.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Compensation {
@@ -90,6 +90,11 @@ pub struct Compensation {
     pub platform_end_tensions: Vec<Option<Vec<f64>>>,
     /// Why a pose has no equilibrium.
     pub reasons: Vec<Option<String>>,
+    /// With a `winch` on every cable: per pose the drum angles φ_i = L0_i/ρ_i (rad) that pay
+    /// out the unstrained lengths, ρ_i the winch's payout radius (the drum radius, or with
+    /// `cable_diameter` d the single-layer helix √((r + d/2)² + (d/2π)²)); `None` without
+    /// winches.
+    pub drum_angles: Option<Vec<Option<Vec<f64>>>>,
 }
 
 /// Runs [`SaggingStatics`] with `method` at every pose, under the wrench `w_ext(k)`.
@@ -125,5 +130,18 @@ pub fn compensation(
             }
         }
     }
+    out.drum_angles = robot.winches.as_ref().map(|winches| {
+        out.unstrained_lengths
+            .iter()
+            .map(|l| {
+                l.as_ref().map(|l| {
+                    l.iter()
+                        .zip(winches)
+                        .map(|(&l, w)| w.drum_angle(l))
+                        .collect()
+                })
+            })
+            .collect()
+    });
     Ok(out)
 }

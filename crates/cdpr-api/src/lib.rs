@@ -27,6 +27,9 @@
 //! | [`DextrousRequest`] | [`DextrousReport`] | dextrous workspace over a range of orientations |
 //! | [`SynthesisRequest`] | [`SynthesisReport`] | anchor placement for maximal dextrous area (planar) |
 //! | [`CalibrationRequest`] | [`CalibrationReport`] | kinematic calibration from cable-length readings |
+//! | [`sagging::SaggingKinematicsRequest`] | [`sagging::SaggingKinematicsReport`] | inverse kinematics with elastic or sagging cables |
+//! | [`sagging::SaggingTensionRequest`] | [`sagging::SaggingTensionReport`] | statics with elastic or sagging cables |
+//! | [`sagging::ElastoGeometricRequest`] | [`sagging::ElastoGeometricReport`] | elasto-geometric forward kinematics from unstrained lengths |
 //!
 //! Each request is `serde` (de)serialisable and has `validate()` (the checks, with the messages
 //! the command line prints) and `run()`; each report is `serde` serialisable and has a JSON
@@ -68,6 +71,7 @@ mod orientation_set;
 pub mod region;
 mod robot;
 pub mod rows;
+pub mod sagging;
 pub mod schema;
 mod section;
 pub mod simulate;

@@ -57,6 +57,12 @@ pub fn schemas() -> Vec<(String, Schema)> {
         entry::<OrientationWorkspaceRequest>("orientation-workspace", "request"),
         entry::<OrientationWorkspaceReport>("orientation-workspace", "report"),
         entry::<OrientationMeshReport>("orientation-mesh", "report"),
+        entry::<crate::sagging::SaggingKinematicsRequest>("sagging-kinematics", "request"),
+        entry::<crate::sagging::SaggingKinematicsReport>("sagging-kinematics", "report"),
+        entry::<crate::sagging::SaggingTensionRequest>("sagging-tension", "request"),
+        entry::<crate::sagging::SaggingTensionReport>("sagging-tension", "report"),
+        entry::<crate::sagging::ElastoGeometricRequest>("elasto-geometric", "request"),
+        entry::<crate::sagging::ElastoGeometricReport>("elasto-geometric", "report"),
     ]
 }
 

@@ -167,6 +167,12 @@ pub struct PathReport {
     /// Per sample why the sagging-cable statics have no equilibrium (null where they have).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cable_model_reasons: Option<Vec<Option<String>>>,
+    /// With a `winch` on every cable: per sample the drum angles (rad) that pay out the
+    /// unstrained lengths, L0/ρ with ρ the drum radius or, with `winch.cable_diameter` d, the
+    /// single-layer helix's √((r + d/2)² + (d/2π)²) (m/rad); null where `unstrained_lengths`
+    /// is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub drum_angles: Option<Vec<Option<Vec<f64>>>>,
 }
 
 impl TrajectoryRequest {
@@ -393,6 +399,7 @@ impl TrajectoryRequest {
             unstrained_lengths: None,
             platform_end_tensions: None,
             cable_model_reasons: None,
+            drum_angles: None,
         };
         if let Some(cables) = catenaries(robot, self.cable_model.model())? {
             let at: Vec<Pose> = samples.iter().map(|p| p.pose).collect();
@@ -401,6 +408,7 @@ impl TrajectoryRequest {
             report.unstrained_lengths = Some(c.unstrained_lengths);
             report.platform_end_tensions = Some(c.platform_end_tensions);
             report.cable_model_reasons = Some(c.reasons);
+            report.drum_angles = c.drum_angles;
         }
         Ok(report)
     }

@@ -36,6 +36,10 @@ pub struct Winch {
     pub max_torque: Option<f64>,
     /// Largest motor speed (rad/s), if known.
     pub max_speed: Option<f64>,
+    /// Cable diameter d (m), if known: the cable then winds on a single-layer helical drum
+    /// of pitch d ([`Winch::payout_radius`]); without it the cable is a line on the drum's
+    /// surface (ρ = r).
+    pub cable_diameter: Option<f64>,
 }
 
 impl Winch {
@@ -88,19 +92,67 @@ impl Winch {
             motor_inertia,
             max_torque,
             max_speed,
+            cable_diameter: None,
         })
     }
 
-    /// Motor speed ω_m = −(G/r) l̇ (rad/s) for the cable speed l̇ (m/s); positive winds in.
+    /// The winch with the cable diameter d (m, finite and > 0; `None` leaves it out): the
+    /// robot file's `winch.cable_diameter`.
+    pub fn with_cable_diameter(mut self, diameter: Option<f64>) -> Result<Self, DynamicsError> {
+        if let Some(d) = diameter
+            && !(d.is_finite() && d > 0.0)
+        {
+            return Err(bad(
+                "winch.cable_diameter",
+                d,
+                "must be a finite positive number (m)",
+            ));
+        }
+        self.cable_diameter = diameter;
+        Ok(self)
+    }
+
+    /// ρ, the cable length paid out per radian of drum (m/rad). A single-layer helical drum
+    /// whose turns touch (pitch p = d): the cable's centre line is a helix of radius r + d/2
+    /// and pitch d, so one turn holds √((2π(r + d/2))² + d²) of cable and
+    /// ρ = √((r + d/2)² + (d/2π)²): the arc length of the helix per radian. The grooved
+    /// single-layer drum is the winch of the IPAnema robots (Pott 2018, *Cable-Driven Parallel
+    /// Robots*, winch design); the helix itself is plain geometry. A multi-layer drum (radius
+    /// growing by about d per layer) is not modelled. Without a cable diameter, ρ = r.
+    ///
+    /// ```
+    /// use cdpr_dynamics::Winch;
+    /// let w = Winch::new(0.05, 10.0, 1e-4, None, None).unwrap();
+    /// assert_eq!(w.payout_radius(), 0.05);
+    /// let w = w.with_cable_diameter(Some(0.004)).unwrap();
+    /// let rho = (0.052f64.powi(2) + (0.004 / std::f64::consts::TAU).powi(2)).sqrt();
+    /// assert!((w.payout_radius() - rho).abs() < 1e-15);
+    /// ```
+    pub fn payout_radius(&self) -> f64 {
+        match self.cable_diameter {
+            None => self.drum_radius,
+            Some(d) => (self.drum_radius + 0.5 * d).hypot(d / std::f64::consts::TAU),
+        }
+    }
+
+    /// The drum angle φ = L/ρ (rad) that pays out the cable length `length` (m) from the drum,
+    /// counted from the angle where no cable is paid out.
+    pub fn drum_angle(&self, length: f64) -> f64 {
+        length / self.payout_radius()
+    }
+
+    /// Motor speed ω_m = −(G/r) l̇ (rad/s) for the cable speed l̇ (m/s); positive winds in
+    /// (r the [`Winch::payout_radius`]).
     pub fn motor_speed(&self, cable_speed: f64) -> f64 {
-        -self.gear_ratio / self.drum_radius * cable_speed
+        -self.gear_ratio / self.payout_radius() * cable_speed
     }
 
     /// Motor torque τ = (r/G) t − J_m (G/r) l̈ (N·m) for the tension t (N) and the cable
     /// acceleration l̈ (m/s²); positive winds in.
     pub fn motor_torque(&self, tension: f64, cable_acceleration: f64) -> f64 {
-        self.drum_radius / self.gear_ratio * tension
-            - self.motor_inertia * self.gear_ratio / self.drum_radius * cable_acceleration
+        let r = self.payout_radius();
+        r / self.gear_ratio * tension
+            - self.motor_inertia * self.gear_ratio / r * cable_acceleration
     }
 }
 

@@ -349,6 +349,7 @@ struct RawWinch {
     motor_inertia: f64,
     max_torque: Option<f64>,
     max_speed: Option<f64>,
+    cable_diameter: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -764,6 +765,7 @@ impl RobotDescription {
                     r.max_torque,
                     r.max_speed,
                 )
+                .and_then(|w| w.with_cable_diameter(r.cable_diameter))
                 .map_err(|e| match e {
                     cdpr_dynamics::DynamicsError::BadSetting { key: k, value, why } => {
                         ctx.invalid(w.span(), key(&k), format!("{value} {why}"))

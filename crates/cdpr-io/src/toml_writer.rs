@@ -113,6 +113,9 @@ impl RobotDescription {
                 if let Some(v) = w.max_speed {
                     fields.push(format!("max_speed = {}", num(v)));
                 }
+                if let Some(v) = w.cable_diameter {
+                    fields.push(format!("cable_diameter = {}", num(v)));
+                }
                 let _ = writeln!(s, "winch = {{ {} }}", fields.join(", "));
             }
             if let Some(pulley) = &c.pulley {

@@ -90,6 +90,17 @@ pub enum CatenaryError {
         /// Why.
         reason: &'static str,
     },
+    /// No unstrained length in floating point gives this platform-end tension: T_B(L0) jumps
+    /// past it between two adjacent lengths (a cable nearly straight along the vertical).
+    #[error(
+        "the platform-end tension {tension} N cannot be resolved: the nearest taut catenary has {closest} N"
+    )]
+    Unresolvable {
+        /// The tension asked for (N).
+        tension: f64,
+        /// The platform-end tension of the closest catenary found (N).
+        closest: f64,
+    },
     /// Newton's method stopped without meeting the tolerance.
     #[error("catenary solve did not converge in {iterations} iterations (residual {residual:e} m)")]
     NotConverged {
@@ -411,13 +422,32 @@ impl ElasticCatenary {
         let mut f = self.forward(l0, fx, fz);
         let mut r = Vector2::new(f.x, f.z) - target;
         let mut norm = r.norm();
+        let mut refinements = 0;
         for it in 0..100 {
-            if norm <= tol {
-                return Ok(self.solution(l0, fx, fz, it));
-            }
             let j = self.jacobian_at(l0, fx, fz, &f);
             let k = Matrix2::new(j[(0, 0)], j[(0, 1)], j[(1, 0)], j[(1, 1)]);
-            let Some(step) = k.lu().solve(&r) else { break };
+            let step = k.lu().solve(&r);
+            if norm <= tol {
+                // The span is met, but the force is only known to ‖r‖/λ_min(K): a nearly
+                // straight inextensible cable's flexibility matrix is nearly singular (λ_min ≈
+                // 10⁻⁸ m/N for 4 m at 270 N), so 10⁻¹³ of the chord leaves 10⁻⁷ of the force.
+                // Full Newton steps refine it while they shrink and do not raise the residual.
+                match step {
+                    Some(d) if refinements < 4 && d.norm() > 1e-14 * fx.hypot(fz) => {
+                        let (nfx, nfz) = (fx - d.x, fz - d.y);
+                        let nf = self.forward(l0, nfx, nfz);
+                        let nr = Vector2::new(nf.x, nf.z) - target;
+                        if nfx > 0.0 && nr.norm() <= norm {
+                            (fx, fz, f, r, norm) = (nfx, nfz, nf, nr, nr.norm());
+                            refinements += 1;
+                            continue;
+                        }
+                        return Ok(self.solution(l0, fx, fz, it));
+                    }
+                    _ => return Ok(self.solution(l0, fx, fz, it)),
+                }
+            }
+            let Some(step) = step else { break };
             let mut alpha = 1.0;
             // Keep F_x > 0, then halve until the residual decreases.
             while fx - alpha * step.x <= 0.0 {
@@ -673,6 +703,8 @@ impl ElasticCatenary {
             return self.solve_for_length(x, z, l0).map_err(SearchEnd::Failed);
         }
         let mut least = f64::INFINITY;
+        // The solve with the smallest |T_B − t| so far.
+        let mut best = None;
         for it in 0..200 {
             let sol = self.solve_for_length(x, z, l0).map_err(SearchEnd::Failed)?;
             least = least.min(sol.platform_end_tension);
@@ -682,6 +714,9 @@ impl ElasticCatenary {
                     iterations: it,
                     ..sol
                 });
+            }
+            if best.is_none_or(|(b, _): (f64, CatenarySolution)| g.abs() < b) {
+                best = Some((g.abs(), sol));
             }
             // dT_B/dL0 = (F/T_B) · dF/dL0, dF/dL0 = −K⁻¹ ∂(x, z)/∂L0 (span fixed).
             let (fx, fz) = (sol.horizontal_force, sol.vertical_force);
@@ -708,7 +743,26 @@ impl ElasticCatenary {
             } else {
                 2.0 * l0
             };
-            if !bracketed && hi.is_finite() && hi - lo <= 1e-13 * hi {
+            if hi.is_finite() && hi - lo <= 1e-13 * hi {
+                if bracketed {
+                    // T_B crosses t between two lengths a few ulps apart: where T_B(L0) is
+                    // steep (a heavy cable hanging nearly straight down, dT_B/dL0 ≈ 10⁴ N/m)
+                    // one ulp of L0 moves T_B by more than 10⁻¹² t. The closer end is the root.
+                    // Unless no length resolves t (a cable along the vertical, whose T_B jumps
+                    // by more than 10⁻⁹ t per ulp of L0).
+                    if let Some((gap, sol)) = best {
+                        if gap <= 1e-9 * t {
+                            return Ok(CatenarySolution {
+                                iterations: it,
+                                ..sol
+                            });
+                        }
+                        return Err(SearchEnd::Failed(CatenaryError::Unresolvable {
+                            tension: t,
+                            closest: sol.platform_end_tension,
+                        }));
+                    }
+                }
                 // Converged on the fold with T_B > T: no taut catenary.
                 break;
             }
@@ -905,6 +959,33 @@ impl SaggingCable {
         let (x, z, horizontal) = plane_span(frame_point, attachment_point, up);
         let sol = model.solve_for_length(x, z, l0)?;
         Ok(Self::from_solution(model, &sol, x, z, &horizontal, up))
+    }
+
+    /// `count` ≥ 2 points of the cable from its frame point A to its attachment B (m, base
+    /// coordinates), evenly spaced in unstrained arc length: point k is A plus the forward map
+    /// of the piece [0, s_k] of the catenary ([`ElasticCatenary::point_at`], Irvine 1981
+    /// eqs. (2.29)–(2.30)) in the cable's vertical plane, `up` the unit vertical. For drawing
+    /// a sagging cable (the HTML viewer and the 3-D plots).
+    pub fn polyline(
+        &self,
+        model: &ElasticCatenary,
+        frame_point: &Vector3<f64>,
+        attachment_point: &Vector3<f64>,
+        up: &Vector3<f64>,
+        count: usize,
+    ) -> Vec<Vector3<f64>> {
+        let (_, _, horizontal) = plane_span(frame_point, attachment_point, up);
+        let count = count.max(2);
+        let l0 = self.solution.unstrained_length;
+        (0..count)
+            .map(|k| {
+                if k + 1 == count {
+                    return *attachment_point;
+                }
+                let p = model.point_at(&self.solution, l0 * k as f64 / (count - 1) as f64);
+                frame_point + horizontal * p.x + up * p.y
+            })
+            .collect()
     }
 
     pub(crate) fn from_solution(

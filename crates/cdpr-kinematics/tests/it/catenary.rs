@@ -4,6 +4,7 @@
 use cdpr_kinematics::nalgebra::Vector3;
 use cdpr_kinematics::{CatenaryError, ElasticCatenary, SaggingCable};
 use proptest::prelude::*;
+use std::f64::consts::FRAC_PI_2;
 
 /// The cable's equilibrium integrated from A by RK4 over the unstrained arc length s:
 /// state (x, z, H, V) with dH/ds = 0, dV/ds = w (the weight of ds) and
@@ -170,13 +171,22 @@ fn sagging_cable_in_space() {
     assert!((back.platform_end_tension - 50.0).abs() < 1e-7);
 }
 
+/// `cases` cases, unless `PROPTEST_CASES` says how many (`PROPTEST_CASES=5000 cargo test …`).
+fn config(cases: u32) -> ProptestConfig {
+    let mut c = ProptestConfig::default();
+    if std::env::var_os("PROPTEST_CASES").is_none() {
+        c.cases = cases;
+    }
+    c
+}
+
 fn model() -> impl Strategy<Value = ElasticCatenary> {
     (0.0..20.0f64, prop_oneof![Just(f64::INFINITY), 1e3..1e8f64])
         .prop_map(|(w, ea)| ElasticCatenary::new(w, ea).unwrap())
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(300))]
+    #![proptest_config(config(300))]
 
     /// The closed form against RK4 integration of the equilibrium ODE.
     #[test]
@@ -260,4 +270,190 @@ fn catenary_timing() {
     }
     let ns = start.elapsed().as_nanos() as f64 / n as f64;
     eprintln!("solve_for_tension: {ns:.0} ns per solve ({acc})");
+}
+
+/// A positive number spread over decades: 10^e, e uniform in [lo, hi].
+fn decades(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo..hi).prop_map(|e: f64| 10f64.powf(e))
+}
+
+/// Cables over wide ranges: weightless or 10⁻⁶–10³ N/m, EA 1 N–10¹⁴ N or infinite.
+fn wide_model() -> impl Strategy<Value = ElasticCatenary> {
+    (
+        prop_oneof![1 => Just(0.0), 6 => decades(-6.0, 3.0)],
+        prop_oneof![1 => Just(f64::INFINITY), 6 => decades(0.0, 14.0)],
+    )
+        .prop_map(|(w, ea)| ElasticCatenary::new(w, ea).unwrap())
+}
+
+/// Spans from 1 µm to 1 km, from hanging straight down to straight up (nearly vertical ones
+/// included): (x, z) = d (cos α, sin α).
+fn wide_span() -> impl Strategy<Value = (f64, f64)> {
+    (
+        decades(-6.0, 3.0),
+        prop_oneof![
+            -FRAC_PI_2..FRAC_PI_2,
+            (-1e-9..1e-9f64).prop_map(|e| FRAC_PI_2 - e.abs()),
+            (-1e-9..1e-9f64).prop_map(|e| -FRAC_PI_2 + e.abs()),
+        ],
+    )
+        .prop_map(|(d, a): (f64, f64)| (d * a.cos().max(0.0), d * a.sin()))
+}
+
+/// An answer of a catenary solve: finite everywhere, positive length, forces that end at the
+/// span (10⁻⁶ of the chord, the `NotConverged` threshold being far tighter).
+fn check_answer(
+    m: &ElasticCatenary,
+    x: f64,
+    z: f64,
+    r: &Result<cdpr_kinematics::CatenarySolution, CatenaryError>,
+) -> Result<(), TestCaseError> {
+    match r {
+        Ok(s) => {
+            let v = [
+                s.unstrained_length,
+                s.horizontal_force,
+                s.vertical_force,
+                s.frame_end_tension,
+                s.platform_end_tension,
+            ];
+            prop_assert!(v.iter().all(|v| v.is_finite()), "{:?}", s);
+            prop_assert!(
+                s.unstrained_length > 0.0 && s.horizontal_force >= 0.0,
+                "{:?}",
+                s
+            );
+            let b = m.end_point(s.unstrained_length, s.horizontal_force, s.vertical_force);
+            let chord = x.hypot(z);
+            prop_assert!(
+                (b.x - x).abs() <= 1e-6 * chord && (b.y - z).abs() <= 1e-6 * chord,
+                "{:?} ends at {} instead of ({}, {})",
+                s,
+                b,
+                x,
+                z
+            );
+            let (sag, angle) = m.sag(s, x, z);
+            prop_assert!(
+                sag.is_finite() && angle.is_finite(),
+                "sag {} angle {}",
+                sag,
+                angle
+            );
+        }
+        Err(e) => {
+            // Every error value is finite or names its input, and prints.
+            prop_assert!(!e.to_string().is_empty());
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(2000))]
+
+    /// Newton robustness (very slack, nearly vertical, very light and very heavy cables, huge
+    /// EA, tiny spans): the solves by tension and by length and the least tension never panic
+    /// and never return a NaN; what they return reaches the span.
+    #[test]
+    fn solves_never_panic_or_return_nan(m in wide_model(), (x, z) in wide_span(),
+                                         t in decades(-6.0, 7.0), stretch in decades(-3.0, 1.0),
+                                         shorter in any::<bool>()) {
+        let r = m.solve_for_tension(x, z, t);
+        check_answer(&m, x, z, &r)?;
+        if let Ok(s) = &r {
+            prop_assert!((s.platform_end_tension - t).abs() <= 1e-9 * t);
+        }
+        // Lengths from much shorter than the chord to 10 × longer (very slack).
+        let chord = x.hypot(z);
+        let l0 = if shorter { chord / (1.0 + stretch) } else { chord * (1.0 + stretch) };
+        check_answer(&m, x, z, &m.solve_for_length(x, z, l0))?;
+        match m.least_tension(x, z) {
+            Ok(least) => prop_assert!(least.is_finite() && least >= 0.0, "{}", least),
+            Err(e) => prop_assert!(!e.to_string().is_empty()),
+        }
+    }
+}
+
+/// `round_trips`' failing case (found with `PROPTEST_CASES=100000`): an inextensible cable
+/// 1.3 µm longer than its 4 m chord at 272 N. Its flexibility matrix is nearly singular
+/// (λ_min ≈ 9·10⁻⁹ m/N), so a span met to 10⁻¹³ of the chord left F_x 1.0·10⁻⁷ off (2.7·10⁻⁵ N);
+/// the refinement steps bring it to the rounding of the span (≈ 10⁻¹⁶ m / λ_min ≈ 10⁻⁷ N).
+#[test]
+fn nearly_straight_inextensible_cable_recovers_its_force() {
+    let m = ElasticCatenary::new(0.18343580618508992, f64::INFINITY).unwrap();
+    let (l0, fx, fz) = (4.044164659587531, 271.6890627210932, 0.0);
+    let b = m.end_point(l0, fx, fz);
+    assert!(l0 - b.norm() < 1.3e-6 && l0 - b.norm() > 1.2e-6);
+    let sol = m.solve_for_length(b.x, b.y, l0).unwrap();
+    assert!((sol.horizontal_force - fx).abs() <= 1e-9 * fx, "{sol:?}");
+    assert!((sol.vertical_force - fz).abs() <= 1e-9 * fx, "{sol:?}");
+}
+
+/// `round_trips`' second failing case: a heavy cable (10.7 N/m, 13.3 m, EA = 2.9·10⁷ N)
+/// hanging nearly straight down (0.27 m across, 13.3 m down) at 18.2 N. T_B(L0) falls by
+/// ≈ 1.4·10⁴ N per metre of cable, so one ulp of L0 moves T_B by more than 10⁻¹² of it: the
+/// search bracketed the root to one ulp and then called the span unreachable.
+#[test]
+fn steep_hanging_cable_is_solved_by_tension() {
+    let m = ElasticCatenary::new(10.65383593898855, 1.0 / 3.4501708021258555e-8).unwrap();
+    let (l0, fx, fz) = (13.310030060642154, 1.341330573814072, -18.141513616097757);
+    let b = m.end_point(l0, fx, fz);
+    let t = fx.hypot(fz);
+    let sol = m.solve_for_tension(b.x, b.y, t).unwrap();
+    assert!((sol.unstrained_length - l0).abs() <= 1e-12 * l0, "{sol:?}");
+    assert!((sol.platform_end_tension - t).abs() <= 1e-9 * t, "{sol:?}");
+    assert!((sol.horizontal_force - fx).abs() <= 1e-6 * t, "{sol:?}");
+}
+
+/// `solves_never_panic_or_return_nan`'s failing case: 151 m of inextensible 1 N/m cable
+/// hanging 10⁻⁷ m off the vertical at 1 N. No f64 length gives T_B = 1 N (T_B jumps between
+/// adjacent lengths); the solve returned a catenary with another tension. Now an error.
+#[test]
+fn unresolvable_tension_is_an_error() {
+    let m = ElasticCatenary::new(1.0, f64::INFINITY).unwrap();
+    match m.solve_for_tension(1.0034303062691742e-7, -151.19581729889126, 1.0) {
+        Ok(s) => assert!((s.platform_end_tension - 1.0).abs() <= 1e-9, "{s:?}"),
+        Err(CatenaryError::Unresolvable { tension, closest }) => {
+            assert_eq!(tension, 1.0);
+            assert!(closest.is_finite() && (closest - 1.0).abs() > 1e-9);
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// The drawn cable: starts at A, ends at B (the last point of the forward map meets B to the
+/// solve's tolerance), hangs below the chord by at most `max_sag`, reaching it to the
+/// sampling's resolution.
+#[test]
+fn polyline_runs_from_a_to_b_and_sags_by_max_sag() {
+    let model = ElasticCatenary::from_density(0.5, 9.81, 1e5).unwrap();
+    let a = Vector3::new(0.0, 0.0, 5.0);
+    let b = Vector3::new(9.0, 12.0, 0.0);
+    let up = Vector3::z();
+    let s = SaggingCable::with_tension(&model, &a, &b, &up, 80.0).unwrap();
+    assert!(s.max_sag > 0.1, "{}", s.max_sag);
+    let pts = s.polyline(&model, &a, &b, &up, 401);
+    assert_eq!(pts.len(), 401);
+    assert_eq!(pts[0], a);
+    assert_eq!(pts[400], b);
+    // The forward map's own end (not snapped) is B too.
+    let end = model.point_at(&s.solution, s.unstrained_length);
+    let (x, z, _) = cdpr_kinematics::catenary::plane_span(&a, &b, &up);
+    assert!((end.x - x).abs() < 1e-9 && (end.y - z).abs() < 1e-9);
+    // Distance below the chord, in the vertical plane of the cable.
+    let chord = b - a;
+    let normal = chord.cross(&up).cross(&chord).normalize(); // in the plane, ⟂ chord, upwards
+    let sag = pts
+        .iter()
+        .map(|p| -(p - a).dot(&normal))
+        .fold(0.0, f64::max);
+    assert!(
+        sag <= s.max_sag * (1.0 + 1e-12) && sag > s.max_sag * (1.0 - 1e-4),
+        "{sag} vs {}",
+        s.max_sag
+    );
+    // All points lie in the vertical plane of A and B.
+    let side = chord.cross(&up).normalize();
+    assert!(pts.iter().all(|p| (p - a).dot(&side).abs() < 1e-12));
 }

@@ -3,6 +3,7 @@
 
 mod batch;
 mod catenary;
+mod elasto_geometric_fuzz;
 mod forward_kinematics;
 mod jacobian;
 mod pulley;

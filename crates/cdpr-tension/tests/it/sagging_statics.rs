@@ -207,3 +207,60 @@ fn sagging_timing() {
         iterations as f64 / n as f64
     );
 }
+
+mod fuzz {
+    //! Newton robustness of the sagging statics over wide ranges (very light to very heavy
+    //! cables, EA from soft to huge, loose and tight bounds, light and heavy platforms): never
+    //! a panic or a NaN; an infeasible answer carries its reason.
+    use super::*;
+    use proptest::prelude::*;
+
+    fn decades(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+        (lo..hi).prop_map(|e: f64| 10f64.powf(e))
+    }
+
+    fn config(cases: u32) -> ProptestConfig {
+        let mut c = ProptestConfig::default();
+        if std::env::var_os("PROPTEST_CASES").is_none() {
+            c.cases = cases;
+        }
+        c
+    }
+
+    proptest! {
+        #![proptest_config(config(100))]
+
+        #[test]
+        fn never_panics_or_returns_nan(
+            rho in prop_oneof![1 => Just(0.0), 4 => decades(-6.0, 1.0)],
+            ea in prop_oneof![1 => Just(f64::INFINITY), 4 => decades(1.0, 13.0)],
+            (x, y, z) in (-1.2..1.2f64, -1.2..1.2f64, 0.2..1.8f64),
+            (t_min, span) in (decades(-3.0, 2.0), decades(0.0, 4.0)),
+            mass in decades(-2.0, 3.0),
+            method in prop_oneof![Just(Method::L2), Just(Method::L1), Just(Method::Linf),
+                                  Just(Method::Pinv)],
+        ) {
+            // A rigid weightless cable is the straight model (RobotCatenaries refuses nothing).
+            let model = RobotCatenaries::new(&[rho; 8], &[ea; 8], &Vector3::new(0.0, 0.0, -G)).unwrap();
+            let bounds = TensionBounds::uniform(8, t_min, t_min * (1.0 + span)).unwrap();
+            let kin = ipanema_like_8()
+                .inverse_kinematics(&Pose::spatial(Vector3::new(x, y, z), 0.0, 0.0, 0.0))
+                .unwrap();
+            let w_ext = DVector::from_vec(vec![0.0, 0.0, -mass * G, 0.0, 0.0, 0.0]);
+            let outcome = SaggingStatics::new(SaggingSettings::default()).solve(
+                &mut TensionSolver::new(method), &kin, &model, &w_ext, &bounds);
+            match outcome {
+                Ok(SaggingOutcome::Feasible(s)) => {
+                    prop_assert!(s.tensions.iter().all(|t| t.is_finite()), "{:?}", s.tensions);
+                    prop_assert!(s.residual.is_finite());
+                    for c in &s.cables {
+                        prop_assert!(c.unstrained_length.is_finite() && c.frame_end_tension.is_finite()
+                            && c.max_sag.is_finite() && c.angle_to_chord.is_finite(), "{:?}", c);
+                    }
+                }
+                Ok(SaggingOutcome::Infeasible(r)) => prop_assert!(!r.to_string().is_empty()),
+                Err(e) => prop_assert!(!e.to_string().is_empty()),
+            }
+        }
+    }
+}

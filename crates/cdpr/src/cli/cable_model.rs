@@ -6,15 +6,14 @@
 //! cables, Irvine's elastic catenary (needs `axial_stiffness` and `linear_density`; gravity from
 //! the robot file's `[platform] gravity`).
 
-use super::{CliError, matrix_rows, print_json, print_matrix};
+use super::{CliError, print_matrix, print_report};
 use cdpr::RobotDescription;
-use cdpr::kinematics::catenary::write_sagging_wrench_matrix;
-use cdpr::kinematics::{CableModel, PoseKinematics, RobotCatenaries, SaggingCable};
-use cdpr::tension::{
-    Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionBounds, TensionSolver,
+use cdpr::api::sagging::{
+    ElastoGeometricRequest, SaggingCablesReport, SaggingKinematicsRequest, SaggingTensionRequest,
 };
-use nalgebra::{DMatrix, DVector};
-use serde_json::json;
+use cdpr::kinematics::{CableModel, RobotCatenaries};
+use cdpr::tension::{Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionSolver};
+use nalgebra::DMatrix;
 
 /// The `--cable-model` option, flattened into a command's arguments.
 #[derive(clap::Args, Debug, Clone)]
@@ -57,174 +56,118 @@ impl CableModelArgs {
     }
 }
 
-/// The per-cable JSON fields of sagging cables.
-pub fn cables_json(cables: &[SaggingCable]) -> serde_json::Value {
-    let field = |f: fn(&SaggingCable) -> f64| cables.iter().map(f).collect::<Vec<_>>();
-    json!({
-        "unstrained_lengths": field(|c| c.unstrained_length),
-        "chord_lengths": field(|c| c.chord_length),
-        "frame_end_tensions": field(|c| c.frame_end_tension),
-        "platform_end_tensions": field(|c| c.platform_end_tension),
-        "max_sag": field(|c| c.max_sag),
-        "angle_to_chord": field(|c| c.angle_to_chord),
-    })
+impl CableModelArgs {
+    /// The request's spelling of the model.
+    pub fn api_name(&self) -> cdpr::api::cable_model::CableModelName {
+        use cdpr::api::cable_model::CableModelName as Api;
+        match self.cable_model {
+            CableModelName::Straight => Api::Straight,
+            CableModelName::Elastic => Api::Elastic,
+            CableModelName::Catenary => Api::Catenary,
+        }
+    }
 }
 
-fn print_cables(cables: &[SaggingCable]) {
+fn print_cables(c: &SaggingCablesReport) {
     println!(
         "{:>6} {:>12} {:>12} {:>12} {:>14} {:>12} {:>12}",
         "cable", "L0 (m)", "chord (m)", "T_B (N)", "T_frame (N)", "sag (m)", "angle (rad)"
     );
-    for (i, c) in cables.iter().enumerate() {
+    for i in 0..c.unstrained_lengths.len() {
         println!(
             "{:>6} {:>12.6} {:>12.6} {:>12.6} {:>14.6} {:>12.6} {:>12.6}",
             i + 1,
-            c.unstrained_length,
-            c.chord_length,
-            c.platform_end_tension,
-            c.frame_end_tension,
-            c.max_sag,
-            c.angle_to_chord
+            c.unstrained_lengths[i],
+            c.chord_lengths[i],
+            c.platform_end_tensions[i],
+            c.frame_end_tensions[i],
+            c.max_sag[i],
+            c.angle_to_chord[i]
         );
     }
 }
 
 /// `cdpr kinematics --cable-model elastic|catenary --tensions …`: each cable's catenary for its
-/// platform-end tension, and the sag-aware wrench matrix.
+/// platform-end tension, and the sag-aware wrench matrix ([`SaggingKinematicsRequest`]).
 pub fn kinematics(
-    robot: &RobotDescription,
-    kin: &PoseKinematics,
-    model: &RobotCatenaries,
+    robot: RobotDescription,
+    args: &CableModelArgs,
     tensions: Option<&[f64]>,
-    name: &str,
     pose: &[f64],
     json_out: bool,
 ) -> Result<(), CliError> {
-    let n = kin.cable_count();
+    let (n, name) = (robot.robot.cable_count(), args.model().name());
     let t = tensions.ok_or_else(|| {
         format!("--cable-model {name} needs --tensions T1,…,T{n} (platform-end tensions, N)")
     })?;
-    if t.len() != n {
-        return Err(format!(
-            "--tensions needs {n} numbers (one per cable), got {}",
-            t.len()
-        )
-        .into());
-    }
-    if let Some(i) = t.iter().position(|&v| !(v.is_finite() && v >= 0.0)) {
-        return Err(format!(
-            "--tensions: cable {} has tension {} N; tensions are finite numbers ≥ 0",
-            i + 1,
-            t[i]
-        )
-        .into());
-    }
-    let mut cables = Vec::new();
-    model.with_tensions(kin, t, &mut cables)?;
-    let mut w = DMatrix::zeros(0, 0);
-    write_sagging_wrench_matrix(kin, &cables, &mut w);
+    let request = SaggingKinematicsRequest {
+        robot: cdpr::api::Robot::from_description(robot),
+        pose: pose.to_vec(),
+        cable_model: args.api_name(),
+        tensions: t.to_vec(),
+    };
+    let r = request.run()?;
     if json_out {
-        let mut v = json!({
-            "robot": robot.name,
-            "motion": robot.robot.motion().name(),
-            "pose": pose,
-            "cable_model": name,
-            "wrench_matrix": matrix_rows(&w),
-        });
-        if let (Some(o), serde_json::Value::Object(c)) = (v.as_object_mut(), cables_json(&cables)) {
-            o.extend(c);
-        }
-        print_json(&v)
-    } else {
-        println!(
-            "robot {} ({}), pose {}, cable model {name}",
-            robot.name,
-            robot.robot.motion(),
-            super::pose_text(pose, robot.robot.motion().space_dim())
-        );
-        print_cables(&cables);
-        print_matrix(
-            "wrench matrix W (DOF × n; columns: unit forces of the cables at the platform), W t + w_ext = 0:",
-            &w,
-        );
-        Ok(())
+        return print_report(&r);
     }
+    let motion = request.robot.robot.motion();
+    println!(
+        "robot {} ({motion}), pose {}, cable model {name}",
+        r.robot,
+        super::pose_text(pose, motion.space_dim())
+    );
+    print_cables(&r.cables);
+    print_matrix(
+        "wrench matrix W (DOF × n; columns: unit forces of the cables at the platform), W t + w_ext = 0:",
+        &DMatrix::from_row_iterator(
+            r.wrench_matrix.len(),
+            n,
+            r.wrench_matrix.iter().flatten().copied(),
+        ),
+    );
+    Ok(())
 }
 
 /// `cdpr tension --cable-model elastic|catenary`: the fixed point of
-/// [`cdpr::tension::sagging_statics`] for `method`.
-#[allow(clippy::too_many_arguments)]
+/// [`cdpr::tension::sagging_statics`] for `method` ([`SaggingTensionRequest`]).
 pub fn tension(
-    robot: &RobotDescription,
-    kin: &PoseKinematics,
-    model: &RobotCatenaries,
+    robot: RobotDescription,
+    args: &CableModelArgs,
     method: Method,
-    w_ext: &DVector<f64>,
-    bounds: &TensionBounds,
-    name: &str,
+    wrench: Option<&[f64]>,
     pose: &[f64],
     json_out: bool,
 ) -> Result<(), CliError> {
-    if method == Method::Sotda {
-        return Err(format!("--cable-model {name} does not apply to sotda (its stiffness model is the straight cables')").into());
-    }
-    let outcome = SaggingStatics::new(SaggingSettings::default()).solve(
-        &mut TensionSolver::new(method),
-        kin,
-        model,
-        w_ext,
-        bounds,
-    )?;
+    let request = SaggingTensionRequest {
+        robot: cdpr::api::Robot::from_description(robot),
+        pose: pose.to_vec(),
+        wrench: wrench.map(<[f64]>::to_vec),
+        method,
+        cable_model: args.api_name(),
+    };
+    let r = request.run()?;
     if json_out {
-        let mut v = json!({
-            "robot": robot.name,
-            "pose": pose,
-            "external_wrench": w_ext.as_slice(),
-            "method": method.name(),
-            "cable_model": name,
-        });
-        match &outcome {
-            SaggingOutcome::Feasible(s) => {
-                v["feasible"] = json!(true);
-                v["tensions"] = json!(s.tensions.as_slice());
-                v["residual"] = json!(s.residual);
-                v["iterations"] = json!(s.iterations);
-                v["reason"] = json!(null);
-                v["wrench_matrix"] = json!(matrix_rows(&s.wrench_matrix));
-                if let (Some(o), serde_json::Value::Object(c)) =
-                    (v.as_object_mut(), cables_json(&s.cables))
-                {
-                    o.extend(c);
-                }
-            }
-            SaggingOutcome::Infeasible(r) => {
-                v["feasible"] = json!(false);
-                v["tensions"] = json!(null);
-                v["residual"] = json!(null);
-                v["reason"] = json!(r.to_string());
-            }
-        }
-        print_json(&v)
-    } else {
-        println!(
-            "robot {}, pose {}, w_ext {}, method {}, cable model {name}",
-            robot.name,
-            super::pose_text(pose, robot.robot.motion().space_dim()),
-            super::wrench_text(w_ext.as_slice(), robot.robot.motion().translation_dof()),
-            method.name()
-        );
-        match &outcome {
-            SaggingOutcome::Feasible(s) => {
-                println!(
-                    "feasible (residual {:.3e} with the catenary forces, {} fixed-point iterations)",
-                    s.residual, s.iterations
-                );
-                print_cables(&s.cables);
-            }
-            SaggingOutcome::Infeasible(r) => println!("infeasible: {r}"),
-        }
-        Ok(())
+        return print_report(&r);
     }
+    let motion = request.robot.robot.motion();
+    println!(
+        "robot {}, pose {}, w_ext {}, method {}, cable model {}",
+        r.robot,
+        super::pose_text(pose, motion.space_dim()),
+        super::wrench_text(&r.external_wrench, motion.translation_dof()),
+        r.method,
+        r.cable_model
+    );
+    match (&r.cables, r.residual, r.iterations) {
+        (Some(c), Some(res), Some(it)) => {
+            println!(
+                "feasible (residual {res:.3e} with the catenary forces, {it} fixed-point iterations)"
+            );
+            print_cables(c);
+        }
+        _ => println!("infeasible: {}", r.reason.as_deref().unwrap_or_default()),
+    }
+    Ok(())
 }
 
 /// `--unstrained-lengths`: one finite length > 0 (m) per cable of `n`.
@@ -248,77 +191,105 @@ fn check_unstrained_lengths(l0: &[f64], n: usize) -> Result<(), CliError> {
 }
 
 /// `cdpr forward --unstrained-lengths … --cable-model elastic|catenary`: the elasto-geometric
-/// forward kinematics ([`cdpr::kinematics::ElastoGeometricForward`]) under the platform's
-/// weight (and springs) from the robot file plus `wrench`, from `guess` or else from the
-/// straight cables' poses for the unstrained lengths (multi-start).
+/// forward kinematics ([`ElastoGeometricRequest`]) under the platform's weight (and springs)
+/// from the robot file plus `wrench`, from `guess` or else from the straight cables' poses for
+/// the unstrained lengths (multi-start).
 pub fn forward(
-    robot: &RobotDescription,
+    robot: RobotDescription,
     args: &CableModelArgs,
     l0: &[f64],
     wrench: Option<&[f64]>,
-    guess: Option<cdpr::kinematics::Pose>,
+    guess: Option<&[f64]>,
     json_out: bool,
 ) -> Result<(), CliError> {
-    use cdpr::kinematics::ElastoGeometricForward;
-    let name = args.model().name();
-    let Some(model) = args.catenaries(robot)? else {
-        return Err(
-            "--unstrained-lengths needs --cable-model elastic or catenary (straight cables have no unstrained length: use --lengths)"
-                .into(),
-        );
+    let request = ElastoGeometricRequest {
+        robot: cdpr::api::Robot::from_description(robot),
+        unstrained_lengths: l0.to_vec(),
+        cable_model: args.api_name(),
+        wrench: wrench.map(<[f64]>::to_vec),
+        guess: guess.map(<[f64]>::to_vec),
     };
-    let n = robot.robot.cable_count();
-    check_unstrained_lengths(l0, n)?;
-    let w_e = super::wrench(robot, wrench)?;
-    let mut fk = ElastoGeometricForward::new(&robot.robot, &model, Default::default())?;
-    let mut load = |p: &cdpr::kinematics::Pose, out: &mut [f64]| {
-        let w = robot.load_wrench(p)? + &w_e;
-        out.copy_from_slice(w.as_slice());
-        Ok(())
-    };
-    let sol = match guess {
-        Some(g) => fk.solve_with_load(l0, &mut load, &g)?,
-        None => fk.solve_multistart_with_load(l0, &mut load)?,
-    };
-    let w_ext = robot.load_wrench(&sol.pose)? + &w_e;
-    let motion = robot.robot.motion();
-    let slack: Vec<usize> = (0..n).filter(|&i| fk.is_slack(i)).map(|i| i + 1).collect();
-    let cables = fk.cables();
-    let coordinates = sol.pose.coordinates(motion);
+    let r = request.run()?;
     if json_out {
-        let mut v = json!({
-            "robot": robot.name,
-            "motion": motion.name(),
-            "cable_model": name,
-            "pose": coordinates,
-            "tensions": cables.iter().map(|c| c.platform_end_tension).collect::<Vec<_>>(),
-            "residual": sol.residual,
-            "status": sol.status.name(),
-            "iterations": sol.iterations,
-            "slack_cables": slack,
-            "external_wrench": w_ext.as_slice(),
-        });
-        if let (Some(o), serde_json::Value::Object(c)) = (v.as_object_mut(), cables_json(cables)) {
-            o.extend(c);
-        }
-        print_json(&v)
-    } else {
-        println!(
-            "robot {} ({motion}), cable model {name}, w_ext {}",
-            robot.name,
-            super::wrench_text(w_ext.as_slice(), motion.translation_dof()),
-        );
-        println!(
-            "{} after {} iterations: pose {} (m, rad), residual {:.3e} N",
-            sol.status.name(),
-            sol.iterations,
-            super::pose_text(&coordinates, motion.space_dim()),
-            sol.residual
-        );
-        if !slack.is_empty() {
-            println!("slack cables: {slack:?}");
-        }
-        print_cables(cables);
-        Ok(())
+        return print_report(&r);
     }
+    let motion = request.robot.robot.motion();
+    println!(
+        "robot {} ({motion}), cable model {}, w_ext {}",
+        r.robot,
+        r.cable_model,
+        super::wrench_text(&r.external_wrench, motion.translation_dof()),
+    );
+    println!(
+        "{} after {} iterations: pose {} (m, rad), residual {:.3e} N",
+        r.status,
+        r.iterations,
+        super::pose_text(&r.pose, motion.space_dim()),
+        r.residual
+    );
+    if !r.slack_cables.is_empty() {
+        println!("slack cables: {:?}", r.slack_cables);
+    }
+    print_cables(&r.cables);
+    Ok(())
+}
+
+/// A cable drawn as points (m, base coordinates).
+type Polyline = Vec<[f64; 3]>;
+
+/// Points drawn per sagging cable.
+const CURVE_POINTS: usize = 33;
+
+/// The sagging cables of a 3-D plot's draw pose under `--cable-model catenary` (`model`, the
+/// criteria's spelling; other models draw straight cables): the l2 sagging statics
+/// ([`SaggingStatics`]) under the robot file's load at `pose`, each cable the polyline of its
+/// catenary, and a legend line. No curves, and a legend line saying so, where the pose has no
+/// sagging equilibrium.
+pub fn draw_curves(
+    desc: &RobotDescription,
+    model: Option<&str>,
+    pose: &cdpr::kinematics::Pose,
+) -> Result<(Vec<Polyline>, Option<String>), CliError> {
+    if model != Some("catenary") {
+        return Ok((Vec::new(), None));
+    }
+    let Some(cats) = cdpr::api::cable_model::catenaries(desc, CableModel::Catenary)? else {
+        return Ok((Vec::new(), None));
+    };
+    let kin = desc.robot.inverse_kinematics(pose)?;
+    let w_ext = desc.load_wrench(pose)?;
+    let outcome = SaggingStatics::new(SaggingSettings::default()).solve(
+        &mut TensionSolver::new(Method::L2),
+        &kin,
+        &cats,
+        &w_ext,
+        &desc.bounds,
+    )?;
+    let SaggingOutcome::Feasible(s) = outcome else {
+        return Ok((
+            Vec::new(),
+            Some("cables drawn straight: no sagging-cable equilibrium at the draw pose".into()),
+        ));
+    };
+    let up = cats.up();
+    let curves = s
+        .cables
+        .iter()
+        .zip(cats.cables())
+        .zip(kin.cables())
+        .map(|((c, m), k)| {
+            let a = k.attachment_point + k.vector;
+            c.polyline(m, &a, &k.attachment_point, &up, CURVE_POINTS)
+                .iter()
+                .map(|p| [p.x, p.y, p.z])
+                .collect()
+        })
+        .collect();
+    let sag = s.cables.iter().map(|c| c.max_sag).fold(0.0, f64::max);
+    Ok((
+        curves,
+        Some(format!(
+            "cables drawn as catenaries (l2 statics at the draw pose; largest sag {sag:.3} m)"
+        )),
+    ))
 }

@@ -1,6 +1,6 @@
 //! `cdpr forward`: forward kinematics, from measured cable lengths to the platform pose.
 
-use super::{CliError, Numbers, load_robot, pose, print_report, request_robot};
+use super::{CliError, Numbers, load_robot, print_report, request_robot};
 use cdpr::api::{ForwardReport, ForwardRequest};
 use std::path::PathBuf;
 
@@ -82,15 +82,8 @@ pub struct Args {
 pub fn run(args: Args) -> Result<(), CliError> {
     if let Some(l0) = &args.unstrained_lengths {
         let robot = load_robot(&args.robot)?;
-        let guess = args.guess.as_ref().map(|g| pose(&robot, g)).transpose()?;
-        return super::cable_model::forward(
-            &robot,
-            &args.cable_model,
-            l0,
-            args.wrench.as_deref(),
-            guess,
-            args.json,
-        );
+        let (w, g) = (args.wrench.as_deref(), args.guess.as_deref());
+        return super::cable_model::forward(robot, &args.cable_model, l0, w, g, args.json);
     }
     if args.cable_model.model() != cdpr::kinematics::CableModel::Straight || args.wrench.is_some() {
         return Err("--cable-model elastic|catenary and --wrench go with --unstrained-lengths (measured lengths --lengths are the straight cables')".into());

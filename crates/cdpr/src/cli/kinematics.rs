@@ -1,6 +1,6 @@
 //! `cdpr kinematics`: inverse kinematics and the wrench matrix at one pose.
 
-use super::{CliError, Numbers, load_robot, pose, print_matrix, print_report};
+use super::{CliError, Numbers, load_robot, print_matrix, print_report};
 use cdpr::api::{KinematicsModel, KinematicsReport, KinematicsRequest, Robot};
 use nalgebra::DMatrix;
 use std::path::PathBuf;
@@ -57,19 +57,15 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some(path) = &args.plot {
         super::robot_plot::check_path(path)?;
     }
-    if let Some(cables) = args.cable_model.catenaries(&robot)? {
+    if args.cable_model.catenaries(&robot)?.is_some() {
         if args.plot.is_some() {
             return Err(
                 "--plot is not drawn with --cable-model elastic|catenary (straight cables only)"
                     .into(),
             );
         }
-        let p = pose(&robot, &args.pose)?;
-        let kin = robot.robot.inverse_kinematics(&p)?;
-        let (t, name) = (args.tensions.as_deref(), args.cable_model.model().name());
-        return super::cable_model::kinematics(
-            &robot, &kin, &cables, t, name, &args.pose, args.json,
-        );
+        let t = args.tensions.as_deref();
+        return super::cable_model::kinematics(robot, &args.cable_model, t, &args.pose, args.json);
     }
     let request = KinematicsRequest {
         robot: Robot::from_description(robot),

@@ -26,8 +26,7 @@ pub mod workspace_mesh;
 
 use cdpr::RobotDescription;
 use cdpr::io::LoadOptions;
-use cdpr::kinematics::Pose;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DMatrix;
 use std::path::Path;
 use std::sync::OnceLock;
 
@@ -189,31 +188,6 @@ pub fn load_robot(path: &Path) -> Result<RobotDescription, CliError> {
     Ok(robot)
 }
 
-/// A pose for the robot's motion pattern from command-line numbers.
-pub fn pose(robot: &RobotDescription, q: &[f64]) -> Result<Pose, CliError> {
-    Ok(Pose::from_coordinates(robot.robot.motion(), q)?)
-}
-
-/// A wrench for the robot's motion pattern from command-line numbers (zero if absent).
-pub fn wrench(robot: &RobotDescription, w: Option<&[f64]>) -> Result<DVector<f64>, CliError> {
-    let m = robot.robot.motion();
-    match w {
-        Some(w) => Ok(cdpr::wrench::wrench_from_slice(m, w)?),
-        None => Ok(DVector::zeros(m.dof())),
-    }
-}
-
-/// The external wrench at `pose`: the given w_e plus the platform's gravity w_g (Picard, Caro,
-/// Plestan & Claveau 2020, eq. (1)) plus the passive springs' wrench w_s, if the robot has any
-/// ([`RobotDescription::load_wrench`]).
-pub fn external_wrench(
-    robot: &RobotDescription,
-    pose: &Pose,
-    w: Option<&[f64]>,
-) -> Result<DVector<f64>, CliError> {
-    Ok(wrench(robot, w)? + robot.load_wrench(pose)?)
-}
-
 /// A number as a person reads it: at most 9 significant digits (so that round-off such as
 /// −98.10000000000001 prints as −98.1), never `-0`, scientific notation only for very large or
 /// very small magnitudes, `inf`/`-inf`/`NaN` spelled out.
@@ -265,11 +239,6 @@ pub fn pose_text(q: &[f64], positions: usize) -> String {
         .map(|(i, &x)| format!("{} {}", num(x), if i < positions { "m" } else { "rad" }))
         .collect();
     format!("({})", parts.join(", "))
-}
-
-/// Rows of a matrix as JSON arrays.
-pub fn matrix_rows(m: &DMatrix<f64>) -> Vec<Vec<f64>> {
-    m.row_iter().map(|r| r.iter().copied().collect()).collect()
 }
 
 /// Prints a matrix as an aligned table with a heading.

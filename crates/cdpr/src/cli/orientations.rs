@@ -201,7 +201,14 @@ pub fn run_workspace_mesh(
             r.resolution,
             r.criteria.join(", ")
         );
-        save_mesh_scene_plot(desc, &pose, &r.mesh, title.clone(), vec![summary], path)?;
+        save_mesh_scene_plot(
+            desc,
+            &pose,
+            &r.mesh,
+            (title.clone(), vec![summary]),
+            request.criteria.cable_model.as_deref(),
+            path,
+        )?;
     }
     if view.json {
         return print_report(&r);
@@ -265,8 +272,8 @@ pub fn run_workspace(
             desc,
             &pose,
             &r.workspace,
-            title.clone(),
-            vec![summary],
+            (title.clone(), vec![summary]),
+            request.criteria.cable_model.as_deref(),
             path,
         )?;
     }

@@ -142,10 +142,12 @@ pub fn save_scene_plot(
     desc: &RobotDescription,
     pose: &Pose,
     ws: &GridWorkspace,
-    title: String,
-    legend: Vec<String>,
+    (title, mut legend): (String, Vec<String>),
+    cable_model: Option<&str>,
     path: &Path,
 ) -> Result<(), CliError> {
+    let (cable_curves, note) = super::cable_model::draw_curves(desc, cable_model, pose)?;
+    legend.extend(note);
     let (vertices, triangles) = cdpr::plot::grid_surface(ws);
     let r = &ws.grid.region;
     let scene = cdpr::plot::Scene {
@@ -162,6 +164,10 @@ pub fn save_scene_plot(
         ..cdpr::plot::Scene::default()
     }
     .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    let scene = cdpr::plot::Scene {
+        cable_curves,
+        ..scene
+    };
     cdpr::plot::save_scene(&scene, path)?;
     Ok(())
 }
@@ -172,10 +178,12 @@ pub fn save_mesh_scene_plot(
     desc: &RobotDescription,
     pose: &Pose,
     mesh: &cdpr::workspace::BoundaryMesh,
-    title: String,
-    legend: Vec<String>,
+    (title, mut legend): (String, Vec<String>),
+    cable_model: Option<&str>,
     path: &Path,
 ) -> Result<(), CliError> {
+    let (cable_curves, note) = super::cable_model::draw_curves(desc, cable_model, pose)?;
+    legend.extend(note);
     let r = &mesh.grid.grid.region;
     let scene = cdpr::plot::Scene {
         title,
@@ -188,6 +196,10 @@ pub fn save_mesh_scene_plot(
         ..cdpr::plot::Scene::default()
     }
     .with_robot(&desc.robot, pose, desc.platform_shape.as_ref());
+    let scene = cdpr::plot::Scene {
+        cable_curves,
+        ..scene
+    };
     cdpr::plot::save_scene(&scene, path)?;
     Ok(())
 }

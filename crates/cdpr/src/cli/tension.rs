@@ -1,6 +1,6 @@
 //! `cdpr tension`: a tension distribution at one pose.
 
-use super::{CliError, Numbers, check_method, external_wrench, load_robot, pose, print_report};
+use super::{CliError, Numbers, check_method, load_robot, print_report};
 use cdpr::RobotDescription;
 use cdpr::api::{BindingReport, Robot, TensionReport, TensionRequest};
 use cdpr::tension::Method;
@@ -173,14 +173,14 @@ pub fn run(args: Args) -> Result<(), CliError> {
     if let Some(path) = &args.plot {
         super::robot_plot::check_path(path)?;
     }
-    if let Some(cables) = args.cable_model.catenaries(&robot)? {
+    if args.cable_model.catenaries(&robot)?.is_some() {
         if args.plot.is_some() {
             return Err(
                 "--plot is not drawn with --cable-model elastic|catenary (straight cables only)"
                     .into(),
             );
         }
-        return run_sagging(&args, &robot, &cables);
+        return run_sagging(&args, robot);
     }
     let request = TensionRequest {
         robot: Robot::from_description(robot),
@@ -238,20 +238,17 @@ fn plot(
 }
 
 /// `--cable-model elastic|catenary`: the sag-aware statics (cli/cable_model.rs).
-fn run_sagging(
-    args: &Args,
-    robot: &RobotDescription,
-    cables: &cdpr::kinematics::RobotCatenaries,
-) -> Result<(), CliError> {
-    check_method(robot, args.method)?;
+fn run_sagging(args: &Args, robot: RobotDescription) -> Result<(), CliError> {
+    check_method(&robot, args.method)?;
     args.peer.to_api().for_method(args.method)?;
-    let pose = pose(robot, &args.pose)?;
-    let w_ext = external_wrench(robot, &pose, args.wrench.as_deref())?;
-    let kin = robot.robot.inverse_kinematics(&pose)?;
-    let name = args.cable_model.model().name();
-    let (m, b) = (args.method, &robot.bounds);
+    let w = args.wrench.as_deref();
     super::cable_model::tension(
-        robot, &kin, cables, m, &w_ext, b, name, &args.pose, args.json,
+        robot,
+        &args.cable_model,
+        args.method,
+        w,
+        &args.pose,
+        args.json,
     )
 }
 

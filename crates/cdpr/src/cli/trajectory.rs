@@ -44,7 +44,9 @@ use std::path::PathBuf;
 /// `method`, `poses`, `t_min`, `t_max`. With `--cable-model elastic|catenary`: `cable_model`, and
 /// per sample `unstrained_lengths` (m: what the winches pay out for the platform to be there,
 /// flex and sag compensation), `platform_end_tensions` (N) and `cable_model_reasons` from the
-/// sagging-cable statics (null where it has no certified equilibrium).
+/// sagging-cable statics (null where it has no certified equilibrium); with a `winch` on every
+/// cable also `drum_angles` (rad, per sample: L0 over the winch's payout radius, the cable's
+/// build-up on a single-layer drum included when `winch.cable_diameter` is given).
 #[derive(clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
@@ -193,6 +195,14 @@ fn render(args: &Args, robot: &Robot, r: &PathReport) -> Result<(), CliError> {
             match l {
                 Some(l) => println!("{:>8.4}  {}", r.s[k], super::nums(l)),
                 None => println!("{:>8.4}  {}", r.s[k], why.as_deref().unwrap_or("")),
+            }
+        }
+        if let Some(angles) = &r.drum_angles {
+            println!("drum angles φ_i = L0_i/ρ_i in rad along s");
+            for (k, a) in angles.iter().enumerate() {
+                if let Some(a) = a {
+                    println!("{:>8.4}  {}", r.s[k], super::nums(a));
+                }
             }
         }
     }

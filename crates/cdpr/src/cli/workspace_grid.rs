@@ -80,22 +80,25 @@ fn save_workspace_plot(
             desc,
             pose,
             ws,
-            format!(
-                "{}: constant-orientation workspace{}",
-                desc.name,
-                at_orientation(&r.orientation)
+            (
+                format!(
+                    "{}: constant-orientation workspace{}",
+                    desc.name,
+                    at_orientation(&r.orientation)
+                ),
+                vec![
+                    format!(
+                        "volume {:.4} m³ ({} of {} points, m = {m}, {convention} convention)",
+                        r.area, r.feasible_points, r.total_points,
+                    ),
+                    format!("criteria: {labels}"),
+                    format!(
+                        "draw pose ({:.3}, {:.3}, {:.3}) m",
+                        pose.position.x, pose.position.y, pose.position.z
+                    ),
+                ],
             ),
-            vec![
-                format!(
-                    "volume {:.4} m³ ({} of {} points, m = {m}, {convention} convention)",
-                    r.area, r.feasible_points, r.total_points,
-                ),
-                format!("criteria: {labels}"),
-                format!(
-                    "draw pose ({:.3}, {:.3}, {:.3}) m",
-                    pose.position.x, pose.position.y, pose.position.z
-                ),
-            ],
+            request.criteria.cable_model.as_deref(),
             path,
         );
     }

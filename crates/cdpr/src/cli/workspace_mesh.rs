@@ -147,19 +147,22 @@ fn save_mesh_plot(
         desc,
         &pose,
         &r.mesh,
-        format!(
-            "{}: constant-orientation workspace{}",
-            desc.name,
-            orientation_suffix(&r.orientation)
+        (
+            format!(
+                "{}: constant-orientation workspace{}",
+                desc.name,
+                orientation_suffix(&r.orientation)
+            ),
+            vec![format!(
+                "volume {} m³ (boundary mesh, m = {}); grid count {} m³ ({}); {}",
+                num(r.volume),
+                r.resolution,
+                num(r.grid_volume),
+                r.volume_convention,
+                r.criteria.join(", ")
+            )],
         ),
-        vec![format!(
-            "volume {} m³ (boundary mesh, m = {}); grid count {} m³ ({}); {}",
-            num(r.volume),
-            r.resolution,
-            num(r.grid_volume),
-            r.volume_convention,
-            r.criteria.join(", ")
-        )],
+        request.criteria.cable_model.as_deref(),
         path,
     )
 }

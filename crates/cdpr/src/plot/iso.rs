@@ -208,7 +208,8 @@ impl IsoFigure {
         Ok(())
     }
 
-    /// The robot at the draw pose: cables, platform faces back to front, anchors.
+    /// The robot at the draw pose: cables (sagging ones as their catenaries), platform faces
+    /// back to front, anchors.
     fn draw_robot<DB: DrawingBackend>(
         &self,
         area: &DrawingArea<DB, Shift>,
@@ -218,9 +219,9 @@ impl IsoFigure {
         DB::ErrorType: 'static,
     {
         let s = &self.scene;
-        for (a, b) in &s.cables {
+        for (a, b) in (0..s.cables.len()).flat_map(|i| s.cable_segments(i)) {
             area.draw(&PathElement::new(
-                vec![cam.project(a), cam.project(b)],
+                vec![cam.project(&a), cam.project(&b)],
                 CABLE.stroke_width(1),
             ))?;
         }
@@ -405,7 +406,7 @@ impl IsoFigure {
             ],
             BOX.stroke_width(1),
         )))?;
-        for (a, b) in &s.cables {
+        for (a, b) in (0..s.cables.len()).flat_map(|i| s.cable_segments(i)) {
             chart.draw_series(std::iter::once(PathElement::new(
                 vec![(a[u], a[v]), (b[u], b[v])],
                 CABLE.mix(0.5).stroke_width(1),

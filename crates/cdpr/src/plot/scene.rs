@@ -16,6 +16,9 @@ pub struct Scene {
     pub anchors: Vec<[f64; 3]>,
     /// Cables at the draw pose: (frame anchor, platform attachment point).
     pub cables: Vec<([f64; 3], [f64; 3])>,
+    /// Sagging cables at the draw pose: per cable the polyline of its catenary from the frame
+    /// anchor to the attachment (m); empty (or an empty entry) draws the straight chord.
+    pub cable_curves: Vec<Vec<[f64; 3]>>,
     /// Platform faces at the draw pose (closed polygons); empty for a point platform.
     pub platform: Vec<Vec<[f64; 3]>>,
     /// The draw pose's position.
@@ -79,6 +82,15 @@ impl Scene {
         }
         self.platform_position = arr(&pose.position);
         self
+    }
+
+    /// The segments drawn for cable i: its catenary's polyline if [`Scene::cable_curves`] has
+    /// one, else the chord.
+    pub fn cable_segments(&self, i: usize) -> Vec<([f64; 3], [f64; 3])> {
+        match self.cable_curves.get(i) {
+            Some(c) if c.len() > 1 => c.windows(2).map(|w| (w[0], w[1])).collect(),
+            _ => self.cables.get(i).copied().into_iter().collect(),
+        }
     }
 
     /// Bounding box of everything shown (box, anchors, mesh).

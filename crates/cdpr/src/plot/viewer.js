@@ -180,7 +180,13 @@ var CdprViewer = (function () {
       // Robot at the draw pose: cables, platform, anchors with labels.
       S.cables.forEach(function (c, i) {
         var colour = S.cableColours ? S.cableColours[i] : "#555";
-        line(c[0], c[1], colour, S.cableColours ? 2.5 : 1.2);
+        var curve = S.cableCurves && S.cableCurves[i];
+        if (curve && curve.length > 1) {
+          // A sagging cable: the polyline of its catenary (--cable-model catenary).
+          for (var k = 1; k < curve.length; k++) line(curve[k - 1], curve[k], colour, 1.2);
+        } else {
+          line(c[0], c[1], colour, S.cableColours ? 2.5 : 1.2);
+        }
       });
       var faces = S.platform.map(function (f) {
         var v = f.map(toView);

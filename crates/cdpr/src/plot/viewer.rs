@@ -11,6 +11,9 @@
 //! robots): the mesh is then the polytope's faces in N, with the largest ball centred at −w_ext
 //! drawn inside ([`Scene::ball`]), and no robot.
 //!
+//! Sagging cables ([`Scene::cable_curves`], `--cable-model catenary`) are drawn as the
+//! polylines of their catenaries instead of their chords.
+//!
 //! When the page has drawn, it writes `rendered N triangles` into the element
 //! `#cdpr-status` (`error: …` if a script error happened): the marker the browser test reads.
 
@@ -30,6 +33,7 @@ pub fn html(scene: &Scene) -> String {
             .map(|i| super::anchor_label(&scene.anchor_names, i))
             .collect::<Vec<_>>(),
         "cables": scene.cables.iter().map(|(a, b)| [a, b]).collect::<Vec<_>>(),
+        "cableCurves": scene.cable_curves,
         "platform": scene.platform,
         "platformPosition": scene.platform_position,
         "vertices": scene.vertices,

@@ -373,3 +373,170 @@ fn workspace_with_sagging_cables() {
         assert!(err.contains(needle), "{all:?}: {err}");
     }
 }
+
+/// `drum_angles` (issue 29 follow-up): with a `winch` on every cable the trajectory's
+/// compensation reports φ = L0/ρ, ρ the drum radius (4 cm) or, with `cable_diameter` d = 3 mm,
+/// the single-layer helix √((r + d/2)² + (d/2π)²) = 4.1503 cm.
+#[test]
+fn trajectory_reports_drum_angles_with_the_cable_build_up() {
+    let text = std::fs::read_to_string(robot("ipanema-like-8.toml")).unwrap();
+    let dir = std::env::temp_dir().join(format!("cdpr-drum-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let run = |winch: &str, name: &str| {
+        let file = dir.join(name);
+        let with = text.replace(
+            "axial_stiffness = 60000.0",
+            &format!("axial_stiffness = 60000.0\nwinch = {{ {winch} }}"),
+        );
+        std::fs::write(&file, with).unwrap();
+        let f = file.display().to_string();
+        json(&[
+            "trajectory",
+            &f,
+            "--from",
+            "0,0,1,0,0,0",
+            "--to",
+            "0.3,0.2,1.2,0,0,0",
+            "--samples",
+            "3",
+            "--cable-model",
+            "elastic",
+            "--json",
+        ])
+    };
+    let base = "drum_radius = 0.04, gear_ratio = 8.0, motor_inertia = 1e-4";
+    let plain = run(base, "plain.toml");
+    let helix = run(&format!("{base}, cable_diameter = 0.003"), "helix.toml");
+    let rho = (0.04f64 + 0.0015).hypot(0.003 / std::f64::consts::TAU);
+    assert!((rho - 0.0415027).abs() < 1e-7, "{rho}");
+    for k in 0..3 {
+        let l0 = floats(&plain["unstrained_lengths"][k]);
+        assert_eq!(l0, floats(&helix["unstrained_lengths"][k]));
+        let (a, b) = (
+            floats(&plain["drum_angles"][k]),
+            floats(&helix["drum_angles"][k]),
+        );
+        for i in 0..8 {
+            assert!(
+                (a[i] - l0[i] / 0.04).abs() < 1e-12 * a[i],
+                "sample {k} cable {i}"
+            );
+            assert!(
+                (b[i] - l0[i] / rho).abs() < 1e-12 * b[i],
+                "sample {k} cable {i}"
+            );
+        }
+    }
+    // Without winches, no drum angles.
+    let none = json(&[
+        "trajectory",
+        &robot("ipanema-like-8.toml"),
+        "--from",
+        "0,0,1,0,0,0",
+        "--to",
+        "0.3,0.2,1.2,0,0,0",
+        "--samples",
+        "3",
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert!(none.get("drum_angles").is_none());
+    // A bad diameter names the key.
+    let file = dir.join("bad.toml");
+    std::fs::write(
+        &file,
+        text.replace(
+            "axial_stiffness = 60000.0",
+            &format!("axial_stiffness = 60000.0\nwinch = {{ {base}, cable_diameter = -1.0 }}"),
+        ),
+    )
+    .unwrap();
+    let out = cdpr()
+        .args([
+            "kinematics",
+            &file.display().to_string(),
+            "--pose",
+            "0,0,1,0,0,0",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cable_diameter"));
+}
+
+/// The scene JSON embedded in a viewer page.
+fn scene_of(html: &str) -> serde_json::Value {
+    let tag = "id=\"scene\">";
+    let start = html.find(tag).unwrap() + tag.len();
+    let mut de =
+        serde_json::Deserializer::from_str(&html[start..]).into_iter::<serde_json::Value>();
+    de.next().unwrap().unwrap()
+}
+
+/// The HTML viewer draws CoGiRo's sagging cables as catenaries under `--cable-model catenary`
+/// (each a polyline from the frame anchor to the attachment, below the chord), straight
+/// otherwise.
+#[test]
+fn viewer_draws_catenaries() {
+    let cogiro = robot("wirecenter-cogiro.toml");
+    let dir = std::env::temp_dir().join(format!("cdpr-viewer-sag-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = |model: &str| {
+        let file = dir.join(format!("{model}.html"));
+        let out = cdpr()
+            .args([
+                "--kinematics",
+                "standard",
+                "workspace",
+                &cogiro,
+                "--grid",
+                "4",
+                "--draw-pose",
+                "0,0,3,0,0,0",
+                "--cable-model",
+                model,
+                "--plot",
+                &file.display().to_string(),
+            ])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        scene_of(
+            &std::fs::read_to_string(&file)
+                .unwrap()
+                .replace("<\\/", "</"),
+        )
+    };
+    let straight = page("straight");
+    assert_eq!(straight["cableCurves"].as_array().unwrap().len(), 0);
+    let sag = page("catenary");
+    let curves = sag["cableCurves"].as_array().unwrap();
+    let cables = sag["cables"].as_array().unwrap();
+    assert_eq!(curves.len(), 8);
+    let mut deepest: f64 = 0.0;
+    for (curve, cable) in curves.iter().zip(cables) {
+        let pts: Vec<Vec<f64>> = curve.as_array().unwrap().iter().map(floats).collect();
+        assert_eq!(pts.len(), 33);
+        let (a, b) = (floats(&cable[0]), floats(&cable[1]));
+        for k in 0..3 {
+            assert!((pts[0][k] - a[k]).abs() < 1e-9 && (pts[32][k] - b[k]).abs() < 1e-9);
+        }
+        // Every inner point lies below the chord (heavier than the straight line).
+        for p in &pts[1..32] {
+            let s = (0..3).map(|k| (p[k] - a[k]) * (b[k] - a[k])).sum::<f64>()
+                / (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>();
+            let on_chord: Vec<f64> = (0..3).map(|k| a[k] + s * (b[k] - a[k])).collect();
+            assert!(p[2] < on_chord[2], "{p:?} above the chord");
+            deepest = deepest.max(on_chord[2] - p[2]);
+        }
+    }
+    // CoGiRo's cables sag centimetres at 50 N (issue 29); at (0, 0, 3 m) the l2 statics leave
+    // cable 1 at about 1 N, hanging metres below its 9.4 m chord (docs/algorithms.md).
+    assert!(deepest > 0.005 && deepest < 5.0, "{deepest}");
+    assert!(sag["legend"].to_string().contains("catenaries"));
+}
