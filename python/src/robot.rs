@@ -601,7 +601,8 @@ impl Robot {
     /// ``"points"`` (the thesis' feasible points × cell area). Grids run in parallel with the
     /// GIL released.
     #[pyo3(signature = (resolution=None, r#box=None, orientation=None, criteria=None, method=None,
-        wrench=None, wrench_box=None, boundary="grid", chord=0.05, volume_convention="cells"))]
+        wrench=None, wrench_box=None, boundary="grid", chord=0.05, volume_convention="cells", *,
+        interior=None, alternating=false, p=None, alpha=None))]
     #[allow(clippy::too_many_arguments)]
     fn workspace(
         &self,
@@ -616,6 +617,10 @@ impl Robot {
         boundary: &str,
         chord: f64,
         volume_convention: &str,
+        interior: Option<String>,
+        alternating: bool,
+        p: Option<f64>,
+        alpha: Option<f64>,
     ) -> PyResult<crate::workspace::WorkspaceResult> {
         let resolution = resolution.map(|m| count(m, "resolution")).transpose()?;
         let orientation = orientation
@@ -641,6 +646,12 @@ impl Robot {
             boundary,
             chord,
             volume_convention,
+            peer: crate::tension::PeerOptions {
+                interior,
+                alternating,
+                p,
+                alpha,
+            },
         };
         crate::workspace::workspace(self, py, &args)
     }
@@ -665,7 +676,8 @@ impl Robot {
     #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
         direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0, time_law=None,
         duration=None, dt=None, times=None, max_velocity=None, max_acceleration=None,
-        blend_time=None, dynamics=false, cable_model="straight"))]
+        blend_time=None, dynamics=false, cable_model="straight", interior=None, alternating=false,
+        p=None, alpha=None))]
     #[allow(clippy::too_many_arguments)]
     fn trajectory(
         &self,
@@ -688,6 +700,10 @@ impl Robot {
         blend_time: Option<f64>,
         dynamics: bool,
         cable_model: &str,
+        interior: Option<String>,
+        alternating: bool,
+        p: Option<f64>,
+        alpha: Option<f64>,
     ) -> PyResult<Py<PyAny>> {
         use crate::trajectory::{MethodArgs, PathArgs};
         let cable_model = crate::sagging::model_name(cable_model)?.unwrap_or_default();
@@ -716,6 +732,12 @@ impl Robot {
             direction,
             nu,
             sotda_search: sotda_search.into(),
+            peer: crate::tension::PeerOptions {
+                interior,
+                alternating,
+                p,
+                alpha,
+            },
         };
         crate::trajectory::trajectory(self, py, path, method, (timing, cable_model))
     }

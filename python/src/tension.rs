@@ -13,8 +13,8 @@ use crate::{map_poses, row, run_batch, value_error};
 use cdpr_api::{ApiError, SotdaSearch, TensionRequest};
 use cdpr_kinematics::PoseKinematics;
 use cdpr_tension::{
-    Method, MethodOptions, PunctureInterior, SotdaSettings, SotdaVariant, StiffnessData,
-    TensionProblem, TensionSolver,
+    Method, MethodOptions, SotdaSettings, SotdaVariant, StiffnessData, TensionProblem,
+    TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Vector3};
 use pyo3::IntoPyObjectExt;
@@ -147,37 +147,23 @@ pub struct PeerOptions {
 }
 
 impl PeerOptions {
-    /// The options for `method`; an option of another method is a `ValueError`.
-    pub fn for_method(&self, method: Method) -> PyResult<MethodOptions> {
-        let given = [
-            ("interior", self.interior.is_some()),
-            ("alternating", self.alternating),
-            ("p", self.p.is_some()),
-            ("alpha", self.alpha.is_some()),
-        ];
-        for (name, set) in given {
-            if set && !method.takes_option(name) {
-                return Err(value_error(format!(
-                    "{name}: an option of another method, not of {method} (interior: puncture, \
-                     alternating: dykstra, p: p-norm, alpha: optimally-safe)"
-                )));
-            }
-        }
-        let mut o = MethodOptions {
+    /// The request's options (`cdpr_api::PeerOptions`, the one copy `cdpr tension`,
+    /// `trajectory` and `workspace` check).
+    pub fn to_api(&self) -> cdpr_api::PeerOptions {
+        cdpr_api::PeerOptions {
+            interior: self.interior.clone(),
             alternating: self.alternating,
-            ..MethodOptions::default()
-        };
-        if let Some(i) = &self.interior {
-            o.interior = i.parse::<PunctureInterior>().map_err(value_error)?;
+            p: self.p,
+            alpha: self.alpha,
         }
-        if let Some(p) = self.p {
-            o.p = p;
-        }
-        if let Some(a) = self.alpha {
-            o.alpha = a;
-        }
-        o.validate().map_err(value_error)?;
-        Ok(o)
+    }
+
+    /// The options for `method` (`cdpr_api::PeerOptions::for_method`); an option of another
+    /// method is a `ValueError` naming the keyword.
+    pub fn for_method(&self, method: Method) -> PyResult<MethodOptions> {
+        self.to_api()
+            .for_method(method)
+            .map_err(|e| value_error(e.to_string().replace("--", "")))
     }
 }
 
@@ -330,12 +316,7 @@ pub fn tensions(
             "full" => SotdaSearch::Full,
             _ => SotdaSearch::Corners,
         },
-        options: cdpr_api::PeerOptions {
-            interior: peer.interior,
-            alternating: peer.alternating,
-            p: peer.p,
-            alpha: peer.alpha,
-        },
+        options: peer.to_api(),
     };
     tension_at(py, &request)
 }

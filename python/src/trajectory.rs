@@ -126,6 +126,9 @@ pub struct MethodArgs {
     pub nu: f64,
     /// SOTDA's search.
     pub sotda_search: String,
+    /// The peers' options (``interior``, ``alternating``, ``p``, ``alpha``), refused with
+    /// another method as ``cdpr trajectory`` refuses them.
+    pub peer: crate::tension::PeerOptions,
 }
 
 /// The path of ``trajectory``: waypoints, their wrenches (and times), the sampling.
@@ -191,7 +194,7 @@ fn method_settings(method: Method, args: MethodArgs) -> PyResult<MethodSettings>
             "full" => cdpr_api::SotdaSearch::Full,
             _ => cdpr_api::SotdaSearch::Corners,
         },
-        peer: Default::default(),
+        peer: args.peer.to_api(),
     })
 }
 

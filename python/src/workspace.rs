@@ -87,6 +87,8 @@ pub struct WorkspaceArgs<'a> {
     pub boundary: &'a str,
     pub chord: f64,
     pub volume_convention: &'a str,
+    /// The tension method's options (``interior``, ``alternating``, ``p``, ``alpha``).
+    pub peer: crate::tension::PeerOptions,
 }
 
 /// The criteria of the request of `cdpr workspace` (`--criteria`, `--method`, `--wrench`,
@@ -97,12 +99,13 @@ fn criteria(a: &WorkspaceArgs<'_>) -> PyResult<WorkspaceCriteria> {
         method: a.method.map(parse_method).transpose()?,
         wrench: a.wrench.clone(),
         wrench_box: a.wrench_box.clone(),
+        peer: a.peer.to_api(),
         ..WorkspaceCriteria::default()
     })
 }
 
 /// The options of `cdpr workspace` as the keyword arguments of `Robot.workspace`.
-const KEYWORDS: [(&str, &str); 10] = [
+const KEYWORDS: [(&str, &str); 14] = [
     ("--criteria", "criteria"),
     ("--wrench-box", "wrench_box"),
     ("--acceleration-box", "acceleration_box"),
@@ -113,6 +116,10 @@ const KEYWORDS: [(&str, &str); 10] = [
     ("--boundary ", "boundary="),
     ("--chord", "chord"),
     ("--method", "method"),
+    ("--interior", "interior"),
+    ("--alternating", "alternating"),
+    ("--p", "p"),
+    ("--alpha", "alpha"),
 ];
 
 /// A request's error in the words of the keyword arguments.

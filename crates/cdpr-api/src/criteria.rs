@@ -20,7 +20,7 @@ use cdpr_dynamics::{DynamicFeasibility, RigidBody};
 use cdpr_io::RobotDescription;
 use cdpr_kinematics::{CableModel, Pose, Robot, RobotCatenaries};
 use cdpr_polytope::RequiredWrenchSet;
-use cdpr_tension::Method;
+use cdpr_tension::{Method, MethodOptions};
 use cdpr_workspace::{Criterion, CriterionSpec as Spec, PoseEvaluator};
 use nalgebra::{DVector, Rotation3, Vector3};
 use schemars::JsonSchema;
@@ -28,6 +28,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::ApiError;
 use crate::inputs::{check_method, external_wrench, wrench};
+use crate::tension::PeerOptions;
 
 /// The criteria of a region analysis and their load, as the command line spells them.
 #[derive(Clone, Debug, Default, Serialize, Deserialize, JsonSchema)]
@@ -60,6 +61,10 @@ pub struct WorkspaceCriteria {
     /// at that equilibrium.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cable_model: Option<String>,
+    /// Options of the peers' methods for the `tension` criterion (`interior`, `alternating`,
+    /// `p`, `alpha`), checked as `cdpr tension` checks them ([`PeerOptions::for_method`]).
+    #[serde(default, flatten)]
+    pub peer: PeerOptions,
 }
 
 /// Default tension method of the workspace analyses: exact when n = DOF, else constrained ℓ2.
@@ -87,6 +92,9 @@ pub struct CriteriaSetup {
     pub specs: Vec<Spec>,
     /// Tension method of the tension criterion.
     pub method: Method,
+    /// Its options (puncture's interior point, dykstra's variant, p-norm's p,
+    /// optimally-safe's α).
+    pub options: MethodOptions,
     /// w_e (N, N·m; the robot file's load is added per orientation).
     pub wrench: Option<Vec<f64>>,
     /// Half-widths of the capacity box.
@@ -213,6 +221,7 @@ impl CriteriaSetup {
         method: Method,
     ) -> Result<Self, ApiError> {
         check_method(desc, method)?;
+        let options = c.peer.for_method(method)?;
         desc.require_no_passive_springs("the workspace")
             .map_err(ApiError::Invalid)?;
         let dof = desc.robot.dof();
@@ -265,6 +274,7 @@ impl CriteriaSetup {
         Ok(Self {
             specs,
             method,
+            options,
             wrench: c.wrench.clone(),
             wrench_box,
             catenaries,
@@ -360,7 +370,8 @@ impl CriteriaSetup {
             .iter()
             .map(|s| self.criterion(s, desc, &w_ext))
             .collect::<Result<Vec<_>, ApiError>>()?;
-        let mut eval = PoseEvaluator::new(robot, desc.bounds.clone(), criteria)?;
+        let mut eval = PoseEvaluator::new(robot, desc.bounds.clone(), criteria)?
+            .with_tension_options(self.options)?;
         if let Some(es) = &desc.axial_stiffness {
             eval = eval.with_axial_stiffness(es.clone())?;
         }

@@ -18,8 +18,8 @@ use crate::{Criterion, PoseContext, WorkspaceError};
 use cdpr_kinematics::{KinematicsError, Pose, PoseKinematics, Robot, RobotCatenaries};
 use cdpr_polytope::{CapacityMargin, isotropic_force_of, isotropic_force_of_under_load};
 use cdpr_tension::{
-    Method, SaggingOutcome, SaggingSettings, SaggingStatics, StiffnessData, TensionBounds,
-    TensionError, TensionProblem, TensionSolver,
+    Method, MethodOptions, SaggingOutcome, SaggingSettings, SaggingStatics, StiffnessData,
+    TensionBounds, TensionError, TensionProblem, TensionSolver,
 };
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix3, Matrix6, SymmetricEigen};
 
@@ -285,6 +285,18 @@ impl PoseEvaluator {
             tension_source: needs_tensions.then_some(tension_source).flatten(),
             scratch,
         })
+    }
+
+    /// The options of the tension criteria's methods (puncture's interior point, dykstra's
+    /// variant and cap, p-norm's p, optimally-safe's α; `cdpr_tension::MethodOptions`): every
+    /// tension criterion's solver takes them, on every path (pose by pose, the batch and the
+    /// four-lane 6 × 8 paths, the sagging-cable statics). Errors on invalid numbers
+    /// (`WorkspaceError::Tension`).
+    pub fn with_tension_options(mut self, options: MethodOptions) -> Result<Self, WorkspaceError> {
+        for solver in self.scratch.solvers.iter_mut().flatten() {
+            *solver = solver.clone().with_options(options)?;
+        }
+        Ok(self)
     }
 
     /// Sets the cables' axial stiffness E·S (N, one per cable; k_i = E·S / l_i), needed by the

@@ -1,5 +1,6 @@
 //! Workspace criteria from the command line (`--criteria`, `--method`, `--wrench`,
-//! `--wrench-box`, `--acceleration-box`, `--velocity`), shared by `workspace`, `orientations`,
+//! `--wrench-box`, `--acceleration-box`, `--velocity`, and the method's options `--interior`,
+//! `--alternating`, `--p`, `--alpha`), shared by `workspace`, `orientations`,
 //! `dextrous` and `synthesize`: turned into the request's [`WorkspaceCriteria`] and checked
 //! against the robot file by `cdpr-api` into a [`cdpr::api::CriteriaSetup`] that builds a pose evaluator at
 //! any orientation.
@@ -44,6 +45,10 @@ pub struct CriteriaArgs {
     /// `--cable-model`: the `tension` and `capacity` criteria with elastic or sagging cables.
     #[command(flatten)]
     pub cable: super::cable_model::CableModelArgs,
+    /// `--interior`, `--alternating`, `--p`, `--alpha`: the options of the `tension`
+    /// criterion's method, as `cdpr tension` takes them.
+    #[command(flatten)]
+    pub peer: super::tension::PeerOptions,
 }
 
 impl CriteriaArgs {
@@ -61,6 +66,7 @@ impl CriteriaArgs {
                 CableModel::Straight => None,
                 m => Some(m.name().into()),
             },
+            peer: self.peer.to_api(),
         }
     }
 }

@@ -91,7 +91,7 @@ fn plot(
 ) -> Result<(), CliError> {
     let desc = request.robot.description();
     let dim = desc.robot.motion().space_dim();
-    let pose = pose(desc, &request.pose)?;
+    let pose = super::pose(desc, &request.pose)?;
     super::robot_plot::RobotFigure {
         desc,
         pose: &pose,

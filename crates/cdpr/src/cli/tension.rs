@@ -77,7 +77,7 @@ pub struct Args {
 
 /// The options of the methods of issue 26 (each belongs to one method; given with another
 /// it is a usage error, exit 2).
-#[derive(clap::Args, Debug, Default)]
+#[derive(clap::Args, Clone, Debug, Default)]
 pub struct PeerOptions {
     /// puncture: the interior point aimed at from the minimum-norm t₀: icf (improved closed
     /// form, default) or cf (closed form of Pott, Bruckmann & Mikelsons 2009).

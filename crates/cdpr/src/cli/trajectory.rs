@@ -100,6 +100,10 @@ pub struct Args {
     /// SOTDA: search the whole polygon (same as --sotda-search full).
     #[arg(long)]
     full: bool,
+    /// `--interior`, `--alternating`, `--p`, `--alpha`: the method's options, as `cdpr
+    /// tension` takes them.
+    #[command(flatten)]
+    peer: super::tension::PeerOptions,
     /// A step is flagged as a discontinuity when its jump exceeds this many median jumps.
     #[arg(long, default_value_t = 20.0, value_parser = super::positive)]
     jump_ratio: f64,
@@ -163,7 +167,7 @@ fn request(args: &Args) -> Result<TrajectoryRequest, CliError> {
         direction: args.direction.as_ref().map(|d| d.0.clone()),
         nu: args.nu,
         sotda_search: SotdaSearch::from_args(args.sotda_search, args.full).to_api(),
-        peer: Default::default(),
+        peer: args.peer.to_api(),
     };
     request.jump_ratio = args.jump_ratio;
     request.timing = args.timing.settings();

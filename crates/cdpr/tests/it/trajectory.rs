@@ -97,6 +97,68 @@ fn trajectory_samples_match_the_tension_command() {
     }
 }
 
+/// The options of the peers' methods reach `cdpr trajectory` as they reach `cdpr tension`
+/// (one check, `cdpr_api::PeerOptions::for_method`): p-norm's tensions move with --p, each
+/// sample equals `cdpr tension` at its pose with the same --p, and --p with l2 is a usage
+/// error (exit 2) naming the flag. (Before, `trajectory` had no such flags.)
+#[test]
+fn peer_options_reach_the_trajectory() {
+    let p4 = rowc_trajectory("p-norm", 5, &["--p", "4"]);
+    let p6 = rowc_trajectory("p-norm", 5, &["--p", "6"]);
+    let pose: Vec<String> = floats(&p6["poses"][2])
+        .iter()
+        .map(|x| x.to_string())
+        .collect();
+    let one = json(&[
+        "tension",
+        &robot("rowc-like-8.toml"),
+        "--pose",
+        &pose.join(","),
+        "--wrench",
+        "0,30,0,0,0,0",
+        "--method",
+        "p-norm",
+        "--p",
+        "6",
+        "--json",
+    ]);
+    let (a, b) = (floats(&p6["tensions"][2]), floats(&one["tensions"]));
+    for (x, y) in a.iter().zip(&b) {
+        assert!((x - y).abs() < 1e-9 * y.abs().max(1.0), "{a:?} vs {b:?}");
+    }
+    let c = floats(&p4["tensions"][2]);
+    let moved = a
+        .iter()
+        .zip(&c)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max);
+    assert!(
+        moved > 1e-3,
+        "p = 4 and p = 6 give the same tensions: {a:?}"
+    );
+    let out = cdpr()
+        .args([
+            "trajectory",
+            &robot("rowc-like-8.toml"),
+            "--from",
+            "0.8,0.35,0.59,0,0,0",
+            "--to",
+            "2.2,0.35,1.4,0,0,0.05",
+            "--method",
+            "l2",
+            "--p",
+            "6",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--p is an option of another method, not of l2"),
+        "{err}"
+    );
+}
+
 /// Done-when: profiles are continuous for barycenter, l2 and sotda with ν < 1 (max jump → 0 as
 /// the step → 0).
 #[test]
