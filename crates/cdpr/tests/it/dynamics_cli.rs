@@ -489,3 +489,104 @@ fn trajectory_and_simulate_print_their_reports() {
     ]);
     assert_eq!(serde_json::to_value(s.run().unwrap()).unwrap(), cli);
 }
+
+fn caspr_data(rel: &str) -> String {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../cdpr-io/tests/data/caspr")
+        .join(rel)
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// `cdpr trajectory ROBOT --trajectory NAME_trajectories.xml --trajectory-id ID`: CASPR's
+/// IPAnema 2 `traj_z_up` (a quintic lift from z = 0.5 to 2 m in 1 s, time_step 0.01 s) with
+/// its inverse dynamics: the JSON's times, ends, peak speed 1.875 Δ/T and m z̈ in the inertial
+/// wrench.
+#[test]
+fn caspr_trajectory_json() {
+    let dir = "spatial_manipulators/IPAnema_2";
+    let v = json(&[
+        "trajectory",
+        &caspr_data(&format!("{dir}/IPAnema_2_cables.xml")),
+        "--trajectory",
+        &caspr_data(&format!("{dir}/IPAnema_2_trajectories.xml")),
+        "--trajectory-id",
+        "traj_z_up",
+        "--dynamics",
+        "--json",
+    ]);
+    assert_eq!(v["time_law"], "quintic_spline_trajectory");
+    assert_eq!(v["trajectory_id"], "traj_z_up");
+    let t = floats(&v["t"]);
+    assert_eq!(t.len(), 101);
+    assert!((t[37] - 0.37).abs() < 1e-12 && t[100] == 1.0);
+    assert_eq!(floats(&v["poses"][0]), [0.0, 0.0, 0.5, 0.0, 0.0, 0.0]);
+    assert_eq!(floats(&v["poses"][100]), [0.0, 0.0, 2.0, 0.0, 0.0, 0.0]);
+    assert!((floats(&v["velocity"][50])[2] - 1.875 * 1.5).abs() < 1e-12);
+    // z̈ at τ = 0.25: 60τ(1 − 3τ + 2τ²) Δ/T²; the force is m z̈ (the orientation does not move).
+    let tau: f64 = 0.25;
+    let zdd = 60.0 * tau * (1.0 - 3.0 * tau + 2.0 * tau * tau) * 1.5;
+    assert!((floats(&v["acceleration"][25])[2] - zdd).abs() < 1e-9);
+    let w = floats(&v["inertial_wrench"][25]);
+    let mass = w[2] / zdd;
+    assert!(
+        mass > 0.0 && w[0].abs() < 1e-9 && w[1].abs() < 1e-9,
+        "{w:?}"
+    );
+    assert_eq!(v["tensions"].as_array().unwrap().len(), 101);
+}
+
+/// Bad CASPR trajectory input: exit 2 naming the element, the id, or the flag.
+#[test]
+fn caspr_trajectory_bad_input() {
+    let dir = "spatial_manipulators/IPAnema_1";
+    let robot = caspr_data(&format!("{dir}/IPAnema_1_cables.xml"));
+    let file = caspr_data(&format!("{dir}/IPAnema_1_trajectories.xml"));
+    let run = |extra: &[&str]| {
+        let out = cdpr()
+            .args(["trajectory", &robot, "--trajectory", &file])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{extra:?}");
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let e = run(&["--trajectory-id", "traj_9"]);
+    assert!(
+        e.contains("IPAnema_1_trajectories.xml:4: <joint_trajectories>: no joint trajectory with id `traj_9` (the file has: traj_1, traj_z_up)"),
+        "{e}"
+    );
+    let e = run(&[]);
+    assert!(
+        e.contains("give --trajectory-id (the file has 2 joint trajectories: traj_1, traj_z_up)"),
+        "{e}"
+    );
+    let e = run(&["--trajectory-id", "traj_1", "--duration", "2"]);
+    assert!(
+        e.contains("--duration does not apply to --trajectory"),
+        "{e}"
+    );
+    let e = run(&["--trajectory-id", "traj_1", "--time-law", "cubic"]);
+    assert!(
+        e.contains("--time-law") && e.contains("--trajectory"),
+        "{e}"
+    );
+    // A bad file: a cubic point without q_dot.
+    let tmp = tempfile::tempdir().unwrap();
+    let bad = tmp.path().join("bad_trajectories.xml");
+    std::fs::write(
+        &bad,
+        "<trajectories>\n<joint_trajectories>\n<cubic_spline_trajectory id=\"a\" time_definition=\"relative\" time_step=\"0.1\">\n<points>\n<point><q>0 0 1 0 0 0</q></point>\n<point time=\"1\"><q>0 0 1.2 0 0 0</q><q_dot>0 0 0 0 0 0</q_dot></point>\n</points>\n</cubic_spline_trajectory>\n</joint_trajectories>\n</trajectories>\n",
+    )
+    .unwrap();
+    let out = cdpr()
+        .args(["trajectory", &robot, "--trajectory", bad.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        e.contains("bad_trajectories.xml:5: <point>: missing <q_dot>"),
+        "{e}"
+    );
+}
