@@ -170,26 +170,6 @@ pub fn tension(
     Ok(())
 }
 
-/// `--unstrained-lengths`: one finite length > 0 (m) per cable of `n`.
-fn check_unstrained_lengths(l0: &[f64], n: usize) -> Result<(), CliError> {
-    if l0.len() != n {
-        return Err(format!(
-            "--unstrained-lengths needs {n} numbers (one per cable), got {}",
-            l0.len()
-        )
-        .into());
-    }
-    if let Some(i) = l0.iter().position(|&v| !(v.is_finite() && v > 0.0)) {
-        return Err(format!(
-            "--unstrained-lengths: cable {} has length {} m; lengths are finite numbers > 0",
-            i + 1,
-            l0[i]
-        )
-        .into());
-    }
-    Ok(())
-}
-
 /// `cdpr forward --unstrained-lengths … --cable-model elastic|catenary`: the elasto-geometric
 /// forward kinematics ([`ElastoGeometricRequest`]) under the platform's weight (and springs)
 /// from the robot file plus `wrench`, from `guess` or else from the straight cables' poses for

@@ -223,7 +223,10 @@ pub fn nums(v: &[f64]) -> String {
 /// A wrench with its units: forces in N, moments in N·m (the first `forces` components are
 /// A pose for the robot's motion pattern from command-line numbers.
 pub fn pose(robot: &RobotDescription, q: &[f64]) -> Result<cdpr::kinematics::Pose, CliError> {
-    Ok(cdpr::kinematics::Pose::from_coordinates(robot.robot.motion(), q)?)
+    Ok(cdpr::kinematics::Pose::from_coordinates(
+        robot.robot.motion(),
+        q,
+    )?)
 }
 
 /// forces), e.g. `[0 N, -98.1 N, 0 N·m]`.
