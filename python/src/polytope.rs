@@ -78,6 +78,37 @@ fn per_pose(py: Python<'_>, v: Vec<f64>) -> Py<PyAny> {
     to_numpy(py, &[n], v).into_any().unbind()
 }
 
+/// `wrench_box` (one half-width per wrench component) or `wrench_ball`, not both.
+fn check_required_set(dof: usize, wrench_box: Option<&[f64]>, ball: Option<f64>) -> PyResult<()> {
+    if let Some(h) = wrench_box
+        && h.len() != dof
+    {
+        return Err(value_error(format!(
+            "wrench_box needs {dof} half-widths (one per wrench component), got {}",
+            h.len()
+        )));
+    }
+    if wrench_box.is_some() && ball.is_some() {
+        return Err(value_error("give wrench_box or wrench_ball, not both"));
+    }
+    Ok(())
+}
+
+/// The required wrench set's shape centred at zero (each pose of a batch moves its centre).
+fn required_set_at_zero(
+    dof: usize,
+    wrench_box: Option<&[f64]>,
+    ball: Option<f64>,
+) -> PyResult<RequiredWrenchSet> {
+    let zero = DVector::zeros(dof);
+    match (wrench_box, ball) {
+        (Some(h), _) => RequiredWrenchSet::boxed(zero, DVector::from_column_slice(h)),
+        (None, Some(r)) => RequiredWrenchSet::ball(zero, r),
+        (None, None) => RequiredWrenchSet::point(zero),
+    }
+    .map_err(value_error)
+}
+
 #[allow(clippy::too_many_arguments)]
 pub fn capacity_margin(
     robot: &Robot,
@@ -98,17 +129,7 @@ pub fn capacity_margin(
         .map(|w| FloatArray::new(w, "wrenches"))
         .transpose()?;
     let wr = read_wrenches(&warr, count, rows.single, dof)?;
-    if let Some(h) = &wrench_box
-        && h.len() != dof
-    {
-        return Err(value_error(format!(
-            "wrench_box needs {dof} half-widths (one per wrench component), got {}",
-            h.len()
-        )));
-    }
-    if wrench_box.is_some() && wrench_ball.is_some() {
-        return Err(value_error("give wrench_box or wrench_ball, not both"));
-    }
+    check_required_set(dof, wrench_box.as_deref(), wrench_ball)?;
     if rows.single {
         let request = CapacityRequest {
             robot: api_robot(robot),
@@ -123,13 +144,7 @@ pub fn capacity_margin(
     }
     // The required set's shape checked once (centre zero); each pose moves its centre. One
     // kinematics buffer, W and limiting-facet buffers per worker: no allocation per pose.
-    let zero = DVector::zeros(dof);
-    let template = match (&wrench_box, wrench_ball) {
-        (Some(h), _) => RequiredWrenchSet::boxed(zero, DVector::from_column_slice(h)),
-        (None, Some(r)) => RequiredWrenchSet::ball(zero, r),
-        (None, None) => RequiredWrenchSet::point(zero),
-    }
-    .map_err(value_error)?;
+    let template = required_set_at_zero(dof, wrench_box.as_deref(), wrench_ball)?;
     let facets = LimitingFacet::new(dof, &robot.desc.bounds).map_err(value_error)?;
     let widths = [1, 1];
     let mut outs: Vec<Vec<f64>> = widths.iter().map(|w| vec![0.0; w * count]).collect();

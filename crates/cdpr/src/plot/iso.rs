@@ -152,6 +152,9 @@ impl IsoFigure {
                 ))?;
             }
         }
+        if s.hide_box {
+            return Ok(());
+        }
         let c = box_corners(s.region.0, s.region.1);
         for (i, j) in BOX_EDGES {
             dashed(
@@ -396,16 +399,18 @@ impl IsoFigure {
             .label_style(("sans-serif", 13))
             .draw()?;
         let (b0, b1) = s.region;
-        chart.draw_series(std::iter::once(PathElement::new(
-            vec![
-                (b0[u], b0[v]),
-                (b1[u], b0[v]),
-                (b1[u], b1[v]),
-                (b0[u], b1[v]),
-                (b0[u], b0[v]),
-            ],
-            BOX.stroke_width(1),
-        )))?;
+        chart.draw_series((!s.hide_box).then(|| {
+            PathElement::new(
+                vec![
+                    (b0[u], b0[v]),
+                    (b1[u], b0[v]),
+                    (b1[u], b1[v]),
+                    (b0[u], b1[v]),
+                    (b0[u], b0[v]),
+                ],
+                BOX.stroke_width(1),
+            )
+        }))?;
         for (a, b) in (0..s.cables.len()).flat_map(|i| s.cable_segments(i)) {
             chart.draw_series(std::iter::once(PathElement::new(
                 vec![(a[u], a[v]), (b[u], b[v])],
@@ -416,7 +421,7 @@ impl IsoFigure {
         chart.draw_series(section.iter().map(|(a, b)| {
             PathElement::new(vec![(a[u], a[v]), (b[u], b[v])], SECTION.stroke_width(2))
         }))?;
-        if section.is_empty() {
+        if section.is_empty() && !s.hide_box {
             chart.draw_series(std::iter::once(Text::new(
                 "(the plane misses the workspace)",
                 (x0 + 0.05 * (x1 - x0), y1 - 0.06 * (y1 - y0)),
@@ -436,6 +441,28 @@ impl IsoFigure {
             (pts[k].0 - ox, pts[k].1 - oy)
         })?;
         Ok(())
+    }
+}
+
+impl IsoFigure {
+    /// The colour key under the notes: the robot alone (no mesh, no search box) or with its
+    /// workspace.
+    fn key(&self) -> String {
+        let s = &self.scene;
+        if s.triangles.is_empty() && s.hide_box {
+            return "grey: cables at the pose; orange: platform; light grey: the frame anchors' \
+                    bounding box"
+                .to_string();
+        }
+        format!(
+            "blue: {}; red: its sections; grey: cables at the draw pose; orange: platform; \
+             dashed: search box",
+            if s.mesh_label.is_empty() {
+                "workspace"
+            } else {
+                &s.mesh_label
+            }
+        )
     }
 }
 
@@ -460,15 +487,7 @@ impl Figure for IsoFigure {
             ))?;
         }
         top.draw(&Text::new(
-            format!(
-                "blue: {}; red: its sections; grey: cables at the draw pose; orange: platform; \
-                 dashed: search box",
-                if self.scene.mesh_label.is_empty() {
-                    "workspace"
-                } else {
-                    &self.scene.mesh_label
-                }
-            ),
+            self.key(),
             (14, 2 + 18 * notes.len() as i32),
             ("sans-serif", 13).into_font().color(&RGBColor(90, 90, 90)),
         ))?;

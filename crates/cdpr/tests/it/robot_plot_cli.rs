@@ -50,6 +50,14 @@ fn tension_plot_labels_each_anchor_with_its_cables_tension() {
         svg.contains("method l2, feasible"),
         "the verdict under the title"
     );
+    // A figure of the robot alone speaks of no workspace and draws no search box.
+    for word in ["misses the workspace", "search box", "blue: workspace"] {
+        assert!(!svg.contains(word), "robot-only figure says {word:?}");
+    }
+    assert!(
+        svg.contains("grey: cables at the pose"),
+        "the robot's colour key"
+    );
     // The HTML page: the replay view of one frame, cables coloured by the same tensions.
     let html_path = dir.path().join("tensions.html");
     let html_args = [
