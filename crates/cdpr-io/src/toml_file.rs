@@ -881,7 +881,19 @@ impl RobotDescription {
             Some(m) => {
                 let i = ctx.matrix(m, "platform.inertia")?;
                 if (i - i.transpose()).amax() > 1e-12 * i.amax().max(1.0) {
-                    return Err(ctx.invalid(m.span(), "platform.inertia", "is not symmetric"));
+                    let rows: Vec<String> = i
+                        .row_iter()
+                        .map(|r| {
+                            let v: Vec<String> = r.iter().map(|x| format!("{x:?}")).collect();
+                            format!("[{}]", v.join(", "))
+                        })
+                        .collect();
+                    let value = format!("[{}]", rows.join(", "));
+                    return Err(ctx.invalid(
+                        m.span(),
+                        "platform.inertia",
+                        format!("{value} (kg·m²) is not symmetric"),
+                    ));
                 }
                 Some(i)
             }

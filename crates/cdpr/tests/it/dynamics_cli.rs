@@ -590,3 +590,62 @@ fn caspr_trajectory_bad_input() {
         "{e}"
     );
 }
+
+/// An inertia that is not symmetric positive definite (issue 28, bad input): exit 2 naming the
+/// key and the value, for the dynamics and the simulation alike.
+#[test]
+fn an_inertia_that_is_not_positive_definite_exits_2_naming_key_and_value() {
+    let text = std::fs::read_to_string(robot("ipanema-like-8.toml")).unwrap();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("inertia = "))
+        .expect("the fixture gives an inertia");
+    let dir = tempfile::tempdir().unwrap();
+    for (inertia, why) in [
+        (
+            "[[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0]]",
+            "positive definite",
+        ),
+        (
+            "[[1.0, 0.5, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]",
+            "symmetric",
+        ),
+    ] {
+        let file = dir.path().join("bad.toml");
+        std::fs::write(&file, text.replace(line, &format!("inertia = {inertia}"))).unwrap();
+        let file = file.to_str().unwrap();
+        for args in [
+            vec![
+                "trajectory",
+                file,
+                "--from",
+                "0,0,1,0,0,0",
+                "--to",
+                "0.1,0,1,0,0,0",
+                "--time-law",
+                "quintic",
+                "--duration",
+                "1",
+                "--dt",
+                "0.1",
+                "--dynamics",
+            ],
+            vec![
+                "simulate",
+                file,
+                "--from",
+                "0,0,1,0,0,0",
+                "--duration",
+                "0.1",
+                "--dt",
+                "0.01",
+            ],
+        ] {
+            let out = cdpr().args(&args).output().unwrap();
+            assert_eq!(out.status.code(), Some(2), "{args:?}");
+            let err = String::from_utf8_lossy(&out.stderr);
+            assert!(err.contains("inertia") && err.contains(inertia), "{err}");
+            assert!(err.contains(why), "{why}: {err}");
+        }
+    }
+}
