@@ -35,7 +35,9 @@ pub struct IsotropicMapRequest {
     /// External wrench w_e (N, N·m; default zero), added to the robot file's load.
     #[serde(default)]
     pub wrench: Option<Vec<f64>>,
-    /// Height of the slice for 3-D robots (m; default: middle of the frame anchors).
+    /// Height of the slice for 3-D robots (m; default: the middle height of the robot's default
+    /// region, `Robot::default_region`: the frame anchors' box, which for a suspended robot
+    /// reaches half the frame's width below the anchors).
     #[serde(default)]
     pub z: Option<f64>,
 }
@@ -117,7 +119,7 @@ impl IsotropicMapRequest {
             &self.robot.robot,
             "the isotropic force (wrench closure)",
         )?;
-        let (lo, hi) = self.robot.robot.frame_bounding_box();
+        let (lo, hi) = self.robot.robot.default_region();
         let [x0, x1, y0, y1] = match &self.area {
             Some(b) if b.len() == 4 => [b[0], b[1], b[2], b[3]],
             Some(b) => {

@@ -87,7 +87,8 @@ pub struct Args {
     /// platform's weight from the robot file.
     #[arg(long, allow_hyphen_values = true)]
     wrench: Option<Numbers>,
-    /// Grid: height z of the slice for 3-D robots (default: middle of the frame anchors).
+    /// Grid: height z of the slice for 3-D robots (default: middle of the default region: the frame
+    /// anchors' heights, or for a suspended robot down to half the frame's width below them).
     #[arg(long, allow_hyphen_values = true, requires = "grid", value_parser = super::finite)]
     z: Option<f64>,
     /// Write a figure (.png or .svg). Grid: the heat map, white where the index is negative.

@@ -395,3 +395,31 @@ fn polytope_view_of_a_point3_robot() {
         assert_eq!(out.status.code(), Some(2), "{r}");
     }
 }
+
+/// A suspended robot's isotropic map lies, by default, at the middle height of its default
+/// region (issue 25's audit): spidercam-like-4's anchors are all at z = 30 m on a 100 m × 70 m
+/// frame, so the region reaches 50 m below them and the slice is at 30 − 25 = 5 m, where the
+/// hanging camera has positive isotropic force; at the anchors' own height (the old default)
+/// nothing is reachable.
+#[test]
+fn a_suspended_robot_is_mapped_below_its_anchors() {
+    let file = robot("spidercam-like-4.toml");
+    let map = json(&["isotropic", &file, "--grid", "5", "--json"]);
+    assert_eq!(f(&map["slice"]["z"]), 5.0);
+    assert!(
+        f(&map["stats"]["positive_fraction"]) > 0.0,
+        "{}",
+        map["stats"]
+    );
+    let at_anchors = json(&["isotropic", &file, "--grid", "5", "--z", "30", "--json"]);
+    assert_eq!(f(&at_anchors["stats"]["positive_fraction"]), 0.0);
+    // Robots whose anchors span their height keep the middle of the anchors (z ∈ {0, 2} m).
+    let ipanema = json(&[
+        "isotropic",
+        &robot("ipanema-like-8.toml"),
+        "--grid",
+        "3",
+        "--json",
+    ]);
+    assert_eq!(f(&ipanema["slice"]["z"]), 1.0);
+}
