@@ -56,7 +56,27 @@ impl ImprovedClosedForm {
     /// unrolled loops, the same arithmetic); 6 × 8 compiled for AVX2 when the CPU has it (the
     /// same bits).
     pub fn solve(&mut self, problem: &TensionProblem, t: &mut [f64]) -> Result<(), Infeasibility> {
-        self.solve_with(problem, t, true, detected_path())
+        self.solve_with(problem, t, true, detected_path(), Step::ITERATE, &mut [])
+    }
+
+    /// Only the first step: Pott, Bruckmann & Mikelsons (2009) eq. (9),
+    /// t = t_m − Wᵀ (W Wᵀ)⁻¹ (w_ext + W t_m), from the same L D Lᵀ factor of W Wᵀ, into `t`
+    /// (not checked against the bounds). With `d` of length n (else empty) also
+    /// d = (I − W⁺ W) 1 = 1 − Wᵀ (W Wᵀ)⁻¹ (W 1), the energy-efficient shift's direction
+    /// (module `pott_closed_form`). `Err` (nothing to rely on) when the factor fails or the
+    /// Hadamard ratio ρ is below [`PLAIN_RATIO`]: the normal equations square the condition of
+    /// W, so such poses go to the QR null space instead (the caller's fallback).
+    pub fn first_step(
+        &mut self,
+        problem: &TensionProblem,
+        t: &mut [f64],
+        d: &mut [f64],
+    ) -> Result<(), Infeasibility> {
+        let step = Step {
+            first_only: true,
+            ratio_floor: PLAIN_RATIO,
+        };
+        self.solve_with(problem, t, true, detected_path(), step, d)
     }
 
     /// [`Self::solve`] with the factor updated (`update`) or refactorised at every step, 6 × 8
@@ -67,6 +87,8 @@ impl ImprovedClosedForm {
         t: &mut [f64],
         update: bool,
         path: Path,
+        step: Step,
+        d: &mut [f64],
     ) -> Result<(), Infeasibility> {
         let (m, n) = problem.wrench_matrix.shape();
         self.active.clear();
@@ -77,26 +99,48 @@ impl ImprovedClosedForm {
                 // SAFETY: `Avx2` is chosen only when the CPU reports AVX2 (`detected_path`, or
                 // a test that checks it first).
                 #[cfg(target_arch = "x86_64")]
-                Path::Avx2 => unsafe { iterate_6x8_avx2(problem, active, t, update) },
+                Path::Avx2 => unsafe { iterate_6x8_avx2(problem, active, t, update, step, d) },
                 Path::Portable => {
                     let mut buf = [0.0; 6 * 6 + 4 * 6];
-                    iterate::<6, 8>(problem, active, &mut buf, t, update)
+                    iterate::<6, 8>(problem, active, &mut buf, t, update, step, d)
                 }
             },
             (6, _) => {
                 let mut buf = [0.0; 6 * 6 + 4 * 6];
-                iterate::<6, 0>(problem, active, &mut buf, t, update)
+                iterate::<6, 0>(problem, active, &mut buf, t, update, step, d)
             }
             (3, _) => {
                 let mut buf = [0.0; 3 * 3 + 4 * 3];
-                iterate::<3, 0>(problem, active, &mut buf, t, update)
+                iterate::<3, 0>(problem, active, &mut buf, t, update, step, d)
             }
             _ => {
                 self.buf.resize(m * m + 4 * m, 0.0);
-                iterate::<0, 0>(problem, active, &mut self.buf, t, update)
+                iterate::<0, 0>(problem, active, &mut self.buf, t, update, step, d)
             }
         }
     }
+}
+
+/// Hadamard ratio below which [`ImprovedClosedForm::first_step`] declines (condition of W
+/// roughly above 10³, so rounding in W Wᵀ stays below 10⁻¹⁰ relative): Pott's closed form then
+/// runs on the QR null space, which decides singularity with [`SINGULARITY_RATIO`].
+pub(crate) const PLAIN_RATIO: f64 = 1e-3;
+
+/// How much of the iteration runs, and the Hadamard ratio it accepts.
+#[derive(Debug, Clone, Copy)]
+struct Step {
+    /// Stop after the first closed form (Pott 2009), without checking the bounds.
+    first_only: bool,
+    /// Ratios below this are singular (first step) or inconclusive (later steps).
+    ratio_floor: f64,
+}
+
+impl Step {
+    /// Pott (2014): the whole iteration, singular below [`SINGULARITY_RATIO`].
+    const ITERATE: Step = Step {
+        first_only: false,
+        ratio_floor: SINGULARITY_RATIO,
+    };
 }
 
 /// Which build of the 6 × 8 iteration runs: both compile the same source without fused
@@ -131,9 +175,11 @@ unsafe fn iterate_6x8_avx2(
     active: &mut [bool],
     t: &mut [f64],
     update: bool,
+    step: Step,
+    d: &mut [f64],
 ) -> Result<(), Infeasibility> {
     let mut buf = [0.0; 6 * 6 + 4 * 6];
-    iterate::<6, 8>(problem, active, &mut buf, t, update)
+    iterate::<6, 8>(problem, active, &mut buf, t, update, step, d)
 }
 
 /// Relative size of the downdated pivot below which the factor is recomputed instead:
@@ -159,6 +205,8 @@ fn iterate<const M: usize, const N: usize>(
     buf: &mut [f64],
     t: &mut [f64],
     update: bool,
+    step: Step,
+    d: &mut [f64],
 ) -> Result<(), Infeasibility> {
     const METHOD: &str = "improved-closed-form";
     let w = problem.wrench_matrix;
@@ -214,7 +262,7 @@ fn iterate<const M: usize, const N: usize>(
             .map(|k| aat[k * m + k] / diag[k])
             .product::<f64>()
             .sqrt();
-        if ratio.is_nan() || ratio < SINGULARITY_RATIO {
+        if ratio.is_nan() || ratio < step.ratio_floor {
             return Err(if first {
                 Infeasibility::SingularPose {
                     condition: 1.0 / ratio,
@@ -228,6 +276,18 @@ fn iterate<const M: usize, const N: usize>(
         y.copy_from_slice(rhs);
         ldl_solve(aat, inv_d, m, y);
         subtract_at_y::<N>(ws, m, y, active, t);
+        if step.first_only {
+            if d.len() == n {
+                // d = 1 − Wᵀ (W Wᵀ)⁻¹ (W 1): y ← (W Wᵀ)⁻¹ W 1 (row sums of W).
+                for k in 0..m {
+                    y[k] = (0..n).map(|i| ws[i * m + k]).sum();
+                }
+                ldl_solve(aat, inv_d, m, y);
+                d.fill(1.0);
+                subtract_at_y::<N>(ws, m, y, active, d);
+            }
+            return Ok(());
+        }
         // The free cable with the largest violation of its limits, in force units (Pott
         // 2014); a tension counts as violating beyond the certificate's relative tolerance.
         let (mut worst, mut wv) = (n, 0.0);
@@ -556,9 +616,9 @@ mod tests {
             let (w, we, b) = problem(6, 8, &seed);
             let p = TensionProblem::new(&w, &we, &b);
             let (mut ta, mut tp) = (vec![0.0; 8], vec![0.0; 8]);
-            let avx2 = ImprovedClosedForm::default().solve_with(&p, &mut ta, true, Path::Avx2);
+            let avx2 = ImprovedClosedForm::default().solve_with(&p, &mut ta, true, Path::Avx2, Step::ITERATE, &mut []);
             let portable =
-                ImprovedClosedForm::default().solve_with(&p, &mut tp, true, Path::Portable);
+                ImprovedClosedForm::default().solve_with(&p, &mut tp, true, Path::Portable, Step::ITERATE, &mut []);
             prop_assert_eq!(format!("{avx2:?}"), format!("{portable:?}"));
             let bits = |t: &[f64]| t.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
             prop_assert_eq!(bits(&ta), bits(&tp));
@@ -577,8 +637,8 @@ mod tests {
             let (w, we, b) = problem(m, n, &seed);
             let p = TensionProblem::new(&w, &we, &b);
             let (mut tu, mut tp) = (vec![0.0; n], vec![0.0; n]);
-            let up = ImprovedClosedForm::default().solve_with(&p, &mut tu, true, Path::Portable);
-            let plain = ImprovedClosedForm::default().solve_with(&p, &mut tp, false, Path::Portable);
+            let up = ImprovedClosedForm::default().solve_with(&p, &mut tu, true, Path::Portable, Step::ITERATE, &mut []);
+            let plain = ImprovedClosedForm::default().solve_with(&p, &mut tp, false, Path::Portable, Step::ITERATE, &mut []);
             // The same verdict (a singular pose's condition number may differ by rounding).
             prop_assert_eq!(
                 up.as_ref().map_err(std::mem::discriminant),

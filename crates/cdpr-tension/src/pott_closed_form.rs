@@ -14,6 +14,14 @@
 //! (the feasible set may still be non-empty: the closed form is a heuristic). The thesis'
 //! `closed-form` (Algorithm 6.1, r = 1, min ‖t‖₁) is a different method.
 //!
+//! **Fast path.** Without the null-space basis: the L D Lᵀ factor of W Wᵀ of the improved
+//! closed form (module `improved_closed_form`, whose first step is exactly eq. (9)) gives
+//! y = (W Wᵀ)⁻¹ (w_ext + W t_m) and t = t_m − Wᵀ y, and for the energy-efficient variant
+//! d = N Nᵀ 1 = (I − W⁺ W) 1 = 1 − Wᵀ (W Wᵀ)⁻¹ W 1 from the same factor. The normal equations
+//! square W's condition, so poses whose Hadamard ratio is below 10⁻³ (and singular ones) take
+//! the QR null space as before; the two paths agree to 10⁻⁹ relative
+//! (`tests/it/pott_closed_form.rs`).
+//!
 //! **Energy-efficient variant** (`pott-closed-form-ee`, WireLib's `ClosedFormEnergyEfficient`):
 //! lowering every entry of t_ref by δ moves the closed form along t(δ) = t − δ d with
 //! d = N Nᵀ 1. When the closed form is above every t_min and every d_i ≥ 0 (no cable rises when
@@ -30,8 +38,9 @@
 //! - WireLib (Pott, Fraunhofer IPA), `CForceDistribution::getDistributionClosedFormEnergyEfficient`.
 
 use crate::certificate::{BOUND_TOLERANCE, bound_violation};
+use crate::improved_closed_form::ImprovedClosedForm;
 use crate::null_space::NullSpace;
-use crate::{Infeasibility, TensionBounds};
+use crate::{Infeasibility, TensionBounds, TensionProblem};
 
 /// Directions below this (relative) are "no motion" in the energy-efficient shift.
 const NEGLIGIBLE: f64 = 1e-12;
@@ -93,26 +102,55 @@ impl PottClosedForm {
         if energy_efficient {
             self.lower(ns, bounds, t);
         }
-        match worst_violation(bounds, t) {
-            None => Ok(()),
-            Some((cable, tension)) => Err(Infeasibility::BoundsViolated {
-                cable,
-                tension,
-                bound: if tension < bounds.min()[cable] {
-                    bounds.min()[cable]
-                } else {
-                    bounds.max()[cable]
-                },
-                tensions: Default::default(),
-            }),
-        }
+        verdict(bounds, t)
     }
 
+    /// The fast path: the same closed form from the first step of the improved closed form's
+    /// L D Lᵀ factor of W Wᵀ (no null-space basis; d = (I − W⁺W) 1 from the same factor for
+    /// the energy-efficient shift). `None` when that step declines (W singular or
+    /// ill-conditioned, see [`ImprovedClosedForm::first_step`]): the caller then takes
+    /// [`Self::solve`] on the QR null space.
+    pub fn solve_fast(
+        &mut self,
+        icf: &mut ImprovedClosedForm,
+        problem: &TensionProblem,
+        energy_efficient: bool,
+        t: &mut [f64],
+    ) -> Option<Result<(), Infeasibility>> {
+        let n = t.len();
+        self.d.resize(if energy_efficient { n } else { 0 }, 0.0);
+        icf.first_step(problem, t, &mut self.d).ok()?;
+        if energy_efficient {
+            shift(&self.d, problem.bounds, t);
+        }
+        Some(verdict(problem.bounds, t))
+    }
+}
+
+/// Feasible when `t` is within the bounds (the certificate's tolerance), else the worst
+/// violation.
+#[inline]
+fn verdict(bounds: &TensionBounds, t: &[f64]) -> Result<(), Infeasibility> {
+    match worst_violation(bounds, t) {
+        None => Ok(()),
+        Some((cable, tension)) => Err(Infeasibility::BoundsViolated {
+            cable,
+            tension,
+            bound: if tension < bounds.min()[cable] {
+                bounds.min()[cable]
+            } else {
+                bounds.max()[cable]
+            },
+            tensions: Default::default(),
+        }),
+    }
+}
+
+impl PottClosedForm {
     /// The energy-efficient shift t ← t − δ N Nᵀ 1 (module docs).
     fn lower(&mut self, ns: &NullSpace, bounds: &TensionBounds, t: &mut [f64]) {
         let (n, r) = (ns.n, ns.r());
-        let lo = bounds.min();
-        if t.iter().zip(lo).any(|(ti, l)| ti <= l) {
+        if below_a_minimum(bounds, t) {
             return;
         }
         // d = N Nᵀ 1.
@@ -125,23 +163,36 @@ impl PottClosedForm {
                 *di += c * s;
             }
         }
-        let mut delta = f64::INFINITY;
-        for i in 0..n {
-            let di = self.d[i];
-            if di < -NEGLIGIBLE {
-                return;
-            }
-            if di > NEGLIGIBLE {
-                delta = delta.min((t[i] - lo[i]) / di);
-            }
+        shift(&self.d, bounds, t);
+    }
+}
+
+/// Whether some cable is at or below its t_min (then the shift does not apply).
+#[inline]
+fn below_a_minimum(bounds: &TensionBounds, t: &[f64]) -> bool {
+    t.iter().zip(bounds.min()).any(|(ti, l)| ti <= l)
+}
+
+/// t ← t − δ d with the largest δ ≥ 0 that keeps every cable at or above t_min, when every
+/// cable is above its t_min and every d_i ≥ 0 (module docs); `t` unchanged otherwise.
+#[inline]
+fn shift(d: &[f64], bounds: &TensionBounds, t: &mut [f64]) {
+    if below_a_minimum(bounds, t) {
+        return;
+    }
+    let lo = bounds.min();
+    let mut delta = f64::INFINITY;
+    for (i, &di) in d.iter().enumerate() {
+        if di < -NEGLIGIBLE {
+            return;
         }
-        if delta.is_finite() && delta > 0.0 {
-            for (ti, di) in t.iter_mut().zip(&self.d) {
-                *ti -= delta * di;
-            }
-            for r in self.t_ref.iter_mut() {
-                *r -= delta;
-            }
+        if di > NEGLIGIBLE {
+            delta = delta.min((t[i] - lo[i]) / di);
+        }
+    }
+    if delta.is_finite() && delta > 0.0 {
+        for (ti, di) in t.iter_mut().zip(d) {
+            *ti -= delta * di;
         }
     }
 }

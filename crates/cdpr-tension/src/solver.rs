@@ -745,6 +745,16 @@ impl TensionSolver {
                     .map_err(|e| rename_unbounded(e, maximize))
             }
             Method::ImprovedClosedForm => self.icf.solve(p, &mut self.t),
+            Method::PottClosedForm | Method::PottClosedFormEe
+                if let Some(answer) = self.pott.solve_fast(
+                    &mut self.icf,
+                    p,
+                    method == Method::PottClosedFormEe,
+                    &mut self.t,
+                ) =>
+            {
+                answer
+            }
             Method::PottClosedForm
             | Method::PottClosedFormEe
             | Method::Puncture
