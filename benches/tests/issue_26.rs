@@ -170,3 +170,23 @@ fn energy_efficient_closed_form_equals_the_svd_transcription() {
     }
     assert!(shifted > 100, "{shifted} poses shifted");
 }
+
+/// Issue 26's vertex-centroid speed comes from the r = 2 path of
+/// `cdpr_tension::vertex_centroid` (the four candidates of each cable pair tested together in a
+/// branch-free loop); on all 20 000 poses it finds the general enumeration's
+/// vertices and centroid bit for bit, a vertex on exactly the 15 793 LP-feasible poses (the
+/// fixture's draw; WireLib's: 15 938).
+#[test]
+fn vertex_centroid_planar_path_is_the_enumeration_on_the_fixture() {
+    use cdpr_tension::vertex_centroid::vertex_centroid_by;
+    let f = fixture();
+    let mut feasible = 0;
+    for (k, pose) in f.poses.iter().enumerate() {
+        let w = f.robot.inverse_kinematics(pose).unwrap().wrench_matrix();
+        let p = TensionProblem::new(&w, &f.load, &f.bounds);
+        let (fast, reference) = (vertex_centroid_by(&p, true), vertex_centroid_by(&p, false));
+        assert_eq!(fast, reference, "pose {k}");
+        feasible += usize::from(fast.is_some());
+    }
+    assert_eq!(feasible, 15_793);
+}

@@ -18,6 +18,22 @@
 //! verdict with the l2 dense active set before reporting it. More than 2²⁰ candidate bases is
 //! a documented give-up ([`crate::GiveUp::TooManyBases`]).
 //!
+//! ## Redundancy 2
+//! At r = 2 the set is the feasible polygon of [`crate::FeasiblePolygon`] and the candidates are
+//! the C(n, 2)·4 intersections of two of its 2n bound lines (112 for 8 cables). The r = 2 path
+//! visits the same candidates in the same order with the same floating-point operations (the
+//! 2 × 2 LU with partial pivoting written out), so it keeps the same vertices bit for bit —
+//! degenerate vertices, coincident and parallel bound lines (a dependent pair, skipped by the
+//! pivot test), fixed cables (segments, single points), zero null-space rows and the
+//! tolerances above included — but it tests the four candidates of a pair of cables together
+//! in one branch-free loop over the cables, and stores a candidate's tensions only when it is
+//! within bounds (issue 26's fixture: 69 143 → see docs/benchmarks.md instructions per solve). Averaging the vertices of the clipped polygon instead would be cheaper
+//! still, but its clipping tolerance and its merging of close vertices (10⁻¹³) differ from the
+//! tolerances here, so near-degenerate sets would get a different vertex list. The general
+//! enumeration stays for r ≠ 2 and as the reference of the tests (unit property test
+//! `planar_path_is_the_enumeration`; all 20 000 poses of issue 26's fixture in
+//! `benches/tests/issue_26.rs`).
+//!
 //! ## References
 //! - Mikelsons, L., Bruckmann, T., Hiller, M. & Schramm, D. (2008), *A real-time capable force
 //!   calculation algorithm for redundant tendon-based parallel manipulators*, ICRA 2008,
@@ -28,7 +44,7 @@
 use crate::active_set::ZERO_ROW;
 use crate::certificate::{BOUND_TOLERANCE, SET_TOLERANCE};
 use crate::null_space::NullSpace;
-use crate::{GiveUp, Infeasibility, TensionBounds};
+use crate::{GiveUp, Infeasibility, TensionBounds, TensionProblem};
 
 /// Candidate bases above which the enumeration gives up.
 pub(crate) const MAX_BASES: u128 = 1 << 20;
@@ -71,6 +87,18 @@ impl VertexCentroid {
         bounds: &TensionBounds,
         t: &mut [f64],
     ) -> Result<(), Infeasibility> {
+        self.solve_with(ns, bounds, t, true)
+    }
+
+    /// [`Self::solve`]; `planar`: take the r = 2 path (false: the general enumeration, the
+    /// reference of the tests).
+    fn solve_with(
+        &mut self,
+        ns: &NullSpace,
+        bounds: &TensionBounds,
+        t: &mut [f64],
+        planar: bool,
+    ) -> Result<(), Infeasibility> {
         let (n, r) = (ns.n, ns.r());
         let bases = candidate_bases(n, r);
         if bases > MAX_BASES {
@@ -103,6 +131,32 @@ impl VertexCentroid {
         }
         self.vertices.clear();
         self.count = 0;
+        let (lo, hi) = (&lo.as_slice()[..n], &hi.as_slice()[..n]);
+        if r == 2 && planar {
+            self.enumerate_planar(ns, lo, hi);
+        } else {
+            self.enumerate(ns, lo, hi);
+        }
+        if self.count == 0 {
+            return Err(Infeasibility::NoFeasibleTension);
+        }
+        t.fill(0.0);
+        for v in self.vertices.chunks_exact(n) {
+            for (ti, vi) in t.iter_mut().zip(v) {
+                *ti += vi;
+            }
+        }
+        let k = self.count as f64;
+        for ti in t.iter_mut() {
+            *ti /= k;
+        }
+        Ok(())
+    }
+
+    /// Every candidate basis of any r: [`Self::factor`], [`Self::lu_solve`], all n tensions
+    /// (the reference of the planar path).
+    fn enumerate(&mut self, ns: &NullSpace, lo: &[f64], hi: &[f64]) {
+        let (n, r) = (ns.n, ns.r());
         loop {
             if self.factor(ns) {
                 for pattern in 0..1usize << r {
@@ -126,20 +180,80 @@ impl VertexCentroid {
                 break;
             }
         }
-        if self.count == 0 {
-            return Err(Infeasibility::NoFeasibleTension);
-        }
-        t.fill(0.0);
-        for v in self.vertices.chunks_exact(n) {
-            for (ti, vi) in t.iter_mut().zip(v) {
-                *ti += vi;
+    }
+
+    /// The candidates of r = 2 in the order of [`Self::enumerate`] (cable pairs i < j
+    /// lexicographically, then the bound patterns (t_min,i, t_min,j), (t_max,i, t_min,j),
+    /// (t_min,i, t_max,j), (t_max,i, t_max,j)), with the same floating-point operations in the
+    /// same order, so the same vertices bit for bit: the LU of the 2 × 2 N_S with partial
+    /// pivoting written out, and each tension t_k = (t0_k + N_k1 λ1) + N_k2 λ2 of the four
+    /// candidates of a pair tested in one branch-free loop over the cables; all n tensions are
+    /// stored only for a candidate within bounds. The vertex list, the duplicate test and the
+    /// mean are shared.
+    fn enumerate_planar(&mut self, ns: &NullSpace, lo: &[f64], hi: &[f64]) {
+        let n = ns.n;
+        let (n0, n1) = ns.basis[..2 * n].split_at(n);
+        let t0 = &ns.t0[..n];
+        // Taken out of `self` while the vertex list grows (put back below; no allocation).
+        let (below_v, above_v) = (
+            std::mem::take(&mut self.below),
+            std::mem::take(&mut self.above),
+        );
+        let (below, above) = (&below_v[..n], &above_v[..n]);
+        for i in 0..n {
+            for j in i + 1..n {
+                // Rows (a, b) of cable i and (c, d) of cable j; the larger |first entry| leads.
+                let (a, b, c, d) = (n0[i], n1[i], n0[j], n1[j]);
+                let swap = c.abs() > a.abs();
+                let (u00, u01, l10, a11) = if swap { (c, d, a, b) } else { (a, b, c, d) };
+                if u00.abs() < PIVOT {
+                    continue;
+                }
+                let f = l10 / u00;
+                let u11 = a11 - f * u01;
+                if u11.abs() < PIVOT {
+                    continue;
+                }
+                // λ of the four bound patterns (the substitutions of [`Self::lu_solve`]).
+                let (ri, rj) = (
+                    [lo[i] - t0[i], hi[i] - t0[i]],
+                    [lo[j] - t0[j], hi[j] - t0[j]],
+                );
+                let (mut x0, mut x1) = ([0.0; 4], [0.0; 4]);
+                for pattern in 0..4 {
+                    let (mut y0, mut y1) = (ri[pattern & 1], rj[pattern >> 1]);
+                    if swap {
+                        std::mem::swap(&mut y0, &mut y1);
+                    }
+                    y1 -= f * y0;
+                    y1 /= u11;
+                    y0 -= u01 * y1;
+                    y0 /= u00;
+                    (x0[pattern], x1[pattern]) = (y0, y1);
+                }
+                // Every cable for the four candidates at once, without early exits: a
+                // branch-free loop (the exits mispredicted at nearly every candidate).
+                let mut ok = [true; 4];
+                for ((((&t, &p), &q), &below), &above) in
+                    t0.iter().zip(n0).zip(n1).zip(below).zip(above)
+                {
+                    for s in 0..4 {
+                        let c = t + p * x0[s] + q * x1[s];
+                        ok[s] &= (c >= below) & (c <= above);
+                    }
+                }
+                for pattern in 0..4 {
+                    if ok[pattern] {
+                        ns.tensions(&[x0[pattern], x1[pattern]], &mut self.cand);
+                        if !self.known(n) {
+                            self.vertices.extend_from_slice(&self.cand);
+                            self.count += 1;
+                        }
+                    }
+                }
             }
         }
-        let k = self.count as f64;
-        for ti in t.iter_mut() {
-            *ti /= k;
-        }
-        Ok(())
+        (self.below, self.above) = (below_v, above_v);
     }
 
     /// Whether the candidate equals a kept vertex.
@@ -207,6 +321,20 @@ impl VertexCentroid {
     }
 }
 
+/// The vertex centroid of `p` and the number of distinct vertices, by the r = 2 path
+/// (`planar`) or by the general enumeration (the reference); `None` when the null space cannot
+/// be computed or no vertex is found. For the tests comparing both paths (also on issue 26's
+/// fixture, `benches/tests/issue_26.rs`); the solver's answer is [`crate::Method::VertexCentroid`].
+#[doc(hidden)]
+pub fn vertex_centroid_by(p: &TensionProblem, planar: bool) -> Option<(Vec<f64>, usize)> {
+    let mut ns = NullSpace::default();
+    ns.compute(p.wrench_matrix, p.external_wrench).ok()?;
+    let mut vc = VertexCentroid::default();
+    let mut t = vec![0.0; ns.n];
+    vc.solve_with(&ns, p.bounds, &mut t, planar).ok()?;
+    Some((t, vc.count))
+}
+
 /// The next r-subset of 0..n in lexicographic order; false after the last.
 fn next_combination(c: &mut [usize], n: usize) -> bool {
     let r = c.len();
@@ -227,6 +355,157 @@ fn next_combination(c: &mut [usize], n: usize) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{DMatrix, DVector};
+    use proptest::prelude::*;
+
+    /// SplitMix64 in [0, 1).
+    struct Rng(u64);
+    impl Rng {
+        fn unit(&mut self) -> f64 {
+            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = self.0;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        }
+        fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.unit()
+        }
+        fn below(&mut self, n: usize) -> usize {
+            ((self.unit() * n as f64) as usize).min(n - 1)
+        }
+    }
+
+    /// A problem at redundancy 2 (n = m + 2 cables, m = 1…8), of one of the degenerate kinds:
+    /// 0 random; 1 integer W, tensions and bounds (degenerate vertices: 3+ lines through a
+    /// point); 2 repeated and scaled columns of W (coincident and parallel constraints);
+    /// 3 fixed cables (t_min = t_max: segments, single points) and infinite t_max; 4 a cable
+    /// alone in a row of W (a zero null-space row: its tension is fixed); 5 tight bounds (thin
+    /// polygons, points). The wrench is balanced by tensions within the bounds, or pushed away
+    /// (empty sets).
+    fn planar_problem(seed: u64) -> (DMatrix<f64>, DVector<f64>, TensionBounds) {
+        let mut g = Rng(seed);
+        let m = 1 + g.below(8);
+        let n = m + 2;
+        let kind = g.below(6);
+        let mut w = if kind == 1 {
+            DMatrix::from_fn(m, n, |_, _| g.below(3) as f64 - 1.0)
+        } else {
+            DMatrix::from_fn(m, n, |_, _| g.range(-1.0, 1.0))
+        };
+        if kind == 2 && n >= 3 {
+            let (a, b) = (g.below(n), g.below(n));
+            let s = if g.unit() < 0.5 {
+                1.0
+            } else {
+                g.range(-3.0, 3.0)
+            };
+            let col = w.column(a) * s;
+            w.set_column(b, &col);
+        }
+        if kind == 4 {
+            let (row, k) = (g.below(m), g.below(n));
+            for j in 0..n {
+                w[(row, j)] = if j == k { g.range(0.5, 2.0) } else { 0.0 };
+            }
+        }
+        let (mut lo, mut hi) = (Vec::new(), Vec::new());
+        for _ in 0..n {
+            let l = if kind == 1 { 1.0 } else { g.range(0.5, 20.0) };
+            lo.push(l);
+            hi.push(match kind {
+                1 => 4.0 + g.below(2) as f64,
+                5 => l * (1.0 + g.range(0.001, 0.1)),
+                _ => l + g.range(10.0, 1000.0),
+            });
+        }
+        if kind == 3 {
+            for _ in 0..1 + g.below(2) {
+                let i = g.below(n);
+                hi[i] = lo[i];
+            }
+            if g.unit() < 0.5 {
+                hi[g.below(n)] = f64::INFINITY;
+            }
+        }
+        let t = DVector::from_fn(n, |i, _| {
+            if kind == 1 {
+                1.0 + g.below(4) as f64
+            } else if hi[i].is_finite() {
+                g.range(lo[i], hi[i])
+            } else {
+                lo[i] + g.range(0.0, 2000.0)
+            }
+        });
+        let mut we = -(&w * &t);
+        if g.unit() < 0.25 {
+            let mag = we.amax().max(10.0) * g.range(0.01, 1.0);
+            we.iter_mut().for_each(|v| *v += mag * g.range(-1.0, 1.0));
+        }
+        (w, we, TensionBounds::new(lo, hi).unwrap())
+    }
+
+    /// Both paths on one problem: the same verdict, the same number of distinct vertices and
+    /// the same centroid bit for bit.
+    fn same_on(w: &DMatrix<f64>, we: &DVector<f64>, b: &TensionBounds) -> Result<(), String> {
+        let p = TensionProblem::new(w, we, b);
+        let (fast, reference) = (vertex_centroid_by(&p, true), vertex_centroid_by(&p, false));
+        let bits = |x: &Option<(Vec<f64>, usize)>| {
+            x.as_ref()
+                .map(|(t, k)| (t.iter().map(|v| v.to_bits()).collect::<Vec<_>>(), *k))
+        };
+        if bits(&fast) == bits(&reference) {
+            Ok(())
+        } else {
+            Err(format!("planar {fast:?} vs enumeration {reference:?}"))
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(600))]
+
+        /// The r = 2 path gives the enumeration's vertices and centroid, bit for bit.
+        #[test]
+        fn planar_path_is_the_enumeration(seed in any::<u64>()) {
+            let (w, we, b) = planar_problem(seed);
+            prop_assert!(same_on(&w, &we, &b).is_ok(), "seed {seed}: {:?}", same_on(&w, &we, &b));
+        }
+    }
+
+    /// Every kind of problem occurs with vertices, and with empty sets; both paths agree.
+    #[test]
+    fn planar_path_on_every_kind() {
+        let (mut found, mut empty) = (0, 0);
+        for seed in 0..3000u64 {
+            let (w, we, b) = planar_problem(seed);
+            same_on(&w, &we, &b).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+            match vertex_centroid_by(&TensionProblem::new(&w, &we, &b), true) {
+                Some(_) => found += 1,
+                None => empty += 1,
+            }
+        }
+        assert!(
+            found > 1000 && empty > 300,
+            "{found} with vertices, {empty} without"
+        );
+    }
+
+    /// t1 + t2 + t3 = 6 in [1, 4]: the triangle (4, 1, 1), (1, 4, 1), (1, 1, 4), each corner
+    /// degenerate (three bounds active at r = 2, found from three pairs of cables) and kept
+    /// once: the centroid is (2, 2, 2).
+    #[test]
+    fn degenerate_triangle_by_hand() {
+        let w = DMatrix::from_row_slice(1, 3, &[1.0, 1.0, 1.0]);
+        let we = DVector::from_element(1, -6.0);
+        let b = TensionBounds::uniform(3, 1.0, 4.0).unwrap();
+        for planar in [true, false] {
+            let (t, k) = vertex_centroid_by(&TensionProblem::new(&w, &we, &b), planar).unwrap();
+            assert_eq!(k, 3);
+            for v in t {
+                assert!((v - 2.0).abs() <= 1e-12, "{v}");
+            }
+        }
+    }
 
     #[test]
     fn combinations_and_counts() {
