@@ -745,19 +745,22 @@ impl TensionSolver {
                     .map_err(|e| rename_unbounded(e, maximize))
             }
             Method::ImprovedClosedForm => self.icf.solve(p, &mut self.t),
-            Method::PottClosedForm | Method::PottClosedFormEe
-                if let Some(answer) = self.pott.solve_fast(
-                    &mut self.icf,
-                    p,
-                    method == Method::PottClosedFormEe,
-                    &mut self.t,
-                ) =>
-            {
-                answer
+            Method::PottClosedForm | Method::PottClosedFormEe => {
+                let energy_efficient = method == Method::PottClosedFormEe;
+                match self
+                    .pott
+                    .solve_fast(&mut self.icf, p, energy_efficient, &mut self.t)
+                {
+                    Some(answer) => answer,
+                    None => {
+                        if let Err(condition) = self.null_space(p) {
+                            return Ok(Err(Infeasibility::SingularPose { condition }));
+                        }
+                        self.peer(p)
+                    }
+                }
             }
-            Method::PottClosedForm
-            | Method::PottClosedFormEe
-            | Method::Puncture
+            Method::Puncture
             | Method::Dykstra
             | Method::L2Mid
             | Method::VertexCentroid
