@@ -654,7 +654,14 @@ impl TensionSolver {
             Method::L2Mid => self.l2_mid.solve(ns, bounds, &mut self.dense, t),
             Method::VertexCentroid => match self.centroid.solve(ns, bounds, t) {
                 Err(Infeasibility::NoFeasibleTension) => {
-                    // No vertex: confirm with the dense active set (l2) before answering.
+                    // No vertex: confirm before answering. At r = 2 the clipped feasible
+                    // polygon decides an empty set, as it does for l2 and the barycentre
+                    // (about a third of the dense active set's instructions on issue 26's
+                    // infeasible poses); a polygon that is not empty, and every other r, go
+                    // to the dense active set (l2).
+                    if ns.r() == 2 && !self.region.build(ns, bounds) {
+                        return Err(Infeasibility::NoFeasibleTension);
+                    }
                     match self.dense.solve(ns, bounds, Objective::L2, "l2", t) {
                         DenseEnd::Infeasible(reason) => Err(reason),
                         DenseEnd::Solved => Err(Infeasibility::SolverFailure {

@@ -15,7 +15,9 @@
 //! bounds) are found from several bases and kept once (entries equal within 10⁻⁹ relative), as
 //! WireLib drops its doublets. The answer is their mean. For a bounded set (finite t_max) a
 //! non-empty feasible set has at least one vertex; when none is found the solver confirms the
-//! verdict with the l2 dense active set before reporting it. More than 2²⁰ candidate bases is
+//! verdict before reporting it: at r = 2 with the clipped feasible polygon (module
+//! `feasible_polygon`, the decider of l2 and the barycentre there), else — or when that polygon
+//! is not empty — with the l2 dense active set. More than 2²⁰ candidate bases is
 //! a documented give-up ([`crate::GiveUp::TooManyBases`]).
 //!
 //! ## Redundancy 2
@@ -69,6 +71,18 @@ pub(crate) struct VertexCentroid {
     pub count: usize,
 }
 
+/// Which enumeration runs at r = 2.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Path {
+    /// The general enumeration (the reference of the tests).
+    General,
+    /// The r = 2 path, in its AVX2 build when the CPU has it.
+    Planar,
+    /// The r = 2 path in the baseline build (for the test that compares both builds).
+    #[cfg_attr(not(test), allow(dead_code))]
+    PlanarPortable,
+}
+
 /// C(n, r)·2^r, saturating.
 pub(crate) fn candidate_bases(n: usize, r: usize) -> u128 {
     let mut c: u128 = 1;
@@ -87,17 +101,16 @@ impl VertexCentroid {
         bounds: &TensionBounds,
         t: &mut [f64],
     ) -> Result<(), Infeasibility> {
-        self.solve_with(ns, bounds, t, true)
+        self.solve_with(ns, bounds, t, Path::Planar)
     }
 
-    /// [`Self::solve`]; `planar`: take the r = 2 path (false: the general enumeration, the
-    /// reference of the tests).
+    /// [`Self::solve`] by the enumeration `path` at r = 2 (other r: the general one).
     fn solve_with(
         &mut self,
         ns: &NullSpace,
         bounds: &TensionBounds,
         t: &mut [f64],
-        planar: bool,
+        path: Path,
     ) -> Result<(), Infeasibility> {
         let (n, r) = (ns.n, ns.r());
         let bases = candidate_bases(n, r);
@@ -132,8 +145,10 @@ impl VertexCentroid {
         self.vertices.clear();
         self.count = 0;
         let (lo, hi) = (&lo.as_slice()[..n], &hi.as_slice()[..n]);
-        if r == 2 && planar {
+        if r == 2 && path == Path::Planar {
             self.enumerate_planar(ns, lo, hi);
+        } else if r == 2 && path == Path::PlanarPortable {
+            self.enumerate_planar_here(ns, lo, hi);
         } else {
             self.enumerate(ns, lo, hi);
         }
@@ -189,8 +204,31 @@ impl VertexCentroid {
     /// pivoting written out, and each tension t_k = (t0_k + N_k1 λ1) + N_k2 λ2 of the four
     /// candidates of a pair tested in one branch-free loop over the cables; all n tensions are
     /// stored only for a candidate within bounds. The vertex list, the duplicate test and the
-    /// mean are shared.
+    /// mean are shared. Compiled for AVX2 as well, taken when the CPU has it: without fused
+    /// multiply–adds (Rust does not contract `a * b + c`) both builds give the same bits.
     fn enumerate_planar(&mut self, ns: &NullSpace, lo: &[f64], hi: &[f64]) {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU reports AVX2.
+            return unsafe { self.enumerate_planar_avx2(ns, lo, hi) };
+        }
+        self.enumerate_planar_here(ns, lo, hi);
+    }
+
+    /// [`Self::enumerate_planar_here`] compiled for AVX2 (the four candidates of a pair in
+    /// one 4-lane vector).
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    unsafe fn enumerate_planar_avx2(&mut self, ns: &NullSpace, lo: &[f64], hi: &[f64]) {
+        self.enumerate_planar_here(ns, lo, hi);
+    }
+
+    /// The body of [`Self::enumerate_planar`], inlined into each build.
+    #[inline(always)]
+    fn enumerate_planar_here(&mut self, ns: &NullSpace, lo: &[f64], hi: &[f64]) {
         let n = ns.n;
         let (n0, n1) = ns.basis[..2 * n].split_at(n);
         let t0 = &ns.t0[..n];
@@ -331,7 +369,8 @@ pub fn vertex_centroid_by(p: &TensionProblem, planar: bool) -> Option<(Vec<f64>,
     ns.compute(p.wrench_matrix, p.external_wrench).ok()?;
     let mut vc = VertexCentroid::default();
     let mut t = vec![0.0; ns.n];
-    vc.solve_with(&ns, p.bounds, &mut t, planar).ok()?;
+    let path = if planar { Path::Planar } else { Path::General };
+    vc.solve_with(&ns, p.bounds, &mut t, path).ok()?;
     Some((t, vc.count))
 }
 
@@ -447,6 +486,30 @@ mod tests {
 
     /// Both paths on one problem: the same verdict, the same number of distinct vertices and
     /// the same centroid bit for bit.
+    /// The baseline and the AVX2 build of the r = 2 path give the same bits (on a CPU without
+    /// AVX2 both runs take the baseline build).
+    fn planar_builds_agree() {
+        for seed in 0..3000u64 {
+            let (w, we, b) = planar_problem(seed);
+            let p = TensionProblem::new(&w, &we, &b);
+            let mut ns = NullSpace::default();
+            if ns.compute(p.wrench_matrix, p.external_wrench).is_err() {
+                continue;
+            }
+            let run = |path| {
+                let mut vc = VertexCentroid::default();
+                let mut t = vec![0.0; ns.n];
+                let ok = vc.solve_with(&ns, p.bounds, &mut t, path).is_ok();
+                (
+                    ok,
+                    vc.count,
+                    t.iter().map(|v| v.to_bits()).collect::<Vec<_>>(),
+                )
+            };
+            assert_eq!(run(Path::Planar), run(Path::PlanarPortable), "seed {seed}");
+        }
+    }
+
     fn same_on(w: &DMatrix<f64>, we: &DVector<f64>, b: &TensionBounds) -> Result<(), String> {
         let p = TensionProblem::new(w, we, b);
         let (fast, reference) = (vertex_centroid_by(&p, true), vertex_centroid_by(&p, false));
@@ -475,6 +538,7 @@ mod tests {
     /// Every kind of problem occurs with vertices, and with empty sets; both paths agree.
     #[test]
     fn planar_path_on_every_kind() {
+        planar_builds_agree();
         let (mut found, mut empty) = (0, 0);
         for seed in 0..3000u64 {
             let (w, we, b) = planar_problem(seed);

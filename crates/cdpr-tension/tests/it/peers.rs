@@ -131,6 +131,34 @@ fn hand_derived_empty_set() {
     );
 }
 
+/// Redundancy 2, t1 − t2 − t3 = 25 with bounds [1, 10]: t1 = t2 + t3 + 25 ≥ 27 > 10, the
+/// feasible polygon is empty. vertex-centroid finds no vertex and the clipped polygon confirms
+/// it (no dense active set); at every t1 the residual of the nearest bounded point is ≥ 17 N,
+/// so an answer would fail its certificate.
+#[test]
+fn vertex_centroid_confirms_an_empty_polygon_at_redundancy_2() {
+    let w = DMatrix::from_row_slice(1, 3, &[1.0, -1.0, -1.0]);
+    let we = DVector::from_vec(vec![-25.0]);
+    let b = TensionBounds::uniform(3, 1.0, 10.0).unwrap();
+    for m in [Method::VertexCentroid, Method::L2Mid] {
+        assert_eq!(
+            solve(m, &w, &we, &b).infeasibility(),
+            Some(&Infeasibility::NoFeasibleTension),
+            "{m}"
+        );
+    }
+    // With t1 − t2 − t3 = 8 the set is the single point (10, 1, 1) (t1 = t2 + t3 + 8 ≤ 10
+    // forces t2 = t3 = 1): one vertex, its own centroid.
+    let point = DVector::from_vec(vec![-8.0]);
+    let t = solve(Method::VertexCentroid, &w, &point, &b);
+    assert_close(
+        t.tensions().unwrap(),
+        &[10.0, 1.0, 1.0],
+        1e-9,
+        "single point",
+    );
+}
+
 /// l2-mid on a target outside: t1 − t2 = 8, bounds [1, 10]: the segment (9, 1)–(10, 2);
 /// t_m's projection onto the line is (9.5, 1.5), inside: l2-mid = (9.5, 1.5). With t1 − t2 = 9
 /// the set is the single point (10, 1): no interior, so p-norm gives up; the others find it.
