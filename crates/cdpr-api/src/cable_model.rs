@@ -10,6 +10,7 @@
 //! - Irvine 1981, *Cable Structures*, §2.3 (the elastic catenary).
 //! - docs/algorithms.md, "Sagging cables".
 
+use cdpr_dynamics::{DynamicsError, Winch};
 use cdpr_io::RobotDescription;
 use cdpr_kinematics::{CableModel, Pose, RobotCatenaries};
 use cdpr_tension::{Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionSolver};
@@ -90,10 +91,11 @@ pub struct Compensation {
     pub platform_end_tensions: Vec<Option<Vec<f64>>>,
     /// Why a pose has no equilibrium.
     pub reasons: Vec<Option<String>>,
-    /// With a `winch` on every cable: per pose the drum angles φ_i = L0_i/ρ_i (rad) that pay
-    /// out the unstrained lengths, ρ_i the winch's payout radius (the drum radius, or with
-    /// `cable_diameter` d the single-layer helix √((r + d/2)² + (d/2π)²)); `None` without
-    /// winches.
+    /// With a `winch` on every cable: per pose the drum angles φ_i (rad) that pay out the
+    /// unstrained lengths, L0_i/ρ_i with ρ_i the winch's payout radius (the drum radius, or
+    /// with `cable_diameter` d the single-layer helix √((r + d/2)² + (d/2π)²)), or on a
+    /// multi-layer drum (`turns_per_layer` N, `cable_length` C) Φ(C) − Φ(C − L0_i)
+    /// ([`Winch::drum_angle_at`]); `None` without winches.
     pub drum_angles: Option<Vec<Option<Vec<f64>>>>,
 }
 
@@ -130,18 +132,50 @@ pub fn compensation(
             }
         }
     }
-    out.drum_angles = robot.winches.as_ref().map(|winches| {
-        out.unstrained_lengths
-            .iter()
-            .map(|l| {
-                l.as_ref().map(|l| {
+    if let Some(winches) = &robot.winches {
+        out.drum_angles = Some(drum_angles(winches, &out.unstrained_lengths)?);
+    }
+    Ok(out)
+}
+
+/// Per pose the drum angles (rad) that pay out the lengths L0 ([`Winch::drum_angle_at`]: on a
+/// multi-layer drum Φ(C) − Φ(C − L0)); an L0 beyond a winch's `cable_length` is an error
+/// naming the cable and the pose.
+fn drum_angles(
+    winches: &[Winch],
+    lengths: &[Option<Vec<f64>>],
+) -> Result<Vec<Option<Vec<f64>>>, ApiError> {
+    lengths
+        .iter()
+        .enumerate()
+        .map(|(k, l)| {
+            l.as_ref()
+                .map(|l| {
                     l.iter()
                         .zip(winches)
-                        .map(|(&l, w)| w.drum_angle(l))
+                        .enumerate()
+                        .map(|(i, (&l, w))| {
+                            w.drum_angle_at(l).map_err(|e| match e {
+                                DynamicsError::PaidOutLength {
+                                    length,
+                                    cable_length,
+                                    ..
+                                } => ApiError::invalid(format!(
+                                    "pose {}: {}",
+                                    k + 1,
+                                    DynamicsError::PaidOutLength {
+                                        cable: Some(i + 1),
+                                        time: None,
+                                        length,
+                                        cable_length,
+                                    }
+                                )),
+                                e => e.into(),
+                            })
+                        })
                         .collect()
                 })
-            })
-            .collect()
-    });
-    Ok(out)
+                .transpose()
+        })
+        .collect()
 }

@@ -169,8 +169,10 @@ pub struct PathReport {
     pub cable_model_reasons: Option<Vec<Option<String>>>,
     /// With a `winch` on every cable: per sample the drum angles (rad) that pay out the
     /// unstrained lengths, L0/ρ with ρ the drum radius or, with `winch.cable_diameter` d, the
-    /// single-layer helix's √((r + d/2)² + (d/2π)²) (m/rad); null where `unstrained_lengths`
-    /// is.
+    /// single-layer helix's √((r + d/2)² + (d/2π)²) (m/rad); on a multi-layer drum
+    /// (`winch.turns_per_layer` N, `winch.cable_length` C, m) Φ(C) − Φ(C − L0), Φ(W) the
+    /// angle that winds W (m) onto the empty drum, 2πN rad per layer, layer k at
+    /// ρ_k = √((r + d/2 + k d)² + (d/2π)²); null where `unstrained_lengths` is.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub drum_angles: Option<Vec<Option<Vec<f64>>>>,
 }

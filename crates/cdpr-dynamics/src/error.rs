@@ -49,6 +49,19 @@ pub enum DynamicsError {
         /// What was seen.
         why: String,
     },
+    /// A paid-out length L a layered winch cannot give: negative, not finite, or more than the
+    /// `winch.cable_length` C wound on it (the drum would be empty).
+    #[error("{}", paid_out_message(*cable, *time, *length, *cable_length))]
+    PaidOutLength {
+        /// The cable (1-based), when known.
+        cable: Option<usize>,
+        /// The sample's time (s), when known.
+        time: Option<f64>,
+        /// L (m).
+        length: f64,
+        /// C (m).
+        cable_length: f64,
+    },
     /// A kinematics error (e.g. a cable of zero length).
     #[error(transparent)]
     Kinematics(#[from] KinematicsError),
@@ -63,5 +76,21 @@ pub(crate) fn bad(key: impl Into<String>, value: f64, why: impl Into<String>) ->
         key: key.into(),
         value,
         why: why.into(),
+    }
+}
+
+/// The message of [`DynamicsError::PaidOutLength`].
+fn paid_out_message(cable: Option<usize>, time: Option<f64>, length: f64, c: f64) -> String {
+    let who = cable.map_or(String::new(), |i| format!("cable {i}: "));
+    let when = time.map_or(String::new(), |t| format!(" at t = {t} s"));
+    if length > c {
+        format!(
+            "{who}paid-out length {length} m{when} exceeds winch.cable_length = {c} m \
+             (the drum would be empty)"
+        )
+    } else if length < 0.0 {
+        format!("{who}paid-out length {length} m{when} is negative")
+    } else {
+        format!("{who}paid-out length {length} m{when} is not a finite number")
     }
 }

@@ -49,7 +49,7 @@ pub mod joint_spline;
 pub mod rigid_body;
 pub mod time_law;
 
-pub use drive_train::{DriveTrainProfile, Winch, drive_train};
+pub use drive_train::{DriveTrainProfile, DrumLayers, Winch, drive_train};
 pub use dynamic_feasibility::DynamicFeasibility;
 pub use error::DynamicsError;
 pub use forward_dynamics::{Drive, Integrator, Simulation, Simulator, State};

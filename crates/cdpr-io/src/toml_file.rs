@@ -350,6 +350,9 @@ struct RawWinch {
     max_torque: Option<f64>,
     max_speed: Option<f64>,
     cable_diameter: Option<f64>,
+    /// Read as any value so that a non-integer is named by its key.
+    turns_per_layer: Option<toml::Value>,
+    cable_length: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -766,6 +769,24 @@ impl RobotDescription {
                     r.max_speed,
                 )
                 .and_then(|w| w.with_cable_diameter(r.cable_diameter))
+                .and_then(|w| {
+                    let turns = match &r.turns_per_layer {
+                        None => None,
+                        Some(v) => Some(
+                            v.as_integer()
+                                .and_then(|n| u32::try_from(n).ok())
+                                .ok_or_else(|| cdpr_dynamics::DynamicsError::BadSetting {
+                                    key: "winch.turns_per_layer".into(),
+                                    value: v.as_integer().map_or_else(
+                                        || v.as_float().unwrap_or(f64::NAN),
+                                        |n| n as f64,
+                                    ),
+                                    why: "must be an integer from 1 to 4294967295 (turns)".into(),
+                                })?,
+                        ),
+                    };
+                    w.with_layers(turns, r.cable_length)
+                })
                 .map_err(|e| match e {
                     cdpr_dynamics::DynamicsError::BadSetting { key: k, value, why } => {
                         ctx.invalid(w.span(), key(&k), format!("{value} {why}"))

@@ -116,6 +116,10 @@ impl RobotDescription {
                 if let Some(v) = w.cable_diameter {
                     fields.push(format!("cable_diameter = {}", num(v)));
                 }
+                if let Some(l) = w.layers {
+                    fields.push(format!("turns_per_layer = {}", l.turns_per_layer));
+                    fields.push(format!("cable_length = {}", num(l.cable_length)));
+                }
                 let _ = writeln!(s, "winch = {{ {} }}", fields.join(", "));
             }
             if let Some(pulley) = &c.pulley {

@@ -114,3 +114,79 @@ fn wirecenter_winch_is_read() {
     assert_eq!(none.winches, None);
     assert!(d.wcrfx_losses().iter().any(|l| l.contains("winches")));
 }
+
+/// Multi-layer drums (issue 29): `turns_per_layer` and `cable_length` read, written back, and
+/// every wrong combination named by its key.
+#[test]
+fn layered_drum_keys_read_write_back_and_name_their_errors() {
+    let layered = "winch = { drum_radius = 0.04, gear_ratio = 8.0, motor_inertia = 1e-4, cable_diameter = 0.003, turns_per_layer = 25, cable_length = 12.5 }";
+    let d = RobotDescription::parse(&robot([layered, layered, layered]), "r.toml").unwrap();
+    let w = d.winches.as_ref().unwrap();
+    let l = w[1].layers.unwrap();
+    assert_eq!((l.turns_per_layer, l.cable_length), (25, 12.5));
+    let text = d.to_toml("round trip");
+    assert_eq!(text.matches("turns_per_layer = 25").count(), 3, "{text}");
+    assert_eq!(text.matches("cable_length = 12.5").count(), 3, "{text}");
+    let again = RobotDescription::parse(&text, "again.toml").unwrap();
+    assert_eq!(again.winches, d.winches);
+    // Without the keys, no layers and nothing written.
+    let plain = RobotDescription::parse(&robot([FULL, BARE, FULL]), "r.toml").unwrap();
+    assert!(
+        plain
+            .winches
+            .as_ref()
+            .unwrap()
+            .iter()
+            .all(|w| w.layers.is_none())
+    );
+    let text = plain.to_toml("x");
+    assert!(
+        !text.contains("turns_per_layer") && !text.contains("cable_length"),
+        "{text}"
+    );
+    let base = "drum_radius = 0.04, gear_ratio = 8.0, motor_inertia = 1e-4";
+    for (extra, key, needle) in [
+        (
+            "cable_diameter = 0.003, turns_per_layer = 25",
+            "cables[2].winch.turns_per_layer",
+            "needs winch.cable_length",
+        ),
+        (
+            "cable_diameter = 0.003, cable_length = 10.0",
+            "cables[2].winch.cable_length",
+            "needs winch.turns_per_layer",
+        ),
+        (
+            "turns_per_layer = 25, cable_length = 10.0",
+            "cables[2].winch.turns_per_layer",
+            "needs winch.cable_diameter",
+        ),
+        (
+            "cable_diameter = 0.003, turns_per_layer = 0, cable_length = 10.0",
+            "cables[2].winch.turns_per_layer",
+            "integer ≥ 1",
+        ),
+        (
+            "cable_diameter = 0.003, turns_per_layer = -3, cable_length = 10.0",
+            "cables[2].winch.turns_per_layer",
+            "integer from 1",
+        ),
+        (
+            "cable_diameter = 0.003, turns_per_layer = 25, cable_length = -1.0",
+            "cables[2].winch.cable_length",
+            "positive",
+        ),
+    ] {
+        let bad = format!("winch = {{ {base}, {extra} }}");
+        let (line, k, message) = err(&robot([layered, &bad, layered]));
+        assert_eq!((line, k.as_str()), (10, key), "{extra}: {message}");
+        assert!(message.contains(needle), "{extra}: {message}");
+    }
+    // A fractional turn count is refused by the TOML reader, naming the key.
+    let bad = format!(
+        "winch = {{ {base}, cable_diameter = 0.003, turns_per_layer = 2.5, cable_length = 10.0 }}"
+    );
+    let (_, key, message) = err(&robot([layered, &bad, layered]));
+    assert_eq!(key, "cables[2].winch.turns_per_layer", "{message}");
+    assert!(message.contains("2.5 must be an integer"), "{message}");
+}

@@ -465,6 +465,115 @@ fn trajectory_reports_drum_angles_with_the_cable_build_up() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("cable_diameter"));
 }
 
+/// Multi-layer drums (issue 29, spool build-up): r = 4 cm, d = 3 mm, N = 10 turns per layer,
+/// C = 6 m on the winch. Layer k pays out ρ_k = √((0.0415 + 0.003 k)² + (0.003/2π)²) per radian
+/// and holds λ_k = 20π ρ_k: λ_0 = 2.6077 m, λ_1 = 2.7962 m, so C = 6 m fills layers 0 and 1 and
+/// 0.596 m of layer 2. With L0 ≈ 2.2–2.9 m paid out, C − L0 lies on layer 1 and
+/// φ = (C − λ_0 − λ_1)/ρ_2 + (λ_0 + λ_1 − (C − L0))/ρ_1. `cdpr convert` keeps the keys; a
+/// `cable_length` shorter than L0 is an error naming the cable.
+#[test]
+fn trajectory_drum_angles_on_a_multi_layer_drum() {
+    let text = std::fs::read_to_string(robot("ipanema-like-8.toml")).unwrap();
+    let dir = std::env::temp_dir().join(format!("cdpr-layers-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |winch: &str, name: &str| {
+        let file = dir.join(name);
+        let with = text.replace(
+            "axial_stiffness = 60000.0",
+            &format!("axial_stiffness = 60000.0\nwinch = {{ {winch} }}"),
+        );
+        std::fs::write(&file, with).unwrap();
+        file.display().to_string()
+    };
+    let args = |f: &str| {
+        [
+            "trajectory",
+            f,
+            "--from",
+            "0,0,1,0,0,0",
+            "--to",
+            "0.3,0.2,1.2,0,0,0",
+            "--samples",
+            "3",
+            "--cable-model",
+            "elastic",
+            "--json",
+        ]
+        .map(String::from)
+    };
+    let base = "drum_radius = 0.04, gear_ratio = 8.0, motor_inertia = 1e-4, cable_diameter = 0.003";
+    let f = write(
+        &format!("{base}, turns_per_layer = 10, cable_length = 6.0"),
+        "layers.toml",
+    );
+    let v = json(&args(&f).iter().map(String::as_str).collect::<Vec<_>>());
+    let rho = |k: f64| (0.0415f64 + 0.003 * k).hypot(0.003 / std::f64::consts::TAU);
+    let lambda = |k: f64| 20.0 * std::f64::consts::PI * rho(k);
+    assert!((lambda(0.0) - 2.6077).abs() < 1e-4 && (lambda(1.0) - 2.7962).abs() < 1e-4);
+    let (c, s1, s2) = (6.0, lambda(0.0), lambda(0.0) + lambda(1.0));
+    for k in 0..3 {
+        let l0 = floats(&v["unstrained_lengths"][k]);
+        let phi = floats(&v["drum_angles"][k]);
+        for i in 0..8 {
+            let wound = c - l0[i];
+            assert!(
+                s1 < wound && wound < s2,
+                "sample {k} cable {i}: W = {wound} off layer 1"
+            );
+            let expected = (c - s2) / rho(2.0) + (s2 - wound) / rho(1.0);
+            assert!(
+                (phi[i] - expected).abs() < 1e-12 * expected,
+                "sample {k} cable {i}: {} vs {expected}",
+                phi[i]
+            );
+        }
+    }
+    // `cdpr convert` writes the keys back; the converted robot gives the same angles.
+    let out = dir.join("converted.toml").display().to_string();
+    json(&["convert", &f, "-o", &out, "--json"]);
+    let converted = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(
+        converted.matches("turns_per_layer = 10").count(),
+        8,
+        "{converted}"
+    );
+    assert_eq!(
+        converted.matches("cable_length = 6").count(),
+        8,
+        "{converted}"
+    );
+    let again = json(&args(&out).iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(again["drum_angles"], v["drum_angles"]);
+    // 2 m of cable cannot pay out L0 ≈ 2.6 m: the drum would be empty.
+    let short = write(
+        &format!("{base}, turns_per_layer = 10, cable_length = 2.0"),
+        "short.toml",
+    );
+    let out = cdpr()
+        .args(args(&short).iter().map(String::as_str))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("pose 1: cable 1: paid-out length ")
+            && err.contains("exceeds winch.cable_length = 2 m (the drum would be empty)"),
+        "{err}"
+    );
+    // Half the keys: an error naming the missing one.
+    let half = write(&format!("{base}, turns_per_layer = 10"), "half.toml");
+    let out = cdpr()
+        .args(args(&half).iter().map(String::as_str))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("cables[1].winch.turns_per_layer") && err.contains("winch.cable_length"),
+        "{err}"
+    );
+}
+
 /// The scene JSON embedded in a viewer page.
 fn scene_of(html: &str) -> serde_json::Value {
     let tag = "id=\"scene\">";
