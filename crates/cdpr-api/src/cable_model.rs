@@ -1,7 +1,8 @@
 //! # Cable models of a request
 //!
 //! `straight` (massless, inextensible: every result as in the classical model), `elastic`
-//! (massless springs, L0 = l/(1 + t/EA); needs `axial_stiffness`) or `catenary` (heavy elastic
+//! (massless springs, L0 = l/(1 + t/EA), l the whole length, over pulleys too; needs
+//! `axial_stiffness`) or `catenary` (heavy elastic
 //! cables, Irvine's elastic catenary; needs `axial_stiffness` and `linear_density`), and the flex
 //! and sag compensation along a path: per pose, the sagging-cable statics' platform-end tensions
 //! and the unstrained lengths the winches pay out for the platform to be there.
@@ -50,7 +51,8 @@ impl CableModelName {
 }
 
 /// The robot's cables under `model`: `None` for straight cables; an error when the robot file
-/// lacks the keys the model needs or has pulleys.
+/// lacks the keys the model needs, or for `catenary` on a robot with pulleys (elastic cables
+/// over pulleys are modelled: docs/algorithms.md, "Elastic cables over pulleys").
 pub fn catenaries(
     robot: &RobotDescription,
     model: CableModel,
@@ -59,9 +61,12 @@ pub fn catenaries(
         return Ok(None);
     }
     let name = model.name();
-    if robot.robot.has_pulleys() {
+    if model == CableModel::Catenary
+        && let Some(i) = robot.robot.cables().iter().position(|c| c.pulley.is_some())
+    {
         return Err(ApiError::invalid(format!(
-            "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
+            "--cable-model catenary does not model pulleys yet (cable {} has one); use --cable-model elastic, --kinematics standard or a robot without pulleys",
+            i + 1
         )));
     }
     let es = robot.axial_stiffness.as_ref().ok_or_else(|| {

@@ -105,7 +105,8 @@ pub struct CriteriaSetup {
 }
 
 /// The robot's cables under the cable model named `name` (`straight`, `elastic`, `catenary`):
-/// `None` for straight cables; an error naming the missing robot-file key, and for pulleys.
+/// `None` for straight cables; an error naming the missing robot-file key, and for the
+/// catenary over pulleys ([`crate::cable_model::catenaries`]).
 pub fn catenaries(
     desc: &RobotDescription,
     name: Option<&str>,
@@ -114,29 +115,7 @@ pub fn catenaries(
         .unwrap_or("straight")
         .parse()
         .map_err(|e| ApiError::invalid(format!("--cable-model: {e}")))?;
-    if model == CableModel::Straight {
-        return Ok(None);
-    }
-    let name = model.name();
-    if desc.robot.has_pulleys() {
-        return Err(ApiError::invalid(format!(
-            "--cable-model {name} does not model pulleys yet; use --kinematics standard or a robot without pulleys"
-        )));
-    }
-    let es = desc.axial_stiffness.as_ref().ok_or_else(|| {
-        ApiError::invalid(format!(
-            "--cable-model {name} needs `axial_stiffness` (E·S, N) on every cable of the robot file"
-        ))
-    })?;
-    Ok(Some(match model {
-        CableModel::Elastic => RobotCatenaries::elastic(es)?,
-        _ => {
-            let rho = desc.linear_density.as_ref().ok_or(ApiError::invalid(
-                "--cable-model catenary needs `linear_density` (kg/m) on every cable of the robot file",
-            ))?;
-            RobotCatenaries::new(rho, es, &desc.platform.gravity)?
-        }
-    }))
+    crate::cable_model::catenaries(desc, model)
 }
 
 /// The platform's rigid body from the robot file (an error if the file lacks what the motion

@@ -25,10 +25,14 @@ use crate::{ApiError, Robot};
 /// Per cable the state of its catenary (the sag-aware fields of the reports).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, JsonSchema)]
 pub struct SaggingCablesReport {
-    /// Unstrained lengths L0 (m).
+    /// Unstrained lengths L0 (m); over a pulley the whole cable's, its wrapped arc included.
     pub unstrained_lengths: Vec<f64>,
-    /// Chord lengths ‖B − A‖ (m).
+    /// Chord lengths ‖B − A‖ (m); over a pulley of the free segment, from the tangent point.
     pub chord_lengths: Vec<f64>,
+    /// Arc ρ β wrapped on each cable's pulley (m; 0 for a cable without one); only for robots
+    /// with pulleys.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wrapped_lengths: Option<Vec<f64>>,
     /// Tensions at the frame end T_A (N).
     pub frame_end_tensions: Vec<f64>,
     /// Tensions at the platform end T_B (N).
@@ -40,12 +44,14 @@ pub struct SaggingCablesReport {
 }
 
 impl SaggingCablesReport {
-    /// The fields of `cables`.
-    pub fn of(cables: &[SaggingCable]) -> Self {
+    /// The fields of `cables`; `pulleys`: whether the robot has pulleys (then the wrapped
+    /// lengths are reported).
+    pub fn of(cables: &[SaggingCable], pulleys: bool) -> Self {
         let field = |f: fn(&SaggingCable) -> f64| cables.iter().map(f).collect();
         Self {
             unstrained_lengths: field(|c| c.unstrained_length),
             chord_lengths: field(|c| c.chord_length),
+            wrapped_lengths: pulleys.then(|| field(|c| c.wrapped_length)),
             frame_end_tensions: field(|c| c.frame_end_tension),
             platform_end_tensions: field(|c| c.platform_end_tension),
             max_sag: field(|c| c.max_sag),
@@ -144,7 +150,7 @@ impl SaggingKinematicsRequest {
             pose: self.pose.clone(),
             cable_model: name.to_string(),
             wrench_matrix: matrix_rows(&w),
-            cables: SaggingCablesReport::of(&cables),
+            cables: SaggingCablesReport::of(&cables, self.robot.robot.has_pulleys()),
         })
     }
 }
@@ -244,7 +250,10 @@ impl SaggingTensionRequest {
                 r.residual = Some(s.residual);
                 r.iterations = Some(s.iterations);
                 r.wrench_matrix = Some(matrix_rows(&s.wrench_matrix));
-                r.cables = Some(SaggingCablesReport::of(&s.cables));
+                r.cables = Some(SaggingCablesReport::of(
+                    &s.cables,
+                    self.robot.robot.has_pulleys(),
+                ));
             }
             SaggingOutcome::Infeasible(why) => r.reason = Some(why.to_string()),
         }
@@ -338,7 +347,7 @@ impl ElastoGeometricRequest {
             iterations: sol.iterations,
             slack_cables: (0..n).filter(|&i| fk.is_slack(i)).map(|i| i + 1).collect(),
             external_wrench: (robot.load_wrench(&sol.pose)? + &w_e).as_slice().to_vec(),
-            cables: SaggingCablesReport::of(fk.cables()),
+            cables: SaggingCablesReport::of(fk.cables(), robot.robot.has_pulleys()),
         })
     }
 }

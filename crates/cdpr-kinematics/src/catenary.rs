@@ -898,10 +898,14 @@ impl ElasticCatenary {
 /// gravity).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SaggingCable {
-    /// L0: unstrained length (m).
+    /// L0: unstrained length (m); with a pulley the whole cable's, the wrapped arc included
+    /// (ρ β/(1 + T_A/EA) plus the free segment's `solution.unstrained_length`).
     pub unstrained_length: f64,
-    /// ‖B − A‖: the chord (m).
+    /// ‖B − A‖: the chord (m); with a pulley that of the free segment, from the tangent point.
     pub chord_length: f64,
+    /// ρ β: the arc wrapped on the cable's pulley (m; 0 without a pulley). A frictionless
+    /// pulley carries the frame-end tension T_A of the free segment along the whole arc.
+    pub wrapped_length: f64,
     /// T_A (N).
     pub frame_end_tension: f64,
     /// T_B (N).
@@ -916,7 +920,7 @@ pub struct SaggingCable {
     /// The unit force the cable applies to the platform at B (towards the cable, base
     /// coordinates): the column direction of the sag-aware wrench matrix.
     pub unit: Vector3<f64>,
-    /// The plane solution.
+    /// The plane solution (with a pulley, of the free segment from the tangent point to B).
     pub solution: CatenarySolution,
 }
 
@@ -1034,8 +1038,19 @@ impl SaggingCable {
             max_sag: f64::NAN,
             angle_to_chord: f64::NAN,
             unit,
+            wrapped_length: 0.0,
             solution: *sol,
         }
+    }
+
+    /// The cable wrapped by the arc ρ β = `arc` (m) on a frictionless pulley before its free
+    /// segment: the arc, stretched under the free segment's frame-end tension T_A, adds
+    /// ρ β/(1 + T_A/EA) to the unstrained length (issue 29; docs/algorithms.md, "Elastic
+    /// cables over pulleys").
+    pub(crate) fn wrapped(mut self, model: &ElasticCatenary, arc: f64) -> Self {
+        self.wrapped_length = arc;
+        self.unstrained_length += arc / (1.0 + model.compliance * self.frame_end_tension);
+        self
     }
 
     /// `max_sag` and `angle_to_chord` from the solution and the plane span (x, z).
@@ -1184,11 +1199,41 @@ impl RobotCatenaries {
         (c.attachment_point + c.vector, c.attachment_point)
     }
 
+    /// ρ β, the arc wrapped on cable i's pulley (m; the pulley model's length minus its free
+    /// length), `None` without a pulley.
+    fn arc(kin: &crate::PoseKinematics, i: usize) -> Option<f64> {
+        kin.pulley(i)
+            .map(|p| (kin.cables()[i].length - p.free_length).max(0.0))
+    }
+
+    /// An error naming the first heavy cable (w > 0) that runs over a pulley (`has_pulley(i)`):
+    /// the elastic catenary over a pulley is not modelled.
+    pub(crate) fn check_pulleys(
+        &self,
+        has_pulley: impl Fn(usize) -> bool,
+    ) -> Result<(), crate::KinematicsError> {
+        match self
+            .cables
+            .iter()
+            .enumerate()
+            .find(|(i, c)| c.weight > 0.0 && has_pulley(*i))
+        {
+            Some((cable, _)) => Err(crate::KinematicsError::UnsupportedPulley {
+                cable,
+                reason: "the elastic catenary (a heavy cable) over a pulley is not modelled; use the elastic model (no cable weight) or the robot without pulleys",
+            }),
+            None => Ok(()),
+        }
+    }
+
     fn check_count(
         &self,
         kin: &crate::PoseKinematics,
         given: usize,
     ) -> Result<(), crate::KinematicsError> {
+        if kin.cable_count() == self.cables.len() {
+            self.check_pulleys(|i| kin.pulley(i).is_some())?;
+        }
         for (what, found) in [
             ("cable models", self.cables.len()),
             ("tensions or lengths", given),
@@ -1217,8 +1262,11 @@ impl RobotCatenaries {
         out.clear();
         for (i, (model, &t)) in self.cables.iter().zip(tensions).enumerate() {
             let (a, b) = Self::ends(kin, i);
-            let s = SaggingCable::with_tension(model, &a, &b, &self.up, t)
+            let mut s = SaggingCable::with_tension(model, &a, &b, &self.up, t)
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
+            if let Some(arc) = Self::arc(kin, i) {
+                s = s.wrapped(model, arc);
+            }
             out.push(s);
         }
         Ok(())
@@ -1271,7 +1319,10 @@ impl RobotCatenaries {
                     ))
                 })
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
-            out.push(sol);
+            out.push(match Self::arc(kin, i) {
+                Some(arc) => sol.wrapped(model, arc),
+                None => sol,
+            });
         }
         Ok(())
     }
@@ -1287,7 +1338,10 @@ impl RobotCatenaries {
         }
     }
 
-    /// Each cable's catenary at the pose of `kin` with unstrained lengths `lengths` (m).
+    /// Each cable's catenary at the pose of `kin` with unstrained lengths `lengths` (m). With a
+    /// pulley (weightless cables only) the length is the whole cable's: the tension
+    /// T = EA (l/L0 − 1) is the same along it, so the free segment of length l_f has the
+    /// unstrained length L0 l_f/l.
     pub fn with_lengths(
         &self,
         kin: &crate::PoseKinematics,
@@ -1298,8 +1352,17 @@ impl RobotCatenaries {
         out.clear();
         for (i, (model, &l0)) in self.cables.iter().zip(lengths).enumerate() {
             let (a, b) = Self::ends(kin, i);
-            let s = SaggingCable::with_length(model, &a, &b, &self.up, l0)
+            let arc = Self::arc(kin, i);
+            let free = match arc {
+                Some(_) => l0 * kin.free_length(i) / kin.cables()[i].length,
+                None => l0,
+            };
+            let mut s = SaggingCable::with_length(model, &a, &b, &self.up, free)
                 .map_err(|source| crate::KinematicsError::Catenary { cable: i, source })?;
+            if let Some(arc) = arc {
+                s = s.wrapped(model, arc);
+                s.unstrained_length = l0;
+            }
             out.push(s);
         }
         Ok(())

@@ -197,9 +197,9 @@ pub struct ElastoGeometricForward<'a> {
 
 impl<'a> ElastoGeometricForward<'a> {
     /// A solver for `robot` with the cables of `model`. Errors on invalid settings, a model
-    /// with another number of cables, fewer cables than DOF, pulleys (not modelled with sagging
-    /// cables), or a weightless cable of infinite stiffness (a rigid straight cable: use
-    /// [`crate::ForwardKinematics`]).
+    /// with another number of cables, fewer cables than DOF, a heavy cable over a pulley (not
+    /// modelled; weightless elastic cables over pulleys are), or a weightless cable of infinite
+    /// stiffness (a rigid straight cable: use [`crate::ForwardKinematics`]).
     pub fn new(
         robot: &'a Robot,
         model: &'a RobotCatenaries,
@@ -231,12 +231,7 @@ impl<'a> ElastoGeometricForward<'a> {
                 dof: robot.dof(),
             });
         }
-        if robot.has_pulleys() {
-            return Err(KinematicsError::InvalidSetting {
-                what: "pulleys with elastic or sagging cables (not modelled; use the robot without pulleys)",
-                value: f64::NAN,
-            });
-        }
+        model.check_pulleys(|i| robot.cables()[i].pulley.is_some())?;
         if let Some(c) = model
             .cables()
             .iter()
@@ -431,7 +426,7 @@ impl<'a> ElastoGeometricForward<'a> {
     fn evaluate(&self, kin: &PoseKinematics, l0: &[f64], out: &mut [CableForce]) -> Option<()> {
         let up = self.model.up();
         for (i, (model, c)) in self.model.cables().iter().zip(kin.cables()).enumerate() {
-            out[i] = cable_force(model, &c.vector, &up, l0[i], out[i].plane_force)?;
+            out[i] = cable_force(model, c, kin.pulley(i), &up, l0[i], out[i].plane_force)?;
         }
         Some(())
     }
@@ -726,30 +721,54 @@ impl<'a> ElastoGeometricForward<'a> {
             let (a, b) = (c.attachment_point + c.vector, c.attachment_point);
             let (x, z, e) = plane_span(&a, &b, &up);
             let (fx, fz) = forces[i].plane_force;
+            // With a pulley (a weightless cable: the tension is the same along it) the free
+            // segment's share of L0 is l_f/l.
+            let free = kin_free_share(&self.kin, i) * l0[i];
             let sol = crate::CatenarySolution {
-                unstrained_length: l0[i],
+                unstrained_length: free,
                 horizontal_force: fx,
                 vertical_force: fz,
                 frame_end_tension: model.frame_end_tension(l0[i], fx, fz),
                 platform_end_tension: fx.hypot(fz),
                 iterations: 0,
             };
-            self.cables
-                .push(SaggingCable::from_solution(model, &sol, x, z, &e, &up));
+            let mut cable = SaggingCable::from_solution(model, &sol, x, z, &e, &up);
+            if let Some(p) = self.kin.pulley(i) {
+                cable.wrapped_length = (c.length - p.free_length).max(0.0);
+                cable.unstrained_length = l0[i];
+            }
+            self.cables.push(cable);
         }
     }
 }
 
+/// l_f/l of cable `i` at the pose of `kin`: 1 without a pulley.
+fn kin_free_share(kin: &PoseKinematics, i: usize) -> f64 {
+    kin.pulley(i)
+        .map_or(1.0, |p| p.free_length / kin.cables()[i].length)
+}
+
 /// One cable's force on the platform and its derivative with respect to the attachment point;
-/// `vector` = A − B (from the platform attachment to the frame point), `start` a warm start of
-/// the plane solve (F_x ≤ 0: none).
+/// `state.vector` = A − B (from the platform attachment to the frame point, with a pulley to
+/// the tangent point), `start` a warm start of the plane solve (F_x ≤ 0: none).
+///
+/// A weightless cable over a pulley (`pulley`, frictionless: one tension along the cable)
+/// stretches over its whole length l = ρ β + l_f: T = EA (l/L0 − 1), pulling along the free
+/// segment u. With ∂l/∂B = −uᵀ and the pulley stiffness
+/// ∂u/∂B = −(1/l_f) (I − u uᵀ − (s_C/s) e_n e_nᵀ) ([`crate::PulleyState::swivel_ratio`]),
+/// S = −(EA/L0) u uᵀ − (T/l_f) (I − u uᵀ − (s_C/s) e_n e_nᵀ).
 fn cable_force(
     model: &ElasticCatenary,
-    vector: &Vector3<f64>,
+    state: &crate::CableState,
+    pulley: Option<&crate::PulleyState>,
     up: &Vector3<f64>,
     l0: f64,
     start: (f64, f64),
 ) -> Option<CableForce> {
+    if let Some(p) = pulley {
+        return Some(pulley_cable_force(model, state, p, up, l0));
+    }
+    let vector = &state.vector;
     let chord = vector.norm();
     let d = -vector;
     let z = d.dot(up);
@@ -798,6 +817,41 @@ fn cable_force(
         plane_force: (fx, fz),
         slack: false,
     })
+}
+
+/// [`cable_force`] of a weightless elastic cable over a pulley.
+fn pulley_cable_force(
+    model: &ElasticCatenary,
+    state: &crate::CableState,
+    p: &crate::PulleyState,
+    up: &Vector3<f64>,
+    l0: f64,
+) -> CableForce {
+    let ea = model.axial_stiffness();
+    let (u, free) = (state.unit, p.free_length);
+    let t = ea * (state.length / l0 - 1.0);
+    let uu = u * u.transpose();
+    if t < 0.0 {
+        return CableForce {
+            force: Vector3::zeros(),
+            stiffness: -(ea / l0) * uu,
+            plane_force: (0.0, 0.0),
+            slack: true,
+        };
+    }
+    let lateral =
+        Matrix3::identity() - uu - p.swivel_ratio * p.plane_normal * p.plane_normal.transpose();
+    // (F_x, F_z): the tension at B along C → B in the vertical plane (the warm start of
+    // `cable_force`'s convention; unused by weightless cables but reported).
+    let along = -u;
+    let z = along.dot(up);
+    let x = (along - up * z).norm();
+    CableForce {
+        force: u * t,
+        stiffness: -(ea / l0) * uu - (t / free) * lateral,
+        plane_force: (t * x, t * z),
+        slack: false,
+    }
 }
 
 #[cfg(test)]
@@ -933,8 +987,35 @@ mod tests {
         let robot = cogiro_like();
         let model = RobotCatenaries::new(&[0.5; 8], &[1e5; 8], &gravity()).unwrap();
         let pose = Pose::spatial(Vector3::new(0.5, 0.8, 2.0), 0.1, -0.05, 0.2);
-        let (l0, _) = inverse(&robot, &model, &pose, &[50.0; 8]);
-        let mut fk = ElastoGeometricForward::new(&robot, &model, Default::default()).unwrap();
+        jacobian_check(&robot, &model, &pose, &[50.0; 8], None);
+    }
+
+    /// Elastic cables over pulleys: the stiffness from ∂l/∂B = −uᵀ and the pulley's
+    /// ∂u/∂B = −(1/l_f)(I − u uᵀ − (s_C/s) e_n e_nᵀ) against central differences of the cables'
+    /// wrench, at a pose where every pulley swivels off its frame axes.
+    #[test]
+    fn pulley_jacobian_matches_finite_differences() {
+        let robot = crate::reference_robots::ipanema_like_8_pulleys();
+        let model = RobotCatenaries::elastic(&[6e4; 8]).unwrap();
+        let pose = Pose::spatial(Vector3::new(0.3, -0.2, 1.2), 0.1, -0.05, 0.2);
+        let t = [120.0, 90.0, 150.0, 100.0, 110.0, 130.0, 95.0, 140.0];
+        // Absolute (N/m, N, N·m): the axial terms EA/L0 ≈ 3·10⁴ N/m dwarf the swivel term
+        // (s_C/s) T/l_f ≈ 1 N/m, which a relative tolerance would not see.
+        jacobian_check(&robot, &model, &pose, &t, Some(1e-3));
+    }
+
+    /// The analytic ∂g/∂twist against central differences at `pose`, within `tolerance`
+    /// (absolute) or else 10⁻⁵ of its largest entry.
+    fn jacobian_check(
+        robot: &Robot,
+        model: &RobotCatenaries,
+        pose: &Pose,
+        t: &[f64],
+        tolerance: Option<f64>,
+    ) {
+        let pose = *pose;
+        let (l0, _) = inverse(robot, model, &pose, t);
+        let mut fk = ElastoGeometricForward::new(robot, model, Default::default()).unwrap();
         let wrench = |fk: &ElastoGeometricForward, x: &Pose| {
             let kin = robot.inverse_kinematics(x).unwrap();
             let mut f = vec![CableForce::default(); 8];
@@ -956,7 +1037,10 @@ mod tests {
             let (gm, _, _) = wrench(&fk, &displaced(MotionPattern::Spatial, &pose, &d));
             let fd = (gp - gm) / (2.0 * h);
             let err = (fd - j.column(k)).amax();
-            assert!(err < 1e-5 * j.amax(), "column {k}: {err}");
+            assert!(
+                err < tolerance.unwrap_or(1e-5 * j.amax()),
+                "column {k}: {err}"
+            );
         }
         assert!(g0.amax() > 0.0);
     }
@@ -1050,8 +1134,14 @@ mod tests {
         ));
         let rigid = RobotCatenaries::elastic(&[f64::INFINITY; 8]).unwrap();
         assert!(ElastoGeometricForward::new(&robot, &rigid, Default::default()).is_err());
+        // Elastic cables over pulleys are modelled, heavy ones are not.
         let pulleys = crate::reference_robots::ipanema_like_8_pulleys();
-        assert!(ElastoGeometricForward::new(&pulleys, &model, Default::default()).is_err());
+        assert!(ElastoGeometricForward::new(&pulleys, &model, Default::default()).is_ok());
+        let heavy = RobotCatenaries::new(&[0.01; 8], &[1e4; 8], &gravity()).unwrap();
+        assert!(matches!(
+            ElastoGeometricForward::new(&pulleys, &heavy, Default::default()),
+            Err(KinematicsError::UnsupportedPulley { cable: 0, .. })
+        ));
         // Every cable far too long: no equilibrium, reported (not a panic).
         let sol = fk.solve(&[10.0; 8], &w, &guess).unwrap();
         assert_eq!(sol.status, ElastoGeometricStatus::NotConverged);

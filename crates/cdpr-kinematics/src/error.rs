@@ -75,6 +75,15 @@ pub enum KinematicsError {
         /// to the pulley centre (`InsidePulley`, then ≤ the radius).
         distance: f64,
     },
+    /// A cable model that a pulley cable cannot take (e.g. the elastic catenary over a pulley
+    /// whose swivel axis is not vertical).
+    #[error("cable {}: {reason}", .cable + 1)]
+    UnsupportedPulley {
+        /// Cable index (0-based; the message counts from 1).
+        cable: usize,
+        /// What is not modelled, and what to use instead.
+        reason: &'static str,
+    },
     /// A solver setting is out of range.
     #[error("{what}: {value}")]
     InvalidSetting {

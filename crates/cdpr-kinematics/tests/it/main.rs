@@ -3,6 +3,7 @@
 
 mod batch;
 mod catenary;
+mod elastic_pulley;
 mod elasto_geometric_fuzz;
 mod forward_kinematics;
 mod jacobian;

@@ -2,7 +2,7 @@
 //! and its certificate checked independently with the catenary forces.
 
 use cdpr_kinematics::nalgebra::{DVector, Vector3};
-use cdpr_kinematics::reference_robots::ipanema_like_8;
+use cdpr_kinematics::reference_robots::{ipanema_like_8, ipanema_like_8_pulleys};
 use cdpr_kinematics::{Pose, RobotCatenaries, SaggingCable};
 use cdpr_tension::{
     Method, SaggingOutcome, SaggingSettings, SaggingStatics, TensionBounds, TensionProblem,
@@ -96,6 +96,56 @@ fn elastic_unstrained_lengths_are_l_over_one_plus_t_over_ea() {
         assert!((c.unstrained_length - l / (1.0 + t / 6e4)).abs() < 1e-12 * l);
         assert_eq!(c.max_sag, 0.0);
     }
+}
+
+/// Elastic cables over pulleys (issue 29): a frictionless pulley keeps one tension along the
+/// cable and the elastic stretch turns no force, so the statics are the straight pulley
+/// model's (its W, columns along the free segments), for every method, and each L0 is
+/// l/(1 + t/EA) with l = ρ β + l_f the whole length.
+#[test]
+fn elastic_cables_over_pulleys_give_the_straight_pulley_answers() {
+    let robot = ipanema_like_8_pulleys();
+    let bounds = TensionBounds::uniform(8, 10.0, 1000.0).unwrap();
+    let ea = 6e4;
+    let elastic = RobotCatenaries::elastic(&[ea; 8]).unwrap();
+    let mut compared = 0;
+    for pose in poses() {
+        let kin = robot.inverse_kinematics(&pose).unwrap();
+        let w = kin.wrench_matrix();
+        for method in [Method::L2, Method::L1, Method::Linf, Method::Pinv] {
+            let reference = TensionSolver::new(method)
+                .solve(&TensionProblem::new(&w, &load(), &bounds))
+                .unwrap();
+            let outcome = SaggingStatics::new(SaggingSettings::default())
+                .solve(
+                    &mut TensionSolver::new(method),
+                    &kin,
+                    &elastic,
+                    &load(),
+                    &bounds,
+                )
+                .unwrap();
+            match (outcome, reference.tensions()) {
+                (SaggingOutcome::Feasible(s), Some(t)) => {
+                    let d = (&s.tensions - t).amax();
+                    assert!(d <= 1e-9 * t.amax(), "{method:?}: {d}");
+                    assert!((&s.wrench_matrix - &w).amax() < 1e-12);
+                    for (i, (c, t)) in s.cables.iter().zip(s.tensions.iter()).enumerate() {
+                        let l = kin.cables()[i].length;
+                        assert!(
+                            (c.unstrained_length - l / (1.0 + t / ea)).abs() < 1e-12 * l,
+                            "cable {i}: {c:?}"
+                        );
+                        assert!(c.wrapped_length > 0.0 && c.chord_length < l);
+                    }
+                    compared += 1;
+                }
+                (SaggingOutcome::Infeasible(_), None) => {}
+                (o, r) => panic!("{method:?}: elastic {o:?} vs straight {r:?}"),
+            }
+        }
+    }
+    assert!(compared >= 12, "{compared}");
 }
 
 #[test]

@@ -47,7 +47,7 @@ impl CableModelArgs {
     }
 
     /// The robot's cables under the chosen model: `None` for straight cables; a usage error
-    /// when the robot file lacks the keys the model needs or has pulleys.
+    /// when the robot file lacks the keys the model needs, or for the catenary over pulleys.
     pub fn catenaries(
         &self,
         robot: &RobotDescription,
@@ -69,16 +69,30 @@ impl CableModelArgs {
 }
 
 fn print_cables(c: &SaggingCablesReport) {
+    // Over pulleys the chord is the free segment's and L0 includes the wrapped arc.
+    let wrapped = c.wrapped_lengths.as_deref();
     println!(
-        "{:>6} {:>12} {:>12} {:>12} {:>14} {:>12} {:>12}",
-        "cable", "L0 (m)", "chord (m)", "T_B (N)", "T_frame (N)", "sag (m)", "angle (rad)"
+        "{:>6} {:>12} {:>12}{} {:>12} {:>14} {:>12} {:>12}",
+        "cable",
+        "L0 (m)",
+        "chord (m)",
+        if wrapped.is_some() {
+            "  wrapped (m)"
+        } else {
+            ""
+        },
+        "T_B (N)",
+        "T_frame (N)",
+        "sag (m)",
+        "angle (rad)"
     );
     for i in 0..c.unstrained_lengths.len() {
         println!(
-            "{:>6} {:>12.6} {:>12.6} {:>12.6} {:>14.6} {:>12.6} {:>12.6}",
+            "{:>6} {:>12.6} {:>12.6}{} {:>12.6} {:>14.6} {:>12.6} {:>12.6}",
             i + 1,
             c.unstrained_lengths[i],
             c.chord_lengths[i],
+            wrapped.map_or(String::new(), |w| format!(" {:>12.6}", w[i])),
             c.platform_end_tensions[i],
             c.frame_end_tensions[i],
             c.max_sag[i],

@@ -649,3 +649,143 @@ fn viewer_draws_catenaries() {
     assert!(deepest > 0.005 && deepest < 5.0, "{deepest}");
     assert!(sag["legend"].to_string().contains("catenaries"));
 }
+
+/// `--cable-model elastic` over pulleys (issue 29): `kinematics`, `tension` and `forward` on
+/// ipanema-like-8-pulleys (E·S = 60 kN). The statics and W are the straight pulley model's,
+/// L0 = l/(1 + t/EA) with l the pulley model's whole length (wrapped arc + free segment), and
+/// `forward --unstrained-lengths` returns the statics' pose and tensions.
+#[test]
+fn elastic_cables_over_pulleys() {
+    let r = robot("ipanema-like-8-pulleys.toml");
+    let pose = "0.2,0.1,1.1,0.02,-0.01,0.05";
+    let ea = 6e4;
+    let straight_kin = json(&["kinematics", &r, "--pose", pose, "--json"]);
+    assert_eq!(straight_kin["kinematics"], "pulley");
+    let (l, free) = (
+        floats(&straight_kin["lengths"]),
+        floats(&straight_kin["free_lengths"]),
+    );
+    let t = [120.0, 90.0, 150.0, 100.0, 110.0, 130.0, 95.0, 140.0];
+    let t_text: Vec<String> = t.iter().map(|x| x.to_string()).collect();
+    let kin = json(&[
+        "kinematics",
+        &r,
+        "--pose",
+        pose,
+        "--cable-model",
+        "elastic",
+        "--tensions",
+        &t_text.join(","),
+        "--json",
+    ]);
+    let (l0, chord, wrapped) = (
+        floats(&kin["unstrained_lengths"]),
+        floats(&kin["chord_lengths"]),
+        floats(&kin["wrapped_lengths"]),
+    );
+    for i in 0..8 {
+        assert!(
+            (l0[i] - l[i] / (1.0 + t[i] / ea)).abs() < 1e-12,
+            "cable {i}"
+        );
+        assert!((chord[i] - free[i]).abs() < 1e-12, "cable {i}");
+        assert!((wrapped[i] + free[i] - l[i]).abs() < 1e-12, "cable {i}");
+    }
+    let (w0, w1) = (&straight_kin["wrench_matrix"], &kin["wrench_matrix"]);
+    for r in 0..6 {
+        let (a, b) = (floats(&w0[r]), floats(&w1[r]));
+        for j in 0..8 {
+            assert!(
+                (a[j] - b[j]).abs() < 1e-12,
+                "W[{r}][{j}]: {} vs {}",
+                a[j],
+                b[j]
+            );
+        }
+    }
+    // Tensions: the straight pulley answer.
+    let straight = json(&["tension", &r, "--pose", pose, "--json"]);
+    let elastic = json(&[
+        "tension",
+        &r,
+        "--pose",
+        pose,
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert_eq!(elastic["feasible"], true, "{elastic}");
+    let (ts, te) = (floats(&straight["tensions"]), floats(&elastic["tensions"]));
+    let l0 = floats(&elastic["unstrained_lengths"]);
+    for i in 0..8 {
+        assert!(
+            (ts[i] - te[i]).abs() < 1e-9 * ts[i],
+            "{} vs {}",
+            ts[i],
+            te[i]
+        );
+        assert!(
+            (l0[i] - l[i] / (1.0 + te[i] / ea)).abs() < 1e-12,
+            "cable {i}"
+        );
+    }
+    // Forward from those unstrained lengths under the platform's weight: back to the pose.
+    let l0_text: Vec<String> = l0.iter().map(|x| x.to_string()).collect();
+    let v = json(&[
+        "forward",
+        &r,
+        "--unstrained-lengths",
+        &l0_text.join(","),
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert_eq!(v["status"], "equilibrium", "{v}");
+    let truth = [0.2, 0.1, 1.1, 0.02, -0.01, 0.05];
+    for (p, t) in floats(&v["pose"]).iter().zip(truth) {
+        assert!((p - t).abs() < 1e-9, "{p} vs {t}");
+    }
+    for (a, b) in floats(&v["tensions"]).iter().zip(&te) {
+        assert!((a - b).abs() < 1e-6 * b, "{a} vs {b}");
+    }
+    assert_eq!(floats(&v["wrapped_lengths"]).len(), 8);
+    // The table names the wrapped arc.
+    let out = cdpr()
+        .args(["tension", &r, "--pose", pose, "--cable-model", "elastic"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stdout).contains("wrapped (m)"));
+    // Robots without pulleys keep their JSON (no wrapped lengths).
+    let plain = json(&[
+        "tension",
+        &robot("ipanema-like-8.toml"),
+        "--pose",
+        pose,
+        "--cable-model",
+        "elastic",
+        "--json",
+    ]);
+    assert!(plain.get("wrapped_lengths").is_none());
+}
+
+/// The workspace with elastic cables over pulleys is the straight pulley robot's.
+#[test]
+fn elastic_workspace_over_pulleys_is_the_straight_one() {
+    let r = robot("ipanema-like-8-pulleys.toml");
+    let count = |model: &str| {
+        let v = json(&[
+            "workspace",
+            &r,
+            "--grid",
+            "6",
+            "--cable-model",
+            model,
+            "--json",
+        ]);
+        v["feasible_points"].as_u64().unwrap()
+    };
+    let straight = count("straight");
+    assert!(straight > 0);
+    assert_eq!(count("elastic"), straight);
+}
