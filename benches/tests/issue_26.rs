@@ -171,6 +171,45 @@ fn energy_efficient_closed_form_equals_the_svd_transcription() {
     assert!(shifted > 100, "{shifted} poses shifted");
 }
 
+/// puncture (`--interior icf`; its line start t0 = −W⁺ w_ext from the improved closed form's
+/// L D Lᵀ factor of W Wᵀ, no null-space basis) against an independent transcription: t0 from
+/// the SVD pseudo-inverse, the interior point from `Method::ImprovedClosedForm`, and the line
+/// t0 + s (t_int − t0) at s* = max_i min(a_i, b_i) (module `cdpr_tension::puncture`). Tensions to
+/// 10⁻⁹ N on the first 1 000 poses; verdicts equal where the line is clear of a slab's end.
+#[test]
+fn puncture_equals_the_svd_transcription() {
+    let f = fixture();
+    let mut solver = TensionSolver::new(Method::Puncture);
+    let mut icf = TensionSolver::new(Method::ImprovedClosedForm);
+    let mut compared = 0;
+    for p in poses(1_000, SEED) {
+        let w = f.robot.inverse_kinematics(&p).unwrap().wrench_matrix();
+        let problem = TensionProblem::new(&w, &f.load, &f.bounds);
+        let interior = match icf.solve(&problem).unwrap().tensions() {
+            Some(t) => t.clone(),
+            None => continue,
+        };
+        let t0 = -(w.clone().pseudo_inverse(1e-14).unwrap() * &f.load);
+        let d = &interior - &t0;
+        let (mut enter, mut leave) = (f64::NEG_INFINITY, f64::INFINITY);
+        for i in 0..8 {
+            let (a, b) = ((1.0 - t0[i]) / d[i], (1000.0 - t0[i]) / d[i]);
+            enter = enter.max(a.min(b));
+            leave = leave.min(a.max(b));
+        }
+        let t = &t0 + enter * &d;
+        let out = solver.solve(&problem).unwrap();
+        if (leave - enter).abs() > 1e-6 {
+            assert_eq!(out.is_feasible(), enter <= leave, "puncture verdict");
+        }
+        if let Some(got) = out.tensions() {
+            assert!((got - &t).amax() < 1e-9, "{got} vs {t}");
+            compared += 1;
+        }
+    }
+    assert!(compared > 700, "{compared} poses compared");
+}
+
 /// Issue 26's vertex-centroid speed comes from the r = 2 path of
 /// `cdpr_tension::vertex_centroid` (the four candidates of each cable pair tested together in a
 /// branch-free loop); on all 20 000 poses it finds the general enumeration's

@@ -75,8 +75,27 @@ impl ImprovedClosedForm {
         let step = Step {
             first_only: true,
             ratio_floor: PLAIN_RATIO,
+            minimum_norm: false,
         };
         self.solve_with(problem, t, true, detected_path(), step, d)
+    }
+
+    /// [`Self::solve`], and the minimum-norm tensions t0 = −W⁺ w_ext = −Wᵀ (W Wᵀ)⁻¹ w_ext from
+    /// the first step's factor into `t0` (length n): puncture's line start without a null-space
+    /// basis. `t0` is NaN where that factor's Hadamard ratio is below [`PLAIN_RATIO`] (or when
+    /// the first factor fails): then compute it on the QR null space.
+    pub fn solve_and_minimum_norm(
+        &mut self,
+        problem: &TensionProblem,
+        t: &mut [f64],
+        t0: &mut [f64],
+    ) -> Result<(), Infeasibility> {
+        t0.fill(f64::NAN);
+        let step = Step {
+            minimum_norm: true,
+            ..Step::ITERATE
+        };
+        self.solve_with(problem, t, true, detected_path(), step, t0)
     }
 
     /// [`Self::solve`] with the factor updated (`update`) or refactorised at every step, 6 × 8
@@ -133,6 +152,9 @@ struct Step {
     first_only: bool,
     /// Ratios below this are singular (first step) or inconclusive (later steps).
     ratio_floor: f64,
+    /// Also write the minimum-norm tensions t0 = −Wᵀ (W Wᵀ)⁻¹ w_ext of the first factor into
+    /// the side buffer (NaN there when its Hadamard ratio is below [`PLAIN_RATIO`]).
+    minimum_norm: bool,
 }
 
 impl Step {
@@ -140,6 +162,7 @@ impl Step {
     const ITERATE: Step = Step {
         first_only: false,
         ratio_floor: SINGULARITY_RATIO,
+        minimum_norm: false,
     };
 }
 
@@ -270,6 +293,18 @@ fn iterate<const M: usize, const N: usize>(
             } else {
                 Infeasibility::Inconclusive { method: METHOD }
             });
+        }
+        if first && step.minimum_norm && d.len() == n {
+            // t0 = −Wᵀ (W Wᵀ)⁻¹ w_ext from the first factor (all cables free), trusted only
+            // above the plain-closed-form ratio (the normal equations square W's condition).
+            if ratio >= PLAIN_RATIO {
+                y.copy_from_slice(we);
+                ldl_solve(aat, inv_d, m, y);
+                d.fill(0.0);
+                subtract_at_y::<N>(ws, m, y, active, d);
+            } else {
+                d.fill(f64::NAN);
+            }
         }
         first = false;
         // (A Aᵀ) y = rhs; t_free −= Aᵀ y.

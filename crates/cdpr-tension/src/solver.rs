@@ -159,6 +159,8 @@ pub struct TensionSolver {
     p_norm: PNorm,
     /// The interior point of the puncture method.
     interior: Vec<f64>,
+    /// Puncture's line start t0 = −W⁺ w_ext from the improved closed form's factor.
+    t0: Vec<f64>,
 }
 
 impl TensionSolver {
@@ -190,6 +192,7 @@ impl TensionSolver {
             centroid: VertexCentroid::default(),
             p_norm: PNorm::default(),
             interior: Vec::new(),
+            t0: Vec::new(),
         }
     }
 
@@ -637,14 +640,11 @@ impl TensionSolver {
             Method::PottClosedForm => self.pott.solve(ns, bounds, false, t),
             Method::PottClosedFormEe => self.pott.solve(ns, bounds, true, t),
             Method::Puncture => {
+                // `--interior cf`, or the improved closed form found nothing
+                // ([`Self::puncture_icf`]): the closed form; a bound violation does not
+                // matter, only the line counts.
                 self.interior.resize(ns.n, 0.0);
-                let icf = o.interior == PunctureInterior::ImprovedClosedForm
-                    && self.icf.solve(p, &mut self.interior).is_ok();
-                if !icf {
-                    // The closed form (also when the improved one finds nothing); a bound
-                    // violation does not matter: only the line counts.
-                    let _ = self.pott.solve(ns, bounds, false, &mut self.interior);
-                }
+                let _ = self.pott.solve(ns, bounds, false, &mut self.interior);
                 puncture::solve(&ns.t0, &self.interior, bounds, t)
             }
             Method::Dykstra => {
@@ -733,6 +733,39 @@ impl TensionSolver {
         Ok(())
     }
 
+    /// Puncture towards the improved closed form (`--interior icf`, the default): the line
+    /// start t0 = −W⁺ w_ext comes from the improved closed form's first L D Lᵀ factor of W Wᵀ
+    /// (no null-space basis) where its Hadamard ratio is at least 10⁻³, else from the QR null
+    /// space; where the improved closed form finds no interior point the closed form on the
+    /// null space is the interior, as with `--interior cf` ([`Self::peer`]).
+    fn puncture_icf(
+        &mut self,
+        p: &TensionProblem,
+    ) -> Result<Result<Option<f64>, Infeasibility>, TensionError> {
+        let n = self.t.len();
+        self.interior.resize(n, 0.0);
+        self.t0.resize(n, 0.0);
+        let found = self
+            .icf
+            .solve_and_minimum_norm(p, &mut self.interior, &mut self.t0)
+            .is_ok();
+        let answer = if found && self.t0.iter().all(|v| v.is_finite()) {
+            puncture::solve(&self.t0, &self.interior, p.bounds, &mut self.t)
+        } else {
+            if let Err(condition) = self.null_space(p) {
+                return Ok(Err(Infeasibility::SingularPose { condition }));
+            }
+            let (ns, bounds, t) = (&self.ns, p.bounds, &mut self.t[..]);
+            if found {
+                puncture::solve(&ns.t0, &self.interior, bounds, t)
+            } else {
+                let _ = self.pott.solve(ns, bounds, false, &mut self.interior);
+                puncture::solve(&ns.t0, &self.interior, bounds, t)
+            }
+        };
+        Ok(answer.map(|()| None))
+    }
+
     /// The answer of the method: `Ok(Some(residual))` when it is certified already, `Ok(None)`
     /// when the tensions in `self.t` still need their certificate.
     fn dispatch(
@@ -766,6 +799,9 @@ impl TensionSolver {
                         self.peer(p)
                     }
                 }
+            }
+            Method::Puncture if self.options.interior == PunctureInterior::ImprovedClosedForm => {
+                return self.puncture_icf(p);
             }
             Method::Puncture
             | Method::Dykstra

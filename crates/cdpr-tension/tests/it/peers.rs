@@ -331,6 +331,49 @@ proptest! {
     }
 }
 
+/// Puncture on ill-conditioned W (rows 10⁻⁵·k from dependent, k = 1, 10, 100, 1000: Hadamard
+/// ratios on both sides of the fast path's 10⁻³, where its line start t0 = −W⁺ w_ext leaves the
+/// normal equations for the QR null space) against the transcription with the SVD's t0 and the
+/// improved closed form's interior point: the same verdict, tensions within the problems' own
+/// conditioning (10⁻⁶ N at 500 N).
+#[test]
+fn ill_conditioned_puncture_equals_the_svd_line() {
+    let mut feasible = 0;
+    for k in [1.0, 10.0, 100.0, 1000.0] {
+        let mut w = DMatrix::from_fn(3, 5, |i, j| ((i * 5 + j) as f64 * 0.7).sin());
+        for j in 0..5 {
+            w[(2, j)] = w[(0, j)] + w[(1, j)] + k * 1e-5 * ((j as f64) - 2.0);
+        }
+        // In equilibrium with t* = (400, 550, 500, 620, 480) N: the set is not empty.
+        let t_star = DVector::from_vec(vec![400.0, 550.0, 500.0, 620.0, 480.0]);
+        let we = -(&w * &t_star);
+        let b = TensionBounds::new(vec![1.0; 5], vec![1000.0; 5]).unwrap();
+        let icf = solve(Method::ImprovedClosedForm, &w, &we, &b);
+        let Some(interior) = icf.tensions() else {
+            continue;
+        };
+        let t0 = -(w.clone().pseudo_inverse(1e-15).unwrap() * &we);
+        let d = interior - &t0;
+        let (mut enter, mut leave) = (f64::NEG_INFINITY, f64::INFINITY);
+        for i in 0..5 {
+            let (lo, hi) = ((1.0 - t0[i]) / d[i], (1000.0 - t0[i]) / d[i]);
+            enter = enter.max(lo.min(hi));
+            leave = leave.min(lo.max(hi));
+        }
+        let out = solve(Method::Puncture, &w, &we, &b);
+        assert_eq!(out.is_feasible(), enter <= leave, "k = {k}: {out:?}");
+        if let Some(t) = out.tensions() {
+            let reference = &t0 + enter * &d;
+            assert!(
+                (t - &reference).amax() <= 1e-6,
+                "k = {k}: {t} vs {reference}"
+            );
+            feasible += 1;
+        }
+    }
+    assert!(feasible >= 2, "{feasible} feasible lines");
+}
+
 /// An ill-conditioned W (one row 10⁻⁵ from the sum of the others, below the fast path's
 /// Hadamard ratio of 10⁻³): Pott's closed form then runs on the QR null space and still equals
 /// the SVD's t_m − W⁺(w + W t_m) within the problem's own conditioning (the two factorisations
