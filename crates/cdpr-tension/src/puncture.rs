@@ -18,7 +18,10 @@
 //! The interior estimate (`--interior`): `icf`, the improved closed form (Pott 2014; CASPR
 //! `id_cf_ipm`, WireLib's `getDistributionPuncture`), the default; or `cf`, the closed form of
 //! Pott, Bruckmann & Mikelsons 2009 (CASPR `id_cf_pm`). When the improved closed form finds no
-//! feasible tensions, the closed form is the interior estimate. The answer depends only on the
+//! feasible tensions, the closed form is the interior estimate. With `icf` the line start t₀
+//! comes from the improved closed form's first L D Lᵀ factor of W Wᵀ, t₀ = −Wᵀ (W Wᵀ)⁻¹ w_ext,
+//! without a null-space basis (the QR null space where that factor's Hadamard ratio is below
+//! 10⁻³, as for `pott-closed-form`). The answer depends only on the
 //! line: when the line misses the feasible set the verdict is
 //! [`Infeasibility::Inconclusive`] (the set may be non-empty elsewhere). WireLib shrinks the
 //! bounds by 10⁻⁶ N first; here the certificate's 10⁻⁹ relative tolerance decides instead.
