@@ -244,7 +244,7 @@ class Robot:
     ) -> WorkspaceResult: ...
     def trajectory(
         self,
-        waypoints: ArrayLike,
+        waypoints: Optional[ArrayLike] = None,
         samples: Optional[int] = None,
         step: Optional[float] = None,
         wrenches: Optional[ArrayLike] = None,
@@ -264,6 +264,13 @@ class Robot:
         max_acceleration: Optional[float] = None,
         blend_time: Optional[float] = None,
         dynamics: bool = False,
+        cable_model: Literal["straight", "elastic", "catenary"] = "straight",
+        interior: Optional[Literal["icf", "cf"]] = None,
+        alternating: bool = False,
+        p: Optional[float] = None,
+        alpha: Optional[float] = None,
+        caspr_trajectory: Optional[Union[str, PathLike]] = None,
+        trajectory_id: Optional[str] = None,
     ) -> Union[TrajectoryResult, TimedTrajectoryResult]: ...
     def simulate(
         self,

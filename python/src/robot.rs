@@ -673,16 +673,21 @@ impl Robot {
     /// compensation of ``cdpr trajectory --cable-model``, per sample the ``unstrained_lengths``
     /// (m) the winches pay out, the sagging statics' ``platform_end_tensions`` (N) and, with a
     /// winch on every cable, the ``drum_angles`` (rad) that pay them out.
-    #[pyo3(signature = (waypoints, samples=None, step=None, wrenches=None, method="l2", *,
+    ///
+    /// ``caspr_trajectory`` (a CASPR ``NAME_trajectories.xml``) instead of ``waypoints``: one of
+    /// its joint-space trajectories (``trajectory_id``; default the file's only one), sampled
+    /// every ``time_step`` of the file with CASPR's splines — the ``cdpr trajectory
+    /// --trajectory FILE --trajectory-id ID`` command; returns a :class:`TimedTrajectoryResult`.
+    #[pyo3(signature = (waypoints=None, samples=None, step=None, wrenches=None, method="l2", *,
         direction=None, nu=1.0, sotda_search="corners", jump_ratio=20.0, time_law=None,
         duration=None, dt=None, times=None, max_velocity=None, max_acceleration=None,
         blend_time=None, dynamics=false, cable_model="straight", interior=None, alternating=false,
-        p=None, alpha=None))]
+        p=None, alpha=None, caspr_trajectory=None, trajectory_id=None))]
     #[allow(clippy::too_many_arguments)]
     fn trajectory(
         &self,
         py: Python<'_>,
-        waypoints: &Bound<'_, PyAny>,
+        waypoints: Option<&Bound<'_, PyAny>>,
         samples: Option<i64>,
         step: Option<f64>,
         wrenches: Option<&Bound<'_, PyAny>>,
@@ -704,8 +709,25 @@ impl Robot {
         alternating: bool,
         p: Option<f64>,
         alpha: Option<f64>,
+        caspr_trajectory: Option<std::path::PathBuf>,
+        trajectory_id: Option<String>,
     ) -> PyResult<Py<PyAny>> {
         use crate::trajectory::{MethodArgs, PathArgs};
+        let caspr = match caspr_trajectory {
+            Some(file) => Some(cdpr_api::timed::CasprTrajectorySource {
+                text: std::fs::read_to_string(&file).map_err(|e| {
+                    crate::value_error(format!("{}: cannot read: {e}", file.display()))
+                })?,
+                id: trajectory_id,
+                file: Some(file.display().to_string()),
+            }),
+            None if trajectory_id.is_some() => {
+                return Err(crate::value_error(
+                    "trajectory_id needs caspr_trajectory (the CASPR trajectories file)",
+                ));
+            }
+            None => None,
+        };
         let cable_model = crate::sagging::model_name(cable_model)?.unwrap_or_default();
         let time_law = time_law
             .map(|l| l.parse().map_err(crate::value_error))
@@ -721,6 +743,7 @@ impl Robot {
         };
         let path = PathArgs {
             waypoints,
+            caspr,
             wrenches,
             times,
             samples: samples.map(|k| count(k, "samples")).transpose()?,

@@ -133,8 +133,10 @@ pub struct MethodArgs {
 
 /// The path of ``trajectory``: waypoints, their wrenches (and times), the sampling.
 pub struct PathArgs<'a, 'py> {
-    /// (K ≥ 2, DOF) waypoints.
-    pub waypoints: &'a Bound<'py, PyAny>,
+    /// (K ≥ 2, DOF) waypoints (none with a CASPR trajectory).
+    pub waypoints: Option<&'a Bound<'py, PyAny>>,
+    /// A CASPR joint-space trajectory instead of the waypoints and the time law.
+    pub caspr: Option<cdpr_api::timed::CasprTrajectorySource>,
     /// (DOF,) or (K, DOF) external wrenches.
     pub wrenches: Option<&'a Bound<'py, PyAny>>,
     /// (K,) waypoint times (s).
@@ -159,7 +161,20 @@ pub fn trajectory(
     let mut request = TrajectoryRequest::segment(api_robot(robot), Vec::new(), Vec::new());
     request.from = None;
     request.to = None;
-    request.waypoints = Some(waypoint_list(robot, &path)?);
+    match (path.waypoints, &path.caspr) {
+        (Some(_), Some(_)) => {
+            return Err(value_error(
+                "give waypoints or caspr_trajectory, not both (the CASPR file gives the path and its times)",
+            ));
+        }
+        (None, None) => {
+            return Err(value_error(
+                "waypoints: a path needs at least two poses, shape (K ≥ 2, DOF), or caspr_trajectory=",
+            ));
+        }
+        (Some(w), None) => request.waypoints = Some(waypoint_list(robot, w, &path)?),
+        (None, Some(source)) => request.caspr_trajectory = Some(source.clone()),
+    }
     request.samples = path.samples;
     request.step = path.step;
     request.jump_ratio = path.jump_ratio;
@@ -199,9 +214,13 @@ fn method_settings(method: Method, args: MethodArgs) -> PyResult<MethodSettings>
 }
 
 /// The waypoints of the request: poses, per-waypoint wrenches and times.
-fn waypoint_list(robot: &Robot, path: &PathArgs) -> PyResult<Vec<Waypoint>> {
+fn waypoint_list(
+    robot: &Robot,
+    waypoints: &Bound<'_, PyAny>,
+    path: &PathArgs,
+) -> PyResult<Vec<Waypoint>> {
     let dof = robot.geometry().dof();
-    let rows = Rows::new(path.waypoints, dof, "waypoints", robot.pose_hint())?;
+    let rows = Rows::new(waypoints, dof, "waypoints", robot.pose_hint())?;
     if rows.single || rows.count < 2 {
         return Err(value_error(format!(
             "waypoints: a path needs at least two poses, shape (K ≥ 2, {dof})"

@@ -143,3 +143,30 @@ def test_the_mass_matrix_is_the_newton_euler_one(cli, winches):
     point = cdpr.Robot.load(ROBOTS / "tdpm-4.toml")
     with pytest.raises(ValueError, match="mass"):
         point.mass_matrix([0.0, 0.0, 0.0])
+
+
+CASPR = ROBOTS.parents[1] / "crates" / "cdpr-io" / "tests" / "data" / "caspr"
+
+
+def test_a_caspr_trajectory_is_the_cli_report(cli):
+    """``caspr_trajectory=``: CASPR's IPAnema 2 ``traj_z_up`` (a quintic lift from z = 0.5 to 2 m in
+    1 s, time_step 0.01 s) with its inverse dynamics, equal to ``cdpr trajectory --trajectory``."""
+    d = CASPR / "spatial_manipulators" / "IPAnema_2"
+    robot_file, traj = d / "IPAnema_2_cables.xml", d / "IPAnema_2_trajectories.xml"
+    robot = cdpr.Robot.load(robot_file)
+    res = robot.trajectory(caspr_trajectory=str(traj), trajectory_id="traj_z_up", dynamics=True)
+    ref = cli("trajectory", robot_file, trajectory=traj, trajectory_id="traj_z_up", dynamics=True)
+    assert isinstance(res, cdpr.TimedTrajectoryResult)
+    assert res.t.tolist() == ref["t"] and len(ref["t"]) == 101
+    for key in ["poses", "velocity", "acceleration", "cable_lengths", "inertial_wrench"]:
+        assert getattr(res, key).tolist() == ref[key], key
+    assert rows(res.tensions) == ref["tensions"]
+    assert res.poses[0].tolist() == [0.0, 0.0, 0.5, 0.0, 0.0, 0.0]
+    assert res.poses[-1].tolist() == [0.0, 0.0, 2.0, 0.0, 0.0, 0.0]
+    # Bad combinations are ValueErrors naming what to give.
+    with pytest.raises(ValueError, match="not both"):
+        robot.trajectory([[0, 0, 1, 0, 0, 0], [0, 0, 1.5, 0, 0, 0]], caspr_trajectory=str(traj))
+    with pytest.raises(ValueError, match="trajectory_id needs caspr_trajectory"):
+        robot.trajectory([[0, 0, 1, 0, 0, 0], [0, 0, 1.5, 0, 0, 0]], trajectory_id="traj_z_up")
+    with pytest.raises(ValueError, match="traj_9"):
+        robot.trajectory(caspr_trajectory=str(traj), trajectory_id="traj_9")
